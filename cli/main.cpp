@@ -1,0 +1,34 @@
+// wangscape: argv -> subcommand options -> one function per subcommand. Exit codes:
+// 0 success, 1 runtime error (one line naming the file or value at fault), 2 usage error.
+#include <clocale>
+#include <cstdio>
+#include <exception>
+
+#include "cli/command.h"
+
+int main(int argc, char** argv) {
+  // Numbers we write for POV-Ray, Python and JSON must not depend on the user's locale.
+  std::setlocale(LC_ALL, "C");
+
+  CLI::App app{"Wangscape: Wang-tiled vegetation over real terrain, for POV-Ray, Blender and glTF", "wangscape"};
+  app.set_version_flag("--version", std::string("wangscape ") + WANGSCAPE_VERSION);
+  app.require_subcommand(1);
+  app.fallthrough();
+
+  wangscape::cli::GlobalOptions global;
+  app.add_flag("-q,--quiet", global.quiet, "No progress bar or messages on stderr");
+
+  wangscape::cli::register_tileset_command(app, global);
+  wangscape::cli::register_tiling_command(app, global);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "wangscape: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

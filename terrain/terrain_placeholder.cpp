@@ -1,0 +1,2 @@
+// placeholder so the library has a translation unit until real code lands
+namespace wangscape::terrain_detail {}
