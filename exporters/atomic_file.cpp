@@ -1,0 +1,69 @@
+#include "exporters/atomic_file.h"
+
+#include <unistd.h>
+
+#include <system_error>
+
+namespace wangscape {
+
+namespace {
+std::filesystem::path temporary_beside(const std::filesystem::path& path) {
+  // Keep the extension last: some writers (OIIO) pick the format from it.
+  std::filesystem::path temp = path;
+  temp.replace_filename(".tmp-" + std::to_string(::getpid()) + "-" + path.filename().string());
+  return temp;
+}
+
+void rename_into_place(const std::filesystem::path& from, const std::filesystem::path& to) {
+  std::error_code ec;
+  std::filesystem::rename(from, to, ec);
+  if (ec) {
+    std::filesystem::remove(from, ec);
+    throw ExportError("cannot write '" + to.string() + "': rename failed");
+  }
+}
+}  // namespace
+
+AtomicFile::AtomicFile(std::filesystem::path path) : path_(std::move(path)), temp_path_(temporary_beside(path_)) {
+  stream_.open(temp_path_, std::ios::binary | std::ios::trunc);
+  if (!stream_) throw ExportError("cannot write '" + path_.string() + "': cannot create a file in its folder");
+}
+
+AtomicFile::~AtomicFile() {
+  if (committed_) return;
+  stream_.close();
+  std::error_code ec;
+  std::filesystem::remove(temp_path_, ec);
+}
+
+void AtomicFile::commit() {
+  stream_.flush();
+  const bool ok = static_cast<bool>(stream_);
+  stream_.close();
+  if (!ok || stream_.fail()) throw ExportError("cannot write '" + path_.string() + "': write failed (disk full?)");
+  rename_into_place(temp_path_, path_);
+  committed_ = true;
+}
+
+void write_file_atomically(const std::filesystem::path& path, const std::string& contents) {
+  AtomicFile file(path);
+  file.stream().write(contents.data(), static_cast<std::streamsize>(contents.size()));
+  file.commit();
+}
+
+AtomicPath::AtomicPath(std::filesystem::path path) : path_(std::move(path)), temp_path_(temporary_beside(path_)) {}
+
+AtomicPath::~AtomicPath() {
+  if (committed_) return;
+  std::error_code ec;
+  std::filesystem::remove(temp_path_, ec);
+}
+
+void AtomicPath::commit() {
+  if (!std::filesystem::exists(temp_path_))
+    throw ExportError("cannot write '" + path_.string() + "': nothing was written");
+  rename_into_place(temp_path_, path_);
+  committed_ = true;
+}
+
+}  // namespace wangscape

@@ -1,0 +1,61 @@
+// Outputs are written atomically: to a temporary file beside the target, renamed into
+// place only when complete, so a failed run never leaves a partial file.
+#pragma once
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+
+namespace wangscape {
+
+// The error type of exporters/: the message names the file at fault.
+class ExportError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class AtomicFile {
+ public:
+  // Opens "<path>.tmp-<pid>" for writing (binary). Throws ExportError naming `path`.
+  explicit AtomicFile(std::filesystem::path path);
+  // Removes the temporary file unless commit() succeeded.
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  std::ofstream& stream() { return stream_; }
+  const std::filesystem::path& temp_path() const { return temp_path_; }
+  const std::filesystem::path& path() const { return path_; }
+
+  // Flushes, closes and renames into place. Throws ExportError if any write failed.
+  void commit();
+
+ private:
+  std::filesystem::path path_;
+  std::filesystem::path temp_path_;
+  std::ofstream stream_;
+  bool committed_ = false;
+};
+
+// Writes `contents` to `path` atomically.
+void write_file_atomically(const std::filesystem::path& path, const std::string& contents);
+
+// For outputs produced by another library (OIIO, a renderer): a temporary path with the
+// same extension, renamed into place by commit(); removed on destruction otherwise.
+class AtomicPath {
+ public:
+  explicit AtomicPath(std::filesystem::path path);
+  ~AtomicPath();
+  AtomicPath(const AtomicPath&) = delete;
+  AtomicPath& operator=(const AtomicPath&) = delete;
+  const std::filesystem::path& temp_path() const { return temp_path_; }
+  void commit();
+
+ private:
+  std::filesystem::path path_;
+  std::filesystem::path temp_path_;
+  bool committed_ = false;
+};
+
+}  // namespace wangscape
