@@ -1,0 +1,94 @@
+// Wang tilings: windows of the plane covered with tiles of a TileSet so that every shared
+// edge (and corner, for corner-coded sets) matches. Coordinates: tile (i, j), i grows east,
+// j grows north. Three algorithms:
+//  - scanline (seed 000 steps 1-5): rows from north to south, each row west to east; every
+//    tile is drawn at random among those matching its northern and western neighbours;
+//  - bottom_left (seed 003): the same from the south-west corner, rows south to north, each
+//    tile matching its southern and western neighbours;
+//  - hash (seed 002): edge (or corner) colors are hashed from their position, so any tile
+//    is known in O(1) without its neighbours; needs a complete set.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "generator/tileset.h"
+
+namespace wangscape {
+
+enum class TilingAlgorithm { scanline, bottom_left, hash };
+
+// "scanline", "bottom-left", "hash"; parse throws GeneratorError naming the value.
+std::string_view to_string(TilingAlgorithm algorithm);
+TilingAlgorithm parse_tiling_algorithm(std::string_view text);
+
+struct TilingOptions {
+  TilingAlgorithm algorithm = TilingAlgorithm::scanline;
+  std::uint64_t seed = 1;
+  // Seed 004: no tile equals its western or northern (southern for bottom_left) neighbour.
+  // For hash tilings, no tile equals any of its four neighbours (re-hashing the colors).
+  bool forbid_identical_neighbours = false;
+  // Tile coordinates of the window's south-west tile. Only hash tilings depend on it (other
+  // algorithms just label their window with it).
+  std::int64_t origin_i = 0, origin_j = 0;
+};
+
+// A width x height window; tiles[(local_j) * width + local_i], local_j = 0 is the southern row
+// (j = origin_j), i grows east, j grows north; values index TileSet::tiles.
+struct Tiling {
+  int width = 0, height = 0;
+  std::int64_t origin_i = 0, origin_j = 0;
+  std::vector<std::uint16_t> tiles;
+
+  std::uint16_t at(int local_i, int local_j) const {
+    return tiles[static_cast<std::size_t>(local_j) * static_cast<std::size_t>(width) +
+                 static_cast<std::size_t>(local_i)];
+  }
+};
+
+// Tiles a width x height window. Throws GeneratorError when the size is not positive, the set
+// cannot be tiled by the algorithm (naming the missing constraint), or the set cannot satisfy
+// forbid_identical_neighbours. Deterministic from options.seed on any thread count.
+Tiling make_tiling(const TileSet& set, int width, int height, const TilingOptions& options);
+
+// Row-streaming variant for windows too large to hold: calls `row(local_j, tiles)` once per row,
+// in the algorithm's order (scanline: north to south; bottom_left and hash: south to north).
+// Memory is O(width). Produces exactly the rows make_tiling would.
+using TilingRowSink = std::function<void(int local_j, std::span<const std::uint16_t> tiles)>;
+void stream_tiling(const TileSet& set, int width, int height, const TilingOptions& options, const TilingRowSink& row);
+
+// O(1) random access for complete edge sets (edge colors hashed on the doubled grid, seed 002:
+// N of tile (i,j) at (2i+1, 2j+2), S at (2i+1, 2j), E at (2i+2, 2j+1), W at (2i, 2j+1)) and
+// complete corner sets (corner colors hashed on lattice vertices). Deterministic from seed, any int64 i, j.
+// A set is complete when it holds every combination of its alphabets (K^4 tiles, or
+// H^2 V^2 for edge sets with separate horizontal/vertical alphabets), in any order.
+class HashedTiling {
+ public:
+  // Throws GeneratorError "tile set '<name>': hash tiling needs a complete set; missing
+  // (N,E,S,W)=(1,0,0,1)" (or (NE,SE,SW,NW)=...) when the set is not complete.
+  HashedTiling(const TileSet& set, std::uint64_t seed);
+
+  std::uint32_t tile_at(std::int64_t i, std::int64_t j) const;
+  // Tiles (first_i + k, j) for k in [0, out.size()).
+  void fill_row(std::int64_t first_i, std::int64_t j, std::span<std::uint16_t> out) const;
+
+  // Color hashed at a doubled-grid point (edge sets) or lattice vertex (corner sets); exposed
+  // for tests. `alphabet` is the number of colors to draw from.
+  std::uint32_t color_at(std::int64_t x, std::int64_t y, std::uint32_t alphabet) const;
+
+ private:
+  bool corner_ = false;
+  std::uint64_t seed_ = 0;
+  std::uint32_t horizontal_ = 0, vertical_ = 0;  // edge alphabets (N/S, E/W), or corner alphabet
+  // Maps the mixed-radix color code to the set's tile index.
+  std::vector<std::uint16_t> lookup_;
+};
+
+// Throws GeneratorError naming the first mismatching edge/corner, e.g. "tiling with 'cohen8':
+// tile (3, 5) has N=1 but tile (3, 6) has S=0", or an out-of-range tile index.
+void check_tiling(const TileSet& set, const Tiling& tiling);
+
+}  // namespace wangscape
