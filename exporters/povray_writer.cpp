@@ -1,0 +1,400 @@
+#include "exporters/povray_writer.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <vector>
+
+#include "exporters/atomic_file.h"
+
+namespace wangscape {
+
+namespace {
+
+// ---- locale-independent number formatting -------------------------------------------------
+
+// Appends `value` with exactly `decimals` digits after the point, via an integer: much faster
+// than floating-point formatting and never locale-dependent. |value| * 10^decimals must fit
+// in 63 bits (always true for meters and degrees).
+void append_fixed(std::string& out, double value, int decimals) {
+  static constexpr double kPowers[] = {1, 10, 100, 1000, 1e4, 1e5, 1e6, 1e7, 1e8};
+  if (!std::isfinite(value)) value = 0.0;
+  const bool negative = value < 0;
+  const auto scaled = static_cast<std::uint64_t>(std::llround(std::fabs(value) * kPowers[decimals]));
+  char digits[24];
+  auto [end, ec] = std::to_chars(digits, digits + sizeof digits, scaled);
+  (void)ec;
+  std::size_t length = static_cast<std::size_t>(end - digits);
+  if (negative && scaled != 0) out.push_back('-');
+  const auto whole_digits =
+      length > static_cast<std::size_t>(decimals) ? length - static_cast<std::size_t>(decimals) : 0;
+  if (whole_digits == 0) {
+    out.push_back('0');
+  } else {
+    out.append(digits, whole_digits);
+  }
+  if (decimals == 0) return;
+  out.push_back('.');
+  for (std::size_t pad = length; pad < static_cast<std::size_t>(decimals); ++pad) out.push_back('0');
+  out.append(digits + whole_digits, length - whole_digits);
+}
+
+void append_int(std::string& out, std::uint64_t value) {
+  char digits[24];
+  auto [end, ec] = std::to_chars(digits, digits + sizeof digits, value);
+  (void)ec;
+  out.append(digits, end);
+}
+
+// "<x,y,z>" with the given precision.
+void append_vector(std::string& out, double x, double y, double z, int decimals) {
+  out.push_back('<');
+  append_fixed(out, x, decimals);
+  out.push_back(',');
+  append_fixed(out, y, decimals);
+  out.push_back(',');
+  append_fixed(out, z, decimals);
+  out.push_back('>');
+}
+
+// ENU (x east, y north, z up) -> POV (x east, y up, z north).
+void append_enu_as_pov(std::string& out, const std::array<double, 3>& enu, int decimals) {
+  append_vector(out, enu[0], enu[2], enu[1], decimals);
+}
+
+std::string fixed(double value, int decimals) {
+  std::string s;
+  append_fixed(s, value, decimals);
+  return s;
+}
+
+// ---- meshes ---------------------------------------------------------------------------------
+
+// Writes `mesh2 { ... }` (without a declaration) for a mesh whose positions are ENU/model
+// space (z up). Textures: one per material, chosen per triangle through texture_list.
+void append_mesh2(std::string& out, const Mesh& mesh, int position_decimals, const std::string& texture_override) {
+  out += "mesh2 {\n  vertex_vectors { ";
+  append_int(out, mesh.positions.size());
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const auto& p = mesh.positions[i];
+    out += (i % 4 == 0) ? ",\n    " : ", ";
+    append_vector(out, p[0], p[2], p[1], position_decimals);
+  }
+  out += "\n  }\n";
+  const bool has_normals = mesh.normals.size() == mesh.positions.size();
+  if (has_normals) {
+    out += "  normal_vectors { ";
+    append_int(out, mesh.normals.size());
+    for (std::size_t i = 0; i < mesh.normals.size(); ++i) {
+      const auto& n = mesh.normals[i];
+      out += (i % 4 == 0) ? ",\n    " : ", ";
+      append_vector(out, n[0], n[2], n[1], 4);
+    }
+    out += "\n  }\n";
+  }
+  const bool per_triangle_textures =
+      texture_override.empty() && mesh.materials.size() > 1 && mesh.triangle_material.size() == mesh.triangles.size();
+  if (per_triangle_textures) {
+    out += "  texture_list { ";
+    append_int(out, mesh.materials.size());
+    for (std::size_t m = 0; m < mesh.materials.size(); ++m) {
+      out += ",\n    texture { Wangscape_Material(";
+      const auto& material = mesh.materials[m];
+      append_vector(out, material.base_color[0], material.base_color[1], material.base_color[2], 4);
+      out += ", ";
+      append_fixed(out, material.roughness, 3);
+      out += ", ";
+      append_fixed(out, material.translucency, 3);
+      out += ") }  // ";
+      out += material.name;
+    }
+    out += "\n  }\n";
+  }
+  out += "  face_indices { ";
+  append_int(out, mesh.triangles.size());
+  const auto material_count = mesh.materials.size();
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    out += (t % 4 == 0) ? ",\n    " : ", ";
+    // The y/z swap mirrors the mesh; POV-Ray does not cull by winding, so the order stays.
+    out.push_back('<');
+    append_int(out, tri[0]);
+    out.push_back(',');
+    append_int(out, tri[1]);
+    out.push_back(',');
+    append_int(out, tri[2]);
+    out.push_back('>');
+    if (per_triangle_textures) {
+      out.push_back(',');
+      append_int(out, std::min<std::size_t>(mesh.triangle_material[t], material_count - 1));
+    }
+  }
+  out += "\n  }\n";
+  if (!texture_override.empty()) {
+    out += "  texture { " + texture_override + " }\n";
+  } else if (!per_triangle_textures) {
+    out += "  texture { Wangscape_Material(";
+    if (mesh.materials.empty()) {
+      out += "<0.5,0.5,0.5>, 0.5, 0";
+    } else {
+      const auto& material = mesh.materials.front();
+      append_vector(out, material.base_color[0], material.base_color[1], material.base_color[2], 4);
+      out += ", " + fixed(material.roughness, 3) + ", " + fixed(material.translucency, 3);
+    }
+    out += ") }\n";
+  }
+  out += "}\n";
+}
+
+void check_mesh(const Mesh& mesh, const std::string& what) {
+  if (mesh.triangles.empty()) throw ExportError("POV-Ray export: " + what + " has no triangles");
+  for (const auto& tri : mesh.triangles)
+    for (auto index : tri)
+      if (index >= mesh.positions.size())
+        throw ExportError("POV-Ray export: " + what + " has a triangle index " + std::to_string(index) + " past its " +
+                          std::to_string(mesh.positions.size()) + " vertices");
+}
+
+// ---- the scene file ---------------------------------------------------------------------------
+
+std::string comment_safe(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  std::replace(text.begin(), text.end(), '\r', ' ');
+  return text;
+}
+
+// Warm light when the sun is low, near-white when high.
+std::array<double, 3> sun_color(const Sun& sun) {
+  const double t = std::clamp(sun.elevation_degrees / 40.0, 0.0, 1.0);
+  const std::array<double, 3> low{1.0, 0.72, 0.45}, high{1.0, 0.97, 0.92};
+  std::array<double, 3> color{};
+  for (int i = 0; i < 3; ++i) color[i] = (low[i] + (high[i] - low[i]) * t) * 1.25 * sun.strength;
+  return color;
+}
+
+struct HeightRange {
+  double min = 0, max = 1;
+};
+
+HeightRange terrain_heights(const Mesh& terrain) {
+  if (terrain.positions.empty()) return {};
+  HeightRange range{std::numeric_limits<double>::max(), std::numeric_limits<double>::lowest()};
+  for (const auto& p : terrain.positions) {
+    range.min = std::min<double>(range.min, p[2]);
+    range.max = std::max<double>(range.max, p[2]);
+  }
+  if (range.max <= range.min) range.max = range.min + 1.0;
+  return range;
+}
+
+std::string scene_pov(const Scene& scene, bool has_terrain, bool has_instances) {
+  std::string s;
+  s += "// " + comment_safe(scene.name) + ": written by wangscape for POV-Ray 3.7.\n";
+  s += "// Render from this folder: povray scene.ini (or: wangscape render <this folder>)\n";
+  s += "// Axes: x = east, y = up, z = north, meters, from the local ENU frame below.\n";
+  s += "// Georeference:\n";
+  for (const auto& [key, value] : scene.georeference)
+    s += "//   " + comment_safe(key) + ": " + comment_safe(value) + "\n";
+  s += "//   instances: " + std::to_string(scene.instance_count) + "\n";
+  s += "#version 3.7;\n\n";
+  s += "// Switches (override with Declare=Use_Radiosity=1 in the ini or on the command line).\n";
+  s += "#ifndef (Use_Radiosity) #declare Use_Radiosity = " + std::string(scene.render.radiosity ? "1" : "0") +
+       "; #end\n";
+  s += "#ifndef (Show_Instances) #declare Show_Instances = 1; #end\n";
+  s += "#declare Ambient_Level = (Use_Radiosity ? 0 : 0.28);\n\n";
+  s += "global_settings {\n  assumed_gamma 1.0\n  max_trace_level 8\n  ambient_light rgb <0.75, 0.85, 1.0>\n";
+  s += "  #if (Use_Radiosity)\n";
+  s += "  radiosity {\n    pretrace_start 0.08 pretrace_end 0.02 count 50 nearest_count 5\n";
+  s += "    error_bound 1.5 recursion_limit 1 low_error_factor 0.5 gray_threshold 0\n";
+  s += "    minimum_reuse 0.015 brightness 1 adc_bailout 0.01\n  }\n  #end\n}\n\n";
+
+  // A material from the models' Material: linear RGB color, roughness 0..1, translucency 0..1
+  // (light through thin petals and leaves, as POV-Ray's back-side diffuse).
+  s += "#macro Wangscape_Material(Color, Roughness, Translucency)\n";
+  s += "  pigment { rgb Color }\n";
+  s += "  finish {\n    ambient Ambient_Level\n    diffuse 0.8 * (1 - 0.5 * Translucency), 0.8 * 0.5 * Translucency\n";
+  s += "    specular 0.25 * (1 - Roughness) roughness max(0.002, 0.1 * Roughness)\n  }\n#end\n\n";
+
+  const auto& cam = scene.camera;
+  s += "camera {\n  perspective\n  location ";
+  append_enu_as_pov(s, cam.position, 3);
+  s += "\n  look_at ";
+  append_enu_as_pov(s, cam.target, 3);
+  s += "\n  right x * image_width / image_height\n  angle " + fixed(cam.fov_degrees, 3) + "\n}\n\n";
+
+  const auto dir = scene.sun.direction();
+  const auto color = sun_color(scene.sun);
+  // A parallel light must sit outside every object to cast their shadows: far along the sun.
+  constexpr double kSunDistance = 1.0e6;
+  const std::array<double, 3> sun_position{cam.target[0] + dir[0] * kSunDistance, cam.target[1] + dir[1] * kSunDistance,
+                                           cam.target[2] + dir[2] * kSunDistance};
+  s += "// Sun: azimuth " + fixed(scene.sun.azimuth_degrees, 2) + " deg from north, elevation " +
+       fixed(scene.sun.elevation_degrees, 2) + " deg.\n";
+  s += "light_source {\n  ";
+  append_enu_as_pov(s, sun_position, 1);
+  s += "\n  color rgb ";
+  append_vector(s, color[0], color[1], color[2], 4);
+  s += "\n  parallel\n  point_at ";
+  append_enu_as_pov(s, cam.target, 3);
+  s += "\n}\n\n";
+
+  s += "sky_sphere {\n  pigment {\n    function { max(0, y) }\n    color_map {\n";
+  s += "      [0.00 rgb <0.78, 0.84, 0.92>]\n      [0.12 rgb <0.52, 0.66, 0.88>]\n";
+  s += "      [0.45 rgb <0.30, 0.47, 0.80>]\n      [1.00 rgb <0.18, 0.33, 0.68>]\n    }\n  }\n}\n\n";
+
+  // Aerial perspective: far terrain fades into the horizon haze.
+  s += "fog {\n  fog_type 1\n  distance 18000\n  color rgbt <0.72, 0.80, 0.92, 0.15>\n}\n\n";
+
+  if (has_terrain) {
+    s += "#include \"terrain.inc\"\n";
+    s += "// Ground: vegetation low, soil and ash higher up, rock on steep slopes.\n";
+    s += "#declare Ground_Texture =\n  texture {\n    pigment {\n      gradient y\n      color_map {\n";
+    s += "        [0.00 rgb <0.080, 0.110, 0.030>]\n        [0.30 rgb <0.110, 0.120, 0.040>]\n";
+    s += "        [0.50 rgb <0.200, 0.170, 0.110>]\n        [0.75 rgb <0.330, 0.310, 0.290>]\n";
+    s += "        [1.00 rgb <0.500, 0.490, 0.480>]\n      }\n";
+    s += "      scale (Terrain_Max_Height - Terrain_Min_Height) translate y * Terrain_Min_Height\n    }\n";
+    s += "    normal { granite 0.15 scale 3 }\n    finish { ambient Ambient_Level diffuse 0.75 }\n  }\n";
+    s += "  texture {\n    pigment {\n      slope { y }\n      color_map {\n";
+    s += "        [0.00 rgb <0.24, 0.22, 0.20>]\n        [0.86 rgb <0.24, 0.22, 0.20>]\n";
+    s += "        [0.93 rgbt <0.24, 0.22, 0.20, 1>]\n        [1.00 rgbt 1]\n      }\n    }\n";
+    s += "    finish { ambient Ambient_Level diffuse 0.75 }\n  }\n";
+    s += "object { Terrain texture { Ground_Texture } }\n\n";
+  }
+  s += "#include \"models.inc\"\n";
+  if (has_instances) s += "#if (Show_Instances)\n  #include \"instances.inc\"\n#end\n";
+  return s;
+}
+
+std::string scene_ini(const Scene& scene, const std::filesystem::path& library_dir) {
+  const auto& r = scene.render;
+  std::string s;
+  s += "; POV-Ray settings written by wangscape. Render from this folder: povray scene.ini\n";
+  s += "Input_File_Name=scene.pov\nOutput_File_Name=render.png\nOutput_File_Type=N\n";
+  s += "Width=" + std::to_string(r.width) + "\nHeight=" + std::to_string(r.height) + "\n";
+  if (r.antialias_samples > 1) {
+    s += "Antialias=on\nSampling_Method=2\nAntialias_Depth=" + std::to_string(std::min(r.antialias_samples, 9)) +
+         "\nAntialias_Threshold=0.1\n";
+  } else {
+    s += "Antialias=off\n";
+  }
+  if (r.threads > 0) s += "Work_Threads=" + std::to_string(r.threads) + "\n";
+  s += "File_Gamma=sRGB\nDisplay=off\nPause_When_Done=off\n";
+  // Includes resolve against the current directory and these paths, not the .pov's folder.
+  s += "Library_Path=" + library_dir.string() + "\n";
+  return s;
+}
+
+}  // namespace
+
+std::string povray_model_name(std::size_t variant) { return "Sunflower_" + std::to_string(variant); }
+
+// ---- instances --------------------------------------------------------------------------------
+
+PovrayInstanceWriter::PovrayInstanceWriter(std::ostream& out) : out_(out) { buffer_.reserve(1 << 20); }
+
+void PovrayInstanceWriter::write(const InstanceBatch& batch) {
+  constexpr double kDegreesPerRadian = 180.0 / std::numbers::pi;
+  for (std::size_t i = 0; i < batch.size(); ++i) {
+    buffer_ += "object{Sunflower_";
+    append_int(buffer_, batch.variant[i]);
+    // ENU yaw turns counter-clockwise seen from above (east towards north); POV's rotate
+    // about y turns +x towards -z (east towards south) for positive angles.
+    buffer_ += " rotate y*";
+    append_fixed(buffer_, -static_cast<double>(batch.yaw[i]) * kDegreesPerRadian, 1);
+    buffer_ += " scale ";
+    append_fixed(buffer_, batch.scale[i], 3);
+    buffer_ += " translate";
+    append_vector(buffer_, batch.x[i], batch.z[i], batch.y[i], 3);
+    buffer_ += "}\n";
+    if (buffer_.size() >= (1u << 20) - 256) flush();
+  }
+  instances_ += batch.size();
+}
+
+void PovrayInstanceWriter::flush() {
+  if (buffer_.empty()) return;
+  out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+  bytes_ += buffer_.size();
+  buffer_.clear();
+}
+
+// ---- the folder -----------------------------------------------------------------------------
+
+PovrayExportStats write_povray_scene(const Scene& scene, const std::filesystem::path& dir,
+                                     const PovrayExportOptions& options) {
+  if (!std::filesystem::is_directory(dir))
+    throw ExportError("POV-Ray export: output folder '" + dir.string() + "' does not exist");
+  if (scene.models.empty() && scene.instances)
+    throw ExportError("POV-Ray export: the scene has instances but no models");
+  for (std::size_t v = 0; v < scene.models.size(); ++v) check_mesh(scene.models[v], "model " + povray_model_name(v));
+  const bool has_terrain = !scene.terrain.triangles.empty();
+  if (has_terrain) check_mesh(scene.terrain, "the terrain");
+  const bool has_instances = static_cast<bool>(scene.instances);
+
+  PovrayExportStats stats;
+  // All files stay temporary until every one is complete.
+  std::vector<std::unique_ptr<AtomicFile>> files;
+  auto write_whole = [&](const char* name, const std::string& contents) {
+    files.push_back(std::make_unique<AtomicFile>(dir / name));
+    files.back()->stream().write(contents.data(), static_cast<std::streamsize>(contents.size()));
+    stats.total_bytes += contents.size();
+  };
+
+  const auto library_dir = std::filesystem::absolute(options.final_dir.empty() ? dir : options.final_dir);
+  write_whole("scene.pov", scene_pov(scene, has_terrain, has_instances));
+  write_whole("scene.ini", scene_ini(scene, library_dir));
+
+  {
+    std::string models = "// Model variants, each declared once: copies of a mesh2 share its data.\n";
+    models += "#declare Wangscape_Model_Count = " + std::to_string(scene.models.size()) + ";\n";
+    for (std::size_t v = 0; v < scene.models.size(); ++v) {
+      const auto& mesh = scene.models[v];
+      models += "\n// " + comment_safe(mesh.name) + ": " + std::to_string(mesh.triangle_count()) + " triangles\n";
+      models += "#declare " + povray_model_name(v) + " = ";
+      append_mesh2(models, mesh, 5, "");
+    }
+    write_whole("models.inc", models);
+  }
+
+  if (has_terrain) {
+    const auto heights = terrain_heights(scene.terrain);
+    std::string terrain = "// Terrain, ENU meters as POV axes (x east, y up, z north).\n";
+    terrain += "#declare Terrain_Min_Height = " + fixed(heights.min, 3) + ";\n";
+    terrain += "#declare Terrain_Max_Height = " + fixed(heights.max, 3) + ";\n";
+    terrain += "#declare Terrain = ";
+    append_mesh2(terrain, scene.terrain, 3, "pigment { rgb 0.5 }");
+    write_whole("terrain.inc", terrain);
+  }
+
+  if (has_instances) {
+    files.push_back(std::make_unique<AtomicFile>(dir / "instances.inc"));
+    auto& out = files.back()->stream();
+    const std::string header =
+        "// " + std::to_string(scene.instance_count) + " instances of the models in models.inc\n";
+    out << header;
+    PovrayInstanceWriter writer(out);
+    scene.instances([&](const InstanceBatch& batch) {
+      for (std::size_t i = 0; i < batch.size(); ++i)
+        if (batch.variant[i] >= scene.models.size())
+          throw ExportError("POV-Ray export: instance uses model variant " + std::to_string(batch.variant[i]) +
+                            " but the scene has " + std::to_string(scene.models.size()) + " models");
+      writer.write(batch);
+      if (options.on_instances) options.on_instances(writer.instances());
+    });
+    writer.flush();
+    if (writer.instances() != scene.instance_count)
+      throw ExportError("POV-Ray export: the instance stream produced " + std::to_string(writer.instances()) +
+                        " instances, the scene announced " + std::to_string(scene.instance_count));
+    stats.instances = writer.instances();
+    stats.instance_bytes = writer.bytes() + header.size();
+    stats.total_bytes += stats.instance_bytes;
+  }
+
+  for (auto& file : files) file->commit();
+  return stats;
+}
+
+}  // namespace wangscape

@@ -1,0 +1,72 @@
+// POV-Ray export: a Scene as a folder POV-Ray 3.7 renders with `povray scene.ini` run from
+// that folder. Files:
+//   scene.pov       camera, sun (parallel light_source), sky_sphere, fog, ground texture,
+//                   radiosity switch, header comment with the georeference; includes the rest
+//   scene.ini       size, antialiasing, threads, Library_Path (POV-Ray resolves includes
+//                   against the current directory and the library paths, not the .pov's folder)
+//   models.inc      each model variant declared once as `mesh2` (Sunflower_0 .. Sunflower_{V-1}):
+//                   copies of a mesh2 share its data, so a million flowers cost little memory
+//   terrain.inc     the terrain as one mesh2 (Terrain), absent when the scene has no terrain
+//   instances.inc   one `object { Sunflower_v rotate ... scale ... translate ... }` per instance
+// Axes: ENU (x east, y north, z up) becomes POV (x east, y up, z north). Swapping y and z is a
+// reflection, which is exactly what POV's left-handed axes need: the picture is not mirrored.
+// Numbers are written with std::to_chars (locale-independent).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <ostream>
+#include <string>
+
+#include "exporters/scene.h"
+
+namespace wangscape {
+
+struct PovrayExportOptions {
+  // Folder the scene will finally live in, written as the ini's Library_Path (the pipeline
+  // writes into a staging folder first, then renames it). Empty: the folder written to.
+  std::filesystem::path final_dir;
+  // Called now and then with the number of instances written so far.
+  std::function<void(std::uint64_t written)> on_instances;
+};
+
+struct PovrayExportStats {
+  std::uint64_t instances = 0;
+  std::uint64_t instance_bytes = 0;  // size of instances.inc
+  std::uint64_t total_bytes = 0;     // all files
+};
+
+// Writes the files above into `dir` (which must exist). Every file is written to a temporary
+// name and renamed only after all files are complete, so a failure leaves none of them.
+// Throws ExportError naming the file at fault, or when Scene::instance_count does not match
+// the number of instances the stream produced.
+PovrayExportStats write_povray_scene(const Scene& scene, const std::filesystem::path& dir,
+                                     const PovrayExportOptions& options = {});
+
+// POV-Ray's name of model variant `variant` in models.inc ("Sunflower_3").
+std::string povray_model_name(std::size_t variant);
+
+// Formats instances as POV-Ray objects into a buffer and writes it out in large blocks;
+// the hot loop of the exporter (see bench/povray_bench.cpp).
+class PovrayInstanceWriter {
+ public:
+  explicit PovrayInstanceWriter(std::ostream& out);
+  ~PovrayInstanceWriter() { flush(); }
+  PovrayInstanceWriter(const PovrayInstanceWriter&) = delete;
+  PovrayInstanceWriter& operator=(const PovrayInstanceWriter&) = delete;
+
+  void write(const InstanceBatch& batch);
+  // Writes what is buffered to the stream (the caller checks the stream's state).
+  void flush();
+  std::uint64_t instances() const { return instances_; }
+  std::uint64_t bytes() const { return bytes_; }
+
+ private:
+  std::ostream& out_;
+  std::string buffer_;
+  std::uint64_t instances_ = 0;
+  std::uint64_t bytes_ = 0;
+};
+
+}  // namespace wangscape
