@@ -5,10 +5,18 @@
 
 #include <array>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace wangscape {
+
+// Thrown by templates/ (model generation, mesh loading); the message names the file or value at
+// fault and what was expected.
+class MeshError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 struct Material {
   std::string name;                   // e.g. "petal", "disk", "stem", "leaf"
@@ -28,5 +36,20 @@ struct Mesh {
   std::size_t triangle_count() const { return triangles.size(); }
   std::size_t vertex_count() const { return positions.size(); }
 };
+
+// Extent of a model in model space, for placement.
+struct MeshExtent {
+  float height = 0;            // meters, highest z (the ground contact point is at z = 0)
+  float radius = 0;            // meters, largest horizontal distance of any vertex from the z axis (tight radius)
+  std::array<float, 3> min{};  // meters, axis-aligned box
+  std::array<float, 3> max{};
+};
+
+// Measures the extent of every vertex; an empty mesh gives all zeros.
+MeshExtent measure_extent(const Mesh& mesh);
+
+// Replaces mesh.normals by smooth per-vertex normals: the area-weighted sum of the normals of the
+// triangles using each vertex, normalized. Vertices that only touch degenerate triangles get +z.
+void compute_vertex_normals(Mesh& mesh);
 
 }  // namespace wangscape
