@@ -1,0 +1,236 @@
+#include "exporters/blender_export.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "exporters/atomic_file.h"
+#include "exporters/export_support.h"
+#include "exporters/zip_writer.h"
+#include "templates/blender_addon.h"
+
+namespace wangscape {
+
+static_assert(std::endian::native == std::endian::little,
+              "the Blender arrays are little-endian and written as they lie in memory");
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+template <typename T>
+constexpr std::string_view dtype_name() {
+  if constexpr (std::is_same_v<T, float>) return "float32";
+  if constexpr (std::is_same_v<T, std::uint32_t>) return "uint32";
+  if constexpr (std::is_same_v<T, std::uint16_t>) return "uint16";
+}
+
+template <typename T>
+void write_values(std::ofstream& stream, std::span<const T> values) {
+  stream.write(reinterpret_cast<const char*>(values.data()), static_cast<std::streamsize>(values.size_bytes()));
+}
+
+// Writes the flat array `values` (count elements of `components` values each) to
+// folder/file and returns its manifest entry.
+template <typename T>
+Json write_array(const std::filesystem::path& folder, const std::string& file, std::span<const T> values,
+                 std::size_t components, std::uint64_t& bytes) {
+  AtomicFile out(folder / file);
+  write_values(out.stream(), values);
+  out.commit();
+  bytes += values.size_bytes();
+  return Json{
+      {"file", file}, {"dtype", dtype_name<T>()}, {"components", components}, {"count", values.size() / components}};
+}
+
+Json bounds_json(const Bounds3f& bounds) {
+  if (bounds.empty()) return nullptr;
+  return Json{{"min", bounds.min}, {"max", bounds.max}};
+}
+
+// One mesh as four arrays: positions, normals (float32 xyz), indices (uint32 x3) and the
+// material slot of each triangle (uint16).
+Json write_mesh(const Mesh& mesh, const std::string& prefix, const std::vector<std::uint32_t>& slots,
+                const std::filesystem::path& folder, std::uint64_t& bytes) {
+  check_mesh(mesh, "mesh '" + mesh.name + "'");
+  const auto flat_floats = [](const std::vector<std::array<float, 3>>& v) {
+    return std::span<const float>(v.empty() ? nullptr : v.front().data(), v.size() * 3);
+  };
+  std::vector<std::uint16_t> triangle_slots = mesh.triangle_material;
+  triangle_slots.resize(mesh.triangles.size(), 0);  // absent: material 0 everywhere
+
+  Json entry;
+  entry["name"] = mesh.name;
+  entry["vertex_count"] = mesh.vertex_count();
+  entry["triangle_count"] = mesh.triangle_count();
+  entry["positions"] = write_array(folder, prefix + "_positions.f32", flat_floats(mesh.positions), 3, bytes);
+  entry["normals"] = write_array(folder, prefix + "_normals.f32", flat_floats(mesh.normals), 3, bytes);
+  entry["indices"] =
+      write_array(folder, prefix + "_indices.u32",
+                  std::span<const std::uint32_t>(mesh.triangles.empty() ? nullptr : mesh.triangles.front().data(),
+                                                 mesh.triangles.size() * 3),
+                  3, bytes);
+  entry["material_indices"] =
+      write_array(folder, prefix + "_materials.u16", std::span<const std::uint16_t>(triangle_slots), 1, bytes);
+  entry["material_slots"] = slots;
+  entry["bounds"] = bounds_json(bounds_of(mesh.positions));
+  return entry;
+}
+
+// The instance arrays, one file per attribute, filled batch by batch from the stream.
+class InstanceArrays {
+ public:
+  explicit InstanceArrays(const std::filesystem::path& folder) {
+    for (std::size_t i = 0; i < kFiles.size(); ++i) files_[i] = std::make_unique<AtomicFile>(folder / kFiles[i]);
+  }
+
+  void append(const InstanceBatch& batch) {
+    write_values(files_[0]->stream(), std::span<const float>(batch.x));
+    write_values(files_[1]->stream(), std::span<const float>(batch.y));
+    write_values(files_[2]->stream(), std::span<const float>(batch.z));
+    write_values(files_[3]->stream(), std::span<const float>(batch.yaw));
+    write_values(files_[4]->stream(), std::span<const float>(batch.scale));
+    write_values(files_[5]->stream(), std::span<const std::uint16_t>(batch.variant));
+    for (std::size_t i = 0; i < batch.size(); ++i) {
+      bounds_.extend({batch.x[i], batch.y[i], batch.z[i]});
+      if (batch.variant[i] >= per_variant_.size()) per_variant_.resize(batch.variant[i] + 1, 0);
+      ++per_variant_[batch.variant[i]];
+    }
+  }
+
+  Json commit(std::uint64_t count, std::size_t model_count, std::uint64_t& bytes) {
+    for (auto& file : files_) file->commit();
+    per_variant_.resize(std::max(per_variant_.size(), model_count), 0);
+    bytes += count * (5 * sizeof(float) + sizeof(std::uint16_t));
+    Json entry;
+    entry["count"] = count;
+    entry["per_variant"] = per_variant_;
+    entry["bounds"] = bounds_json(bounds_);
+    static constexpr std::array<const char*, 6> names = {"x", "y", "z", "yaw", "scale", "variant"};
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      entry[names[i]] =
+          Json{{"file", kFiles[i]}, {"dtype", i < 5 ? "float32" : "uint16"}, {"components", 1}, {"count", count}};
+    }
+    return entry;
+  }
+
+ private:
+  static constexpr std::array<const char*, 6> kFiles = {"instances_x.f32",     "instances_y.f32",
+                                                        "instances_z.f32",     "instances_yaw.f32",
+                                                        "instances_scale.f32", "instances_variant.u16"};
+  std::array<std::unique_ptr<AtomicFile>, 6> files_;
+  Bounds3f bounds_;
+  std::vector<std::uint64_t> per_variant_;
+};
+
+Json material_json(const Material& material) {
+  return Json{{"name", material.name},
+              {"base_color", material.base_color},
+              {"roughness", material.roughness},
+              {"translucency", material.translucency}};
+}
+
+}  // namespace
+
+int blender_cycles_samples(const RenderSettings& render, const BlenderExportOptions& options) {
+  if (options.cycles_samples > 0) return options.cycles_samples;
+  return 16 * std::max(1, render.antialias_samples);
+}
+
+BlenderExportSummary export_blender(const Scene& scene, const std::filesystem::path& folder,
+                                    const BlenderExportOptions& options) {
+  std::error_code error;
+  std::filesystem::create_directories(folder, error);
+  if (error) throw ExportError("cannot create Blender export folder '" + folder.string() + "': " + error.message());
+
+  std::uint64_t bytes = 0;
+  const MaterialTable table = build_material_table(scene);
+  Json files = Json::array();
+  const auto list_files = [&files](const Json& mesh_entry) {
+    for (const char* key : {"positions", "normals", "indices", "material_indices"}) {
+      files.push_back(mesh_entry[key]["file"]);
+    }
+  };
+
+  Json terrain = nullptr;
+  if (scene.terrain.vertex_count() > 0) {
+    terrain = write_mesh(scene.terrain, "terrain", table.terrain_slots, folder, bytes);
+    list_files(terrain);
+  }
+  Json models = Json::array();
+  for (std::size_t i = 0; i < scene.models.size(); ++i) {
+    char prefix[32];
+    std::snprintf(prefix, sizeof prefix, "model_%04zu", i);
+    models.push_back(write_mesh(scene.models[i], prefix, table.model_slots[i], folder, bytes));
+    list_files(models.back());
+  }
+
+  InstanceArrays arrays(folder);
+  const std::uint64_t count =
+      stream_checked_instances(scene, [&](const InstanceBatch& batch) { arrays.append(batch); });
+  Json instances = arrays.commit(count, scene.models.size(), bytes);
+  for (const char* key : {"x", "y", "z", "yaw", "scale", "variant"}) files.push_back(instances[key]["file"]);
+
+  Json manifest;
+  manifest["format"] = Json{{"name", kBlenderFormatName}, {"version", kBlenderFormatVersion}};
+  manifest["scene"] = scene.name;
+  manifest["byte_order"] = "little";
+  manifest["coordinates"] = "ENU meters: x east, y north, z up";
+  manifest["counts"] = Json{{"terrain_vertices", scene.terrain.vertex_count()},
+                            {"terrain_triangles", scene.terrain.triangle_count()},
+                            {"models", scene.models.size()},
+                            {"materials", table.materials.size()},
+                            {"instances", count}};
+  manifest["files"] = files;
+  manifest["materials"] = Json::array();
+  for (const Material& material : table.materials) manifest["materials"].push_back(material_json(material));
+  manifest["terrain"] = terrain;
+  manifest["models"] = models;
+  manifest["instances"] = instances;
+  manifest["camera"] = Json{
+      {"position", scene.camera.position}, {"target", scene.camera.target}, {"fov_degrees", scene.camera.fov_degrees}};
+  manifest["sun"] = Json{{"azimuth_degrees", scene.sun.azimuth_degrees},
+                         {"elevation_degrees", scene.sun.elevation_degrees},
+                         {"strength", scene.sun.strength},
+                         {"direction", scene.sun.direction()}};
+  manifest["render"] = Json{{"width", scene.render.width},
+                            {"height", scene.render.height},
+                            {"samples", blender_cycles_samples(scene.render, options)},
+                            {"threads", scene.render.threads}};
+  Json georeference = Json::object();
+  for (const auto& [key, value] : scene.georeference) georeference[key] = value;
+  manifest["georeference"] = georeference;
+  Json blendergis = Json::object();
+  for (const auto& [key, value] : blendergis_properties(scene.georeference)) {
+    if (key == "SRID") {
+      blendergis[key] = value;
+    } else {
+      blendergis[key] = std::stod(value);
+    }
+  }
+  manifest["blendergis"] = blendergis;
+  manifest["addon"] = options.write_addon_zip ? Json("wangscape_import.zip") : Json(nullptr);
+
+  if (options.write_addon_zip) {
+    std::vector<ZipEntry> entries;
+    for (const EmbeddedFile& file : blender_addon_files()) entries.push_back({file.path, file.contents});
+    const std::string zip = make_zip(entries);
+    write_file_atomically(folder / "wangscape_import.zip", zip);
+    bytes += zip.size();
+  }
+
+  const std::string text = manifest.dump(2) + "\n";
+  BlenderExportSummary summary;
+  summary.manifest = folder / "manifest.json";
+  write_file_atomically(summary.manifest, text);
+  summary.instance_count = count;
+  summary.bytes_written = bytes + text.size();
+  return summary;
+}
+
+}  // namespace wangscape

@@ -1,0 +1,148 @@
+#include "exporters/export_support.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+
+#include "exporters/atomic_file.h"
+
+namespace wangscape {
+
+Bounds3f bounds_of(std::span<const std::array<float, 3>> points) {
+  Bounds3f bounds;
+  for (const auto& p : points) bounds.extend(p);
+  return bounds;
+}
+
+Material default_ground_material() { return Material{"ground", {0.22f, 0.16f, 0.10f}, 0.9f, 0.0f}; }
+
+namespace {
+
+bool same_material(const Material& a, const Material& b) {
+  return a.name == b.name && a.base_color == b.base_color && a.roughness == b.roughness &&
+         a.translucency == b.translucency;
+}
+
+std::vector<std::uint32_t> add_materials(std::vector<Material>& table, const std::vector<Material>& materials) {
+  std::vector<std::uint32_t> slots;
+  for (const Material& material : materials) {
+    auto found =
+        std::find_if(table.begin(), table.end(), [&](const Material& m) { return same_material(m, material); });
+    if (found == table.end()) found = table.insert(table.end(), material);
+    slots.push_back(static_cast<std::uint32_t>(found - table.begin()));
+  }
+  return slots;
+}
+
+std::string lowercase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+  return text;
+}
+
+bool is_number(const std::string& text) {
+  double value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc() && end == text.data() + text.size();
+}
+
+}  // namespace
+
+MaterialTable build_material_table(const Scene& scene) {
+  MaterialTable table;
+  if (scene.terrain.vertex_count() > 0) {
+    table.terrain_slots = add_materials(table.materials, scene.terrain.materials.empty()
+                                                             ? std::vector<Material>{default_ground_material()}
+                                                             : scene.terrain.materials);
+  }
+  for (const Mesh& model : scene.models) {
+    table.model_slots.push_back(add_materials(
+        table.materials, model.materials.empty() ? std::vector<Material>{Material{"default"}} : model.materials));
+  }
+  return table;
+}
+
+void check_mesh(const Mesh& mesh, const std::string& what) {
+  if (mesh.normals.size() != mesh.positions.size()) {
+    throw ExportError(what + ": " + std::to_string(mesh.normals.size()) + " normals for " +
+                      std::to_string(mesh.positions.size()) + " positions (expected one per position)");
+  }
+  if (!mesh.triangle_material.empty() && mesh.triangle_material.size() != mesh.triangles.size()) {
+    throw ExportError(what + ": " + std::to_string(mesh.triangle_material.size()) + " triangle materials for " +
+                      std::to_string(mesh.triangles.size()) + " triangles");
+  }
+  const auto vertex_count = mesh.positions.size();
+  for (const auto& triangle : mesh.triangles) {
+    for (const std::uint32_t index : triangle) {
+      if (index >= vertex_count) {
+        throw ExportError(what + ": triangle index " + std::to_string(index) + " outside its " +
+                          std::to_string(vertex_count) + " vertices");
+      }
+    }
+  }
+  const std::size_t material_count = std::max<std::size_t>(1, mesh.materials.size());
+  for (const std::uint16_t slot : mesh.triangle_material) {
+    if (slot >= material_count) {
+      throw ExportError(what + ": triangle material " + std::to_string(slot) + " but only " +
+                        std::to_string(material_count) + " materials");
+    }
+  }
+}
+
+std::uint64_t stream_checked_instances(const Scene& scene, const std::function<void(const InstanceBatch&)>& sink) {
+  std::uint64_t streamed = 0;
+  if (scene.instances) {
+    scene.instances([&](const InstanceBatch& batch) {
+      const std::size_t n = batch.size();
+      if (batch.y.size() != n || batch.z.size() != n || batch.yaw.size() != n || batch.scale.size() != n ||
+          batch.variant.size() != n) {
+        throw ExportError("scene '" + scene.name + "': an instance batch has arrays of different lengths");
+      }
+      for (const std::uint16_t variant : batch.variant) {
+        if (variant >= scene.models.size()) {
+          throw ExportError("scene '" + scene.name + "': instance variant " + std::to_string(variant) +
+                            " but the scene has " + std::to_string(scene.models.size()) + " models");
+        }
+      }
+      streamed += n;
+      sink(batch);
+    });
+  }
+  if (streamed != scene.instance_count) {
+    throw ExportError("scene '" + scene.name + "': the instance stream produced " + std::to_string(streamed) +
+                      " instances, the scene announced " + std::to_string(scene.instance_count));
+  }
+  return streamed;
+}
+
+std::vector<std::pair<std::string, std::string>> blendergis_properties(const Georeference& georeference) {
+  // BlenderGIS key -> georeference keys that carry it (lowercase), first match wins.
+  static const std::vector<std::pair<std::string, std::vector<std::string>>> aliases = {
+      {"SRID", {"srid", "epsg", "crs_epsg", "crs_srid", "crs"}},
+      {"crs x", {"crs x", "crs_x", "origin_easting", "origin_x", "easting"}},
+      {"crs y", {"crs y", "crs_y", "origin_northing", "origin_y", "northing"}},
+      {"latitude", {"latitude", "origin_latitude", "lat"}},
+      {"longitude", {"longitude", "origin_longitude", "lon"}},
+  };
+  std::vector<std::pair<std::string, std::string>> properties;
+  for (const auto& [blendergis_key, names] : aliases) {
+    for (const std::string& name : names) {
+      const auto found = std::find_if(georeference.begin(), georeference.end(),
+                                      [&](const auto& pair) { return lowercase(pair.first) == name; });
+      if (found == georeference.end()) continue;
+      std::string value = found->second;
+      if (blendergis_key == "SRID") {
+        // BlenderGIS wants "EPSG:nnnn"; accept a bare code too. A WKT is no SRID.
+        if (is_number(value)) value = "EPSG:" + value;
+        if (lowercase(value).rfind("epsg:", 0) != 0) continue;
+        value = "EPSG:" + value.substr(5);
+      } else if (!is_number(value)) {
+        continue;
+      }
+      properties.emplace_back(blendergis_key, value);
+      break;
+    }
+  }
+  return properties;
+}
+
+}  // namespace wangscape
