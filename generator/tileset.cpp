@@ -46,7 +46,8 @@ TileSet complete_edge_tileset(int k) {
     for (int e = 0; e < k; ++e)
       for (int s = 0; s < k; ++s)
         for (int w = 0; w < k; ++w) tiles.push_back(Tile::edges(n, e, s, w));
-  return make_tileset("complete-edge-" + std::to_string(k), std::move(tiles), "built-in set");
+  const std::string name = "complete-edge-" + std::to_string(k);
+  return make_tileset(name, std::move(tiles), name);
 }
 
 TileSet complete_corner_tileset(int k) {
@@ -55,7 +56,8 @@ TileSet complete_corner_tileset(int k) {
     for (int se = 0; se < k; ++se)
       for (int sw = 0; sw < k; ++sw)
         for (int nw = 0; nw < k; ++nw) tiles.push_back(Tile::corners(ne, se, sw, nw));
-  return make_tileset("corner-" + std::to_string(k), std::move(tiles), "built-in set");
+  const std::string name = "corner-" + std::to_string(k);
+  return make_tileset(name, std::move(tiles), name);
 }
 
 // The 12-tile set of seed 004, NESW digits exactly as printed there.
@@ -65,7 +67,7 @@ TileSet owen12_tileset() {
   std::vector<Tile> tiles;
   for (const char* nesw : kTable)
     tiles.push_back(Tile::edges(nesw[0] - '0', nesw[1] - '0', nesw[2] - '0', nesw[3] - '0'));
-  return make_tileset("owen12", std::move(tiles), "built-in set");
+  return make_tileset("owen12", std::move(tiles), "owen12");
 }
 
 // Seed 000 section 3.4: the cohen8 edge tiles with their corners coded marked (1) or
@@ -90,7 +92,8 @@ TileSet cohen8_corner_tileset(bool full) {
       tiles.push_back(tile);
     }
   }
-  return make_tileset(full ? "cohen8-corners-full" : "cohen8-corners", std::move(tiles), "built-in set");
+  const std::string name = full ? "cohen8-corners-full" : "cohen8-corners";
+  return make_tileset(name, std::move(tiles), name);
 }
 
 }  // namespace
@@ -103,7 +106,8 @@ TileSet cohen_tileset(std::string name, int horizontal, int vertical) {
   for (int n = 0; n < horizontal; ++n)
     for (int w = 0; w < vertical; ++w)
       for (int b = 0; b < 2; ++b) tiles.push_back(Tile::edges(n, (2 * n + w + b) % vertical, (n + b) % horizontal, w));
-  return make_tileset(std::move(name), std::move(tiles), "built-in set");
+  const std::string source = name;
+  return make_tileset(std::move(name), std::move(tiles), source);
 }
 
 TileSet make_tileset(std::string name, std::vector<Tile> tiles, std::string_view source) {
@@ -111,6 +115,7 @@ TileSet make_tileset(std::string name, std::vector<Tile> tiles, std::string_view
   if (tiles.empty()) throw GeneratorError(where + ": no tiles");
   TileSet set;
   set.name = std::move(name);
+  set.source = std::string(source);
   const Tile& first = tiles.front();
   set.has_edges = first.n() != kNoColor;
   set.has_corners = first.ne() != kNoColor;
@@ -167,6 +172,8 @@ TileSet builtin_tileset(std::string_view name) {
                        "'; expected a JSON file or one of cohen8, cohen12, cohen18, owen12, "
                        "complete-edge-K, corner-K (K = 2..8), cohen8-corners, cohen8-corners-full");
 }
+
+std::string TileSet::describe() const { return "tile set '" + (source.empty() ? name : source) + "'"; }
 
 std::vector<std::string> builtin_tileset_names() {
   return {"cohen8",          "cohen12",  "cohen18",  "owen12",         "complete-edge-2",

@@ -46,6 +46,7 @@ enum class TileKind : std::uint8_t { edge, corner };
 
 struct TileSet {
   std::string name;
+  std::string source;  // where the set came from (file path, or the built-in name), for messages
   TileKind kind = TileKind::edge;
   bool has_edges = true;     // edge colors present (edge sets)
   bool has_corners = false;  // corner colors present (corner sets, corner-coded edge sets)
@@ -57,6 +58,8 @@ struct TileSet {
   std::vector<Tile> tiles;
 
   std::size_t size() const { return tiles.size(); }
+  // "tile set '<source>'": how error messages name the set.
+  std::string describe() const;
 };
 
 // Builds a tile set from explicit tiles: derives the alphabets, checks colors are in

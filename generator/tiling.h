@@ -9,6 +9,7 @@
 //    is known in O(1) without its neighbours; needs a complete set.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -69,21 +70,29 @@ class HashedTiling {
  public:
   // Throws GeneratorError "tile set '<name>': hash tiling needs a complete set; missing
   // (N,E,S,W)=(1,0,0,1)" (or (NE,SE,SW,NW)=...) when the set is not complete.
-  HashedTiling(const TileSet& set, std::uint64_t seed);
+  // forbid_identical_neighbours: odd-indexed edge (corner) colors are drawn different from the
+  // even one before them along their line, so no two neighbouring tiles are identical; still
+  // O(1) per tile. Needs at least two colors per alphabet.
+  HashedTiling(const TileSet& set, std::uint64_t seed, bool forbid_identical_neighbours = false);
 
   std::uint32_t tile_at(std::int64_t i, std::int64_t j) const;
-  // Tiles (first_i + k, j) for k in [0, out.size()).
+  // Tiles (first_i + k, j) for k in [0, out.size()). Thread-safe (const).
   void fill_row(std::int64_t first_i, std::int64_t j, std::span<std::uint16_t> out) const;
 
-  // Color hashed at a doubled-grid point (edge sets) or lattice vertex (corner sets); exposed
-  // for tests. `alphabet` is the number of colors to draw from.
+  // Edge color at a doubled-grid point, corner color at a lattice vertex, drawn from
+  // `alphabet` colors; exposed for tests.
   std::uint32_t color_at(std::int64_t x, std::int64_t y, std::uint32_t alphabet) const;
+  std::uint32_t corner_at(std::int64_t x, std::int64_t y, std::uint32_t alphabet) const;
 
  private:
-  bool corner_ = false;
+  std::uint32_t code(const std::array<std::uint32_t, kSlotCount>& colors) const;
+  std::uint32_t row_key(std::int64_t y, std::uint64_t salt) const;
+
   std::uint64_t seed_ = 0;
-  std::uint32_t horizontal_ = 0, vertical_ = 0;  // edge alphabets (N/S, E/W), or corner alphabet
-  // Maps the mixed-radix color code to the set's tile index.
+  bool forbid_ = false;
+  bool has_edges_ = true, has_corners_ = false;
+  std::array<std::uint32_t, kSlotCount> radix_{};  // colors per slot, 1 where the set has none
+  // Maps the mixed-radix color code (slots N, E, S, W, NE, SE, SW, NW) to the tile index.
   std::vector<std::uint16_t> lookup_;
 };
 

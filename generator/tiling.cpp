@@ -1,0 +1,679 @@
+#include "generator/tiling.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <bit>
+#include <numeric>
+#include <set>
+#include <string>
+
+namespace wangscape {
+
+namespace {
+
+constexpr std::array<const char*, kSlotCount> kSlotNames = {"N", "E", "S", "W", "NE", "SE", "SW", "NW"};
+
+bool slot_present(const TileSet& set, int slot) { return slot < kNE ? set.has_edges : set.has_corners; }
+
+// Number of colors a slot draws from (1 when the set does not color it).
+std::uint32_t slot_radix(const TileSet& set, int slot) {
+  if (!slot_present(set, slot)) return 1;
+  if (slot == kN || slot == kS) return static_cast<std::uint32_t>(std::max(set.horizontal_colors, 1));
+  if (slot == kE || slot == kW) return static_cast<std::uint32_t>(std::max(set.vertical_colors, 1));
+  return static_cast<std::uint32_t>(std::max(set.corner_colors, 1));
+}
+
+std::uint32_t color_of(const Tile& tile, int slot) {
+  const int c = tile.colors[static_cast<std::size_t>(slot)];
+  return c < 0 ? 0u : static_cast<std::uint32_t>(c);
+}
+
+// "N=1, W=0" for the slots in `slots` (in slot order), values from `values`.
+std::string describe_colors(const std::vector<int>& slots, const std::array<std::uint32_t, kSlotCount>& values) {
+  std::string text;
+  for (const int slot : slots) {
+    if (!text.empty()) text += ", ";
+    text += std::string(kSlotNames[static_cast<std::size_t>(slot)]) + "=" +
+            std::to_string(values[static_cast<std::size_t>(slot)]);
+  }
+  return text;
+}
+
+std::uint64_t splitmix64(std::uint64_t& state) {
+  std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+std::uint64_t mix64(std::uint64_t z) { return splitmix64(z); }
+
+// lowbias32 (Chris Wellons): a cheap 32-bit bijection with good avalanche; vectorises.
+inline std::uint32_t mix32(std::uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7FEB352Du;
+  x ^= x >> 15;
+  x *= 0x846CA68Bu;
+  x ^= x >> 16;
+  return x;
+}
+
+// A uniform integer in [0, count) from 32 random bits.
+inline std::uint32_t scale(std::uint32_t bits, std::uint32_t count) {
+  return static_cast<std::uint32_t>((static_cast<std::uint64_t>(bits) * count) >> 32);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sequential (scanline, bottom-left) tiling.
+
+// A neighbour already placed hands some of its colors to the new tile: target slot of the new
+// tile <- source slot of the neighbour.
+struct Link {
+  int target;
+  int source;
+};
+
+// Candidate tiles grouped by the colors of the constrained slots (a mixed-radix key).
+class CandidateTable {
+ public:
+  CandidateTable(const TileSet& set, std::vector<int> constrained) : slots_(std::move(constrained)) {
+    std::uint64_t key_count = 1;
+    for (const int slot : slots_) {
+      weight_[static_cast<std::size_t>(slot)] = static_cast<std::uint32_t>(key_count);
+      key_count *= slot_radix(set, slot);
+      if (key_count > (1u << 24))
+        throw GeneratorError(set.describe() + ": too many color combinations to tile (more than 2^24)");
+    }
+    begin_.assign(key_count + 1, 0);
+    std::vector<std::uint32_t> keys(set.size());
+    for (std::size_t t = 0; t < set.size(); ++t) {
+      keys[t] = key_of_tile(set.tiles[t]);
+      ++begin_[keys[t] + 1];
+    }
+    std::partial_sum(begin_.begin(), begin_.end(), begin_.begin());
+    tiles_.resize(set.size());
+    std::vector<std::uint32_t> fill(begin_.begin(), begin_.end() - 1);
+    for (std::size_t t = 0; t < set.size(); ++t) tiles_[fill[keys[t]]++] = static_cast<std::uint16_t>(t);
+  }
+
+  std::uint32_t key_of_tile(const Tile& tile) const {
+    std::uint32_t key = 0;
+    for (const int slot : slots_) key += weight_[static_cast<std::size_t>(slot)] * color_of(tile, slot);
+    return key;
+  }
+  // The key a neighbour imposes through `links` (only the constrained targets count).
+  std::uint32_t key_from(const Tile& neighbour, std::span<const Link> links) const {
+    std::uint32_t key = 0;
+    for (const Link& link : links)
+      key += weight_[static_cast<std::size_t>(link.target)] * color_of(neighbour, link.source);
+    return key;
+  }
+  std::span<const std::uint16_t> candidates(std::uint32_t key) const {
+    return {tiles_.data() + begin_[key], tiles_.data() + begin_[key + 1]};
+  }
+  const std::vector<int>& slots() const { return slots_; }
+  // Colors per slot encoded in `key` (for messages).
+  std::array<std::uint32_t, kSlotCount> decode(std::uint32_t key, const TileSet& set) const {
+    std::array<std::uint32_t, kSlotCount> values{};
+    for (const int slot : slots_)
+      values[static_cast<std::size_t>(slot)] = (key / weight_[static_cast<std::size_t>(slot)]) % slot_radix(set, slot);
+    return values;
+  }
+
+ private:
+  std::vector<int> slots_;
+  std::array<std::uint32_t, kSlotCount> weight_{};
+  std::vector<std::uint32_t> begin_;
+  std::vector<std::uint16_t> tiles_;
+};
+
+// The constraint geometry of a sweep: rows away from the previous row ("vertical" neighbour:
+// north for scanline, south for bottom-left), each row west to east.
+struct Sweep {
+  std::vector<Link> vertical;   // from the previous-row neighbour
+  std::vector<Link> west;       // from the western neighbour when there is a previous row
+  std::vector<Link> west_only;  // from the western neighbour in the first row
+  std::vector<Link> diagonal;   // from the diagonal tile (west of vertical) to the vertical one
+};
+
+Sweep make_sweep(TilingAlgorithm algorithm) {
+  if (algorithm == TilingAlgorithm::scanline)
+    return {{{kN, kS}, {kNW, kSW}, {kNE, kSE}}, {{kW, kE}, {kSW, kSE}}, {{kW, kE}, {kSW, kSE}, {kNW, kNE}}, {}};
+  return {{{kS, kN}, {kSW, kNW}, {kSE, kNE}}, {{kW, kE}, {kNW, kNE}}, {{kW, kE}, {kNW, kNE}, {kSW, kSE}}, {}};
+}
+
+// Keeps the links whose slots the set colors.
+std::vector<Link> present_links(const TileSet& set, const std::vector<Link>& links) {
+  std::vector<Link> kept;
+  for (const Link& link : links)
+    if (slot_present(set, link.target)) kept.push_back(link);
+  return kept;
+}
+
+std::vector<int> targets_of(const std::vector<Link>& a, const std::vector<Link>& b = {}) {
+  std::vector<int> slots;
+  for (const Link& link : a) slots.push_back(link.target);
+  for (const Link& link : b) slots.push_back(link.target);
+  std::sort(slots.begin(), slots.end());
+  return slots;
+}
+
+class SweepTiler {
+ public:
+  SweepTiler(const TileSet& set, const TilingOptions& options)
+      : set_(set),
+        options_(options),
+        vertical_(present_links(set, make_sweep(options.algorithm).vertical)),
+        west_(present_links(set, make_sweep(options.algorithm).west)),
+        west_only_(present_links(set, make_sweep(options.algorithm).west_only)),
+        interior_(set, targets_of(vertical_, west_)),
+        first_row_(set, targets_of(west_only_)),
+        first_column_(set, targets_of(vertical_)) {
+    if (set.size() > 65535) throw GeneratorError(set.describe() + ": more than 65535 tiles");
+    const std::string algorithm(to_string(options.algorithm));
+    vertical_key_.resize(set.size());
+    west_key_.resize(set.size());
+    for (std::size_t t = 0; t < set.size(); ++t) {
+      vertical_key_[t] = interior_.key_from(set.tiles[t], vertical_);
+      west_key_[t] = interior_.key_from(set.tiles[t], west_);
+    }
+    for (const Tile& tile : set.tiles) diagonals_.insert(diagonal_signature(tile));
+    // Distinct (key, diagonal edge, shared corner) classes: what matters of a neighbour here.
+    std::set<std::array<std::uint32_t, 3>> vertical_classes, west_classes;
+    std::vector<std::size_t> vertical_examples, west_examples;
+    for (std::size_t t = 0; t < set.size(); ++t) {
+      const Tile& tile = set.tiles[t];
+      if (vertical_classes
+              .insert({vertical_key_[t], static_cast<std::uint32_t>(tile.w() + 1),
+                       static_cast<std::uint32_t>((scanline_ ? tile.sw() : tile.nw()) + 1)})
+              .second)
+        vertical_examples.push_back(t);
+      if (west_classes
+              .insert({west_key_[t], static_cast<std::uint32_t>((scanline_ ? tile.n() : tile.s()) + 1),
+                       static_cast<std::uint32_t>((scanline_ ? tile.ne() : tile.se()) + 1)})
+              .second)
+        west_examples.push_back(t);
+    }
+    for (const std::size_t v : vertical_examples)
+      for (const std::size_t w : west_examples)
+        if (can_meet(set.tiles[v], set.tiles[w])) require(interior_, vertical_key_[v] + west_key_[w], algorithm);
+    // Every constraint a previously placed tile can impose must have a candidate.
+    for (const Tile& tile : set.tiles) {
+      require(first_row_, first_row_.key_from(tile, west_only_), algorithm);
+      require(first_column_, first_column_.key_from(tile, vertical_), algorithm);
+    }
+    if (options.forbid_identical_neighbours) {
+      if (set.size() <= kMaskTiles) {
+        prepare_row_lookahead();
+      } else {
+        check_can_forbid_identical(algorithm);
+      }
+    }
+  }
+
+  // Fills `row` (width tiles) given the previous row (empty for the first row).
+  void next_row(std::span<const std::uint16_t> previous, std::span<std::uint16_t> row) {
+    const std::size_t width = row.size();
+    ++rows_done_;
+    if (!vertical_mask_.empty()) return next_row_with_lookahead(previous, row);
+    if (previous.empty()) {
+      row[0] = pick(set_.tiles.size());
+      for (std::size_t i = 1; i < width; ++i)
+        row[i] = choose(first_row_.candidates(first_row_.key_from(set_.tiles[row[i - 1]], west_only_)), row[i - 1],
+                        row[i - 1]);
+      return;
+    }
+    row[0] = choose(first_column_.candidates(first_column_.key_from(set_.tiles[previous[0]], vertical_)), previous[0],
+                    previous[0]);
+    if (options_.forbid_identical_neighbours) {
+      for (std::size_t i = 1; i < width; ++i)
+        row[i] =
+            choose(interior_.candidates(vertical_key_[previous[i]] + west_key_[row[i - 1]]), previous[i], row[i - 1]);
+      return;
+    }
+    // The hot loop: two table lookups and one random draw per tile.
+    for (std::size_t i = 1; i < width; ++i) {
+      const auto candidates = interior_.candidates(vertical_key_[previous[i]] + west_key_[row[i - 1]]);
+      row[i] = candidates[scale(next_bits(), static_cast<std::uint32_t>(candidates.size()))];
+    }
+  }
+
+ private:
+  // Sets of at most 64 tiles forbid identical neighbours with a row lookahead: a backward pass
+  // marks, per position, the tiles from which the rest of the row can still be completed, so a
+  // pair of neighbours that leaves no other choice (cohen12: north (1,2,1,0), west (1,0,0,0))
+  // is never reached. Each tile is still uniform among its viable candidates.
+  static constexpr std::size_t kMaskTiles = 64;
+  using TileMask = std::uint64_t;
+  static TileMask bit(std::size_t t) { return TileMask{1} << t; }
+
+  void prepare_row_lookahead() {
+    vertical_mask_.assign(set_.size(), 0);
+    east_mask_.assign(set_.size(), 0);
+    for (std::size_t t = 0; t < set_.size(); ++t) {
+      for (const std::uint16_t c : first_column_.candidates(first_column_.key_from(set_.tiles[t], vertical_)))
+        vertical_mask_[t] |= bit(c);
+      for (const std::uint16_t c : first_row_.candidates(first_row_.key_from(set_.tiles[t], west_only_)))
+        east_mask_[t] |= bit(c);
+    }
+  }
+
+  void next_row_with_lookahead(std::span<const std::uint16_t> previous, std::span<std::uint16_t> row) {
+    const std::size_t width = row.size();
+    const TileMask all = set_.size() == 64 ? ~TileMask{0} : bit(set_.size()) - 1;
+    const auto allowed_at = [&](std::size_t i) {
+      return previous.empty() ? all : vertical_mask_[previous[i]] & ~bit(previous[i]);
+    };
+    viable_.resize(width);
+    viable_[width - 1] = allowed_at(width - 1);
+    for (std::size_t i = width - 1; i-- > 0;) {
+      TileMask viable = 0;
+      for (TileMask rest = allowed_at(i); rest != 0; rest &= rest - 1) {
+        const auto t = static_cast<std::size_t>(std::countr_zero(rest));
+        if ((east_mask_[t] & viable_[i + 1] & ~bit(t)) != 0) viable |= bit(t);
+      }
+      viable_[i] = viable;
+    }
+    if (viable_[0] == 0)
+      throw GeneratorError(
+          set_.describe() + ": " + std::string(to_string(options_.algorithm)) +
+          " tiling cannot forbid identical neighbours: no row of " + std::to_string(width) + " tiles " +
+          (previous.empty() ? std::string("to start with") : "can follow sweep row " + std::to_string(rows_done_ - 1)));
+    for (std::size_t i = 0; i < width; ++i) {
+      TileMask choices = viable_[i];
+      if (i > 0) choices &= east_mask_[row[i - 1]] & ~bit(row[i - 1]);
+      row[i] = pick_bit(choices);
+    }
+  }
+
+  // A uniform member of a non-empty mask.
+  std::uint16_t pick_bit(TileMask mask) {
+    auto index = scale(next_bits(), static_cast<std::uint32_t>(std::popcount(mask)));
+    while (index-- > 0) mask &= mask - 1;
+    return static_cast<std::uint16_t>(std::countr_zero(mask));
+  }
+
+  std::uint32_t next_bits() {
+    if (spare_bits_left_) {
+      spare_bits_left_ = false;
+      return spare_bits_;
+    }
+    const std::uint64_t bits = splitmix64(rng_);
+    spare_bits_ = static_cast<std::uint32_t>(bits >> 32);
+    spare_bits_left_ = true;
+    return static_cast<std::uint32_t>(bits);
+  }
+  std::uint16_t pick(std::size_t count) {
+    return static_cast<std::uint16_t>(scale(next_bits(), static_cast<std::uint32_t>(count)));
+  }
+
+  // A uniform choice among `candidates`, skipping the neighbours when identical ones are forbidden.
+  std::uint16_t choose(std::span<const std::uint16_t> candidates, std::uint16_t neighbour_a,
+                       std::uint16_t neighbour_b) {
+    if (!options_.forbid_identical_neighbours)
+      return candidates[scale(next_bits(), static_cast<std::uint32_t>(candidates.size()))];
+    std::uint32_t allowed = 0;
+    for (const std::uint16_t t : candidates) allowed += (t != neighbour_a && t != neighbour_b) ? 1 : 0;
+    std::uint32_t index = scale(next_bits(), allowed);  // allowed > 0: checked in the constructor
+    for (const std::uint16_t t : candidates)
+      if (t != neighbour_a && t != neighbour_b && index-- == 0) return t;
+    return candidates[0];
+  }
+
+  // What a tile offers as the diagonal neighbour (west of the vertical one): its colors facing
+  // the vertical neighbour, the western one, and the shared corner.
+  std::array<int, 3> diagonal_signature(const Tile& d) const {
+    return scanline_ ? std::array<int, 3>{d.e(), d.s(), d.se()} : std::array<int, 3>{d.e(), d.n(), d.ne()};
+  }
+  // Whether `vertical` and `west` can both touch the next tile: they agree on the corner they
+  // share (when coded) and some tile fits diagonally between them.
+  bool can_meet(const Tile& vertical, const Tile& west) const {
+    const int shared_v = scanline_ ? vertical.sw() : vertical.nw();
+    const int shared_w = scanline_ ? west.ne() : west.se();
+    if (shared_v != shared_w) return false;
+    return diagonals_.count({vertical.w(), scanline_ ? west.n() : west.s(), shared_v}) > 0;
+  }
+
+  void require(const CandidateTable& table, std::uint32_t key, const std::string& algorithm) const {
+    if (!table.candidates(key).empty()) return;
+    throw GeneratorError(set_.describe() + ": " + algorithm + " tiling needs a tile with " +
+                         describe_colors(table.slots(), table.decode(key, set_)) + "; none found");
+  }
+
+  void check_can_forbid_identical(const std::string& algorithm) const {
+    const auto fail = [&](const CandidateTable& table, std::uint32_t key, std::size_t a, std::size_t b) {
+      throw GeneratorError(set_.describe() + ": " + algorithm +
+                           " tiling cannot forbid identical neighbours: every tile with " +
+                           describe_colors(table.slots(), table.decode(key, set_)) + " equals a neighbour (tile " +
+                           std::to_string(a) + (a == b ? "" : " or tile " + std::to_string(b)) + ")");
+    };
+    const auto has_other = [](std::span<const std::uint16_t> candidates, std::size_t a, std::size_t b) {
+      return std::any_of(candidates.begin(), candidates.end(), [&](std::uint16_t t) { return t != a && t != b; });
+    };
+    for (std::size_t t = 0; t < set_.size(); ++t) {
+      const std::uint32_t row_key = first_row_.key_from(set_.tiles[t], west_only_);
+      if (!has_other(first_row_.candidates(row_key), t, t)) fail(first_row_, row_key, t, t);
+      const std::uint32_t column_key = first_column_.key_from(set_.tiles[t], vertical_);
+      if (!has_other(first_column_.candidates(column_key), t, t)) fail(first_column_, column_key, t, t);
+    }
+    for (std::size_t v = 0; v < set_.size(); ++v)
+      for (std::size_t w = 0; w < set_.size(); ++w) {
+        const std::uint32_t key = vertical_key_[v] + west_key_[w];
+        const auto candidates = interior_.candidates(key);
+        if (candidates.size() > 2 || has_other(candidates, v, w)) continue;
+        if (can_meet(set_.tiles[v], set_.tiles[w])) fail(interior_, key, w, v);
+      }
+  }
+
+  const TileSet& set_;
+  TilingOptions options_;
+  bool scanline_ = options_.algorithm == TilingAlgorithm::scanline;
+  std::set<std::array<int, 3>> diagonals_;
+  std::vector<Link> vertical_, west_, west_only_;
+  CandidateTable interior_, first_row_, first_column_;
+  std::vector<std::uint32_t> vertical_key_, west_key_;
+  std::uint64_t rng_ = mix64(options_.seed ^ 0x5CA11E5EED5ull);
+  std::uint32_t spare_bits_ = 0;
+  std::vector<TileMask> vertical_mask_, east_mask_, viable_;  // row lookahead (forbid, <= 64 tiles)
+  int rows_done_ = 0;
+  bool spare_bits_left_ = false;
+};
+
+void check_size(const TileSet& set, int width, int height) {
+  if (width <= 0 || height <= 0)
+    throw GeneratorError(set.describe() + ": tiling size " + std::to_string(width) + "x" + std::to_string(height) +
+                         " is empty; expected at least 1x1");
+}
+
+// Rows of hashed tiles computed in parallel this many at a time when streaming.
+constexpr int kHashRowBlock = 64;
+
+}  // namespace
+
+std::string_view to_string(TilingAlgorithm algorithm) {
+  switch (algorithm) {
+    case TilingAlgorithm::scanline:
+      return "scanline";
+    case TilingAlgorithm::bottom_left:
+      return "bottom-left";
+    case TilingAlgorithm::hash:
+      return "hash";
+  }
+  return "?";
+}
+
+TilingAlgorithm parse_tiling_algorithm(std::string_view text) {
+  for (const TilingAlgorithm a : {TilingAlgorithm::scanline, TilingAlgorithm::bottom_left, TilingAlgorithm::hash})
+    if (text == to_string(a)) return a;
+  throw GeneratorError("unknown tiling algorithm '" + std::string(text) + "'; expected scanline, bottom-left or hash");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Hashed tiling.
+
+HashedTiling::HashedTiling(const TileSet& set, std::uint64_t seed, bool forbid_identical_neighbours)
+    : seed_(seed), forbid_(forbid_identical_neighbours) {
+  for (int slot = 0; slot < kSlotCount; ++slot) radix_[static_cast<std::size_t>(slot)] = slot_radix(set, slot);
+  has_edges_ = set.has_edges;
+  has_corners_ = set.has_corners;
+  std::uint64_t combinations = 1;
+  for (const std::uint32_t r : radix_) combinations *= r;
+  if (combinations > 65535 || set.size() > 65535)
+    throw GeneratorError(set.describe() + ": hash tiling needs a complete set of at most 65535 tiles; this one needs " +
+                         std::to_string(combinations));
+  constexpr std::uint16_t kMissing = 0xFFFF;
+  lookup_.assign(combinations, kMissing);
+  for (std::size_t t = 0; t < set.size(); ++t) {
+    std::array<std::uint32_t, kSlotCount> colors{};
+    for (int slot = 0; slot < kSlotCount; ++slot) colors[static_cast<std::size_t>(slot)] = color_of(set.tiles[t], slot);
+    lookup_[code(colors)] = static_cast<std::uint16_t>(t);
+  }
+  std::vector<int> slots;
+  for (int slot = 0; slot < kSlotCount; ++slot)
+    if (slot_present(set, slot)) slots.push_back(slot);
+  for (std::size_t c = 0; c < lookup_.size(); ++c) {
+    if (lookup_[c] != kMissing) continue;
+    std::array<std::uint32_t, kSlotCount> colors{};
+    std::uint64_t rest = c;
+    for (int slot = kSlotCount - 1; slot >= 0; --slot) {
+      colors[static_cast<std::size_t>(slot)] =
+          static_cast<std::uint32_t>(rest % radix_[static_cast<std::size_t>(slot)]);
+      rest /= radix_[static_cast<std::size_t>(slot)];
+    }
+    std::string names, values;
+    for (const int slot : slots) {
+      names += std::string(names.empty() ? "" : ",") + kSlotNames[static_cast<std::size_t>(slot)];
+      values += std::string(values.empty() ? "" : ",") + std::to_string(colors[static_cast<std::size_t>(slot)]);
+    }
+    throw GeneratorError(set.describe() + ": hash tiling needs a complete set; missing (" + names + ")=(" + values +
+                         ")");
+  }
+  if (forbid_)
+    for (const int slot : slots)
+      if (radix_[static_cast<std::size_t>(slot)] < 2)
+        throw GeneratorError(set.describe() + ": hash tiling cannot forbid identical neighbours with a single " +
+                             kSlotNames[static_cast<std::size_t>(slot)] + " color");
+}
+
+std::uint32_t HashedTiling::code(const std::array<std::uint32_t, kSlotCount>& colors) const {
+  std::uint32_t c = 0;
+  for (int slot = 0; slot < kSlotCount; ++slot)
+    c = c * radix_[static_cast<std::size_t>(slot)] + colors[static_cast<std::size_t>(slot)];
+  return c;
+}
+
+std::uint32_t HashedTiling::row_key(std::int64_t y, std::uint64_t salt) const {
+  return static_cast<std::uint32_t>(mix64(seed_ ^ salt ^ (static_cast<std::uint64_t>(y) * 0xD6E8FEB86659FD93ull)));
+}
+
+// The hash of a point, given its row's key: also the inner loop of fill_row.
+static inline std::uint32_t point_hash(std::uint32_t row_key, std::int64_t x) {
+  const auto ux = static_cast<std::uint64_t>(x);
+  return mix32(row_key ^ (static_cast<std::uint32_t>(ux) * 0x9E3779B9u) ^
+               (static_cast<std::uint32_t>(ux >> 32) * 0x85EBCA6Bu));
+}
+
+static inline std::uint32_t hashed_color(std::uint32_t hash, std::uint32_t alphabet) {
+  return ((hash >> 16) * alphabet) >> 16;
+}
+
+// A color other than `avoid`, uniform over the alphabet - 1 others.
+static inline std::uint32_t color_other_than(std::uint32_t hash, std::uint32_t avoid, std::uint32_t alphabet) {
+  return (avoid + 1 + hashed_color(hash, alphabet - 1)) % alphabet;
+}
+
+namespace {
+constexpr std::uint64_t kEdgeSalt = 0x3C6EF372FE94F82Bull;
+constexpr std::uint64_t kCornerSalt = 0xA54FF53A5F1D36F1ull;
+// Floor parity of a tile-grid index (two's complement: odd negatives have bit 0 set too).
+bool is_odd(std::int64_t v) { return (v & 1) != 0; }
+}  // namespace
+
+std::uint32_t HashedTiling::color_at(std::int64_t x, std::int64_t y, std::uint32_t alphabet) const {
+  const auto plain = [&](std::int64_t px, std::int64_t py) {
+    return hashed_color(point_hash(row_key(py, kEdgeSalt), px), alphabet);
+  };
+  if (!forbid_) return plain(x, y);
+  // Identical neighbours need three equal edge colors in a row along the line of edges; making
+  // every odd edge (by index along that line) differ from the even one before it rules it out.
+  const bool vertical_edge = (x & 1) == 0;  // at (2i, 2j+1)
+  if (vertical_edge && is_odd(x / 2))
+    return color_other_than(point_hash(row_key(y, kEdgeSalt), x), plain(x - 2, y), alphabet);
+  if (!vertical_edge && is_odd(y / 2))
+    return color_other_than(point_hash(row_key(y, kEdgeSalt), x), plain(x, y - 2), alphabet);
+  return plain(x, y);
+}
+
+std::uint32_t HashedTiling::corner_at(std::int64_t x, std::int64_t y, std::uint32_t alphabet) const {
+  const auto plain = [&](std::int64_t px, std::int64_t py) { return point_hash(row_key(py, kCornerSalt), px); };
+  if (!forbid_) return hashed_color(plain(x, y), alphabet);
+  // Odd vertices differ from their even neighbour to the west (odd x) or south (odd y), so no
+  // three vertices in a row or column share a color; odd-odd vertices avoid both.
+  const auto base = [&](std::int64_t px, std::int64_t py) { return hashed_color(plain(px, py), alphabet); };
+  const bool odd_x = is_odd(x), odd_y = is_odd(y);
+  if (!odd_x && !odd_y) return base(x, y);
+  if (odd_x && !odd_y) return color_other_than(plain(x, y), base(x - 1, y), alphabet);
+  if (!odd_x && odd_y) return color_other_than(plain(x, y), base(x, y - 1), alphabet);
+  const std::uint32_t west = color_other_than(plain(x - 1, y), base(x - 1, y - 1), alphabet);
+  const std::uint32_t south = color_other_than(plain(x, y - 1), base(x - 1, y - 1), alphabet);
+  if (west == south) return color_other_than(plain(x, y), west, alphabet);
+  // Two colors to avoid (alphabet >= 3 here: with two colors west == south always).
+  std::uint32_t c = hashed_color(plain(x, y), alphabet - 2);
+  const std::uint32_t low = std::min(west, south), high = std::max(west, south);
+  if (c >= low) ++c;
+  if (c >= high) ++c;
+  return c;
+}
+
+std::uint32_t HashedTiling::tile_at(std::int64_t i, std::int64_t j) const {
+  std::array<std::uint32_t, kSlotCount> colors{};
+  if (has_edges_) {
+    colors[kN] = color_at(2 * i + 1, 2 * j + 2, radix_[kN]);
+    colors[kS] = color_at(2 * i + 1, 2 * j, radix_[kS]);
+    colors[kE] = color_at(2 * i + 2, 2 * j + 1, radix_[kE]);
+    colors[kW] = color_at(2 * i, 2 * j + 1, radix_[kW]);
+  }
+  if (has_corners_) {
+    colors[kSW] = corner_at(i, j, radix_[kSW]);
+    colors[kSE] = corner_at(i + 1, j, radix_[kSE]);
+    colors[kNE] = corner_at(i + 1, j + 1, radix_[kNE]);
+    colors[kNW] = corner_at(i, j + 1, radix_[kNW]);
+  }
+  return lookup_[code(colors)];
+}
+
+void HashedTiling::fill_row(std::int64_t first_i, std::int64_t j, std::span<std::uint16_t> out) const {
+  if (forbid_ || has_corners_ == has_edges_) {
+    for (std::size_t k = 0; k < out.size(); ++k)
+      out[k] = static_cast<std::uint16_t>(tile_at(first_i + static_cast<std::int64_t>(k), j));
+    return;
+  }
+  // Fast paths: one row key per line of points, then independent hashes per tile (vectorisable).
+  const std::uint16_t* lookup = lookup_.data();
+  if (has_edges_) {
+    const std::uint32_t h = radix_[kN], v = radix_[kE];
+    const std::uint32_t north_key = row_key(2 * j + 2, kEdgeSalt), south_key = row_key(2 * j, kEdgeSalt);
+    const std::uint32_t middle_key = row_key(2 * j + 1, kEdgeSalt);
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      const std::int64_t x = 2 * (first_i + static_cast<std::int64_t>(k));
+      const std::uint32_t n = hashed_color(point_hash(north_key, x + 1), h),
+                          s = hashed_color(point_hash(south_key, x + 1), h);
+      const std::uint32_t e = hashed_color(point_hash(middle_key, x + 2), v),
+                          w = hashed_color(point_hash(middle_key, x), v);
+      out[k] = lookup[((n * v + e) * h + s) * v + w];  // code() with slots N, E, S, W
+    }
+    return;
+  }
+  const std::uint32_t c = radix_[kNE];
+  const std::uint32_t north_key = row_key(j + 1, kCornerSalt), south_key = row_key(j, kCornerSalt);
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const std::int64_t x = first_i + static_cast<std::int64_t>(k);
+    const std::uint32_t ne = hashed_color(point_hash(north_key, x + 1), c),
+                        se = hashed_color(point_hash(south_key, x + 1), c);
+    const std::uint32_t sw = hashed_color(point_hash(south_key, x), c), nw = hashed_color(point_hash(north_key, x), c);
+    out[k] = lookup[((ne * c + se) * c + sw) * c + nw];  // code() with slots NE, SE, SW, NW
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+void stream_tiling(const TileSet& set, int width, int height, const TilingOptions& options, const TilingRowSink& row) {
+  check_size(set, width, height);
+  const auto w = static_cast<std::size_t>(width);
+  if (options.algorithm == TilingAlgorithm::hash) {
+    const HashedTiling hashed(set, options.seed, options.forbid_identical_neighbours);
+    std::vector<std::uint16_t> block(w * kHashRowBlock);
+    for (int first = 0; first < height; first += kHashRowBlock) {
+      const int rows = std::min(kHashRowBlock, height - first);
+      tbb::parallel_for(0, rows, [&](int r) {
+        hashed.fill_row(options.origin_i, options.origin_j + first + r,
+                        std::span(block.data() + static_cast<std::size_t>(r) * w, w));
+      });
+      for (int r = 0; r < rows; ++r)
+        row(first + r, std::span<const std::uint16_t>(block.data() + static_cast<std::size_t>(r) * w, w));
+    }
+    return;
+  }
+  SweepTiler tiler(set, options);
+  std::vector<std::uint16_t> previous, current(w);
+  const bool from_north = options.algorithm == TilingAlgorithm::scanline;
+  for (int r = 0; r < height; ++r) {
+    tiler.next_row(previous, current);
+    row(from_north ? height - 1 - r : r, current);
+    previous.swap(current);
+    current.resize(w);
+  }
+}
+
+Tiling make_tiling(const TileSet& set, int width, int height, const TilingOptions& options) {
+  check_size(set, width, height);
+  Tiling tiling;
+  tiling.width = width;
+  tiling.height = height;
+  tiling.origin_i = options.origin_i;
+  tiling.origin_j = options.origin_j;
+  const auto w = static_cast<std::size_t>(width);
+  tiling.tiles.resize(w * static_cast<std::size_t>(height));
+  if (options.algorithm == TilingAlgorithm::hash) {
+    const HashedTiling hashed(set, options.seed, options.forbid_identical_neighbours);
+    tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
+      for (int r = rows.begin(); r < rows.end(); ++r)
+        hashed.fill_row(options.origin_i, options.origin_j + r,
+                        std::span(tiling.tiles.data() + static_cast<std::size_t>(r) * w, w));
+    });
+    return tiling;
+  }
+  stream_tiling(set, width, height, options, [&](int local_j, std::span<const std::uint16_t> tiles) {
+    std::copy(tiles.begin(), tiles.end(),
+              tiling.tiles.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(local_j) * w));
+  });
+  return tiling;
+}
+
+void check_tiling(const TileSet& set, const Tiling& tiling) {
+  const std::string where = "tiling with " + set.describe();
+  if (tiling.width <= 0 || tiling.height <= 0 ||
+      tiling.tiles.size() != static_cast<std::size_t>(tiling.width) * static_cast<std::size_t>(tiling.height))
+    throw GeneratorError(where + ": " + std::to_string(tiling.tiles.size()) + " tiles do not fill a " +
+                         std::to_string(tiling.width) + "x" + std::to_string(tiling.height) + " window");
+  const auto position = [&](int li, int lj) {
+    return "tile (" + std::to_string(tiling.origin_i + li) + ", " + std::to_string(tiling.origin_j + lj) + ")";
+  };
+  for (int lj = 0; lj < tiling.height; ++lj)
+    for (int li = 0; li < tiling.width; ++li)
+      if (tiling.at(li, lj) >= set.size())
+        throw GeneratorError(where + ": " + position(li, lj) + " is tile " + std::to_string(tiling.at(li, lj)) +
+                             "; the set has " + std::to_string(set.size()) + " tiles");
+  // Pairs of slots that must agree between a tile and its eastern / northern neighbour.
+  struct Match {
+    int own, other;
+  };
+  std::vector<Match> east, north;
+  if (set.has_edges) {
+    east.push_back({kE, kW});
+    north.push_back({kN, kS});
+  }
+  if (set.has_corners) {
+    east.insert(east.end(), {{kNE, kNW}, {kSE, kSW}});
+    north.insert(north.end(), {{kNW, kSW}, {kNE, kSE}});
+  }
+  const auto compare = [&](int li, int lj, int oi, int oj, const std::vector<Match>& matches) {
+    const Tile& a = set.tiles[tiling.at(li, lj)];
+    const Tile& b = set.tiles[tiling.at(oi, oj)];
+    for (const Match& m : matches)
+      if (a.colors[static_cast<std::size_t>(m.own)] != b.colors[static_cast<std::size_t>(m.other)])
+        throw GeneratorError(where + ": " + position(li, lj) + " has " + kSlotNames[static_cast<std::size_t>(m.own)] +
+                             "=" + std::to_string(a.colors[static_cast<std::size_t>(m.own)]) + " but " +
+                             position(oi, oj) + " has " + kSlotNames[static_cast<std::size_t>(m.other)] + "=" +
+                             std::to_string(b.colors[static_cast<std::size_t>(m.other)]));
+  };
+  for (int lj = 0; lj < tiling.height; ++lj)
+    for (int li = 0; li < tiling.width; ++li) {
+      if (li + 1 < tiling.width) compare(li, lj, li + 1, lj, east);
+      if (lj + 1 < tiling.height) compare(li, lj, li, lj + 1, north);
+    }
+}
+
+}  // namespace wangscape
