@@ -484,6 +484,22 @@ static inline std::uint32_t color_other_than(std::uint32_t hash, std::uint32_t a
   return (avoid + 1 + hashed_color(hash, alphabet - 1)) % alphabet;
 }
 
+// Colors of the `count` points first_x, first_x + 2, ... of a line of the doubled grid (edges).
+[[gnu::target_clones("avx2", "default")]] static void hash_colors(std::uint32_t row_key, std::int64_t first_x,
+                                                                  std::size_t count, std::uint32_t alphabet,
+                                                                  std::uint32_t* colors) {
+  for (std::size_t k = 0; k < count; ++k)
+    colors[k] = hashed_color(point_hash(row_key, first_x + 2 * static_cast<std::int64_t>(k)), alphabet);
+}
+
+// Colors of the `count` lattice vertices first_x, first_x + 1, ... of a row (corners).
+[[gnu::target_clones("avx2", "default")]] static void hash_corners(std::uint32_t row_key, std::int64_t first_x,
+                                                                   std::size_t count, std::uint32_t alphabet,
+                                                                   std::uint32_t* colors) {
+  for (std::size_t k = 0; k < count; ++k)
+    colors[k] = hashed_color(point_hash(row_key, first_x + static_cast<std::int64_t>(k)), alphabet);
+}
+
 namespace {
 constexpr std::uint64_t kEdgeSalt = 0x3C6EF372FE94F82Bull;
 constexpr std::uint64_t kCornerSalt = 0xA54FF53A5F1D36F1ull;
@@ -550,30 +566,29 @@ void HashedTiling::fill_row(std::int64_t first_i, std::int64_t j, std::span<std:
       out[k] = static_cast<std::uint16_t>(tile_at(first_i + static_cast<std::int64_t>(k), j));
     return;
   }
-  // Fast paths: one row key per line of points, then independent hashes per tile (vectorisable).
+  // Fast paths: colors of each line of points hashed once into small buffers (neighbouring tiles
+  // share their E/W edges and corners), then combined into tile indices.
+  constexpr std::size_t kChunk = 512;
+  std::array<std::uint32_t, kChunk + 1> line_a, line_b, line_c;
   const std::uint16_t* lookup = lookup_.data();
-  if (has_edges_) {
-    const std::uint32_t h = radix_[kN], v = radix_[kE];
-    const std::uint32_t north_key = row_key(2 * j + 2, kEdgeSalt), south_key = row_key(2 * j, kEdgeSalt);
-    const std::uint32_t middle_key = row_key(2 * j + 1, kEdgeSalt);
-    for (std::size_t k = 0; k < out.size(); ++k) {
-      const std::int64_t x = 2 * (first_i + static_cast<std::int64_t>(k));
-      const std::uint32_t n = hashed_color(point_hash(north_key, x + 1), h),
-                          s = hashed_color(point_hash(south_key, x + 1), h);
-      const std::uint32_t e = hashed_color(point_hash(middle_key, x + 2), v),
-                          w = hashed_color(point_hash(middle_key, x), v);
-      out[k] = lookup[((n * v + e) * h + s) * v + w];  // code() with slots N, E, S, W
+  for (std::size_t done = 0; done < out.size(); done += kChunk) {
+    const std::size_t count = std::min(kChunk, out.size() - done);
+    const std::int64_t i0 = first_i + static_cast<std::int64_t>(done);
+    std::uint16_t* tiles = out.data() + done;
+    if (has_edges_) {
+      const std::uint32_t h = radix_[kN], v = radix_[kE];
+      hash_colors(row_key(2 * j + 2, kEdgeSalt), 2 * i0 + 1, count, h, line_a.data());  // N
+      hash_colors(row_key(2 * j, kEdgeSalt), 2 * i0 + 1, count, h, line_b.data());      // S
+      hash_colors(row_key(2 * j + 1, kEdgeSalt), 2 * i0, count + 1, v, line_c.data());  // W, then E
+      for (std::size_t k = 0; k < count; ++k)
+        tiles[k] = lookup[((line_a[k] * v + line_c[k + 1]) * h + line_b[k]) * v + line_c[k]];  // code(): N, E, S, W
+    } else {
+      const std::uint32_t c = radix_[kNE];
+      hash_corners(row_key(j + 1, kCornerSalt), i0, count + 1, c, line_a.data());  // NW, then NE
+      hash_corners(row_key(j, kCornerSalt), i0, count + 1, c, line_b.data());      // SW, then SE
+      for (std::size_t k = 0; k < count; ++k)
+        tiles[k] = lookup[((line_a[k + 1] * c + line_b[k + 1]) * c + line_b[k]) * c + line_a[k]];  // NE, SE, SW, NW
     }
-    return;
-  }
-  const std::uint32_t c = radix_[kNE];
-  const std::uint32_t north_key = row_key(j + 1, kCornerSalt), south_key = row_key(j, kCornerSalt);
-  for (std::size_t k = 0; k < out.size(); ++k) {
-    const std::int64_t x = first_i + static_cast<std::int64_t>(k);
-    const std::uint32_t ne = hashed_color(point_hash(north_key, x + 1), c),
-                        se = hashed_color(point_hash(south_key, x + 1), c);
-    const std::uint32_t sw = hashed_color(point_hash(south_key, x), c), nw = hashed_color(point_hash(north_key, x), c);
-    out[k] = lookup[((ne * c + se) * c + sw) * c + nw];  // code() with slots NE, SE, SW, NW
   }
 }
 

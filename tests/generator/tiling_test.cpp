@@ -109,6 +109,17 @@ TEST(HashedTiling, WindowsEqualTheSamePartOfALargerTilingIncludingNegativeOrigin
   }
 }
 
+TEST(HashedTiling, RowsEqualTileAtAcrossLongRows) {
+  for (const char* name : {"complete-edge-3", "corner-2"}) {
+    const TileSet set = builtin_tileset(name);
+    const HashedTiling hashed(set, 77);
+    std::vector<std::uint16_t> row(1500);
+    hashed.fill_row(-700, -3, row);
+    for (std::size_t k = 0; k < row.size(); ++k)
+      ASSERT_EQ(row[k], hashed.tile_at(-700 + static_cast<std::int64_t>(k), -3)) << name;
+  }
+}
+
 TEST(HashedTiling, WorksFarFromTheOrigin) {
   const TileSet set = builtin_tileset("complete-edge-3");
   TilingOptions options;

@@ -1,0 +1,56 @@
+// Tiles per second for 10,000 x 10,000-tile tilings (seed 003 made tilings "ten thousand tiles
+// on a side"). Streamed row by row, so memory stays O(row): the sink only folds each row into a
+// checksum so the work cannot be optimised away.
+#include <benchmark/benchmark.h>
+
+#include <cstdint>
+
+#include "generator/tiling.h"
+
+namespace {
+
+using wangscape::TilingAlgorithm;
+
+constexpr int kSide = 10'000;
+
+void run(benchmark::State& state, const char* set_name, TilingAlgorithm algorithm) {
+  const wangscape::TileSet set = wangscape::builtin_tileset(set_name);
+  wangscape::TilingOptions options;
+  options.algorithm = algorithm;
+  for (auto _ : state) {
+    std::uint64_t checksum = 0;
+    wangscape::stream_tiling(set, kSide, kSide, options, [&](int, std::span<const std::uint16_t> row) {
+      checksum += row.front() + row.back() + row[row.size() / 2];
+    });
+    benchmark::DoNotOptimize(checksum);
+    ++options.seed;
+  }
+  state.SetItemsProcessed(state.iterations() * std::int64_t{kSide} * kSide);
+  state.SetLabel("tiles/s = items_per_second");
+}
+
+void BM_ScanlineCohen8(benchmark::State& state) { run(state, "cohen8", TilingAlgorithm::scanline); }
+void BM_ScanlineCohen18(benchmark::State& state) { run(state, "cohen18", TilingAlgorithm::scanline); }
+void BM_BottomLeftCohen8(benchmark::State& state) { run(state, "cohen8", TilingAlgorithm::bottom_left); }
+void BM_HashCompleteEdge2(benchmark::State& state) { run(state, "complete-edge-2", TilingAlgorithm::hash); }
+void BM_HashCorner2(benchmark::State& state) { run(state, "corner-2", TilingAlgorithm::hash); }
+
+// The whole tiling in memory (2 bytes per tile): what `wangscape tiling` does.
+void BM_MakeTilingHashCompleteEdge2(benchmark::State& state) {
+  const wangscape::TileSet set = wangscape::builtin_tileset("complete-edge-2");
+  wangscape::TilingOptions options;
+  options.algorithm = TilingAlgorithm::hash;
+  for (auto _ : state) benchmark::DoNotOptimize(wangscape::make_tiling(set, kSide, kSide, options).tiles.data());
+  state.SetItemsProcessed(state.iterations() * std::int64_t{kSide} * kSide);
+}
+
+BENCHMARK(BM_ScanlineCohen8)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ScanlineCohen18)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_BottomLeftCohen8)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_HashCompleteEdge2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_HashCorner2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_MakeTilingHashCompleteEdge2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
