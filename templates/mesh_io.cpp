@@ -311,8 +311,8 @@ class PlyAsciiReader {
     element_ = &element;
     index_ = index;
     do {
-      if (!std::getline(in_, line_)) fail("unexpected end of file");
       ++line_number_;
+      if (!std::getline(in_, line_)) fail("unexpected end of file");
       tokens_ = split_whitespace(line_);
     } while (tokens_.empty());
     next_token_ = 0;
