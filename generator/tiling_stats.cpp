@@ -1,0 +1,77 @@
+#include "generator/tiling_stats.h"
+
+#include <algorithm>
+
+namespace wangscape {
+
+PeriodicityPeak periodicity_score(const Tiling& tiling, int max_offset) {
+  // The central region the autocorrelation is measured on (bounded cost on huge tilings).
+  constexpr int kRegion = 256;
+  const int width = std::min(tiling.width, kRegion), height = std::min(tiling.height, kRegion);
+  const int i0 = (tiling.width - width) / 2, j0 = (tiling.height - height) / 2;
+  const auto at = [&](int i, int j) { return tiling.at(i0 + i, j0 + j); };
+
+  std::vector<std::uint64_t> counts;
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i) {
+      const std::uint16_t t = at(i, j);
+      if (t >= counts.size()) counts.resize(t + 1u, 0);
+      ++counts[t];
+    }
+  const double cells = static_cast<double>(width) * height;
+  double chance = 0.0;  // probability that two random tiles are equal
+  for (const std::uint64_t c : counts) chance += (c / cells) * (c / cells);
+  PeriodicityPeak peak;
+  if (chance >= 1.0 - 1e-12) return {1.0, width > 1 ? 1 : 0, width > 1 ? 0 : 1};
+
+  const int max_di = std::min(max_offset, width / 2), max_dj = std::min(max_offset, height / 2);
+  peak.score = -1.0;
+  // Offsets in a half plane (d and -d give the same correlation).
+  for (int dj = 0; dj <= max_dj; ++dj)
+    for (int di = dj == 0 ? 1 : -max_di; di <= max_di; ++di) {
+      std::uint64_t equal = 0, pairs = 0;
+      for (int j = 0; j + dj < height; ++j)
+        for (int i = std::max(0, -di); i < width && i + di < width; ++i) {
+          equal += at(i, j) == at(i + di, j + dj) ? 1 : 0;
+          ++pairs;
+        }
+      if (pairs == 0) continue;
+      const double score = (static_cast<double>(equal) / static_cast<double>(pairs) - chance) / (1.0 - chance);
+      if (score > peak.score) peak = {score, di, dj};
+    }
+  if (peak.score < 0.0) peak = {0.0, 0, 0};  // windows too small to have any offset
+  return peak;
+}
+
+TilingStats compute_tiling_stats(const TileSet& set, const Tiling& tiling) {
+  TilingStats stats;
+  try {
+    check_tiling(set, tiling);
+    stats.valid = true;
+  } catch (const GeneratorError& e) {
+    stats.invalid_reason = e.what();
+  }
+  stats.frequencies.assign(set.size(), 0);
+  for (const std::uint16_t t : tiling.tiles)
+    if (t < set.size()) ++stats.frequencies[t];
+  std::uint64_t identical = 0, pairs = 0;
+  for (int j = 0; j < tiling.height; ++j)
+    for (int i = 0; i < tiling.width; ++i) {
+      if (i + 1 < tiling.width) {
+        identical += tiling.at(i, j) == tiling.at(i + 1, j) ? 1 : 0;
+        ++pairs;
+      }
+      if (j + 1 < tiling.height) {
+        identical += tiling.at(i, j) == tiling.at(i, j + 1) ? 1 : 0;
+        ++pairs;
+      }
+    }
+  stats.identical_neighbour_rate = pairs ? static_cast<double>(identical) / static_cast<double>(pairs) : 0.0;
+  const PeriodicityPeak peak = periodicity_score(tiling);
+  stats.periodicity = peak.score;
+  stats.period_di = peak.di;
+  stats.period_dj = peak.dj;
+  return stats;
+}
+
+}  // namespace wangscape
