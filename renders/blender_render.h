@@ -1,0 +1,45 @@
+// Runs the real Blender headless on a Blender export (exporters/blender_export.h): enables
+// the Wangscape add-on from the export's zip, imports the manifest, saves DIR/scene.blend and
+// renders with Cycles on the CPU (denoising off) to DIR/render_blender.png. Blender's output
+// is kept in DIR/blender.log; the .blend and the image appear atomically.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "renders/render_error.h"
+
+namespace wangscape {
+
+struct BlenderRenderOptions {
+  int width = 0, height = 0;  // pixels; 0 = as the manifest says
+  int samples = 0;            // Cycles samples; 0 = as the manifest says
+  int threads = 0;            // 0 = as the manifest says (all cores when it says 0)
+  std::string image_name = "render_blender.png";
+  bool save_blend = true;  // DIR/scene.blend
+  // The Blender program: a name looked up in PATH or a path. Empty = $WANGSCAPE_BLENDER,
+  // else "blender".
+  std::string executable;
+};
+
+struct BlenderRenderResult {
+  std::filesystem::path image;     // DIR/render_blender.png
+  std::filesystem::path blend;     // DIR/scene.blend (empty when not saved)
+  std::filesystem::path log;       // DIR/blender.log
+  std::filesystem::path manifest;  // the manifest imported
+  double seconds = 0;              // wall-clock time of the Blender run (start, import, render)
+};
+
+// The manifest render_blender uses for DIR: DIR/blender/manifest.json, else
+// DIR/manifest.json; empty when neither exists.
+std::filesystem::path find_blender_manifest(const std::filesystem::path& dir);
+
+// Renders the Blender export found in DIR. Throws RenderError when there is no manifest,
+// when Blender is not installed (naming the program looked for), or when it fails (quoting
+// the last lines of DIR/blender.log). No partial image or .blend is left behind.
+BlenderRenderResult render_blender(const std::filesystem::path& dir, const BlenderRenderOptions& options = {});
+
+// The Blender program render_blender would run, resolved through PATH; empty when none.
+std::filesystem::path find_blender(const std::string& executable = {});
+
+}  // namespace wangscape

@@ -1,0 +1,33 @@
+// Running an external program (Blender, ...) with its output captured in a log file:
+// PATH lookup with an environment override, fork/exec without a shell (no quoting issues).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace wangscape {
+
+// `program` resolved through PATH (or checked as given when it contains a '/'); empty when
+// not found or not executable.
+std::filesystem::path find_program(const std::string& program);
+
+struct ChildExit {
+  bool exited = false;  // normal exit (else killed by a signal)
+  int status = 0;       // exit status, or the signal number
+  double seconds = 0;   // wall-clock time
+  // "exited with status N" / "was killed by signal N".
+  std::string describe() const;
+};
+
+// Runs argv[0] (a path) with argv, stdin from /dev/null, stdout and stderr appended to
+// `log`, in `working_dir` (empty: the current one). Waits for it. Throws std::runtime_error
+// only when the process cannot be started.
+ChildExit run_logged(const std::vector<std::string>& argv, const std::filesystem::path& log,
+                     const std::filesystem::path& working_dir = {});
+
+// The last `count` lines of the text file `path` (at most its last 16 KiB), each prefixed
+// with "\n  ", for quoting a tool's error in a message.
+std::string last_log_lines(const std::filesystem::path& path, int count);
+
+}  // namespace wangscape
