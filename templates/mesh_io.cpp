@@ -677,4 +677,29 @@ Mesh load_mesh(const std::filesystem::path& path) {
   return extension == ".obj" ? read_obj(in, path.string()) : read_ply(in, path.string());
 }
 
+Mesh load_user_model(const std::filesystem::path& path, const UserModelOptions& options) {
+  if (!(options.scale > 0) || !std::isfinite(options.scale)) {
+    throw MeshError(path.string() + ": model scale " + std::to_string(options.scale) + " is invalid: expected > 0");
+  }
+  Mesh mesh = load_mesh(path);
+  // y-up to z-up is a quarter turn about +x: (x, y, z) -> (x, -z, y); it keeps handedness.
+  const auto orient = [&](std::array<float, 3> v) -> std::array<float, 3> {
+    return options.y_up ? std::array<float, 3>{v[0], -v[2], v[1]} : v;
+  };
+  for (auto& p : mesh.positions) {
+    p = orient(p);
+    for (float& c : p) c *= options.scale;
+  }
+  for (auto& n : mesh.normals) n = orient(n);
+  if (options.ground_at_origin) {
+    const MeshExtent extent = measure_extent(mesh);
+    const float shift[3] = {-0.5f * (extent.min[0] + extent.max[0]), -0.5f * (extent.min[1] + extent.max[1]),
+                            -extent.min[2]};
+    for (auto& p : mesh.positions) {
+      for (int axis = 0; axis < 3; ++axis) p[axis] += shift[axis];
+    }
+  }
+  return mesh;
+}
+
 }  // namespace wangscape

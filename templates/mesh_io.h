@@ -18,6 +18,18 @@ namespace wangscape {
 // material "default"; the names petal, disk, stem and leaf take the sunflower colors.
 Mesh load_mesh(const std::filesystem::path& path);
 
+// How to bring a user's model into Wangscape model space.
+struct UserModelOptions {
+  float scale = 1.0f;            // multiplies file units to get meters
+  bool y_up = false;             // the file is y-up (common for OBJ): rotate so that its +y becomes +z
+  bool ground_at_origin = true;  // move the model so its lowest point is at z = 0 and its
+                                 // footprint (x-y box) is centered on the origin
+};
+
+// load_mesh, then scale, turn to z up and move to the origin as `options` say; normals follow.
+// The result can replace the built-in sunflower (its extent gives height and placement radius).
+Mesh load_user_model(const std::filesystem::path& path, const UserModelOptions& options = {});
+
 // OBJ with v, vn and f (v, v/vt, v//vn, v/vt/vn; negative indices count back from the last
 // vertex); other statements are ignored. `source_name` is used in error messages.
 Mesh read_obj(std::istream& in, const std::string& source_name);

@@ -26,11 +26,13 @@ std::vector<Material> sunflower_materials();
 struct SunflowerOptions {
   int variant_count = 11;               // models to make, >= 1
   std::uint64_t seed = 1;               // same seed, same meshes (bit for bit)
-  std::size_t triangle_budget = 35000;  // per model, >= kSunflowerMinimumTriangleBudget; met within a few triangles
+  std::size_t triangle_budget = 35000;  // per model, see make_sunflower; met within a few triangles
 };
 
 // Below this a sunflower cannot keep every part (stem, leaves, head, two rings of petals).
 inline constexpr std::size_t kSunflowerMinimumTriangleBudget = 400;
+// Above this a budget is taken for a typo (each model would take hundreds of megabytes).
+inline constexpr std::size_t kSunflowerMaximumTriangleBudget = 5'000'000;
 
 struct SunflowerModel {
   Mesh mesh;
@@ -43,12 +45,12 @@ struct SunflowerModel {
 };
 
 // One sunflower: variant `variant` (0-based) of the family drawn from `seed`, with at most
-// `triangle_budget` triangles (and at least ~99% of it). Throws MeshError for a budget below
-// kSunflowerMinimumTriangleBudget. Thread-safe (pure function).
+// `triangle_budget` triangles (and at least ~99% of it). Throws MeshError for a budget outside
+// [kSunflowerMinimumTriangleBudget, kSunflowerMaximumTriangleBudget]. Thread-safe (pure function).
 SunflowerModel make_sunflower(std::uint64_t seed, int variant, std::size_t triangle_budget);
 
 // options.variant_count sunflowers, variants 0 .. count-1 of make_sunflower. Throws MeshError for a
-// variant count below 1 or a budget below kSunflowerMinimumTriangleBudget.
+// variant count below 1 or a budget make_sunflower rejects.
 std::vector<SunflowerModel> make_sunflower_variants(const SunflowerOptions& options);
 
 }  // namespace wangscape

@@ -242,6 +242,38 @@ TEST_F(MeshIo, PlyErrorsNameFileAndElement) {
                   "header.ply:3: unexpected end of file in the PLY header");
 }
 
+TEST_F(MeshIo, UserModelsAreScaledTurnedAndGrounded) {
+  // A y-up triangle in centimeters, floating above its own origin.
+  const fs::path path = write("yup.obj",
+                              "v 100 50 0\nv 300 50 0\nv 100 250 0\n"
+                              "vn 0 0 1\nvn 0 0 1\nvn 0 0 1\n"
+                              "f 1//1 2//2 3//3\n");
+  const Mesh mesh = load_user_model(path, {0.01f, true, true});
+  const MeshExtent extent = measure_extent(mesh);
+  EXPECT_NEAR(extent.min[2], 0.0, 1e-6);
+  EXPECT_NEAR(extent.height, 2.0, 1e-5);  // 200 cm of +y became 2 m of +z
+  EXPECT_NEAR(extent.min[0], -1.0, 1e-5);
+  EXPECT_NEAR(extent.max[0], 1.0, 1e-5);
+  EXPECT_NEAR(extent.min[1] + extent.max[1], 0.0, 1e-6);
+  EXPECT_EQ(mesh.normals[0], (std::array<float, 3>{0, -1, 0}));  // +z of a y-up file faces -y
+  // The winding still agrees with the normals after the turn.
+  const auto& p = mesh.positions;
+  const auto& t = mesh.triangles[0];
+  const float e1[3] = {p[t[1]][0] - p[t[0]][0], p[t[1]][1] - p[t[0]][1], p[t[1]][2] - p[t[0]][2]};
+  const float e2[3] = {p[t[2]][0] - p[t[0]][0], p[t[2]][1] - p[t[0]][1], p[t[2]][2] - p[t[0]][2]};
+  EXPECT_LT(e1[2] * e2[0] - e1[0] * e2[2], 0.0f);  // y component of the face normal
+  expect_contains(
+      [&] {
+        try {
+          load_user_model(path, {0.0f, false, true});
+        } catch (const MeshError& error) {
+          return std::string(error.what());
+        }
+        return std::string();
+      }(),
+      "yup.obj: model scale 0");
+}
+
 TEST_F(MeshIo, LoadRejectsUnknownFormatAndMissingFile) {
   expect_contains(load_error(write("model.stl", "solid x\n")), "model.stl: unknown mesh format '.stl'");
   expect_contains(load_error(dir_ / "missing.obj"), "missing.obj: cannot open");

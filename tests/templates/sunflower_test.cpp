@@ -225,6 +225,7 @@ TEST(Sunflower, RejectsBadOptions) {
     EXPECT_NE(std::string(error.what()).find("399"), std::string::npos) << error.what();
     EXPECT_NE(std::string(error.what()).find("400"), std::string::npos) << error.what();
   }
+  EXPECT_THROW(make_sunflower(1, 0, kSunflowerMaximumTriangleBudget + 1), MeshError);
   EXPECT_THROW(make_sunflower_variants({0, 1, 5000}), MeshError);
 }
 
