@@ -1,0 +1,267 @@
+#include "terrain/mask.h"
+
+#include <gdal_priv.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <numbers>
+
+#include "terrain/gdal_support.h"
+
+namespace wangscape {
+
+namespace {
+
+std::string number(double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 6);
+  return std::string(buffer, result.ptr);
+}
+
+// Reads band `index` (1-based) as floats scaled to 0..1 by the band type's range.
+std::vector<float> read_unit_band(GDALDataset& dataset, int index, const std::string& path) {
+  GDALRasterBand* band = dataset.GetRasterBand(index);
+  const int w = dataset.GetRasterXSize(), h = dataset.GetRasterYSize();
+  std::vector<float> values(std::size_t(w) * std::size_t(h));
+  if (band->RasterIO(GF_Read, 0, 0, w, h, values.data(), w, h, GDT_Float32, 0, 0, nullptr) != CE_None)
+    throw TerrainError("cannot read the pixels of mask image '" + path + "'");
+  const GDALDataType type = band->GetRasterDataType();
+  const float full = type == GDT_Byte ? 255.0f : type == GDT_UInt16 ? 65535.0f : 1.0f;
+  for (float& v : values) v /= full;
+  return values;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------
+// PaintedMask
+
+PaintedMask PaintedMask::load(const std::filesystem::path& image, const EnuRect& over) {
+  gdal_support::ErrorCapture capture;
+  const std::string path = image.string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(image, ec)) throw TerrainError("mask image '" + path + "' does not exist");
+  struct Closer {
+    void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
+  };
+  std::unique_ptr<GDALDataset, Closer> dataset(
+      GDALDataset::FromHandle(GDALOpenEx(image.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+  if (!dataset || dataset->GetRasterCount() < 1)
+    throw TerrainError("cannot read mask image '" + path + "': not an image GDAL recognizes (expected PNG)" +
+                       capture.suffix());
+
+  PaintedMask mask;
+  mask.width_ = dataset->GetRasterXSize();
+  mask.height_ = dataset->GetRasterYSize();
+  mask.area_ = over;
+  const int bands = dataset->GetRasterCount();
+  // Gray, gray + alpha, RGB, RGB + alpha.
+  const bool color = bands >= 3;
+  const int alpha_band = bands == 2 ? 2 : bands >= 4 ? 4 : 0;
+  std::vector<float> luminance = read_unit_band(*dataset, 1, path);
+  if (color) {
+    const auto g = read_unit_band(*dataset, 2, path), b = read_unit_band(*dataset, 3, path);
+    for (std::size_t k = 0; k < luminance.size(); ++k)
+      luminance[k] = 0.2126f * luminance[k] + 0.7152f * g[k] + 0.0722f * b[k];
+  }
+  std::vector<float> alpha;
+  if (alpha_band > 0) alpha = read_unit_band(*dataset, alpha_band, path);
+  mask.allowed_.resize(luminance.size());
+  for (std::size_t k = 0; k < luminance.size(); ++k)
+    mask.allowed_[k] = luminance[k] >= 0.5f && (alpha.empty() || alpha[k] >= 0.5f);
+  return mask;
+}
+
+bool PaintedMask::allows(double x, double y) const {
+  if (!area_.contains(x, y)) return false;
+  const int px = std::min(int((x - area_.min_x) / area_.width() * width_), width_ - 1);
+  const int py = std::min(int((area_.max_y - y) / area_.height() * height_), height_ - 1);
+  return allowed_[std::size_t(py) * std::size_t(width_) + std::size_t(px)] != 0;
+}
+
+bool PaintedMask::pixel_range(const EnuRect& r, int& x0, int& y0, int& x1, int& y1, bool& clamped) const {
+  const double fx0 = (r.min_x - area_.min_x) / area_.width() * width_;
+  const double fx1 = (r.max_x - area_.min_x) / area_.width() * width_;
+  const double fy0 = (area_.max_y - r.max_y) / area_.height() * height_;
+  const double fy1 = (area_.max_y - r.min_y) / area_.height() * height_;
+  if (fx1 < 0 || fy1 < 0 || fx0 > width_ || fy0 > height_) return false;
+  clamped = fx0 < 0 || fy0 < 0 || fx1 > width_ || fy1 > height_;
+  x0 = std::clamp(int(std::floor(fx0)), 0, width_ - 1);
+  x1 = std::clamp(int(std::floor(fx1)), 0, width_ - 1);
+  y0 = std::clamp(int(std::floor(fy0)), 0, height_ - 1);
+  y1 = std::clamp(int(std::floor(fy1)), 0, height_ - 1);
+  return true;
+}
+
+bool PaintedMask::allows_all(const EnuRect& r) const {
+  int x0, y0, x1, y1;
+  bool clamped = false;
+  if (!pixel_range(r, x0, y0, x1, y1, clamped) || clamped) return false;
+  for (int py = y0; py <= y1; ++py)
+    for (int px = x0; px <= x1; ++px)
+      if (!allowed_[std::size_t(py) * std::size_t(width_) + std::size_t(px)]) return false;
+  return true;
+}
+
+bool PaintedMask::allows_any(const EnuRect& r) const {
+  int x0, y0, x1, y1;
+  bool clamped = false;
+  if (!pixel_range(r, x0, y0, x1, y1, clamped)) return false;
+  for (int py = y0; py <= y1; ++py)
+    for (int px = x0; px <= x1; ++px)
+      if (allowed_[std::size_t(py) * std::size_t(width_) + std::size_t(px)]) return true;
+  return false;
+}
+
+std::size_t PaintedMask::allowed_count() const { return std::size_t(std::count(allowed_.begin(), allowed_.end(), 1)); }
+
+// ---------------------------------------------------------------------------------------
+// TerrainFilter
+
+TerrainFilter::TerrainFilter(const Terrain& terrain, TerrainFilterOptions options)
+    : terrain_(&terrain), options_(std::move(options)) {
+  if (options_.max_slope_deg && !(*options_.max_slope_deg >= 0 && *options_.max_slope_deg <= 90))
+    throw TerrainError("maximum slope " + number(*options_.max_slope_deg) + " is not an angle in [0, 90] degrees");
+  if (options_.max_height_m && !std::isfinite(*options_.max_height_m))
+    throw TerrainError("maximum height is not a finite number of meters");
+  if (options_.mask_image) mask_ = PaintedMask::load(*options_.mask_image, terrain.extent());
+
+  const DemRaster& dem = terrain.dem();
+  cells_x_ = dem.width - 1;
+  cells_y_ = dem.height - 1;
+
+  // d(col, row)/d(x, y) at the DEM center, from the exact sample -> ENU mapping.
+  const double c = std::floor((dem.width - 1) / 2.0), r = std::floor((dem.height - 1) / 2.0);
+  std::array<double, 3> xs{c, c + 1, c}, ys{r, r, r + 1};
+  terrain.samples_to_enu(xs, ys);
+  const double x_col = xs[1] - xs[0], y_col = ys[1] - ys[0], x_row = xs[2] - xs[0], y_row = ys[2] - ys[0];
+  const double det = x_col * y_row - x_row * y_col;
+  const double col_x = y_row / det, col_y = -x_row / det, row_x = -y_col / det, row_y = x_col / det;
+
+  const double max_height = options_.max_height_m.value_or(std::numeric_limits<double>::infinity());
+  const double max_tan2 = options_.max_slope_deg
+                              ? std::pow(std::tan(*options_.max_slope_deg * std::numbers::pi / 180), 2)
+                              : std::numeric_limits<double>::infinity();
+  double min_tan2 = std::numeric_limits<double>::infinity();
+  cell_passes_.assign(std::size_t(cells_x_) * std::size_t(cells_y_), 0);
+  cell_may_pass_.assign(cell_passes_.size(), 0);
+  for (int row = 0; row < cells_y_; ++row)
+    for (int col = 0; col < cells_x_; ++col) {
+      const float* p = &dem.heights[dem.index(col, row)];
+      const float* q = p + dem.width;
+      const float corners[4] = {p[0], p[1], q[0], q[1]};
+      bool all_data = true, some_low = false;
+      double highest = -std::numeric_limits<double>::infinity();
+      for (float h : corners) {
+        if (std::isnan(h)) {
+          all_data = false;
+          continue;
+        }
+        highest = std::max(highest, double(h));
+        some_low = some_low || h <= max_height;
+      }
+      const std::size_t k = std::size_t(row) * std::size_t(cells_x_) + std::size_t(col);
+      cell_may_pass_[k] = some_low;
+      maybe_cells_ += some_low;
+      if (!all_data || highest > max_height) continue;
+      // The gradient at each corner, from the cell's edges that meet there.
+      const double along_top = p[1] - p[0], along_bottom = q[1] - q[0];
+      const double down_left = q[0] - p[0], down_right = q[1] - p[1];
+      const double gradients[4][2] = {
+          {along_top, down_left}, {along_top, down_right}, {along_bottom, down_left}, {along_bottom, down_right}};
+      double steepest = 0;
+      for (const auto& g : gradients) {
+        const double dz_dx = g[0] * col_x + g[1] * row_x, dz_dy = g[0] * col_y + g[1] * row_y;
+        steepest = std::max(steepest, dz_dx * dz_dx + dz_dy * dz_dy);
+      }
+      min_tan2 = std::min(min_tan2, steepest);
+      if (steepest > max_tan2) continue;
+      cell_passes_[k] = 1;
+      ++passing_cells_;
+    }
+  min_cell_slope_deg_ = std::atan(std::sqrt(min_tan2)) * 180 / std::numbers::pi;
+}
+
+bool TerrainFilter::touched_cells(const EnuRect& tile, bool clamp, int& c0, int& r0, int& c1, int& r1) const {
+  EnuRect rect = tile;
+  if (clamp) {
+    const EnuRect e = terrain_->extent();
+    rect = {std::max(rect.min_x, e.min_x), std::max(rect.min_y, e.min_y), std::min(rect.max_x, e.max_x),
+            std::min(rect.max_y, e.max_y)};
+    if (!(rect.min_x <= rect.max_x && rect.min_y <= rect.max_y)) return false;
+  }
+  double col_lo = std::numeric_limits<double>::infinity(), col_hi = -col_lo, row_lo = col_lo, row_hi = -col_lo;
+  const double xs[2] = {rect.min_x, rect.max_x}, ys[2] = {rect.min_y, rect.max_y};
+  for (double x : xs)
+    for (double y : ys) {
+      double col, row;
+      if (!terrain_->map_to_sample(x, y, col, row)) return false;
+      col_lo = std::min(col_lo, col);
+      col_hi = std::max(col_hi, col);
+      row_lo = std::min(row_lo, row);
+      row_hi = std::max(row_hi, row);
+    }
+  if (!clamp && (col_lo < 0 || row_lo < 0 || col_hi > cells_x_ || row_hi > cells_y_)) return false;
+  if (col_hi < 0 || row_hi < 0 || col_lo > cells_x_ || row_lo > cells_y_) return false;
+  c0 = std::clamp(int(std::floor(col_lo)), 0, cells_x_ - 1);
+  c1 = std::clamp(int(std::floor(col_hi)), 0, cells_x_ - 1);
+  r0 = std::clamp(int(std::floor(row_lo)), 0, cells_y_ - 1);
+  r1 = std::clamp(int(std::floor(row_hi)), 0, cells_y_ - 1);
+  return true;
+}
+
+bool TerrainFilter::tile_passes(const EnuRect& tile) const {
+  int c0, r0, c1, r1;
+  if (!touched_cells(tile, false, c0, r0, c1, r1)) return false;
+  for (int row = r0; row <= r1; ++row)
+    for (int col = c0; col <= c1; ++col)
+      if (!cell_passes_[std::size_t(row) * std::size_t(cells_x_) + std::size_t(col)]) return false;
+  return !mask_ || mask_->allows_all(tile);
+}
+
+bool TerrainFilter::tile_may_pass(const EnuRect& tile) const {
+  int c0, r0, c1, r1;
+  if (!touched_cells(tile, true, c0, r0, c1, r1)) return false;
+  bool some = false;
+  for (int row = r0; row <= r1 && !some; ++row)
+    for (int col = c0; col <= c1 && !some; ++col)
+      some = cell_may_pass_[std::size_t(row) * std::size_t(cells_x_) + std::size_t(col)] != 0;
+  return some && (!mask_ || mask_->allows_any(tile));
+}
+
+bool TerrainFilter::point_passes(double x, double y) const {
+  if (!options_.max_slope_deg) {  // the common case needs no gradient
+    const auto h = terrain_->height(x, y);
+    if (!h || (options_.max_height_m && *h > *options_.max_height_m)) return false;
+  } else {
+    const auto s = terrain_->sample(x, y);
+    if (!s || (options_.max_height_m && s->height > *options_.max_height_m)) return false;
+    if (s->slope_degrees() > *options_.max_slope_deg) return false;
+  }
+  return !mask_ || mask_->allows(x, y);
+}
+
+void TerrainFilter::check_satisfiable() const {
+  const DemRaster& dem = terrain_->dem();
+  std::string range(1, '(');  // appended piecewise: GCC 12 warns falsely on "(" + ...
+  range += number(dem.min_height);
+  range += " .. ";
+  range += number(dem.max_height);
+  range += " m)";
+  if (options_.max_height_m && *options_.max_height_m < dem.min_height)
+    throw TerrainError("maximum height " + number(*options_.max_height_m) + " m is below every height of DEM '" +
+                       dem.path.string() + "' " + range + ": no tile would be instantiated");
+  if (mask_ && mask_->allowed_count() == 0)
+    throw TerrainError("mask image '" + options_.mask_image->string() +
+                       "' allows flowers nowhere (no pixel is white): no tile would be instantiated");
+  if (maybe_cells_ == 0)
+    throw TerrainError("no ground of DEM '" + dem.path.string() + "' passes the height test " + range);
+  if (options_.max_slope_deg && passing_cells_ == 0 && *options_.max_slope_deg < min_cell_slope_deg_)
+    throw TerrainError("maximum slope " + number(*options_.max_slope_deg) +
+                       " deg is below the slope of every cell of DEM '" + dem.path.string() +
+                       "' (the flattest cell reaches " + number(min_cell_slope_deg_) +
+                       " deg): no tile would be instantiated");
+}
+
+}  // namespace wangscape

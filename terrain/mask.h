@@ -1,0 +1,94 @@
+// Where flowers may grow on a terrain (seed 003, section 5.1): tiles are instantiated only
+// where the ground is low enough, and optionally not too steep and painted white in a
+// mask image stretched over the terrain. The predicates here are what placement calls
+// per tile and per point.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "terrain/terrain.h"
+
+namespace wangscape {
+
+// A painted mask: an image (PNG or anything GDAL reads) stretched over an ENU rectangle,
+// north up (top row = north edge, left column = west edge). A pixel allows flowers where
+// it is light (luminance >= 50%) and opaque (alpha >= 50%, when there is alpha).
+class PaintedMask {
+ public:
+  // Throws TerrainError naming the file if GDAL cannot read it.
+  static PaintedMask load(const std::filesystem::path& image, const EnuRect& over);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  // The pixel under ENU (x, y) allows flowers; false outside the rectangle.
+  bool allows(double x, double y) const;
+  // Every pixel the rectangle touches allows flowers (false if it reaches outside).
+  bool allows_all(const EnuRect& r) const;
+  // Some pixel the rectangle touches allows flowers.
+  bool allows_any(const EnuRect& r) const;
+  std::size_t allowed_count() const;
+
+ private:
+  // Pixel ranges the rectangle touches, clamped; false if it misses the image.
+  bool pixel_range(const EnuRect& r, int& x0, int& y0, int& x1, int& y1, bool& clamped) const;
+
+  std::vector<std::uint8_t> allowed_;  // row-major, row 0 = north
+  int width_ = 0, height_ = 0;
+  EnuRect area_;
+};
+
+struct TerrainFilterOptions {
+  std::optional<double> max_height_m;               // orthometric meters
+  std::optional<double> max_slope_deg;              // degrees from horizontal
+  std::optional<std::filesystem::path> mask_image;  // painted mask over the terrain's extent
+};
+
+// The ground tests for placement. Built once per terrain (a table over the DEM's cells),
+// then thread-safe (const).
+//
+// A DEM cell passes when its four corners have data, none is higher than max_height
+// (so no point of the bilinear surface is), and the slope at each corner is at most
+// max_slope (the bilinear slope is largest at a corner). The slope table converts DEM
+// gradients to ENU with the Jacobian at the DEM center: exact for 7.5' quadrangles,
+// within ~1% of the slope's tangent over a 1-degree DEM.
+class TerrainFilter {
+ public:
+  TerrainFilter(const Terrain& terrain, TerrainFilterOptions options);
+
+  // All of the tile's ground passes: every DEM cell the rectangle touches passes, and
+  // every mask pixel it touches allows flowers. (Seed 003: instantiate only these tiles.)
+  bool tile_passes(const EnuRect& tile) const;
+  // Some of the tile's ground may pass (a cheap superset, for fair edges, where each
+  // point is then tested with point_passes).
+  bool tile_may_pass(const EnuRect& tile) const;
+  // The ground at ENU (x, y) has data, is low enough, flat enough and painted white.
+  bool point_passes(double x, double y) const;
+
+  // Throws TerrainError explaining why no ground can pass (a height threshold below every
+  // height of the DEM, a slope limit below every slope, an all-black mask), so a scatter
+  // reports that instead of writing an empty result.
+  void check_satisfiable() const;
+
+  const TerrainFilterOptions& options() const { return options_; }
+  const PaintedMask* mask() const { return mask_ ? &*mask_ : nullptr; }
+
+ private:
+  // Cells [c0, c1] x [r0, r1] the rectangle touches; false if any corner of it is off
+  // the lattice or the DEM (when `clamp` is false), or it misses the DEM (clamp true).
+  bool touched_cells(const EnuRect& tile, bool clamp, int& c0, int& r0, int& c1, int& r1) const;
+
+  const Terrain* terrain_;
+  TerrainFilterOptions options_;
+  std::optional<PaintedMask> mask_;
+  int cells_x_ = 0, cells_y_ = 0;
+  std::vector<std::uint8_t> cell_passes_;    // all of the cell passes height, slope, data
+  std::vector<std::uint8_t> cell_may_pass_;  // some corner has data and is low enough
+  std::size_t passing_cells_ = 0, maybe_cells_ = 0;
+  double min_cell_slope_deg_ = 0;
+};
+
+}  // namespace wangscape
