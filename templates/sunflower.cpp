@@ -212,13 +212,17 @@ Tessellation tessellation_for_detail(double detail) {
   return t;
 }
 
+// Triangles of MeshBuilder::sheet.
+std::size_t sheet_triangles(int rows, int columns) { return rows == 1 ? 2 : 2ull * rows * columns; }
+
 std::size_t non_floret_triangles(const Tessellation& t, const SunflowerShape& shape) {
   const std::size_t stem = 2ull * t.stem_sides * t.stem_segments;
-  const std::size_t leaf = 2ull * t.leaf_rows * 2 * t.leaf_half_columns + 2ull * t.petiole_sides * t.petiole_segments;
+  const std::size_t leaf =
+      sheet_triangles(t.leaf_rows, 2 * t.leaf_half_columns) + 2ull * t.petiole_sides * t.petiole_segments;
   const std::size_t receptacle = 2ull * t.head_sectors * t.receptacle_rings;
   const std::size_t disk = std::size_t(t.head_sectors) * (2 * t.disk_rings - 1);
-  const std::size_t petal = 2ull * t.petal_rows * t.petal_columns;
-  const std::size_t bract = 2ull * t.bract_rows * t.bract_columns;
+  const std::size_t petal = sheet_triangles(t.petal_rows, t.petal_columns);
+  const std::size_t bract = sheet_triangles(t.bract_rows, t.bract_columns);
   return stem + leaf * shape.leaves.size() + receptacle + disk + petal * shape.petals.size() +
          bract * shape.bracts.size();
 }
@@ -276,6 +280,24 @@ class MeshBuilder {
     }
   }
 
+  // A thin sheet (petal, leaf) over position(s, q), s in [0, 1] base to tip, q in [0, 1] edge to
+  // edge, facing along dP/ds x dP/dq. One row is a diamond (base, widest point, tip: two
+  // triangles), which keeps a leaf's fold and a petal's outline at preview budgets.
+  template <class Position>
+  void sheet(int rows, int columns, SunflowerMaterial material, Position position) {
+    if (rows > 1) {
+      grid(rows, columns, false, false, material, position);
+      return;
+    }
+    constexpr double kWidest = 0.4;
+    const std::uint32_t base = vertex(position(0.0, 0.5));
+    const std::uint32_t side_a = vertex(position(kWidest, 0.0));
+    const std::uint32_t tip = vertex(position(1.0, 0.5));
+    const std::uint32_t side_b = vertex(position(kWidest, 1.0));
+    triangle(base, side_a, tip, material);
+    triangle(base, tip, side_b, material);
+  }
+
  private:
   Mesh& mesh_;
 };
@@ -324,7 +346,7 @@ void add_petal(MeshBuilder& builder, const HeadFrame& head, const PetalShape& pe
                SunflowerMaterial material, double cup) {
   const Vec3 out = head.radial(petal.angle);
   const Vec3 across = cross(head.facing, out);
-  builder.grid(rows, columns, false, false, material, [&](double s, double q01) {
+  builder.sheet(rows, columns, material, [&](double s, double q01) {
     const double q = 2 * q01 - 1;  // -1 .. 1 across the petal
     const Vec3 axis = bent_arc(base, out, head.facing, petal.length, petal.lift, petal.curl, s);
     const double angle = petal.lift + petal.curl * s;
@@ -376,7 +398,7 @@ void add_leaf(MeshBuilder& builder, const Tessellation& tess, const SunflowerSha
   // Blade: a midrib arc drooping toward the tip, the halves folded up along it, edges curled.
   const Vec3 blade_base = petiole(1.0);
   const int columns = 2 * tess.leaf_half_columns;
-  builder.grid(tess.leaf_rows, columns, false, false, sunflower_leaf, [&](double s, double q01) {
+  builder.sheet(tess.leaf_rows, columns, sunflower_leaf, [&](double s, double q01) {
     const double q = 2 * q01 - 1;
     const Vec3 midrib = bent_arc(blade_base, out, kUp, leaf.length, leaf.rise, -leaf.droop, s);
     const double angle = leaf.rise - leaf.droop * s;
@@ -438,7 +460,8 @@ void add_head(MeshBuilder& builder, const Tessellation& tess, const SunflowerSha
     const Vec3 base = dome(rho, angle);
     const Vec3 normal = normalize(head.facing + head.radial(angle) * (2 * shape.dome_height * rho / radius));
     const double base_radius = 0.95 * spiral_radius / std::sqrt(double(n)) * (0.75 + 0.35 * rho);
-    const double cone_height = 1.1 * base_radius;
+    // Capped so that the few big florets of a preview stay low bumps, not spikes.
+    const double cone_height = std::min(1.1 * base_radius, 0.03 * radius);
     const Vec3 e1 = perpendicular(normal);
     const Vec3 e2 = cross(normal, e1);
     const std::uint32_t tip = builder.vertex(base + normal * (0.85 * cone_height));
@@ -518,6 +541,15 @@ SunflowerModel make_sunflower(std::uint64_t seed, int variant, std::size_t trian
   compute_vertex_normals(mesh);
 
   model.extent = measure_extent(mesh);
+  float crown_squared = 0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (mesh.triangle_material[t] != sunflower_petal && mesh.triangle_material[t] != sunflower_disk) continue;
+    for (std::uint32_t v : mesh.triangles[t]) {
+      const auto& p = mesh.positions[v];
+      crown_squared = std::max(crown_squared, p[0] * p[0] + p[1] * p[1]);
+    }
+  }
+  model.crown_radius = std::sqrt(crown_squared);
   model.head_diameter = float(shape.head_diameter);
   model.disk_diameter = float(2 * shape.disk_radius);
   model.head_center = to_floats(shape.head_center);

@@ -36,7 +36,10 @@ inline constexpr std::size_t kSunflowerMaximumTriangleBudget = 5'000'000;
 
 struct SunflowerModel {
   Mesh mesh;
-  MeshExtent extent;                   // height (m, top of the head) and tight radius (m) for placement
+  MeshExtent extent;  // height (m, top of the head) and tight radius (m) for placement
+  // meters, largest horizontal distance of the head (petals, disk) from the z axis: a packing
+  // radius for heads that should not overlap, while leaves may.
+  float crown_radius = 0;
   float head_diameter = 0;             // meters, petal tip to petal tip
   float disk_diameter = 0;             // meters, the brown seed disk
   std::array<float, 3> head_center{};  // meters, model space, center of the disk

@@ -128,6 +128,8 @@ TEST(Sunflower, SizesAndPoseInRealisticRanges) {
       EXPECT_LT(model.disk_diameter, model.head_diameter);
       EXPECT_GT(model.extent.radius, 0.05f);
       EXPECT_LT(model.extent.radius, 1.0f);
+      EXPECT_GT(model.crown_radius, 0.25f * model.head_diameter);
+      EXPECT_LE(model.crown_radius, model.extent.radius);
       EXPECT_GT(model.head_facing[0], 0.6f) << "head should face roughly +x";
       EXPECT_LT(model.head_facing[2], 0.2f) << "head should droop or face level";
 
