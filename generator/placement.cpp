@@ -1,0 +1,59 @@
+#include "generator/placement.h"
+
+#include <cmath>
+#include <string>
+
+namespace wangscape {
+
+PlacementTable::PlacementTable(const FilledTileSet& filled) {
+  first.reserve(filled.tiles.size() + 1);
+  first.push_back(0);
+  for (const auto& points : filled.tiles) {
+    for (const TilePoint& p : points) {
+      x.push_back(p.x);
+      y.push_back(p.y);
+      yaw.push_back(p.yaw);
+      scale.push_back(p.scale);
+      variant.push_back(p.variant);
+    }
+    first.push_back(static_cast<std::uint32_t>(x.size()));
+  }
+}
+
+TileRange tile_range(const Extent& area, double tile_size) {
+  TileRange r;
+  r.i0 = static_cast<std::int64_t>(std::floor(area.min_x / tile_size));
+  r.j0 = static_cast<std::int64_t>(std::floor(area.min_y / tile_size));
+  r.i1 = static_cast<std::int64_t>(std::ceil(area.max_x / tile_size));
+  r.j1 = static_cast<std::int64_t>(std::ceil(area.max_y / tile_size));
+  constexpr std::int64_t kMaxSide = 1 << 30;
+  if (r.i1 - r.i0 > kMaxSide || r.j1 - r.j0 > kMaxSide)
+    throw GeneratorError("placement: area of " + std::to_string(area.width()) + " x " + std::to_string(area.height()) +
+                         " m needs more than 2^30 tiles of " + std::to_string(tile_size) + " m per side");
+  return r;
+}
+
+RowTiles::RowTiles(const TileSet& set, const TileRange& range, const PlacementOptions& options) : range_(range) {
+  if (options.algorithm == TilingAlgorithm::hash) {
+    hashed_.emplace(set, options.seed);
+    return;
+  }
+  TilingOptions tiling_options;
+  tiling_options.algorithm = options.algorithm;
+  tiling_options.seed = options.seed;
+  tiling_options.forbid_identical_neighbours = options.forbid_identical_neighbours;
+  tiling_options.origin_i = range.i0;
+  tiling_options.origin_j = range.j0;
+  tiling_.emplace(make_tiling(set, range.width(), range.height(), tiling_options));
+}
+
+void RowTiles::row(int r, std::span<std::uint16_t> out) const {
+  if (hashed_) {
+    hashed_->fill_row(range_.i0, range_.j0 + r, out);
+    return;
+  }
+  const auto* start = tiling_->tiles.data() + static_cast<std::size_t>(r) * static_cast<std::size_t>(range_.width());
+  std::copy(start, start + out.size(), out.begin());
+}
+
+}  // namespace wangscape

@@ -1,0 +1,166 @@
+// Placement: lays a tiling of a filled tile set over a Ground and streams the instances.
+// Tile (i, j) covers [i s, (i+1) s) x [j s, (j+1) s) in ENU meters (s = tile size), so with a
+// hashed tiling the same tile covers the same ground in every run and every window. Instances
+// are produced in batches of whole tile rows (south to north), filled in parallel and handed
+// to the sink serially, in order: the same bytes on any thread count, never one giant vector.
+#pragma once
+
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
+
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "generator/ground.h"
+#include "generator/instances.h"
+#include "generator/poisson_tiles.h"
+#include "generator/tiling.h"
+
+namespace wangscape {
+
+struct PlacementOptions {
+  double tile_size = 4.0;  // meters
+  TilingAlgorithm algorithm = TilingAlgorithm::scanline;
+  std::uint64_t seed = 1;
+  bool forbid_identical_neighbours = false;
+  std::optional<Extent> area;           // what to cover; the ground's extent when unset
+  std::size_t batch_points = 1u << 16;  // rows are grouped until a batch holds about this many points
+};
+
+// One tile of the tiling, as the tile filter sees it.
+struct TileCell {
+  std::int64_t i = 0, j = 0;  // tile coordinates
+  std::uint32_t tile = 0;     // index into the set's tiles
+  Extent bounds;              // [i s, (i+1) s) x [j s, (j+1) s), meters
+};
+
+// Default filters: keep every tile, keep every point that has ground.
+struct KeepAllTiles {
+  bool operator()(const TileCell&) const { return true; }
+};
+struct KeepAllPoints {
+  bool operator()(double, double, double) const { return true; }
+};
+
+struct PlacementStats {
+  std::uint64_t tiles = 0;       // tiles of the tiling over the area
+  std::uint64_t tiles_kept = 0;  // tiles the tile filter kept
+  std::uint64_t points = 0;      // instances handed to the sink
+  std::uint64_t batches = 0;
+};
+
+// The filled set flattened for placement: per tile, a range of points in SoA arrays.
+struct PlacementTable {
+  std::vector<std::uint32_t> first;  // tile t's points are [first[t], first[t+1])
+  std::vector<float> x, y, yaw, scale;
+  std::vector<std::uint16_t> variant;
+  explicit PlacementTable(const FilledTileSet& filled);
+};
+
+// The tile range covering `area` with tiles of side `tile_size`: [i0, i1) x [j0, j1).
+struct TileRange {
+  std::int64_t i0 = 0, j0 = 0, i1 = 0, j1 = 0;
+  int width() const { return static_cast<int>(i1 - i0); }
+  int height() const { return static_cast<int>(j1 - j0); }
+};
+TileRange tile_range(const Extent& area, double tile_size);
+
+// Tiles of the area row by row (local row r = tile row j0 + r): computed up front for scanline
+// and bottom-left tilings (2 bytes per tile), per row on demand for hashed ones.
+class RowTiles {
+ public:
+  RowTiles(const TileSet& set, const TileRange& range, const PlacementOptions& options);
+  // Tiles of local row r into out (size range.width()).
+  void row(int r, std::span<std::uint16_t> out) const;
+
+ private:
+  TileRange range_;
+  std::optional<Tiling> tiling_;
+  std::optional<HashedTiling> hashed_;
+};
+
+// Lays the tiling over `ground` and calls sink(const InstanceBatch&) once per batch.
+//  tile_filter(const TileCell&) -> bool: a tile is instantiated only if it holds;
+//  point_filter(x, y, z) -> bool (meters): an instance is kept only if it holds.
+// Every instance gets z = ground.height(x, y); points where the ground has no height are dropped.
+// The filters and the ground are called from several threads at once.
+template <Ground G, class Sink, class TileFilter = KeepAllTiles, class PointFilter = KeepAllPoints>
+PlacementStats place_instances(const FilledTileSet& filled, const G& ground, const PlacementOptions& options,
+                               Sink&& sink, TileFilter tile_filter = {}, PointFilter point_filter = {}) {
+  if (!(options.tile_size > 0))
+    throw GeneratorError("placement: tile size " + std::to_string(options.tile_size) + " m; expected > 0");
+  const Extent area = options.area ? *options.area : Extent(ground.extent());
+  const TileRange range = tile_range(area, options.tile_size);
+  PlacementStats stats;
+  if (range.width() <= 0 || range.height() <= 0) return stats;
+  const PlacementTable table(filled);
+  const RowTiles rows(filled.set, range, options);
+  const double s = options.tile_size;
+
+  // Rows per batch, from the mean points per tile.
+  const double mean_points = static_cast<double>(table.x.size()) / std::max<std::size_t>(filled.tiles.size(), 1);
+  const double row_points = std::max(1.0, mean_points * range.width());
+  const int rows_per_batch =
+      std::clamp(static_cast<int>(static_cast<double>(options.batch_points) / row_points), 1, range.height());
+  const int batch_count = (range.height() + rows_per_batch - 1) / rows_per_batch;
+  const int tokens = std::max(2, 2 * tbb::this_task_arena::max_concurrency());
+
+  struct BatchSlot {
+    InstanceBatch batch;
+    std::vector<std::uint16_t> row_tiles;
+    std::uint64_t kept = 0;
+  };
+  std::vector<BatchSlot> slots(static_cast<std::size_t>(tokens));
+  int next_batch = 0;
+  tbb::parallel_pipeline(
+      static_cast<std::size_t>(tokens),
+      tbb::make_filter<void, int>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& fc) -> int {
+        if (next_batch >= batch_count) {
+          fc.stop();
+          return 0;
+        }
+        return next_batch++;
+      }) & tbb::make_filter<int, int>(tbb::filter_mode::parallel, [&](int b) -> int {
+        // At most `tokens` batches are alive and they leave in order, so batch b can
+        // reuse the slot of batch b - tokens.
+        BatchSlot& slot = slots[static_cast<std::size_t>(b % tokens)];
+        InstanceBatch& out = slot.batch;
+        out.clear();
+        slot.kept = 0;
+        slot.row_tiles.resize(static_cast<std::size_t>(range.width()));
+        const int r_end = std::min(range.height(), (b + 1) * rows_per_batch);
+        for (int r = b * rows_per_batch; r < r_end; ++r) {
+          rows.row(r, slot.row_tiles);
+          const std::int64_t j = range.j0 + r;
+          for (int c = 0; c < range.width(); ++c) {
+            const std::int64_t i = range.i0 + c;
+            const std::uint32_t t = slot.row_tiles[static_cast<std::size_t>(c)];
+            const double x0 = static_cast<double>(i) * s, y0 = static_cast<double>(j) * s;
+            if (!tile_filter(TileCell{i, j, t, Extent{x0, y0, x0 + s, y0 + s}})) continue;
+            ++slot.kept;
+            for (std::uint32_t k = table.first[t]; k < table.first[t + 1]; ++k) {
+              const double x = x0 + table.x[k] * s, y = y0 + table.y[k] * s;
+              const std::optional<double> z = ground.height(x, y);
+              if (!z || !point_filter(x, y, *z)) continue;
+              out.push_back(static_cast<float>(x), static_cast<float>(y), static_cast<float>(*z), table.yaw[k],
+                            table.scale[k], table.variant[k], t);
+            }
+          }
+        }
+        return b;
+      }) & tbb::make_filter<int, void>(tbb::filter_mode::serial_in_order, [&](int b) {
+        const BatchSlot& slot = slots[static_cast<std::size_t>(b % tokens)];
+        stats.tiles_kept += slot.kept;
+        if (slot.batch.empty()) return;
+        stats.points += slot.batch.size();
+        ++stats.batches;
+        sink(static_cast<const InstanceBatch&>(slot.batch));
+      }));
+  stats.tiles = static_cast<std::uint64_t>(range.width()) * static_cast<std::uint64_t>(range.height());
+  return stats;
+}
+
+}  // namespace wangscape

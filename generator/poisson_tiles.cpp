@@ -1,0 +1,782 @@
+#include "generator/poisson_tiles.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <string>
+
+#include "generator/point_metrics.h"
+#include "generator/tiling.h"
+
+namespace wangscape {
+
+namespace {
+
+// ---- hashing and random numbers (portable: the same bytes with every standard library) ----
+
+std::uint64_t mix64(std::uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+std::uint64_t hash_combine(std::uint64_t a, std::uint64_t b) { return mix64(a * 0x9e3779b97f4a7c15ULL + b + 1); }
+
+struct Rng {
+  std::uint64_t state;
+  std::uint64_t next() { return mix64(state += 0x9e3779b97f4a7c15ULL); }
+  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }  // [0, 1)
+  std::size_t below(std::size_t n) { return static_cast<std::size_t>(next() % n); }
+};
+
+struct Vec2 {
+  double x = 0, y = 0;
+};
+Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
+Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
+Vec2 operator*(double s, Vec2 a) { return {s * a.x, s * a.y}; }
+double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+double norm2(Vec2 a) { return dot(a, a); }
+
+struct Rect {
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // [x0, x1) x [y0, y1)
+  bool contains(Vec2 p) const { return p.x >= x0 && p.x < x1 && p.y >= y0 && p.y < y1; }
+};
+
+// The 8 neighbour directions, and their index 0..8 in a 3 x 3 block (4 = the tile itself).
+constexpr std::array<std::array<int, 2>, 8> kDirections = {
+    {{-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}}};
+int block_index(int dx, int dy) { return (dy + 1) * 3 + (dx + 1); }
+
+// Whether tile-local q lies within `reach` of the side or corner of direction (dx, dy), so that a
+// point of the tile there can be closer than `reach`.
+bool near_side(Vec2 q, int dx, int dy, double reach) {
+  const bool x_ok = dx == 0 || (dx < 0 ? q.x < reach : q.x > 1.0 - reach);
+  const bool y_ok = dy == 0 || (dy < 0 ? q.y < reach : q.y > 1.0 - reach);
+  return x_ok && y_ok;
+}
+
+// Keys of an edge as seen from the two tiles that share it: edge color and end-corner colors.
+using EdgeKey = std::array<int, 3>;
+EdgeKey south_key(const Tile& t) { return {t.s(), t.sw(), t.se()}; }
+EdgeKey north_key(const Tile& t) { return {t.n(), t.nw(), t.ne()}; }
+EdgeKey west_key(const Tile& t) { return {t.w(), t.sw(), t.nw()}; }
+EdgeKey east_key(const Tile& t) { return {t.e(), t.se(), t.ne()}; }
+
+// ---- content classes: who owns which part of a tile ----
+
+constexpr double kEdgeEpsilon = 1e-7;  // keeps points strictly inside their half-open regions
+
+enum class ClassKind : std::uint8_t { interior, horizontal_strip, vertical_strip, vertex, corner_square };
+
+struct ContentClass {
+  ClassKind kind = ClassKind::interior;
+  Rect region;              // class-local: where relaxation may move its points
+  std::vector<Vec2> avoid;  // tile corners the tight radius may not cross (plain edge sets), class-local
+  std::vector<int> groups;  // the (class, region) groups the class appears in
+};
+
+// One part (3 x 3 region) of the tiles that share a class there: where it sits in the tile,
+// which tiles hold it, and which tiles can sit next to those in each direction.
+struct Group {
+  int cls = -1;
+  int region = 0;
+  Vec2 offset;     // tile-local = class-local + offset
+  Rect tile_rect;  // tile-local part of the class region these tiles hold
+  std::vector<std::uint16_t> holders;
+  std::array<std::vector<std::uint16_t>, 9> around;  // by block_index; [4] unused
+};
+
+// A point as one tile holds it.
+struct Held {
+  std::uint32_t point = 0;
+  Vec2 q;  // tile-local
+  std::int8_t ox = 0, oy = 0;
+};
+struct Content {
+  std::vector<std::vector<Held>> tiles;   // what each tile holds
+  std::vector<std::vector<Held>> groups;  // the points of each group (as its holders hold them)
+};
+
+class ContentModel {
+ public:
+  ContentModel(const TileSet& set, const TileAdjacency& adjacency, double shared_width, double tight_radius)
+      : w_(shared_width), tight_(tight_radius), tile_count_(set.tiles.size()) {
+    std::map<std::array<int, 4>, int> class_by_key;
+    auto class_for = [&](std::array<int, 4> key, ClassKind kind, Rect region, std::vector<Vec2> avoid) {
+      auto [it, inserted] = class_by_key.emplace(key, static_cast<int>(classes_.size()));
+      if (inserted) classes_.push_back({kind, region, set.has_corners ? std::vector<Vec2>{} : std::move(avoid), {}});
+      return it->second;
+    };
+    const double w = w_;
+    // New darts go to the class of the region they land in (cuts at w), but relaxation may move a
+    // point a margin m past that line: hard walls between classes would line points up along them.
+    const double m = 0.5 * w;
+    const std::array<double, 4> cuts = {0.0, w, 1.0 - w, 1.0};
+    const Rect whole{0.0, 0.0, 1.0, 1.0};
+    const std::vector<Vec2> tile_corners = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+    group_of_.assign(tile_count_ * 9, -1);
+    std::map<std::pair<int, int>, int> group_by_key;
+    for (std::size_t t = 0; t < tile_count_; ++t) {
+      const Tile& tile = set.tiles[t];
+      for (int ry = 0; ry < 3; ++ry)
+        for (int rx = 0; rx < 3; ++rx) {
+          int cls = -1;
+          Vec2 offset;
+          if (rx == 1 && ry == 1) {
+            cls = class_for({0, static_cast<int>(t), 0, 0}, ClassKind::interior, whole, tile_corners);
+          } else if (rx == 1) {
+            const EdgeKey key = ry == 0 ? south_key(tile) : north_key(tile);
+            cls = class_for({1, key[0], key[1], key[2]}, ClassKind::horizontal_strip,
+                            Rect{w - m, -w - m, 1.0 - w + m, w + m}, {{0, 0}, {1, 0}});
+            offset = {0.0, ry == 0 ? 0.0 : 1.0};
+          } else if (ry == 1) {
+            const EdgeKey key = rx == 0 ? west_key(tile) : east_key(tile);
+            cls = class_for({2, key[0], key[1], key[2]}, ClassKind::vertical_strip,
+                            Rect{-w - m, w - m, w + m, 1.0 - w + m}, {{0, 0}, {0, 1}});
+            offset = {rx == 0 ? 0.0 : 1.0, 0.0};
+          } else {
+            const int corner_slot = ry == 0 ? (rx == 0 ? kSW : kSE) : (rx == 0 ? kNW : kNE);
+            const Vec2 vertex{rx == 0 ? 0.0 : 1.0, ry == 0 ? 0.0 : 1.0};
+            if (set.has_corners) {
+              // The square around a vertex belongs to the vertex's color: the four tiles that
+              // meet there hold its four quarters.
+              cls = class_for({3, tile.colors[static_cast<std::size_t>(corner_slot)], 0, 0}, ClassKind::vertex,
+                              Rect{-w - m, -w - m, w + m, w + m}, {});
+              offset = vertex;
+            } else {
+              const int horizontal = ry == 0 ? tile.s() : tile.n();
+              const int vertical = rx == 0 ? tile.w() : tile.e();
+              const Rect square{rx == 0 ? 0.0 : 1.0 - w - m, ry == 0 ? 0.0 : 1.0 - w - m, rx == 0 ? w + m : 1.0,
+                                ry == 0 ? w + m : 1.0};
+              cls = class_for({4 + corner_slot, horizontal, vertical, 0}, ClassKind::corner_square, square, {vertex});
+            }
+          }
+          // The part of the class region this tile holds: its region shifted into the tile, cut
+          // to the tile (two-sided strips and vertex squares are shared with the tiles across).
+          const Rect& cr = classes_[static_cast<std::size_t>(cls)].region;
+          const Rect tile_rect{std::max(0.0, cr.x0 + offset.x), std::max(0.0, cr.y0 + offset.y),
+                               std::min(1.0, cr.x1 + offset.x), std::min(1.0, cr.y1 + offset.y)};
+          const int region = ry * 3 + rx;
+          auto [it, inserted] = group_by_key.emplace(std::pair{cls, region}, static_cast<int>(groups_.size()));
+          if (inserted) {
+            Group g;
+            g.cls = cls;
+            g.region = region;
+            g.offset = offset;
+            g.tile_rect = tile_rect;
+            groups_.push_back(std::move(g));
+            classes_[static_cast<std::size_t>(cls)].groups.push_back(it->second);
+          }
+          groups_[static_cast<std::size_t>(it->second)].holders.push_back(static_cast<std::uint16_t>(t));
+          group_of_[t * 9 + static_cast<std::size_t>(region)] = it->second;
+        }
+    }
+    for (Group& g : groups_)
+      for (const auto& [dx, dy] : kDirections) {
+        std::vector<std::uint16_t>& around = g.around[static_cast<std::size_t>(block_index(dx, dy))];
+        for (std::uint16_t t : g.holders)
+          for (std::uint16_t u : adjacency.neighbours(t, dx, dy)) around.push_back(u);
+        std::sort(around.begin(), around.end());
+        around.erase(std::unique(around.begin(), around.end()), around.end());
+      }
+  }
+
+  double shared_width() const { return w_; }
+  std::size_t tile_count() const { return tile_count_; }
+  const std::vector<ContentClass>& classes() const { return classes_; }
+  const Group& group(int g) const { return groups_[static_cast<std::size_t>(g)]; }
+  std::size_t group_count() const { return groups_.size(); }
+
+  int region_of(Vec2 q) const {
+    const int rx = q.x < w_ ? 0 : (q.x < 1.0 - w_ ? 1 : 2);
+    const int ry = q.y < w_ ? 0 : (q.y < 1.0 - w_ ? 1 : 2);
+    return ry * 3 + rx;
+  }
+  int group_at(std::size_t tile, Vec2 q) const { return group_of_[tile * 9 + static_cast<std::size_t>(region_of(q))]; }
+
+  // The group of class `cls` that holds class-local position p, or -1.
+  int group_holding(int cls, Vec2 p) const {
+    for (int g : classes_[static_cast<std::size_t>(cls)].groups)
+      if (group(g).tile_rect.contains(p + group(g).offset)) return g;
+    return -1;
+  }
+
+  // Where the tight radius lets a point of class `cls` be (plain edge sets: outside the quarter
+  // discs of radius tight around the tile corners).
+  bool tight_allows(int cls, Vec2 p) const {
+    for (const Vec2& v : classes_[static_cast<std::size_t>(cls)].avoid)
+      if (norm2(p - v) < tight_ * tight_) return false;
+    return true;
+  }
+
+  // Nearest allowed class-local position to p.
+  Vec2 clamp(int cls, Vec2 p) const {
+    const ContentClass& c = classes_[static_cast<std::size_t>(cls)];
+    p.x = std::clamp(p.x, c.region.x0 + kEdgeEpsilon, c.region.x1 - kEdgeEpsilon);
+    p.y = std::clamp(p.y, c.region.y0 + kEdgeEpsilon, c.region.y1 - kEdgeEpsilon);
+    for (const Vec2& v : c.avoid) {
+      const Vec2 r = p - v;
+      const double len = std::sqrt(norm2(r));
+      if (len < tight_) {
+        // Out of the quarter disc, along the ray from the corner (or the diagonal if at it).
+        const Vec2 dir = len > 1e-12 ? (1.0 / len) * r
+                                     : (1.0 / std::sqrt(2.0)) * Vec2{v.x < 0.5 ? 1.0 : -1.0, v.y < 0.5 ? 1.0 : -1.0};
+        p = v + (tight_ * (1.0 + 1e-9) + kEdgeEpsilon) * dir;
+      }
+    }
+    return p;
+  }
+
+ private:
+  double w_, tight_;
+  std::size_t tile_count_;
+  std::vector<ContentClass> classes_;
+  std::vector<Group> groups_;
+  std::vector<int> group_of_;  // [tile * 9 + region]
+};
+
+// The class points of a set under construction.
+struct PointSet {
+  std::vector<Vec2> local;  // class-local positions
+  std::vector<int> cls;
+};
+
+void add_to_content(const ContentModel& model, int g, std::uint32_t p, Vec2 q, Content& content) {
+  const Group& group = model.group(g);
+  const Held h{p, q, static_cast<std::int8_t>(group.offset.x), static_cast<std::int8_t>(group.offset.y)};
+  content.groups[static_cast<std::size_t>(g)].push_back(h);
+  for (std::uint16_t t : group.holders) content.tiles[t].push_back(h);
+}
+
+void build_content(const ContentModel& model, const PointSet& points, Content& content) {
+  content.tiles.assign(model.tile_count(), {});
+  content.groups.assign(model.group_count(), {});
+  for (std::size_t p = 0; p < points.local.size(); ++p) {
+    const int g = model.group_holding(points.cls[p], points.local[p]);
+    if (g < 0) continue;  // cannot happen: positions are clamped into their class region
+    add_to_content(model, g, static_cast<std::uint32_t>(p), points.local[p] + model.group(g).offset, content);
+  }
+}
+
+// Whether tile-local q of group g keeps distance d from every point of every tile that holds g
+// and of every tile that can sit next to those (skipping the point `self` itself).
+bool keeps_distance(const ContentModel& model, const Content& content, int g, Vec2 q, double d,
+                    std::uint32_t self = std::numeric_limits<std::uint32_t>::max()) {
+  const Group& group = model.group(g);
+  const double d2 = d * d;
+  for (std::uint16_t t : group.holders)
+    for (const Held& h : content.tiles[t])
+      if (h.point != self && norm2(h.q - q) < d2) return false;
+  for (const auto& [dx, dy] : kDirections) {
+    if (!near_side(q, dx, dy, d)) continue;
+    const Vec2 shift{static_cast<double>(dx), static_cast<double>(dy)};
+    for (std::uint16_t u : group.around[static_cast<std::size_t>(block_index(dx, dy))])
+      for (const Held& h : content.tiles[u])
+        if (norm2(h.q + shift - q) < d2) return false;
+  }
+  return true;
+}
+
+// A pair of points that can meet in some tiling: relative position local[i] - local[j] + k.
+struct Pair {
+  std::uint32_t i = 0, j = 0;
+  std::int8_t kx = 0, ky = 0;
+  auto operator<=>(const Pair&) const = default;
+};
+
+// Visits every (point a in group holders, point b of a tile that can be there) meeting within
+// `reach`, once per group: f(a, b, shift) with b's tile-local position + shift relative to a's.
+template <class F>
+void for_each_meeting(const ContentModel& model, const Content& content, std::size_t g, double reach, F&& f) {
+  const Group& group = model.group(static_cast<int>(g));
+  const double r2 = reach * reach;
+  for (const Held& a : content.groups[g]) {
+    for (std::uint16_t t : group.holders)
+      for (const Held& b : content.tiles[t])
+        if (b.point != a.point && norm2(b.q - a.q) < r2) f(a, b, Vec2{});
+    for (const auto& [dx, dy] : kDirections) {
+      if (!near_side(a.q, dx, dy, reach)) continue;
+      const Vec2 shift{static_cast<double>(dx), static_cast<double>(dy)};
+      for (std::uint16_t u : group.around[static_cast<std::size_t>(block_index(dx, dy))])
+        for (const Held& b : content.tiles[u])
+          if (norm2(b.q + shift - a.q) < r2) f(a, b, shift);
+    }
+  }
+}
+
+// The smallest distance between two points meeting in any tiling, or `limit` if none is closer.
+double min_meeting_distance(const ContentModel& model, const Content& content, double limit) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, model.group_count()), limit,
+      [&](const tbb::blocked_range<std::size_t>& range, double best) {
+        for (std::size_t g = range.begin(); g != range.end(); ++g)
+          for_each_meeting(model, content, g, limit, [&](const Held& a, const Held& b, Vec2 shift) {
+            if (a.point == b.point && shift.x == 0 && shift.y == 0) return;
+            best = std::min(best, std::sqrt(norm2(b.q + shift - a.q)));
+          });
+        return best;
+      },
+      [](double a, double b) { return std::min(a, b); });
+}
+
+// Every pair that can meet within `reach`, both orders, sorted, without duplicates.
+std::vector<Pair> meeting_pairs(const ContentModel& model, const Content& content, double reach) {
+  std::vector<std::vector<Pair>> per_group(model.group_count());
+  tbb::parallel_for(std::size_t{0}, model.group_count(), [&](std::size_t g) {
+    for_each_meeting(model, content, g, reach, [&](const Held& a, const Held& b, Vec2 shift) {
+      if (a.point == b.point) return;  // a point and its own replica are a tile side apart
+      // a.q - (b.q + shift) = local_a - local_b + (o_a - o_b - shift)
+      per_group[g].push_back({a.point, b.point, static_cast<std::int8_t>(a.ox - b.ox - static_cast<int>(shift.x)),
+                              static_cast<std::int8_t>(a.oy - b.oy - static_cast<int>(shift.y))});
+    });
+  });
+  std::vector<Pair> pairs;
+  for (auto& v : per_group) pairs.insert(pairs.end(), v.begin(), v.end());
+  for (std::size_t n = pairs.size(), k = 0; k < n; ++k)
+    pairs.push_back(
+        {pairs[k].j, pairs[k].i, static_cast<std::int8_t>(-pairs[k].kx), static_cast<std::int8_t>(-pairs[k].ky)});
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return pairs;
+}
+
+// ---- dart throwing (seed 003) ----
+
+// Round-robin dart throwing (seed 003): tiles are visited in turn, each visit throws up to
+// darts_per_visit darts until one lands (keeps distance d in every configuration); a tile is
+// done when it holds its target count or a visit lands nothing. Two passes: first darts only
+// into the shared strips and corners, each tile up to its share of the target by area, then
+// everywhere. Shared points must avoid the interiors of every tile that holds them, so thrown
+// together with the interiors they would starve (seed 000 Fig. 9); thrown first, they do not.
+void throw_darts(const ContentModel& model, const PoissonFillOptions& options, double d, PointSet& points,
+                 Content& content) {
+  Rng rng{hash_combine(options.seed, 0xda27)};
+  const std::size_t tile_count = model.tile_count();
+  const double w = model.shared_width();
+  const double shared_fraction = 1.0 - (1.0 - 2.0 * w) * (1.0 - 2.0 * w);
+  std::vector<std::size_t> shared_count(tile_count, 0);
+  for (const bool shared_pass : {true, false}) {
+    const auto target = static_cast<std::size_t>(shared_pass ? std::lround(options.points_per_tile * shared_fraction)
+                                                             : options.points_per_tile);
+    std::vector<bool> saturated(tile_count, false);
+    for (bool any_needy = true; any_needy;) {
+      any_needy = false;
+      for (std::size_t t = 0; t < tile_count; ++t) {
+        const std::size_t have = shared_pass ? shared_count[t] : content.tiles[t].size();
+        if (saturated[t] || have >= target) continue;
+        any_needy = true;
+        bool landed = false;
+        for (int dart = 0; dart < options.darts_per_visit && !landed; ++dart) {
+          Vec2 q{rng.uniform(), rng.uniform()};
+          while (shared_pass && model.region_of(q) == 4) q = {rng.uniform(), rng.uniform()};
+          const int g = model.group_at(t, q);
+          const Group& group = model.group(g);
+          if (!model.tight_allows(group.cls, q - group.offset)) continue;
+          if (!keeps_distance(model, content, g, q, d)) continue;
+          const auto id = static_cast<std::uint32_t>(points.local.size());
+          points.local.push_back(q - group.offset);
+          points.cls.push_back(group.cls);
+          add_to_content(model, g, id, q, content);
+          if (group.region != 4)
+            for (std::uint16_t holder : group.holders) ++shared_count[holder];
+          landed = true;
+        }
+        if (!landed) saturated[t] = true;
+      }
+    }
+  }
+}
+
+// ---- relaxation in context (seed 000 section 3.3) ----
+
+// A random valid 3 x 3 neighbourhood around `center`: tiles by block_index, -1 where no tile fits.
+std::array<int, 9> random_context(const TileAdjacency& adjacency, std::size_t center, Rng& rng) {
+  std::array<int, 9> block{};
+  for (int attempt = 0; attempt < 16; ++attempt) {
+    block.fill(-1);
+    block[4] = static_cast<int>(center);
+    bool sides_ok = true;
+    for (const auto& [dx, dy] : kDirections) {
+      if (dx != 0 && dy != 0) continue;
+      const auto list = adjacency.neighbours(center, dx, dy);
+      if (list.empty()) {
+        sides_ok = false;
+        continue;
+      }
+      block[static_cast<std::size_t>(block_index(dx, dy))] = list[rng.below(list.size())];
+    }
+    bool corners_ok = true;
+    for (const auto& [dx, dy] : kDirections) {
+      if (dx == 0 || dy == 0) continue;
+      const int vertical = block[static_cast<std::size_t>(block_index(0, dy))];
+      const int horizontal = block[static_cast<std::size_t>(block_index(dx, 0))];
+      if (vertical < 0 || horizontal < 0) {
+        corners_ok = false;
+        continue;
+      }
+      const auto a = adjacency.neighbours(static_cast<std::size_t>(vertical), dx, 0);
+      const auto b = adjacency.neighbours(static_cast<std::size_t>(horizontal), 0, dy);
+      std::vector<std::uint16_t> common;
+      std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(common));
+      if (common.empty()) {
+        corners_ok = false;
+        continue;
+      }
+      block[static_cast<std::size_t>(block_index(dx, dy))] = common[rng.below(common.size())];
+    }
+    if (sides_ok && corners_ok) break;
+  }
+  return block;
+}
+
+// Centroid of the Voronoi cell of `site` among `others`, clipped to a square of half-side `box`.
+Vec2 voronoi_centroid(Vec2 site, std::vector<Vec2>& others, double box) {
+  std::sort(others.begin(), others.end(), [&](Vec2 a, Vec2 b) { return norm2(a - site) < norm2(b - site); });
+  std::vector<Vec2> poly = {site + Vec2{-box, -box}, site + Vec2{box, -box}, site + Vec2{box, box},
+                            site + Vec2{-box, box}};
+  std::vector<Vec2> next;
+  for (const Vec2& o : others) {
+    double reach2 = 0;
+    for (const Vec2& v : poly) reach2 = std::max(reach2, norm2(v - site));
+    if (norm2(o - site) > 4.0 * reach2) break;  // farther than twice the cell: cannot cut it
+    const Vec2 normal = o - site;
+    const Vec2 mid = 0.5 * (o + site);
+    next.clear();
+    for (std::size_t k = 0; k < poly.size(); ++k) {
+      const Vec2 a = poly[k], b = poly[(k + 1) % poly.size()];
+      const double da = dot(a - mid, normal), db = dot(b - mid, normal);
+      if (da <= 0) next.push_back(a);
+      if ((da <= 0) != (db <= 0)) next.push_back(a + (da / (da - db)) * (b - a));
+    }
+    poly.swap(next);
+    if (poly.size() < 3) return site;
+  }
+  double area = 0;
+  Vec2 c;
+  for (std::size_t k = 0; k < poly.size(); ++k) {
+    const Vec2 a = poly[k], b = poly[(k + 1) % poly.size()];
+    const double cross = a.x * b.y - b.x * a.y;
+    area += cross;
+    c = c + cross * (a + b);
+  }
+  if (std::abs(area) < 1e-18) return site;
+  return (1.0 / (3.0 * area)) * c;
+}
+
+struct RelaxContext {
+  const ContentModel& model;
+  const TileAdjacency& adjacency;
+  const PoissonFillOptions& options;
+};
+
+// One Lloyd step: each point moves to the mean of its Voronoi centroids over a few random valid
+// neighbourhoods of the tiles that hold it (replicas move together: they are one point).
+void lloyd_step(const RelaxContext& ctx, const Content& content, int round, double d, PointSet& points) {
+  constexpr int kContexts = 4;
+  std::vector<Vec2> moved(points.local.size());
+  tbb::parallel_for(std::size_t{0}, points.local.size(), [&](std::size_t p) {
+    const int g = ctx.model.group_holding(points.cls[p], points.local[p]);
+    const Group& group = ctx.model.group(g);
+    const Vec2 q = points.local[p] + group.offset;
+    Rng rng{hash_combine(hash_combine(ctx.options.seed, static_cast<std::uint64_t>(round)), p)};
+    std::vector<Vec2> others;
+    Vec2 sum;
+    for (int k = 0; k < kContexts; ++k) {
+      const std::size_t center = group.holders[rng.below(group.holders.size())];
+      const std::array<int, 9> block = random_context(ctx.adjacency, center, rng);
+      others.clear();
+      const double gather2 = 9.0 * d * d;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int tile = block[static_cast<std::size_t>(block_index(dx, dy))];
+          if (tile < 0) continue;
+          const Vec2 shift{static_cast<double>(dx), static_cast<double>(dy)};
+          for (const Held& h : content.tiles[static_cast<std::size_t>(tile)]) {
+            if (dx == 0 && dy == 0 && h.point == p) continue;
+            const Vec2 o = h.q + shift;
+            if (norm2(o - q) < gather2) others.push_back(o);
+          }
+        }
+      sum = sum + (voronoi_centroid(q, others, 1.5 * d) - q);
+    }
+    moved[p] = ctx.model.clamp(points.cls[p], points.local[p] + (1.0 / kContexts) * sum);
+  });
+  points.local.swap(moved);
+}
+
+// Pushes apart every pair that can meet closer than d (Jacobi steps over all neighbour
+// configurations), keeping each point in its class region. True when no pair is left closer.
+bool enforce_distance(const RelaxContext& ctx, double d, PointSet& points, Content& content) {
+  constexpr int kPasses = 3, kSteps = 60;
+  for (int pass = 0; pass < kPasses; ++pass) {
+    build_content(ctx.model, points, content);
+    if (min_meeting_distance(ctx.model, content, d) >= d) return true;
+    const std::vector<Pair> pairs = meeting_pairs(ctx.model, content, 1.5 * d);
+    std::vector<std::size_t> first(points.local.size() + 1, 0);
+    for (const Pair& pr : pairs) ++first[pr.i + 1];
+    for (std::size_t k = 1; k < first.size(); ++k) first[k] += first[k - 1];
+    std::vector<Vec2> next(points.local.size());
+    for (int step = 0; step < kSteps; ++step) {
+      const bool any = tbb::parallel_reduce(
+          tbb::blocked_range<std::size_t>(0, points.local.size()), false,
+          [&](const tbb::blocked_range<std::size_t>& range, bool found) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+              Vec2 push;
+              for (std::size_t k = first[i]; k < first[i + 1]; ++k) {
+                const Pair& pr = pairs[k];
+                const Vec2 r = points.local[i] - points.local[pr.j] + Vec2{double(pr.kx), double(pr.ky)};
+                const double len2 = norm2(r);
+                if (len2 >= d * d) continue;
+                found = true;
+                const double len = std::sqrt(len2);
+                const Vec2 dir = len > 1e-12 ? (1.0 / len) * r : Vec2{i < pr.j ? 1.0 : -1.0, 0.0};
+                push = push + (0.5 * (d * 1.002 - len)) * dir;
+              }
+              next[i] = ctx.model.clamp(points.cls[i], points.local[i] + push);
+            }
+            return found;
+          },
+          [](bool a, bool b) { return a || b; });
+      points.local.swap(next);
+      if (!any) break;
+    }
+  }
+  build_content(ctx.model, points, content);
+  return min_meeting_distance(ctx.model, content, d) >= d;
+}
+
+// A fixed sample tiling for the nearest-neighbour spread (the lattice guard).
+struct SampleTiling {
+  Tiling tiling;
+  bool usable = false;
+};
+
+SampleTiling sample_tiling(const TileSet& set, std::uint64_t seed) {
+  SampleTiling sample;
+  for (TilingAlgorithm algorithm : {TilingAlgorithm::scanline, TilingAlgorithm::bottom_left, TilingAlgorithm::hash}) {
+    try {
+      TilingOptions options;
+      options.algorithm = algorithm;
+      options.seed = hash_combine(seed, 0x5a3);
+      sample.tiling = make_tiling(set, 16, 16, options);
+      sample.usable = true;
+      return sample;
+    } catch (const GeneratorError&) {
+    }
+  }
+  return sample;
+}
+
+double nn_spread(const SampleTiling& sample, const Content& content) {
+  if (!sample.usable) return std::numeric_limits<double>::quiet_NaN();
+  std::vector<float> x, y;
+  const Tiling& tiling = sample.tiling;
+  for (int j = 0; j < tiling.height; ++j)
+    for (int i = 0; i < tiling.width; ++i)
+      for (const Held& h : content.tiles[tiling.at(i, j)]) {
+        x.push_back(static_cast<float>(i + h.q.x));
+        y.push_back(static_cast<float>(j + h.q.y));
+      }
+  const Extent area{0, 0, static_cast<double>(tiling.width), static_cast<double>(tiling.height)};
+  return nearest_neighbour_stats(x, y, area).spread;
+}
+
+FilledTileSet export_points(const TileSet& set, const PoissonFillOptions& options, const Content& content) {
+  FilledTileSet filled;
+  filled.set = set;
+  filled.seed = options.seed;
+  filled.variants = options.variants;
+  filled.tiles.resize(set.tiles.size());
+  const float below_one = std::nextafter(1.0f, 0.0f);
+  for (std::size_t t = 0; t < set.tiles.size(); ++t) {
+    for (const Held& h : content.tiles[t]) {
+      TilePoint tp;
+      tp.x = std::clamp(static_cast<float>(h.q.x), 0.0f, below_one);
+      tp.y = std::clamp(static_cast<float>(h.q.y), 0.0f, below_one);
+      tp.id = h.point;
+      const PointAttributes a =
+          point_attributes(options.seed, h.point, options.variants, options.min_scale, options.max_scale);
+      tp.variant = a.variant;
+      tp.yaw = a.yaw;
+      tp.scale = a.scale;
+      filled.tiles[t].push_back(tp);
+    }
+  }
+  return filled;
+}
+
+void check_options(const PoissonFillOptions& o) {
+  auto fail = [](const std::string& what) { throw GeneratorError("Poisson fill: " + what); };
+  if (o.points_per_tile < 1 || o.points_per_tile > 100000)
+    fail("points per tile " + std::to_string(o.points_per_tile) + "; expected 1..100000");
+  if (o.darts_per_visit < 1) fail("darts per visit " + std::to_string(o.darts_per_visit) + "; expected >= 1");
+  if (!(o.dart_rho > 0.1 && o.dart_rho < 0.9)) fail("dart rho " + std::to_string(o.dart_rho) + "; expected 0.1..0.9");
+  if (!(o.max_rho >= o.dart_rho && o.max_rho < 1.0))
+    fail("max rho " + std::to_string(o.max_rho) + "; expected dart rho..1");
+  if (!(o.tight_fraction > 0 && o.tight_fraction <= 1.0))
+    fail("tight fraction " + std::to_string(o.tight_fraction) + "; expected (0, 1]");
+  if (o.relax_rounds < 0) fail("relax rounds " + std::to_string(o.relax_rounds) + "; expected >= 0");
+  if (o.variants < 1 || o.variants > 65535) fail("variants " + std::to_string(o.variants) + "; expected 1..65535");
+  if (!(o.min_scale > 0 && o.max_scale >= o.min_scale))
+    fail("scale range " + std::to_string(o.min_scale) + ".." + std::to_string(o.max_scale) +
+         "; expected 0 < min <= max");
+}
+
+}  // namespace
+
+double hexagonal_spacing(double area, double count) { return std::sqrt(2.0 * area / (std::sqrt(3.0) * count)); }
+
+PointAttributes point_attributes(std::uint64_t seed, std::uint32_t id, int variants, double min_scale,
+                                 double max_scale) {
+  Rng rng{hash_combine(hash_combine(seed, 0xa77), id)};
+  PointAttributes a;
+  a.variant = static_cast<std::uint16_t>(rng.below(static_cast<std::size_t>(std::max(variants, 1))));
+  a.yaw = static_cast<float>(rng.uniform() * 2.0 * std::numbers::pi);
+  a.scale = static_cast<float>(min_scale + (max_scale - min_scale) * rng.uniform());
+  return a;
+}
+
+TileAdjacency::TileAdjacency(const TileSet& set) {
+  const std::size_t n = set.tiles.size();
+  lists_.assign(n * 9, {});
+  auto list = [&](std::size_t t, int dx, int dy) -> std::vector<std::uint16_t>& {
+    return lists_[t * 9 + static_cast<std::size_t>(block_index(dx, dy))];
+  };
+  for (std::size_t t = 0; t < n; ++t)
+    for (std::size_t u = 0; u < n; ++u) {
+      const Tile &a = set.tiles[t], &b = set.tiles[u];
+      if (east_key(a) == west_key(b)) list(t, 1, 0).push_back(static_cast<std::uint16_t>(u));
+      if (west_key(a) == east_key(b)) list(t, -1, 0).push_back(static_cast<std::uint16_t>(u));
+      if (north_key(a) == south_key(b)) list(t, 0, 1).push_back(static_cast<std::uint16_t>(u));
+      if (south_key(a) == north_key(b)) list(t, 0, -1).push_back(static_cast<std::uint16_t>(u));
+    }
+  // Diagonal (dx, dy): u completes a 2 x 2 block with t, some v at (0, dy) and some h at (dx, 0):
+  // u's side towards v matches one of the v's, and u's side towards h matches one of the h's.
+  for (std::size_t t = 0; t < n; ++t)
+    for (int dy : {-1, 1})
+      for (int dx : {-1, 1}) {
+        std::vector<EdgeKey> from_vertical, from_horizontal;
+        for (std::uint16_t v : list(t, 0, dy))
+          from_vertical.push_back(dx > 0 ? east_key(set.tiles[v]) : west_key(set.tiles[v]));
+        for (std::uint16_t h : list(t, dx, 0))
+          from_horizontal.push_back(dy > 0 ? north_key(set.tiles[h]) : south_key(set.tiles[h]));
+        for (std::size_t u = 0; u < n; ++u) {
+          const Tile& b = set.tiles[u];
+          const EdgeKey towards_v = dx > 0 ? west_key(b) : east_key(b);
+          const EdgeKey towards_h = dy > 0 ? south_key(b) : north_key(b);
+          if (std::find(from_vertical.begin(), from_vertical.end(), towards_v) != from_vertical.end() &&
+              std::find(from_horizontal.begin(), from_horizontal.end(), towards_h) != from_horizontal.end())
+            list(t, dx, dy).push_back(static_cast<std::uint16_t>(u));
+        }
+      }
+}
+
+double min_distance_over_configurations(const FilledTileSet& filled) {
+  const TileAdjacency adjacency(filled.set);
+  const std::size_t n = filled.tiles.size();
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n), std::numeric_limits<double>::infinity(),
+      [&](const tbb::blocked_range<std::size_t>& range, double best) {
+        for (std::size_t t = range.begin(); t != range.end(); ++t) {
+          const auto& own = filled.tiles[t];
+          for (std::size_t a = 0; a < own.size(); ++a)
+            for (std::size_t b = a + 1; b < own.size(); ++b)
+              best = std::min(best, std::hypot(double(own[a].x) - own[b].x, double(own[a].y) - own[b].y));
+          for (const auto& [dx, dy] : kDirections)
+            for (std::uint16_t u : adjacency.neighbours(t, dx, dy))
+              for (const TilePoint& a : own) {
+                if (!near_side(Vec2{a.x, a.y}, dx, dy, std::min(best, 1.0))) continue;
+                for (const TilePoint& b : filled.tiles[u])
+                  best = std::min(best, std::hypot(double(b.x) + dx - a.x, double(b.y) + dy - a.y));
+              }
+        }
+        return best;
+      },
+      [](double a, double b) { return std::min(a, b); });
+}
+
+FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& options, PoissonFillReport* report) {
+  check_options(options);
+  if (set.tiles.empty()) throw GeneratorError(set.describe() + ": no tiles to fill");
+  if (set.tiles.size() > std::numeric_limits<std::uint16_t>::max())
+    throw GeneratorError(set.describe() + ": " + std::to_string(set.tiles.size()) + " tiles; expected at most 65535");
+  const double spacing = hexagonal_spacing(1.0, options.points_per_tile);
+  const double dart_d = options.dart_rho * spacing;
+  const double cap_d = options.max_rho * spacing;
+  // The shared strips are as wide as the largest packing radius relaxation may reach, so two
+  // tile-owned interior points never meet across an edge closer than the bound.
+  const double w = std::min(0.5 * cap_d, 0.45);
+  const double tight = options.tight_fraction * 0.5 * dart_d;
+  if (cap_d >= 1.0)
+    throw GeneratorError("Poisson fill: " + std::to_string(options.points_per_tile) +
+                         " points per tile are too few for a packing diameter below the tile side");
+
+  const TileAdjacency adjacency(set);
+  const ContentModel model(set, adjacency, w, tight);
+  PointSet points;
+  Content content;
+  build_content(model, points, content);
+  throw_darts(model, options, dart_d, points, content);
+
+  PoissonFillReport rep;
+  rep.class_points = points.local.size();
+  build_content(model, points, content);
+  rep.dart_min_distance = min_meeting_distance(model, content, 2.0 * cap_d);
+
+  const RelaxContext ctx{model, adjacency, options};
+  const SampleTiling sample = sample_tiling(set, options.seed);
+  double d_current = std::min(dart_d, rep.dart_min_distance);
+  double growth = 0.01;
+  for (int round = 0; round < options.relax_rounds && d_current < cap_d; ++round) {
+    const PointSet before = points;
+    lloyd_step(ctx, content, round, d_current, points);
+    const double target = std::min(cap_d, d_current * (1.0 + growth));
+    bool kept = enforce_distance(ctx, target, points, content);
+    double reached = target;
+    if (!kept) {
+      growth = std::max(growth * 0.5, 0.001);
+      kept = enforce_distance(ctx, d_current, points, content);
+      reached = d_current;
+    } else {
+      growth = std::min(growth * 1.5, 0.02);
+    }
+    if (!kept) {
+      points = before;
+      build_content(model, points, content);
+      ++rep.relax_rounds_rejected;
+      continue;
+    }
+    const double spread = nn_spread(sample, content);
+    if (spread < options.min_nn_spread) {
+      // Lattice-like: undo this round and stop.
+      points = before;
+      build_content(model, points, content);
+      rep.stopped_before_lattice = true;
+      break;
+    }
+    d_current = std::max(reached, std::min(cap_d, min_meeting_distance(model, content, cap_d)));
+    ++rep.relax_rounds_run;
+    rep.round_min_distance.push_back(d_current);
+    rep.round_nn_spread.push_back(spread);
+  }
+
+  FilledTileSet filled = export_points(set, options, content);
+  rep.final_min_distance = min_distance_over_configurations(filled);
+  rep.nn_spread = nn_spread(sample, content);
+  filled.radius_packing = 0.5 * rep.final_min_distance * (1.0 - 1e-6);
+  filled.radius_tight = tight;
+  filled.shared_width = w;
+  if (report) *report = rep;
+  return filled;
+}
+
+}  // namespace wangscape

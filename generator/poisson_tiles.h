@@ -1,0 +1,121 @@
+// Poisson-disk tile contents (seed 003 section 3, seed 000 sections 3.3-3.4): points in every
+// tile of a set such that, in EVERY valid tiling, the union of the tiles' points keeps one
+// minimum distance across every tile edge and corner.
+//
+// How a tile's content is organised (all lengths are fractions of the tile side):
+//  - the interior [w, 1-w)^2 belongs to the tile alone;
+//  - the strip of width w on each side of an edge belongs to the edge: its key is the edge
+//    color (plus the colors of the edge's two end corners in corner-coded sets), and every tile
+//    with that key on that side holds the same points there, the tile across holds the other half
+//    (seed 003's replication across same-colored edges, written as one two-sided strip);
+//  - the w x w corner squares: in sets with corner colors the square around a vertex belongs to
+//    the corner color and is shared by the four tiles that meet there (consistent by
+//    construction); in plain edge sets each corner square belongs to the pair of edge colors
+//    that meet at it, and the tight radius of a flower may never cross the tile corner (seed 003).
+// Every candidate position is checked against every tile that can sit across each edge AND
+// across each corner in some valid tiling, so the distance bound holds in all of them.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "generator/tileset.h"
+
+namespace wangscape {
+
+struct PoissonFillOptions {
+  // Target number of points whose centre lies in each tile.
+  int points_per_tile = 20;
+  std::uint64_t seed = 1;
+  // Round-robin dart throwing (seed 003): up to this many darts per visit of a tile.
+  int darts_per_visit = 10000;
+  // Packing diameter of the dart phase as a fraction of the hexagonal spacing
+  // sqrt(2 A / (sqrt(3) N)) for N = points_per_tile in A = 1 tile (the figure rho measures).
+  double dart_rho = 0.75;
+  // Tight radius (the flower's extent) as a fraction of the dart-phase packing radius.
+  double tight_fraction = 0.8;
+  // Relaxation rounds in context (seed 000 section 3.3): Lloyd step, then the distance bound
+  // enforced against every neighbour configuration, then a raised bound. 0 = darts only.
+  int relax_rounds = 0;
+  // Relaxation never raises the packing diameter beyond this rho (also sets the shared width).
+  double max_rho = 0.92;
+  // Relaxation stops before the spread (std / mean) of nearest-neighbour distances in a sample
+  // tiling falls below this: lower means lattice-like.
+  double min_nn_spread = 0.03;
+  // Per-point attributes: variant in 0..variants-1, yaw uniform in [0, 2 pi), scale uniform.
+  int variants = 11;
+  double min_scale = 0.85, max_scale = 1.15;
+};
+
+struct TilePoint {
+  float x = 0, y = 0;  // tile-local position, fractions of the tile side, in [0, 1)
+  float yaw = 0;       // radians, counter-clockwise from east
+  float scale = 1;
+  std::uint16_t variant = 0;
+  // The point's identity: the same id in several tiles is one replicated point, and its
+  // attributes are a function of (seed, id) only.
+  std::uint32_t id = 0;
+  bool operator==(const TilePoint&) const = default;
+};
+
+struct FilledTileSet {
+  TileSet set;
+  std::uint64_t seed = 0;
+  double radius_packing = 0;  // half the minimum distance between points of any valid tiling (tile sides)
+  double radius_tight = 0;    // flower extent; never crosses a tile corner in plain edge sets (tile sides)
+  double shared_width = 0;    // width w of the shared edge strips and corner squares (tile sides)
+  int variants = 1;
+  std::vector<std::vector<TilePoint>> tiles;  // per tile of set.tiles, sorted by id
+};
+
+// What the fill did, for benchmarks and the CLI.
+struct PoissonFillReport {
+  std::size_t class_points = 0;         // distinct points (replicas counted once)
+  double dart_min_distance = 0;         // minimum distance after darts, over all configurations
+  double final_min_distance = 0;        // after relaxation
+  int relax_rounds_run = 0;             // rounds that moved points and kept the bound
+  int relax_rounds_rejected = 0;        // rounds undone because the bound could not be kept
+  double nn_spread = 0;                 // std/mean of NN distances in the sample tiling at the end
+  bool stopped_before_lattice = false;  // relaxation stopped by min_nn_spread
+  // Per kept round: the guaranteed minimum distance (tile sides) and the NN spread after it.
+  std::vector<double> round_min_distance, round_nn_spread;
+};
+
+// Fills every tile of `set`. Deterministic from options.seed, same result on any thread count.
+// Throws GeneratorError when the options are out of range.
+FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& options,
+                                 PoissonFillReport* report = nullptr);
+
+// For each tile and each of the 8 directions, the tiles that can sit there in a valid tiling:
+// edge neighbours share the edge color and the colors of its end corners; diagonal neighbours
+// complete a locally valid 2 x 2 block.
+class TileAdjacency {
+ public:
+  explicit TileAdjacency(const TileSet& set);
+  // dx, dy in {-1, 0, 1}, not both 0.
+  std::span<const std::uint16_t> neighbours(std::size_t tile, int dx, int dy) const {
+    return lists_[tile * 9 + static_cast<std::size_t>((dy + 1) * 3 + (dx + 1))];
+  }
+
+ private:
+  std::vector<std::vector<std::uint16_t>> lists_;
+};
+
+// The smallest distance (tile sides) between two point instances of `filled` over every pair of
+// tiles that can be neighbours (across an edge or a corner) in a valid tiling, and within tiles.
+double min_distance_over_configurations(const FilledTileSet& filled);
+
+// The attributes of point `id` (a function of the identity only).
+struct PointAttributes {
+  std::uint16_t variant = 0;
+  float yaw = 0, scale = 1;
+};
+PointAttributes point_attributes(std::uint64_t seed, std::uint32_t id, int variants, double min_scale,
+                                 double max_scale);
+
+// sqrt(2 A / (sqrt(3) N)): the spacing of N points on a hexagonal lattice over area A; rho is
+// the minimum distance over this.
+double hexagonal_spacing(double area, double count);
+
+}  // namespace wangscape

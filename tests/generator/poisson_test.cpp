@@ -1,0 +1,214 @@
+// Poisson-disk tiles: the distance bound holds in real tilings of every built-in set, replicas
+// are one point, the fill is deterministic on any thread count, and relaxation raises rho.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "generator/poisson_tiles.h"
+#include "generator/tiling.h"
+
+namespace wangscape {
+namespace {
+
+// Small fills: few points per tile keep the whole suite fast and still cross every border.
+PoissonFillOptions small_options(std::uint64_t seed, int relax_rounds = 0) {
+  PoissonFillOptions o;
+  o.points_per_tile = 6;
+  o.darts_per_visit = 1000;
+  o.seed = seed;
+  o.relax_rounds = relax_rounds;
+  return o;
+}
+
+// Pairs of point instances closer than `diameter` in `tiling`, in double precision from the
+// tile-local positions (no float rounding of world coordinates).
+int close_pairs_in_tiling(const FilledTileSet& filled, const Tiling& tiling, double diameter) {
+  int close = 0;
+  for (int j = 0; j < tiling.height; ++j)
+    for (int i = 0; i < tiling.width; ++i)
+      for (int dj = 0; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) {
+          if (dj == 0 && di < 0) continue;  // each neighbouring pair of tiles once
+          const int a = i + di, b = j + dj;
+          if (a < 0 || b >= tiling.height || a >= tiling.width) continue;
+          const auto& own = filled.tiles[tiling.at(i, j)];
+          const auto& other = filled.tiles[tiling.at(a, b)];
+          for (std::size_t p = 0; p < own.size(); ++p)
+            for (std::size_t q = (di == 0 && dj == 0) ? p + 1 : 0; q < other.size(); ++q) {
+              const double dx = double(other[q].x) + di - own[p].x, dy = double(other[q].y) + dj - own[p].y;
+              if (std::hypot(dx, dy) < diameter) ++close;
+            }
+        }
+  return close;
+}
+
+bool is_complete(const TileSet& set) {
+  try {
+    HashedTiling probe(set, 1);
+    return true;
+  } catch (const GeneratorError&) {
+    return false;
+  }
+}
+
+TEST(PoissonTiles, NoPairCloserThanPackingDiameterInAnyTilingOfEveryBuiltinSet) {
+  for (const std::string& name : builtin_tileset_names()) {
+    const TileSet set = builtin_tileset(name);
+    const bool complete = is_complete(set);
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+      SCOPED_TRACE(name + " seed " + std::to_string(seed));
+      const FilledTileSet filled = fill_poisson_tiles(set, small_options(seed, seed == 3 ? 8 : 0));
+      const double diameter = 2.0 * filled.radius_packing;
+      ASSERT_GT(diameter, 0.0);
+      EXPECT_GE(min_distance_over_configurations(filled), diameter);
+      for (std::uint64_t tiling_seed = 1; tiling_seed <= 2; ++tiling_seed) {
+        TilingOptions options;
+        options.seed = tiling_seed * 31 + seed;
+        const Tiling scanline = make_tiling(set, 32, 32, options);
+        EXPECT_EQ(close_pairs_in_tiling(filled, scanline, diameter), 0) << "scanline";
+        if (complete) {
+          options.algorithm = TilingAlgorithm::hash;
+          options.origin_i = -1000 * static_cast<std::int64_t>(tiling_seed);
+          const Tiling hashed = make_tiling(set, 32, 32, options);
+          EXPECT_EQ(close_pairs_in_tiling(filled, hashed, diameter), 0) << "hash";
+        }
+      }
+    }
+  }
+}
+
+TEST(PoissonTiles, ReplicatedPointsAreIdenticalEverywhere) {
+  for (const std::string& name : {"cohen8", "owen12", "corner-2", "cohen8-corners"}) {
+    SCOPED_TRACE(name);
+    const PoissonFillOptions options = small_options(5, 6);
+    const FilledTileSet filled = fill_poisson_tiles(builtin_tileset(name), options);
+    std::map<std::uint32_t, TilePoint> first_seen;
+    int replicated = 0;
+    for (const auto& tile : filled.tiles)
+      for (const TilePoint& p : tile) {
+        const PointAttributes a =
+            point_attributes(options.seed, p.id, options.variants, options.min_scale, options.max_scale);
+        EXPECT_EQ(p.variant, a.variant);
+        EXPECT_EQ(p.yaw, a.yaw);
+        EXPECT_EQ(p.scale, a.scale);
+        auto [it, inserted] = first_seen.emplace(p.id, p);
+        if (inserted) continue;
+        ++replicated;
+        EXPECT_EQ(it->second, p) << "point " << p.id;
+      }
+    EXPECT_GT(replicated, 0) << "strips shared by color must replicate points";
+  }
+}
+
+TEST(PoissonTiles, TilesSharingAnEdgeColorShareTheEdgeStrip) {
+  // Points within a quarter of the shared width of the south edge are strip points: every tile
+  // with the same south color holds the same ones (seed 003's replication).
+  const FilledTileSet filled = fill_poisson_tiles(builtin_tileset("cohen8"), small_options(2));
+  const double band = 0.25 * filled.shared_width;
+  std::map<int, std::vector<std::uint32_t>> strip_by_color;
+  for (std::size_t t = 0; t < filled.tiles.size(); ++t) {
+    std::vector<std::uint32_t> ids;
+    for (const TilePoint& p : filled.tiles[t])
+      if (p.y < band && p.x > filled.shared_width && p.x < 1 - filled.shared_width) ids.push_back(p.id);
+    const int color = filled.set.tiles[t].s();
+    auto [it, inserted] = strip_by_color.emplace(color, ids);
+    if (!inserted) EXPECT_EQ(it->second, ids) << "tile " << t;
+  }
+}
+
+std::string fill_bytes(const TileSet& set, const PoissonFillOptions& options) {
+  const FilledTileSet filled = fill_poisson_tiles(set, options);
+  std::string bytes;
+  auto put = [&bytes](const auto& value) { bytes.append(reinterpret_cast<const char*>(&value), sizeof(value)); };
+  for (const auto& tile : filled.tiles)
+    for (const TilePoint& p : tile) {
+      put(p.x), put(p.y), put(p.yaw), put(p.scale), put(p.variant), put(p.id);
+    }
+  put(filled.radius_packing);
+  return bytes;
+}
+
+TEST(PoissonTiles, SameSeedSameBytesOnOneAndTwoThreads) {
+  for (const std::string& name : {"cohen8", "corner-2"}) {
+    PoissonFillOptions options;
+    options.points_per_tile = 12;
+    options.relax_rounds = 10;
+    options.seed = 42;
+    std::string one, two;
+    {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+      one = fill_bytes(builtin_tileset(name), options);
+    }
+    {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+      two = fill_bytes(builtin_tileset(name), options);
+    }
+    EXPECT_EQ(one, two) << name;
+    options.seed = 43;
+    EXPECT_NE(one, fill_bytes(builtin_tileset(name), options)) << name << ": the seed must matter";
+  }
+}
+
+TEST(PoissonTiles, RelaxationRaisesRhoAndStopsBeforeALattice) {
+  for (const std::string& name : {"cohen8", "corner-2", "cohen12"}) {
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+      SCOPED_TRACE(name + " seed " + std::to_string(seed));
+      PoissonFillOptions options;
+      options.seed = seed;
+      PoissonFillReport darts, relaxed;
+      const FilledTileSet a = fill_poisson_tiles(builtin_tileset(name), options, &darts);
+      options.relax_rounds = 60;
+      const FilledTileSet b = fill_poisson_tiles(builtin_tileset(name), options, &relaxed);
+      const double spacing = hexagonal_spacing(1.0, options.points_per_tile);
+      EXPECT_GT(a.radius_packing * 2 / spacing, 0.70);
+      EXPECT_GT(b.radius_packing, a.radius_packing * 1.08) << "relaxation must raise rho, not just move points";
+      EXPECT_GE(relaxed.nn_spread, options.min_nn_spread);
+      EXPECT_GT(relaxed.relax_rounds_run, 0);
+    }
+  }
+}
+
+TEST(PoissonTiles, TightRadiusNeverCrossesACornerOfAPlainEdgeTile) {
+  const FilledTileSet filled = fill_poisson_tiles(builtin_tileset("cohen18"), small_options(9, 5));
+  ASSERT_GT(filled.radius_tight, 0.0);
+  for (const auto& tile : filled.tiles)
+    for (const TilePoint& p : tile)
+      for (double cx : {0.0, 1.0})
+        for (double cy : {0.0, 1.0}) EXPECT_GE(std::hypot(p.x - cx, p.y - cy), filled.radius_tight * (1 - 1e-6));
+}
+
+TEST(PoissonTiles, TilesReachTheirTargetCount) {
+  PoissonFillOptions options;
+  options.points_per_tile = 20;
+  const FilledTileSet filled = fill_poisson_tiles(builtin_tileset("cohen8"), options);
+  for (const auto& tile : filled.tiles) {
+    EXPECT_GE(tile.size(), 16u);
+    EXPECT_LE(tile.size(), 24u);
+  }
+}
+
+TEST(PoissonTiles, RejectsBadOptions) {
+  PoissonFillOptions options;
+  options.points_per_tile = 0;
+  EXPECT_THROW(fill_poisson_tiles(builtin_tileset("cohen8"), options), GeneratorError);
+  options.points_per_tile = 20;
+  options.dart_rho = 1.5;
+  EXPECT_THROW(fill_poisson_tiles(builtin_tileset("cohen8"), options), GeneratorError);
+}
+
+TEST(TileAdjacency, EdgeNeighboursShareTheEdgeAndDiagonalsCompleteABlock) {
+  const TileSet set = builtin_tileset("cohen8");
+  const TileAdjacency adjacency(set);
+  for (std::size_t t = 0; t < set.tiles.size(); ++t) {
+    for (std::uint16_t u : adjacency.neighbours(t, 1, 0)) EXPECT_EQ(set.tiles[t].e(), set.tiles[u].w());
+    for (std::uint16_t u : adjacency.neighbours(t, 0, -1)) EXPECT_EQ(set.tiles[t].s(), set.tiles[u].n());
+    // cohen8 holds every pair of adjacent edge colors, so any tile can sit across a corner.
+    EXPECT_EQ(adjacency.neighbours(t, 1, 1).size(), set.tiles.size());
+  }
+}
+
+}  // namespace
+}  // namespace wangscape
