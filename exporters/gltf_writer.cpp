@@ -1,0 +1,374 @@
+#include "exporters/gltf_writer.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "exporters/atomic_file.h"
+#include "exporters/export_support.h"
+
+namespace wangscape {
+
+static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian");
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+using Vec3f = std::array<float, 3>;
+
+constexpr int kFloat = 5126;
+constexpr int kUnsignedInt = 5125;
+constexpr int kArrayBuffer = 34962;
+constexpr int kElementArrayBuffer = 34963;
+
+// ENU (east, north, up) -> glTF (x, y, z) = (east, up, -north): a proper rotation, so
+// winding and handedness are kept.
+Vec3f to_gltf(const std::array<float, 3>& enu) { return {enu[0], enu[2], -enu[1]}; }
+std::array<double, 3> to_gltf(const std::array<double, 3>& enu) { return {enu[0], enu[2], -enu[1]}; }
+
+Vec3f unit_gltf_normal(const std::array<float, 3>& enu) {
+  const auto n = to_gltf(enu);
+  const double length = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
+  if (!(length > 1e-12)) return {0, 1, 0};  // degenerate normals point up rather than fail validation
+  return {float(n[0] / length), float(n[1] / length), float(n[2] / length)};
+}
+
+// Rotation about glTF +y (= ENU up) by yaw (radians, counter-clockwise seen from above), as
+// a unit quaternion (x, y, z, w).
+std::array<float, 4> yaw_quaternion(float yaw) {
+  const double half = 0.5 * double(yaw);
+  return {0.0f, float(std::sin(half)), 0.0f, float(std::cos(half))};
+}
+
+// The binary chunk's static part (meshes) plus the glTF objects describing it.
+class GltfBuilder {
+ public:
+  Json buffer_views = Json::array();
+  Json accessors = Json::array();
+  std::string bin;
+
+  // Appends bytes as a new buffer view (4-byte aligned); returns its index.
+  int add_view(const void* data, std::size_t size, int target) {
+    const std::size_t offset = bin.size();
+    bin.append(static_cast<const char*>(data), size);
+    bin.resize((bin.size() + 3) & ~std::size_t(3), '\0');
+    return add_view_at(offset, size, target);
+  }
+
+  int add_view_at(std::uint64_t offset, std::uint64_t size, int target) {
+    Json view{{"buffer", 0}, {"byteOffset", offset}, {"byteLength", size}};
+    if (target) view["target"] = target;
+    buffer_views.push_back(view);
+    return int(buffer_views.size()) - 1;
+  }
+
+  int add_accessor(int view, int component_type, std::uint64_t count, const char* type, const Json& min = nullptr,
+                   const Json& max = nullptr) {
+    Json accessor{{"bufferView", view}, {"componentType", component_type}, {"count", count}, {"type", type}};
+    if (!min.is_null()) accessor["min"] = min;
+    if (!max.is_null()) accessor["max"] = max;
+    accessors.push_back(accessor);
+    return int(accessors.size()) - 1;
+  }
+
+  int add_vec3(const std::vector<Vec3f>& values, int target, bool with_bounds) {
+    const int view = add_view(values.data(), values.size() * sizeof(Vec3f), target);
+    if (!with_bounds) return add_accessor(view, kFloat, values.size(), "VEC3");
+    const Bounds3f bounds = bounds_of(values);
+    return add_accessor(view, kFloat, values.size(), "VEC3", bounds.min, bounds.max);
+  }
+
+  // A glTF mesh for `mesh`: shared POSITION/NORMAL, one primitive per material used.
+  Json add_mesh(const Mesh& mesh, const std::vector<std::uint32_t>& material_slots) {
+    std::vector<Vec3f> positions, normals;
+    positions.reserve(mesh.vertex_count());
+    normals.reserve(mesh.vertex_count());
+    for (const auto& p : mesh.positions) positions.push_back(to_gltf(p));
+    for (const auto& n : mesh.normals) normals.push_back(unit_gltf_normal(n));
+    const int position = add_vec3(positions, kArrayBuffer, true);
+    const int normal = add_vec3(normals, kArrayBuffer, false);
+
+    Json primitives = Json::array();
+    for (std::size_t slot = 0; slot < material_slots.size(); ++slot) {
+      std::vector<std::uint32_t> indices;
+      for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const std::size_t material = mesh.triangle_material.empty() ? 0 : mesh.triangle_material[t];
+        if (material == slot) indices.insert(indices.end(), mesh.triangles[t].begin(), mesh.triangles[t].end());
+      }
+      if (indices.empty()) continue;
+      const int view = add_view(indices.data(), indices.size() * sizeof(std::uint32_t), kElementArrayBuffer);
+      primitives.push_back(Json{{"attributes", {{"POSITION", position}, {"NORMAL", normal}}},
+                                {"indices", add_accessor(view, kUnsignedInt, indices.size(), "SCALAR")},
+                                {"material", material_slots[slot]},
+                                {"mode", 4}});
+    }
+    if (primitives.empty()) throw ExportError("mesh '" + mesh.name + "' has no triangles: glTF meshes cannot be empty");
+    return Json{{"name", mesh.name}, {"primitives", primitives}};
+  }
+};
+
+// Per-variant instance attributes streamed to temporary files beside the output.
+class InstanceSpill {
+ public:
+  InstanceSpill(const std::filesystem::path& output, std::size_t variants) {
+    for (std::size_t v = 0; v < variants; ++v) {
+      auto& files = variants_.emplace_back();
+      for (int a = 0; a < 3; ++a) {
+        static constexpr std::array<const char*, 3> names = {"translation", "rotation", "scale"};
+        files.paths[a] = std::make_unique<AtomicPath>(
+            output.parent_path() / (output.filename().string() + ".v" + std::to_string(v) + "." + names[a]));
+        files.streams[a].open(files.paths[a]->temp_path(), std::ios::binary | std::ios::trunc);
+        if (!files.streams[a])
+          throw ExportError("cannot write '" + output.string() + "': cannot create a temporary file");
+      }
+    }
+  }
+
+  void append(const InstanceBatch& batch) {
+    for (std::size_t i = 0; i < batch.size(); ++i) {
+      Variant& v = variants_[batch.variant[i]];
+      const Vec3f t = to_gltf(std::array<float, 3>{batch.x[i], batch.y[i], batch.z[i]});
+      const auto r = yaw_quaternion(batch.yaw[i]);
+      const Vec3f s = {batch.scale[i], batch.scale[i], batch.scale[i]};
+      v.streams[0].write(reinterpret_cast<const char*>(t.data()), sizeof t);
+      v.streams[1].write(reinterpret_cast<const char*>(r.data()), sizeof r);
+      v.streams[2].write(reinterpret_cast<const char*>(s.data()), sizeof s);
+      v.bounds.extend(t);
+      ++v.count;
+    }
+  }
+
+  void close(const std::filesystem::path& output) {
+    for (auto& v : variants_) {
+      for (auto& stream : v.streams) {
+        stream.close();
+        if (stream.fail()) throw ExportError("cannot write '" + output.string() + "': temporary file write failed");
+      }
+    }
+  }
+
+  struct Variant {
+    std::array<std::unique_ptr<AtomicPath>, 3> paths;  // removed when done (never committed)
+    std::array<std::ofstream, 3> streams;
+    Bounds3f bounds;
+    std::uint64_t count = 0;
+  };
+  std::vector<Variant> variants_;
+};
+
+void copy_file_into(std::ostream& out, const std::filesystem::path& path, const std::filesystem::path& output) {
+  std::ifstream in(path, std::ios::binary);
+  std::vector<char> buffer(1 << 20);
+  while (in) {
+    in.read(buffer.data(), std::streamsize(buffer.size()));
+    out.write(buffer.data(), in.gcount());
+  }
+  if (!in.eof()) throw ExportError("cannot write '" + output.string() + "': cannot read back a temporary file");
+}
+
+void put_u32(std::ostream& out, std::uint32_t value) { out.write(reinterpret_cast<const char*>(&value), 4); }
+
+// Camera node: glTF cameras look down -z with +y up; yfov is vertical.
+Json camera_node(const Camera& camera, const RenderSettings& render, Json& cameras) {
+  const double aspect = render.height > 0 ? double(render.width) / render.height : 1.0;
+  const double hfov = camera.fov_degrees * 3.14159265358979323846 / 180.0;
+  cameras.push_back(Json{{"type", "perspective"},
+                         {"perspective",
+                          {{"aspectRatio", aspect},
+                           {"yfov", 2.0 * std::atan(std::tan(hfov / 2) / aspect)},
+                           {"znear", 0.05},
+                           {"zfar", 100000.0}}}});
+  const auto position = to_gltf(camera.position);
+  const auto target = to_gltf(camera.target);
+  std::array<double, 3> f{target[0] - position[0], target[1] - position[1], target[2] - position[2]};
+  const auto normalize = [](std::array<double, 3> v) {
+    const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    return l > 0 ? std::array<double, 3>{v[0] / l, v[1] / l, v[2] / l} : v;
+  };
+  const auto cross = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    return std::array<double, 3>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  };
+  f = normalize(f);
+  std::array<double, 3> up{0, 1, 0};
+  if (std::abs(f[1]) > 0.999999) up = {0, 0, -1};  // looking straight down: north is up
+  const auto r = normalize(cross(f, up));
+  const auto u = cross(r, f);
+  // Rotation matrix columns: camera x = r, y = u, z = -f.
+  const double m00 = r[0], m01 = u[0], m02 = -f[0];
+  const double m10 = r[1], m11 = u[1], m12 = -f[1];
+  const double m20 = r[2], m21 = u[2], m22 = -f[2];
+  std::array<double, 4> q{};  // x, y, z, w
+  const double trace = m00 + m11 + m22;
+  if (trace > 0) {
+    const double s = 0.5 / std::sqrt(trace + 1.0);
+    q = {(m21 - m12) * s, (m02 - m20) * s, (m10 - m01) * s, 0.25 / s};
+  } else if (m00 > m11 && m00 > m22) {
+    const double s = 2.0 * std::sqrt(1.0 + m00 - m11 - m22);
+    q = {0.25 * s, (m01 + m10) / s, (m02 + m20) / s, (m21 - m12) / s};
+  } else if (m11 > m22) {
+    const double s = 2.0 * std::sqrt(1.0 + m11 - m00 - m22);
+    q = {(m01 + m10) / s, 0.25 * s, (m12 + m21) / s, (m02 - m20) / s};
+  } else {
+    const double s = 2.0 * std::sqrt(1.0 + m22 - m00 - m11);
+    q = {(m02 + m20) / s, (m12 + m21) / s, 0.25 * s, (m10 - m01) / s};
+  }
+  return Json{{"name", "camera"}, {"camera", cameras.size() - 1}, {"translation", position}, {"rotation", q}};
+}
+
+}  // namespace
+
+GltfSummary write_gltf(const Scene& scene, const std::filesystem::path& path, const GltfOptions& options) {
+  if (!path.parent_path().empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(path.parent_path(), error);
+  }
+  if (scene.terrain.vertex_count() > 0) check_mesh(scene.terrain, "terrain mesh '" + scene.terrain.name + "'");
+  for (const Mesh& model : scene.models) check_mesh(model, "model mesh '" + model.name + "'");
+
+  const MaterialTable table = build_material_table(scene);
+  GltfBuilder builder;
+  Json meshes = Json::array();
+  Json nodes = Json::array();
+  Json root_children = Json::array();
+  nodes.push_back(Json{{"name", scene.name}});  // root, children filled below
+
+  if (scene.terrain.vertex_count() > 0) {
+    meshes.push_back(builder.add_mesh(scene.terrain, table.terrain_slots));
+    nodes.push_back(Json{{"name", "terrain"}, {"mesh", meshes.size() - 1}});
+    root_children.push_back(nodes.size() - 1);
+  }
+  const std::size_t first_model_mesh = meshes.size();
+  for (std::size_t m = 0; m < scene.models.size(); ++m) {
+    meshes.push_back(builder.add_mesh(scene.models[m], table.model_slots[m]));
+  }
+
+  // Instances: one streaming pass.
+  std::uint64_t count = 0;
+  std::unique_ptr<InstanceSpill> spill;
+  std::vector<std::uint64_t> per_variant(scene.models.size(), 0);
+  if (options.instancing == GltfInstancing::gpu_instancing) {
+    spill = std::make_unique<InstanceSpill>(path, scene.models.size());
+    count = stream_checked_instances(scene, [&](const InstanceBatch& batch) { spill->append(batch); });
+    spill->close(path);
+    std::uint64_t offset = builder.bin.size();
+    for (std::size_t v = 0; v < scene.models.size(); ++v) {
+      const auto& variant = spill->variants_[v];
+      per_variant[v] = variant.count;
+      if (variant.count == 0) continue;  // accessors cannot be empty
+      const std::uint64_t n = variant.count;
+      const int translation = builder.add_accessor(builder.add_view_at(offset, n * 12, 0), kFloat, n, "VEC3",
+                                                   variant.bounds.min, variant.bounds.max);
+      const int rotation = builder.add_accessor(builder.add_view_at(offset + n * 12, n * 16, 0), kFloat, n, "VEC4");
+      const int scale = builder.add_accessor(builder.add_view_at(offset + n * 28, n * 12, 0), kFloat, n, "VEC3");
+      offset += n * 40;
+      nodes.push_back(
+          Json{{"name", scene.models[v].name + " instances"},
+               {"mesh", first_model_mesh + v},
+               {"extensions",
+                {{"EXT_mesh_gpu_instancing",
+                  {{"attributes", {{"TRANSLATION", translation}, {"ROTATION", rotation}, {"SCALE", scale}}}}}}}});
+      root_children.push_back(nodes.size() - 1);
+    }
+  } else {
+    count = stream_checked_instances(scene, [&](const InstanceBatch& batch) {
+      for (std::size_t i = 0; i < batch.size(); ++i) {
+        const float s = batch.scale[i];
+        nodes.push_back(Json{{"mesh", first_model_mesh + batch.variant[i]},
+                             {"translation", to_gltf(std::array<float, 3>{batch.x[i], batch.y[i], batch.z[i]})},
+                             {"rotation", yaw_quaternion(batch.yaw[i])},
+                             {"scale", {s, s, s}}});
+        root_children.push_back(nodes.size() - 1);
+        ++per_variant[batch.variant[i]];
+      }
+    });
+  }
+
+  Json cameras = Json::array();
+  nodes.push_back(camera_node(scene.camera, scene.render, cameras));
+  root_children.push_back(nodes.size() - 1);
+  nodes[0]["children"] = root_children;
+
+  // Materials: model materials are thin (petals, leaves): double-sided.
+  std::vector<bool> double_sided(table.materials.size(), false);
+  for (const auto& slots : table.model_slots) {
+    for (const auto slot : slots) double_sided[slot] = true;
+  }
+  Json materials = Json::array();
+  for (std::size_t i = 0; i < table.materials.size(); ++i) {
+    const Material& m = table.materials[i];
+    materials.push_back(Json{{"name", m.name},
+                             {"pbrMetallicRoughness",
+                              {{"baseColorFactor", {m.base_color[0], m.base_color[1], m.base_color[2], 1.0f}},
+                               {"metallicFactor", 0.0},
+                               {"roughnessFactor", m.roughness}}},
+                             {"doubleSided", bool(double_sided[i])},
+                             {"extras", {{"translucency", m.translucency}}}});
+  }
+
+  Json georeference = Json::object();
+  for (const auto& [key, value] : scene.georeference) georeference[key] = value;
+  const std::uint64_t instance_bytes = options.instancing == GltfInstancing::gpu_instancing ? count * 40 : 0;
+  const std::uint64_t bin_size = builder.bin.size() + instance_bytes;
+
+  Json gltf;
+  gltf["asset"] = Json{{"version", "2.0"}, {"generator", "wangscape"}};
+  if (options.instancing == GltfInstancing::gpu_instancing && count > 0) {
+    gltf["extensionsUsed"] = Json::array({"EXT_mesh_gpu_instancing"});
+  }
+  gltf["scene"] = 0;
+  gltf["scenes"] = Json::array({Json{
+      {"name", scene.name},
+      {"nodes", {0}},
+      {"extras",
+       {{"georeference", georeference},
+        {"coordinates", "glTF y-up: x = east, y = up, z = -north (meters)"},
+        {"instance_count", count},
+        {"instances_per_variant", per_variant},
+        {"sun",
+         {{"azimuth_degrees", scene.sun.azimuth_degrees}, {"elevation_degrees", scene.sun.elevation_degrees}}}}}}});
+  gltf["nodes"] = nodes;
+  gltf["cameras"] = cameras;
+  if (!meshes.empty()) gltf["meshes"] = meshes;
+  if (!materials.empty()) gltf["materials"] = materials;
+  if (!builder.accessors.empty()) gltf["accessors"] = builder.accessors;
+  if (!builder.buffer_views.empty()) gltf["bufferViews"] = builder.buffer_views;
+  if (bin_size > 0) gltf["buffers"] = Json::array({Json{{"byteLength", bin_size}}});
+
+  std::string json = gltf.dump();
+  json.resize((json.size() + 3) & ~std::size_t(3), ' ');
+  const std::uint64_t total = 12 + 8 + json.size() + (bin_size > 0 ? 8 + bin_size : 0);
+  if (total > 0xffffffffull) {
+    throw ExportError("cannot write '" + path.string() + "': " + std::to_string(total) +
+                      " bytes exceed glTF's 4 GiB limit; export fewer instances");
+  }
+
+  AtomicFile out(path);
+  auto& stream = out.stream();
+  stream.write("glTF", 4);
+  put_u32(stream, 2);
+  put_u32(stream, std::uint32_t(total));
+  put_u32(stream, std::uint32_t(json.size()));
+  stream.write("JSON", 4);
+  stream.write(json.data(), std::streamsize(json.size()));
+  if (bin_size > 0) {
+    put_u32(stream, std::uint32_t(bin_size));
+    stream.write("BIN\0", 4);
+    stream.write(builder.bin.data(), std::streamsize(builder.bin.size()));
+    if (spill) {
+      for (const auto& variant : spill->variants_) {
+        for (const auto& file : variant.paths) copy_file_into(stream, file->temp_path(), path);
+      }
+    }
+  }
+  out.commit();
+  return GltfSummary{path, count, total};
+}
+
+}  // namespace wangscape
