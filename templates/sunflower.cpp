@@ -233,7 +233,11 @@ Tessellation plan_tessellation(const SunflowerShape& shape, std::size_t budget) 
   double lo = 0, hi = 64;
   for (int i = 0; i < 40; ++i) {
     const double mid = 0.5 * (lo + hi);
-    (double(non_floret_triangles(tessellation_for_detail(mid), shape)) <= target ? lo = mid : hi = mid);
+    if (double(non_floret_triangles(tessellation_for_detail(mid), shape)) <= target) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
   }
   Tessellation t = tessellation_for_detail(lo);
   const std::size_t rest = budget - std::min(budget, non_floret_triangles(t, shape));
@@ -385,7 +389,7 @@ void add_leaf(MeshBuilder& builder, const Tessellation& tess, const SunflowerSha
   const Vec3 out{std::cos(leaf.azimuth), std::sin(leaf.azimuth), 0};
   // Rolled about the midrib, so a field seen from the side shows blades, not edges.
   const Vec3 side = cross(kUp, out) * std::cos(leaf.roll) + kUp * std::sin(leaf.roll);
-  // The petiole rises out of the stem at ~40 degrees, sagging a little.
+  // The petiole leaves the stem at 45 degrees and sags to 20 at the blade.
   const double stem_radius = stem_radius_at(shape, leaf.stem_position);
   const Vec3 petiole_start = attach - out * (0.5 * stem_radius);
   const auto petiole = [&](double s) {
