@@ -117,7 +117,8 @@ DemRaster read_dem(const std::filesystem::path& path) {
     std::string why = "cannot read its heights";
     if (dem.driver == "USGSDEM")
       why = "the header declares " + std::to_string(dem.width) + " x " + std::to_string(dem.height) +
-            " cells but the file holds no readable elevation profiles (truncated, or a header with no profiles)";
+            " cells but its elevation profiles cannot be read (the file is truncated, or is a header with no "
+            "profiles)";
     throw TerrainError("DEM " + quoted(path) + ": " + why + capture.suffix());
   }
 

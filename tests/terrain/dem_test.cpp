@@ -1,0 +1,201 @@
+// Reading DEMs through real GDAL: the shared DEMs' sizes, CRSs and heights, the edge
+// cases (load with GDAL's own checksums, or fail naming the file), and broken input.
+#include "terrain/dem.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <regex>
+
+#include "terrain/terrain.h"
+#include "terrain_test_support.h"
+
+namespace wangscape {
+namespace {
+
+using test::boulder;
+using test::saint_helens;
+using test::shared_dem;
+
+// Loading must fail with a TerrainError whose message names the file and says why.
+void expect_failure(const std::filesystem::path& path, const std::string& reason) {
+  testing::internal::CaptureStderr();
+  try {
+    (void)Terrain::load(path);
+    ADD_FAILURE() << "loading " << path << " should fail";
+  } catch (const TerrainError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+    EXPECT_NE(message.find(reason), std::string::npos) << message;
+  }
+  // GDAL's own error printer must stay quiet: everything goes into the message.
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+}
+
+TEST(Dem, SainteHelensSizeCrsAndHeights) {
+  const DemRaster dem = read_dem(saint_helens());
+  EXPECT_EQ(dem.driver, "USGSDEM");
+  EXPECT_EQ(dem.width, 327);
+  EXPECT_EQ(dem.height, 468);
+  EXPECT_FALSE(dem.geographic);
+  EXPECT_NE(dem.crs_wkt.find("NAD27"), std::string::npos);
+  EXPECT_NE(dem.crs_wkt.find("UTM zone 10N"), std::string::npos);
+  EXPECT_DOUBLE_EQ(dem.spacing_x(), 30.0);
+  EXPECT_DOUBLE_EQ(dem.spacing_y(), 30.0);
+  EXPECT_DOUBLE_EQ(dem.min_height, 682.0);
+  EXPECT_DOUBLE_EQ(dem.max_height, 2543.0);
+  // "up to 468 rows": the quadrangle's corners outside the profiles are no-data.
+  EXPECT_EQ(dem.nodata_count, 4151u);
+  std::size_t nan = 0;
+  for (float h : dem.heights) nan += std::isnan(h);
+  EXPECT_EQ(nan, dem.nodata_count);
+}
+
+TEST(Dem, BoulderGeographicWgs84) {
+  const DemRaster dem = read_dem(boulder());
+  EXPECT_EQ(dem.driver, "AAIGrid");
+  EXPECT_EQ(dem.width, 240);
+  EXPECT_EQ(dem.height, 144);
+  EXPECT_TRUE(dem.geographic);
+  EXPECT_NE(dem.crs_wkt.find("WGS"), std::string::npos);
+  EXPECT_NEAR(dem.spacing_x(), 3.0 / 3600, 1e-9);
+  EXPECT_DOUBLE_EQ(dem.min_height, 1943.0);
+  EXPECT_DOUBLE_EQ(dem.max_height, 3286.0);
+  EXPECT_EQ(dem.nodata_count, 0u);
+}
+
+TEST(Dem, BoulderNodataZeroIsAMaskNotAHeight) {
+  // Punch zeros (the grid's NODATA_value) into a copy: they must become no-data.
+  const auto dir = test::scratch_dir("boulder_nodata");
+  std::string text = test::read_text(boulder());
+  const std::size_t header_end = text.find("NODATA_value");
+  std::size_t at = text.find('\n', header_end) + 1;
+  for (int k = 0; k < 3; ++k) {  // the first three values of the first row
+    while (text[at] == ' ') ++at;
+    const std::size_t end = text.find(' ', at);
+    text.replace(at, end - at, "0");
+    at += 1;
+  }
+  test::write_text(dir / "holes.asc", text);
+  std::filesystem::copy_file(boulder().replace_extension(".prj"), dir / "holes.prj");
+  const DemRaster dem = read_dem(dir / "holes.asc");
+  EXPECT_EQ(dem.nodata_count, 3u);
+  EXPECT_DOUBLE_EQ(dem.min_height, 1943.0);  // the zeros are not heights
+  EXPECT_FALSE(dem.at(0, 0).has_value());
+  EXPECT_FALSE(dem.at(2, 0).has_value());
+  EXPECT_TRUE(dem.at(3, 0).has_value());
+}
+
+TEST(Dem, EdgeCaseChecksumsMatchGdalsOwnTests) {
+  EXPECT_EQ(gdal_checksum(shared_dem("edge-cases/39109h1_truncated.dem")), 39443);
+  EXPECT_EQ(gdal_checksum(shared_dem("edge-cases/39079G6_truncated.dem")), 61424);
+  EXPECT_EQ(gdal_checksum(shared_dem("edge-cases/114p01_0100_deme_truncated.dem")), 53864);
+  EXPECT_THROW(gdal_checksum(shared_dem("edge-cases/fema06-140cm_2995441b_truncated.dem")), TerrainError);
+}
+
+TEST(Dem, EdgeCaseTruncatedUtmDemsLoad) {
+  const DemRaster a = read_dem(shared_dem("edge-cases/39109h1_truncated.dem"));
+  EXPECT_EQ(a.width, 2);
+  EXPECT_EQ(a.height, 1411);
+  EXPECT_DOUBLE_EQ(a.spacing_x(), 10.0);
+  EXPECT_NEAR(a.min_height, 1687.4, 0.01);
+  EXPECT_NEAR(a.max_height, 1716.99, 0.01);
+  const DemRaster b = read_dem(shared_dem("edge-cases/39079G6_truncated.dem"));
+  EXPECT_EQ(b.width, 2);
+  EXPECT_EQ(b.height, 470);
+  EXPECT_NE(b.crs_wkt.find("WGS 72"), std::string::npos);
+  EXPECT_DOUBLE_EQ(b.min_height, 325.0);
+  EXPECT_DOUBLE_EQ(b.max_height, 385.0);
+  // Both become terrains with heights where they have data.
+  for (const char* name : {"edge-cases/39109h1_truncated.dem", "edge-cases/39079G6_truncated.dem"}) {
+    const Terrain terrain = Terrain::load(shared_dem(name));
+    const EnuRect e = terrain.extent();
+    int found = 0;
+    for (int k = 0; k <= 200; ++k) {
+      const auto h = terrain.height((e.min_x + e.max_x) / 2, e.min_y + e.height() * k / 200);
+      if (h) {
+        ++found;
+        EXPECT_GE(*h, terrain.dem().min_height - 1e-3);
+        EXPECT_LE(*h, terrain.dem().max_height + 1e-3);
+      }
+    }
+    EXPECT_GT(found, 0) << name;
+  }
+}
+
+TEST(Dem, EdgeCaseCdedAllNodataFailsCleanly) {
+  expect_failure(shared_dem("edge-cases/114p01_0100_deme_truncated.dem"), "no valid heights");
+}
+
+TEST(Dem, EdgeCaseFemaHeaderWithoutProfilesFailsCleanly) {
+  expect_failure(shared_dem("edge-cases/fema06-140cm_2995441b_truncated.dem"), "elevation profiles cannot be read");
+}
+
+TEST(Dem, TruncatedAndGarbageFilesFailCleanly) {
+  const auto dir = test::scratch_dir("broken");
+  const std::string whole = test::read_text(saint_helens());
+  for (std::size_t size : {std::size_t(100), std::size_t(1500), std::size_t(3000), std::size_t(200000)}) {
+    const auto path = dir / ("cut_" + std::to_string(size) + ".dem");
+    test::write_text(path, whole.substr(0, size));
+    testing::internal::CaptureStderr();
+    try {
+      const Terrain terrain = Terrain::load(path);
+      ADD_FAILURE() << path << " loaded although truncated";
+    } catch (const TerrainError& e) {
+      EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  }
+  std::string garbage(4096, '\0');
+  for (std::size_t k = 0; k < garbage.size(); ++k) garbage[k] = char((k * 2654435761u) >> 13);
+  test::write_text(dir / "garbage.dem", garbage);
+  expect_failure(dir / "garbage.dem", "not a raster format GDAL recognizes");
+  test::write_text(dir / "empty.asc", "");
+  expect_failure(dir / "empty.asc", "not a raster format GDAL recognizes");
+  expect_failure(dir / "missing.dem", "does not exist");
+}
+
+TEST(Dem, AsciiGridWithoutPrjFailsNamingThePrj) {
+  const auto dir = test::scratch_dir("no_prj");
+  std::filesystem::copy_file(boulder(), dir / "lonely.asc");
+  expect_failure(dir / "lonely.asc", "lonely.prj");
+}
+
+TEST(Dem, GeoTiffInWgs84UtmLoads) {
+  const auto dir = test::scratch_dir("geotiff");
+  const auto path = dir / "ramp.tif";
+  // 50 x 40 samples, 10 m, WGS 84 / UTM 13N, heights 1000 + col + 100 row, one no-data hole.
+  test::write_raster(path, "GTiff", GDT_Float32, 50, 40, {480000, 10, 0, 4440000, 0, -10}, "EPSG:32613",
+                     [](int col, int row) { return col == 7 && row == 9 ? -9999.0 : 1000.0 + col + 100.0 * row; });
+  {
+    GDALDataset* d = GDALDataset::FromHandle(GDALOpen(path.c_str(), GA_Update));
+    d->GetRasterBand(1)->SetNoDataValue(-9999);
+    GDALClose(d);
+  }
+  const Terrain terrain = Terrain::load(path);
+  EXPECT_EQ(terrain.dem().driver, "GTiff");
+  EXPECT_EQ(terrain.dem().nodata_count, 1u);
+  EXPECT_DOUBLE_EQ(terrain.dem().min_height, 1000.0);
+  EXPECT_DOUBLE_EQ(terrain.dem().max_height, 1000.0 + 49 + 3900);
+  EXPECT_NE(terrain.crs().note().find("GeographicLib"), std::string::npos);
+  EXPECT_NEAR(terrain.spacing_m()[0], 10.0 / terrain.frame().utm_scale(), 1e-3);
+}
+
+TEST(Dem, SrtmHgtLoads) {
+  const auto dir = test::scratch_dir("hgt");
+  const auto path = dir / "N40W106.hgt";
+  const double step = 1.0 / 1200;
+  test::write_raster(path, "SRTMHGT", GDT_Int16, 1201, 1201, {-106 - step / 2, step, 0, 41 + step / 2, 0, -step},
+                     "EPSG:4326", [](int col, int row) { return (col + row) % 2000 == 0 ? -32768.0 : 1500.0 + row; });
+  const Terrain terrain = Terrain::load(path);
+  EXPECT_EQ(terrain.dem().driver, "SRTMHGT");
+  EXPECT_EQ(terrain.dem().width, 1201);
+  EXPECT_TRUE(terrain.dem().geographic);
+  EXPECT_EQ(terrain.dem().nodata_count, 402u);  // col + row = 0 (1 cell) or 2000 (401 cells)
+  EXPECT_NEAR(terrain.georeference().origin_lat_deg, 40.5, 1e-9);
+  EXPECT_NEAR(terrain.georeference().origin_lon_deg, -105.5, 1e-9);
+  EXPECT_NE(terrain.georeference().vertical_datum.find("EGM96"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace wangscape
