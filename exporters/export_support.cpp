@@ -4,6 +4,8 @@
 #include <cctype>
 #include <charconv>
 
+#include <GeographicLib/UTMUPS.hpp>
+
 #include "exporters/atomic_file.h"
 
 namespace wangscape {
@@ -43,6 +45,53 @@ bool is_number(const std::string& text) {
   double value = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   return error == std::errc() && end == text.data() + text.size();
+}
+
+const std::string* find_value(const Georeference& georeference, const std::string& key) {
+  for (const auto& [k, v] : georeference) {
+    if (k == key) return &v;
+  }
+  return nullptr;
+}
+
+bool has_key(const std::vector<std::pair<std::string, std::string>>& properties, const std::string& key) {
+  return std::any_of(properties.begin(), properties.end(), [&](const auto& p) { return p.first == key; });
+}
+
+// terrain/georef.h georeferences name the origin's UTM zone rather than an SRID: the scene
+// then sits in WGS 84 / UTM (EPSG:326zz north, 327zz south) with the origin's easting and
+// northing as BlenderGIS's "crs x"/"crs y". (ENU and the UTM grid differ by the meridian
+// convergence the georeference also records; BlenderGIS assumes aligned axes.)
+void add_utm_properties(const Georeference& georeference,
+                        std::vector<std::pair<std::string, std::string>>& properties) {
+  const std::string* zone_text = find_value(georeference, "utm_zone");
+  const std::string* hemisphere = find_value(georeference, "utm_hemisphere");
+  const std::string* latitude = find_value(georeference, "origin_latitude_deg");
+  const std::string* longitude = find_value(georeference, "origin_longitude_deg");
+  if (!zone_text || !hemisphere || !latitude || !longitude || has_key(properties, "SRID")) return;
+  if (!is_number(*zone_text) || !is_number(*latitude) || !is_number(*longitude)) return;
+  const int zone = std::stoi(*zone_text);
+  if (zone < 1 || zone > 60) return;  // UPS (polar) zones have no EPSG UTM code
+  const bool north = lowercase(*hemisphere) == "north";
+  double x = 0, y = 0, gamma = 0, k = 0;
+  int zone_used = 0;
+  bool north_used = north;
+  try {
+    GeographicLib::UTMUPS::Forward(std::stod(*latitude), std::stod(*longitude), zone_used, north_used, x, y, gamma, k,
+                                   zone);
+  } catch (const std::exception&) {
+    return;
+  }
+  // UTMUPS::Forward uses the false northing of the point's own hemisphere; follow the zone's.
+  if (north_used != north) y += north ? -10000000.0 : 10000000.0;
+  const auto number = [](double value) {
+    char text[32];
+    const auto result = std::to_chars(text, text + sizeof text, value);
+    return std::string(text, result.ptr);
+  };
+  properties.insert(properties.begin(), {"SRID", "EPSG:" + std::to_string((north ? 32600 : 32700) + zone)});
+  if (!has_key(properties, "crs x")) properties.emplace_back("crs x", number(x));
+  if (!has_key(properties, "crs y")) properties.emplace_back("crs y", number(y));
 }
 
 }  // namespace
@@ -120,8 +169,8 @@ std::vector<std::pair<std::string, std::string>> blendergis_properties(const Geo
       {"SRID", {"srid", "epsg", "crs_epsg", "crs_srid", "crs"}},
       {"crs x", {"crs x", "crs_x", "origin_easting", "origin_x", "easting"}},
       {"crs y", {"crs y", "crs_y", "origin_northing", "origin_y", "northing"}},
-      {"latitude", {"latitude", "origin_latitude", "lat"}},
-      {"longitude", {"longitude", "origin_longitude", "lon"}},
+      {"latitude", {"latitude", "origin_latitude", "origin_latitude_deg", "lat"}},
+      {"longitude", {"longitude", "origin_longitude", "origin_longitude_deg", "lon"}},
   };
   std::vector<std::pair<std::string, std::string>> properties;
   for (const auto& [blendergis_key, names] : aliases) {
@@ -142,6 +191,7 @@ std::vector<std::pair<std::string, std::string>> blendergis_properties(const Geo
       break;
     }
   }
+  add_utm_properties(georeference, properties);
   return properties;
 }
 

@@ -139,5 +139,22 @@ TEST(BlenderExport, BlenderGisKeysFromGeoreference) {
   EXPECT_EQ(keys[1], (std::pair<std::string, std::string>{"crs x", "2600000"}));
 }
 
+TEST(BlenderExport, BlenderGisKeysFromUtmZoneOfTheOrigin) {
+  // The keys terrain/georef.h writes: Mount St. Helens, UTM zone 10 north.
+  const auto keys = blendergis_properties({{"origin_latitude_deg", "46.2"},
+                                           {"origin_longitude_deg", "-122.19"},
+                                           {"utm_zone", "10"},
+                                           {"utm_hemisphere", "north"}});
+  ASSERT_EQ(keys.size(), 5u);
+  EXPECT_EQ(keys[0], (std::pair<std::string, std::string>{"SRID", "EPSG:32610"}));
+  EXPECT_EQ(keys[1].first, "latitude");
+  EXPECT_EQ(keys[2].first, "longitude");
+  EXPECT_EQ(keys[3].first, "crs x");
+  EXPECT_EQ(keys[4].first, "crs y");
+  // Zone 10's central meridian is -123: 0.81 deg x 111.3 km x cos(46.2 deg) = 62.4 km east of 500 km.
+  EXPECT_NEAR(std::stod(keys[3].second), 562'400.0, 300.0);
+  EXPECT_NEAR(std::stod(keys[4].second), 5'116'700.0, 1'000.0);
+}
+
 }  // namespace
 }  // namespace wangscape
