@@ -1,8 +1,187 @@
+// wangscape tiling --set NAME|FILE --size WxH --seed S [--algorithm scanline|bottom-left|hash]
+//   [--origin I,J] [--no-identical-neighbours] [--out FILE.png|FILE.csv] [--stats] [--json]
+#include <fmt/core.h>
+
+#include <charconv>
+#include <memory>
+#include <nlohmann/json.hpp>
+
 #include "cli/command.h"
+#include "cli/progress.h"
+#include "exporters/atomic_file.h"
+#include "exporters/image_io.h"
+#include "exporters/tileset_json.h"
+#include "generator/tiling_preview.h"
+#include "generator/tiling_stats.h"
 
 namespace wangscape::cli {
-void register_tiling_command(CLI::App& app, const GlobalOptions&) {
-  auto* sub = app.add_subcommand("tiling", "Tile a window of the plane with a tile set");
-  sub->callback([] {});
+
+namespace {
+
+struct TilingCommandOptions {
+  std::string set = "cohen8";
+  std::string size = "64x64";
+  std::uint64_t seed = 1;
+  std::string algorithm = "scanline";
+  std::string origin = "0,0";
+  bool no_identical_neighbours = false;
+  std::string out;
+  int pixels_per_tile = 4;
+  bool stats = false;
+  bool json = false;
+};
+
+// Parses "<a><separator><b>" with both parts integers; false when malformed.
+template <typename T>
+bool parse_pair(const std::string& text, char separator, T& a, T& b) {
+  const auto split = text.find(separator);
+  if (split == std::string::npos) return false;
+  const char* begin = text.data();
+  const char* middle = begin + split;
+  const char* end = begin + text.size();
+  const auto first = std::from_chars(begin, middle, a);
+  const auto second = std::from_chars(middle + 1, end, b);
+  return first.ec == std::errc() && first.ptr == middle && second.ec == std::errc() && second.ptr == end;
 }
+
+constexpr int kMaxSide = 1'000'000;
+
+std::string validate_size(const std::string& text) {
+  int w = 0, h = 0;
+  if (!parse_pair(text, 'x', w, h)) return "size '" + text + "' is not WxH (e.g. 64x48)";
+  if (w < 1 || h < 1 || w > kMaxSide || h > kMaxSide)
+    return "size '" + text + "': width and height must be 1.." + std::to_string(kMaxSide) + " tiles";
+  return "";
+}
+
+std::string validate_origin(const std::string& text) {
+  std::int64_t i = 0, j = 0;
+  return parse_pair(text, ',', i, j) ? "" : "origin '" + text + "' is not I,J (two integers, e.g. -10,5)";
+}
+
+void write_csv(const std::filesystem::path& path, const Tiling& tiling) {
+  AtomicFile file(path);
+  std::string line;
+  file.stream() << "i,j,tile\n";
+  char buffer[64];
+  for (int lj = 0; lj < tiling.height; ++lj)
+    for (int li = 0; li < tiling.width; ++li) {
+      char* p = std::to_chars(buffer, buffer + sizeof buffer, tiling.origin_i + li).ptr;
+      *p++ = ',';
+      p = std::to_chars(p, buffer + sizeof buffer, tiling.origin_j + lj).ptr;
+      *p++ = ',';
+      p = std::to_chars(p, buffer + sizeof buffer, tiling.at(li, lj)).ptr;
+      *p++ = '\n';
+      file.stream().write(buffer, p - buffer);
+    }
+  file.commit();
+}
+
+nlohmann::ordered_json stats_json(const TileSet& set, const Tiling& tiling, const TilingCommandOptions& options,
+                                  const TilingStats& stats) {
+  nlohmann::ordered_json out;
+  out["set"] = set.name;
+  out["tiles_in_set"] = set.size();
+  out["width"] = tiling.width;
+  out["height"] = tiling.height;
+  out["origin"] = {tiling.origin_i, tiling.origin_j};
+  out["algorithm"] = options.algorithm;
+  out["seed"] = options.seed;
+  out["no_identical_neighbours"] = options.no_identical_neighbours;
+  out["valid"] = stats.valid;
+  if (!stats.valid) out["invalid_reason"] = stats.invalid_reason;
+  out["frequencies"] = stats.frequencies;
+  out["identical_neighbour_rate"] = stats.identical_neighbour_rate;
+  out["periodicity"] = stats.periodicity;
+  out["periodicity_offset"] = {stats.period_di, stats.period_dj};
+  return out;
+}
+
+void print_stats(const TileSet& set, const Tiling& tiling, const TilingCommandOptions& options,
+                 const TilingStats& stats) {
+  fmt::print("set:                  {} ({} tiles)\n", set.name, set.size());
+  fmt::print("window:               {} x {} tiles from ({}, {})\n", tiling.width, tiling.height, tiling.origin_i,
+             tiling.origin_j);
+  fmt::print("algorithm:            {}, seed {}{}\n", options.algorithm, options.seed,
+             options.no_identical_neighbours ? ", no identical neighbours" : "");
+  fmt::print("valid:                {}\n", stats.valid ? "yes" : "no: " + stats.invalid_reason);
+  fmt::print("identical neighbours: {:.4f}\n", stats.identical_neighbour_rate);
+  fmt::print("periodicity:          {:.4f} (at offset {}, {}; ~1 periodic, ~0 stochastic)\n", stats.periodicity,
+             stats.period_di, stats.period_dj);
+  fmt::print("frequencies:         ");
+  for (std::size_t t = 0; t < stats.frequencies.size(); ++t) fmt::print(" {}:{}", t, stats.frequencies[t]);
+  fmt::print("\n");
+}
+
+void run(const TilingCommandOptions& options, const GlobalOptions& global) {
+  const std::filesystem::path out(options.out);
+  const std::string extension = out.extension().string();
+  if (!options.out.empty() && extension != ".png" && extension != ".csv")
+    throw std::runtime_error("output '" + options.out + "': expected a .png (tile map) or .csv (i,j,tile) file");
+  const TileSet set = load_tileset(options.set);
+  TilingOptions tiling_options;
+  tiling_options.algorithm = parse_tiling_algorithm(options.algorithm);
+  tiling_options.seed = options.seed;
+  tiling_options.forbid_identical_neighbours = options.no_identical_neighbours;
+  int width = 0, height = 0;
+  parse_pair(options.size, 'x', width, height);
+  parse_pair(options.origin, ',', tiling_options.origin_i, tiling_options.origin_j);
+
+  Tiling tiling;
+  {
+    Progress progress("tiling", static_cast<std::uint64_t>(height), global.quiet);
+    std::uint64_t rows = 0;
+    tiling.width = width;
+    tiling.height = height;
+    tiling.origin_i = tiling_options.origin_i;
+    tiling.origin_j = tiling_options.origin_j;
+    tiling.tiles.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+    stream_tiling(set, width, height, tiling_options, [&](int local_j, std::span<const std::uint16_t> row) {
+      std::copy(row.begin(), row.end(), tiling.tiles.begin() + static_cast<std::ptrdiff_t>(local_j) * width);
+      progress.update(++rows);
+    });
+    progress.finish();
+  }
+  if (extension == ".png") write_image(out, draw_tile_map(tiling, options.pixels_per_tile));
+  if (extension == ".csv") write_csv(out, tiling);
+  if (options.stats || options.json) {
+    const TilingStats stats = compute_tiling_stats(set, tiling);
+    if (options.json)
+      fmt::print("{}\n", stats_json(set, tiling, options, stats).dump(2));
+    else
+      print_stats(set, tiling, options, stats);
+  }
+  if (!options.out.empty() && !global.quiet) fmt::print(stderr, "wrote {}\n", options.out);
+}
+
+}  // namespace
+
+void register_tiling_command(CLI::App& app, const GlobalOptions& global) {
+  auto* sub = app.add_subcommand("tiling", "Tile a window of the plane with a tile set");
+  auto options = std::make_shared<TilingCommandOptions>();
+  sub->add_option("--set", options->set, "Built-in tile set or a JSON file (see `wangscape tileset --help`)")
+      ->capture_default_str();
+  sub->add_option("--size", options->size, "Window size in tiles, WxH")
+      ->check(CLI::Validator(validate_size, "WxH", "size"))
+      ->capture_default_str();
+  sub->add_option("--seed", options->seed, "Random seed")->capture_default_str();
+  sub->add_option("--algorithm", options->algorithm,
+                  "scanline (north-west to south-east), bottom-left (south-west start) or hash (O(1) random access, "
+                  "complete sets)")
+      ->check(CLI::IsMember({"scanline", "bottom-left", "hash"}))
+      ->capture_default_str();
+  sub->add_option("--origin", options->origin, "Tile coordinates I,J of the window's south-west tile (i east, j north)")
+      ->check(CLI::Validator(validate_origin, "I,J", "origin"))
+      ->capture_default_str();
+  sub->add_flag("--no-identical-neighbours", options->no_identical_neighbours,
+                "Never place a tile next to an identical one (seed 004)");
+  sub->add_option("--out", options->out, "Output: .png pseudo-colored tile map (north up) or .csv with i,j,tile");
+  sub->add_option("--pixels-per-tile", options->pixels_per_tile, "Tile map block size in pixels")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  sub->add_flag("--stats", options->stats, "Print validity, tile frequencies, identical-neighbour rate, periodicity");
+  sub->add_flag("--json", options->json, "Print the statistics as JSON");
+  sub->callback([options, &global] { run(*options, global); });
+}
+
 }  // namespace wangscape::cli

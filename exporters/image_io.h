@@ -1,0 +1,18 @@
+// Image files through OpenImageIO. Writes go through AtomicPath: a failed write leaves no file.
+#pragma once
+
+#include <filesystem>
+
+#include "generator/image.h"
+
+namespace wangscape {
+
+// Writes `image` in the format its extension names (.png, .tif, .jpg, ...). Throws ExportError
+// naming the file when the format is unknown or the write fails.
+void write_image(const std::filesystem::path& path, const ImageRgb8& image);
+
+// Reads any image OpenImageIO understands as 8-bit RGB (gray is replicated, alpha dropped).
+// Throws ExportError naming the file.
+ImageRgb8 read_image(const std::filesystem::path& path);
+
+}  // namespace wangscape
