@@ -1,11 +1,14 @@
-// The bridge between terrain/ and generator/: a DEM-backed Ground for placement, and the
-// terrain options wangscape's subcommands share. Header-only parts are usable from bench/.
+// The bridge between terrain/ and generator/: a DEM-backed Ground for placement, the tile
+// and point filters of seed 003's masks, and the terrain options wangscape's subcommands
+// share. Header-only parts are usable from bench/.
 #pragma once
 
 #include <optional>
 #include <string>
 
 #include "generator/ground.h"
+#include "generator/placement.h"
+#include "terrain/mask.h"
 #include "terrain/terrain.h"
 
 namespace wangscape::cli {
@@ -23,6 +26,29 @@ struct TerrainGround {
   std::optional<double> slope_degrees(double x, double y) const { return terrain->slope_degrees(x, y); }
 };
 static_assert(Ground<TerrainGround>);
+
+// Seed 003's rule as placement filters. Without fair edges a tile is instantiated only if
+// all of its ground passes (a staircase along the contour); with fair edges every tile
+// that may pass is laid and each flower is kept only if its own ground passes, so the
+// field's border follows the contour.
+struct TerrainTileFilter {
+  const TerrainFilter* filter = nullptr;
+  bool fair_edges = false;
+  bool operator()(const TileCell& cell) const {
+    const EnuRect r{cell.bounds.min_x, cell.bounds.min_y, cell.bounds.max_x, cell.bounds.max_y};
+    return fair_edges ? filter->tile_may_pass(r) : filter->tile_passes(r);
+  }
+};
+struct TerrainPointFilter {
+  const TerrainFilter* filter = nullptr;
+  bool fair_edges = false;
+  bool operator()(double x, double y, double z) const {
+    if (fair_edges) return filter->point_passes(x, y, z);
+    // The tile test already holds for all of the tile; the height test is a compare.
+    const auto& max_height = filter->options().max_height_m;
+    return !max_height || z <= *max_height;
+  }
+};
 
 // "LAT,LON" in WGS 84 degrees (e.g. "46.2,-122.19"). Throws std::invalid_argument naming
 // the text when it is not two numbers in range.

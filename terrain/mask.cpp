@@ -242,6 +242,15 @@ bool TerrainFilter::point_passes(double x, double y) const {
   return !mask_ || mask_->allows(x, y);
 }
 
+bool TerrainFilter::point_passes(double x, double y, double z) const {
+  if (options_.max_height_m && z > *options_.max_height_m) return false;
+  if (options_.max_slope_deg) {
+    const auto slope = terrain_->slope_degrees(x, y);
+    if (!slope || *slope > *options_.max_slope_deg) return false;
+  }
+  return !mask_ || mask_->allows(x, y);
+}
+
 void TerrainFilter::check_satisfiable() const {
   const DemRaster& dem = terrain_->dem();
   std::string range(1, '(');  // appended piecewise: GCC 12 warns falsely on "(" + ...

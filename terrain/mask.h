@@ -67,6 +67,8 @@ class TerrainFilter {
   bool tile_may_pass(const EnuRect& tile) const;
   // The ground at ENU (x, y) has data, is low enough, flat enough and painted white.
   bool point_passes(double x, double y) const;
+  // The same, for a point whose ground height z (meters) is already known.
+  bool point_passes(double x, double y, double z) const;
 
   // Throws TerrainError explaining why no ground can pass (a height threshold below every
   // height of the DEM, a slope limit below every slope, an all-black mask), so a scatter
