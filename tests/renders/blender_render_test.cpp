@@ -39,6 +39,23 @@ TEST(BlenderRender, AddonImportMatchesManifestInsideBlender) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(BlenderRender, AddonZipInstallsInStockBlender) {
+  // The zip beside every export, installed the way Preferences > Add-ons > Install does,
+  // into an empty user scripts folder (BLENDER_USER_SCRIPTS) so the user's setup is untouched.
+  const auto dir = scratch("install");
+  export_blender(testing::make_test_scene(10, 4, 10.0f), dir / "blender");
+  const auto log = dir / "install.log";
+  const ChildExit exit = run_logged({"/usr/bin/env", "BLENDER_USER_SCRIPTS=" + (dir / "user_scripts").string(),
+                                     find_blender().string(), "-b", "--factory-startup", "--python-exit-code", "1",
+                                     "--python", std::string(WANGSCAPE_SOURCE_DIR) + "/tests/blender/install_addon.py",
+                                     "--", (dir / "blender" / "wangscape_import.zip").string()},
+                                    log);
+  EXPECT_TRUE(exit.exited && exit.status == 0) << exit.describe() << last_log_lines(log, 20);
+  EXPECT_NE(last_log_lines(log, 50).find("wangscape-install: OK"), std::string::npos) << last_log_lines(log, 20);
+  EXPECT_TRUE(std::filesystem::exists(dir / "user_scripts" / "addons" / "wangscape_import" / "scene_builder.py"));
+  std::filesystem::remove_all(dir);
+}
+
 TEST(BlenderRender, CyclesRendersANonBlankImage) {
   const auto dir = scratch("cycles");
   export_blender(testing::make_test_scene(1500, 16, 30.0f), dir / "blender");
