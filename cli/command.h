@@ -19,6 +19,9 @@ struct GlobalOptions {
 // does the work. Errors are thrown (std::exception); main() turns them into exit code 1.
 void register_tileset_command(CLI::App& app, const GlobalOptions& global);
 void register_tiling_command(CLI::App& app, const GlobalOptions& global);
+void register_build_command(CLI::App& app, const GlobalOptions& global);
+void register_render_command(CLI::App& app, const GlobalOptions& global);
+void register_demo_command(CLI::App& app, const GlobalOptions& global);
 void register_terrain_command(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace wangscape::cli

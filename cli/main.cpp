@@ -20,6 +20,9 @@ int main(int argc, char** argv) {
 
   wangscape::cli::register_tileset_command(app, global);
   wangscape::cli::register_tiling_command(app, global);
+  wangscape::cli::register_build_command(app, global);
+  wangscape::cli::register_render_command(app, global);
+  wangscape::cli::register_demo_command(app, global);
   wangscape::cli::register_terrain_command(app, global);
 
   try {

@@ -242,19 +242,16 @@ std::string scene_pov(const Scene& scene, bool has_terrain, bool has_instances) 
   s += "\n}\n\n";
 
   s += "sky_sphere {\n  pigment {\n    function { max(0, y) }\n    color_map {\n";
-  s += "      [0.00 rgb <0.78, 0.84, 0.92>]\n      [0.12 rgb <0.52, 0.66, 0.88>]\n";
-  s += "      [0.45 rgb <0.30, 0.47, 0.80>]\n      [1.00 rgb <0.18, 0.33, 0.68>]\n    }\n  }\n}\n\n";
-
-  // Aerial perspective: far terrain fades into the horizon haze.
-  s += "fog {\n  fog_type 1\n  distance 18000\n  color rgbt <0.72, 0.80, 0.92, 0.15>\n}\n\n";
+  s += "      [0.00 rgb <0.80, 0.86, 0.93>]\n      [0.06 rgb <0.56, 0.70, 0.90>]\n";
+  s += "      [0.25 rgb <0.30, 0.48, 0.82>]\n      [1.00 rgb <0.14, 0.28, 0.66>]\n    }\n  }\n}\n\n";
 
   if (has_terrain) {
     s += "#include \"terrain.inc\"\n";
     s += "// Ground: vegetation low, soil and ash higher up, rock on steep slopes.\n";
     s += "#declare Ground_Texture =\n  texture {\n    pigment {\n      gradient y\n      color_map {\n";
-    s += "        [0.00 rgb <0.080, 0.110, 0.030>]\n        [0.30 rgb <0.110, 0.120, 0.040>]\n";
-    s += "        [0.50 rgb <0.200, 0.170, 0.110>]\n        [0.75 rgb <0.330, 0.310, 0.290>]\n";
-    s += "        [1.00 rgb <0.500, 0.490, 0.480>]\n      }\n";
+    s += "        [0.00 rgb <0.050, 0.100, 0.020>]\n        [0.25 rgb <0.080, 0.120, 0.030>]\n";
+    s += "        [0.38 rgb <0.170, 0.160, 0.090>]\n        [0.60 rgb <0.300, 0.280, 0.250>]\n";
+    s += "        [1.00 rgb <0.520, 0.510, 0.500>]\n      }\n";
     s += "      scale (Terrain_Max_Height - Terrain_Min_Height) translate y * Terrain_Min_Height\n    }\n";
     s += "    normal { granite 0.15 scale 3 }\n    finish { ambient Ambient_Level diffuse 0.75 }\n  }\n";
     s += "  texture {\n    pigment {\n      slope { y }\n      color_map {\n";
@@ -263,6 +260,10 @@ std::string scene_pov(const Scene& scene, bool has_terrain, bool has_instances) 
     s += "    finish { ambient Ambient_Level diffuse 0.75 }\n  }\n";
     s += "object { Terrain texture { Ground_Texture } }\n\n";
   }
+  // Aerial perspective: haze that thins out with altitude, so far terrain fades towards the
+  // horizon while the sky overhead keeps its blue.
+  s += "fog {\n  fog_type 2\n  fog_offset " + std::string(has_terrain ? "Terrain_Min_Height" : "0") +
+       "\n  fog_alt 400\n  distance 25000\n  color rgbt <0.74, 0.81, 0.92, 0.05>\n  up y\n}\n\n";
   s += "#include \"models.inc\"\n";
   if (has_instances) s += "#if (Show_Instances)\n  #include \"instances.inc\"\n#end\n";
   return s;

@@ -1,0 +1,48 @@
+// wangscape build SCENE.toml --out DIR: the whole pipeline from a scene file.
+#include <unistd.h>
+
+#include <cstdio>
+#include <memory>
+
+#include "cli/command.h"
+#include "cli/progress.h"
+#include "cli/scene_commands.h"
+#include "cli/scene_pipeline.h"
+
+namespace wangscape::cli {
+
+bool chatty(const GlobalOptions& global) { return !global.quiet && ::isatty(STDERR_FILENO); }
+
+void run_build(const SceneConfig& config, const std::filesystem::path& out_dir, const GlobalOptions& global) {
+  PipelineObserver observer;
+  std::unique_ptr<Progress> progress;
+  if (chatty(global)) {
+    observer.stage = [&](const std::string& message) {
+      progress.reset();
+      std::fprintf(stderr, "wangscape: %s\n", message.c_str());
+    };
+    observer.instances_written = [&](std::uint64_t done, std::uint64_t total) {
+      if (!progress) progress = std::make_unique<Progress>("instances", total, global.quiet);
+      progress->update(done);
+    };
+  }
+  const auto summary = build_scene_folder(config, out_dir, observer);
+  progress.reset();
+  if (chatty(global))
+    std::fprintf(stderr, "wangscape: wrote %s (%llu flowers, %.1f MB, %.1f s)\n", out_dir.string().c_str(),
+                 static_cast<unsigned long long>(summary.instances), double(summary.bytes) / 1e6, summary.seconds);
+}
+
+void register_build_command(CLI::App& app, const GlobalOptions& global) {
+  auto* sub = app.add_subcommand("build", "Build a scene folder (POV-Ray and other exports) from a scene file");
+  struct Options {
+    std::string scene;
+    std::string out;
+  };
+  auto options = std::make_shared<Options>();
+  sub->add_option("scene", options->scene, "Scene file (TOML, see docs/scene-file.md)")->required();
+  sub->add_option("--out,-o", options->out, "Output folder")->required();
+  sub->callback([options, &global] { run_build(load_scene_config(options->scene), options->out, global); });
+}
+
+}  // namespace wangscape::cli

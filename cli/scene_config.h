@@ -1,0 +1,139 @@
+// The scene file (TOML): everything `wangscape build` needs to run the pipeline. Every key,
+// its meaning and its default are documented in docs/scene-file.md; unknown keys are errors
+// naming the key and its line.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace wangscape::cli {
+
+// A bad scene file: the message starts with "<file>:<line>: " and names the key at fault.
+class SceneConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// [terrain]
+struct TerrainConfig {
+  std::filesystem::path dem;                  // empty = flat ground at height 0
+  std::optional<double> origin_latitude;      // WGS 84 degrees; default: the DEM's center
+  std::optional<double> origin_longitude;     // WGS 84 degrees
+  std::optional<std::array<double, 4>> crop;  // [min_east, min_north, max_east, max_north], ENU m
+  double flat_size = 200.0;                   // meters, side of the flat ground without a DEM
+};
+
+// [tiles]
+struct TilesConfig {
+  std::string set = "cohen8";                 // built-in tile set name or a tile-set JSON path
+  double tile_size = 4.0;                     // meters
+  int points_per_tile = 20;                   // flowers per tile
+  int relaxation_rounds = 8;                  // Lloyd-style relaxation of each tile's points
+  std::uint64_t seed = 1;                     // tiling, points and flower yaw/scale
+  std::string algorithm = "scanline";         // tiling algorithm: scanline, bottom-left, hash
+  std::optional<std::array<double, 4>> area;  // where flowers grow, ENU m; default: the ground's extent
+};
+
+// [masks]
+struct MasksConfig {
+  std::optional<double> max_height;  // meters; no flowers above
+  std::optional<double> min_height;  // meters; no flowers below
+  std::optional<double> max_slope;   // degrees; no flowers on steeper ground
+  bool fair_edges = true;            // thin the field out towards mask borders instead of a hard cut
+};
+
+// [models]
+struct ModelsConfig {
+  int variants = 11;
+  std::size_t triangle_budget = 6000;  // per sunflower
+  std::uint64_t seed = 1;
+  std::filesystem::path mesh;    // user OBJ/PLY replacing the sunflowers; empty = sunflowers
+  double scale = 1.0;            // uniform scale of every model
+  double scale_jitter = 0.1;     // each flower scaled by 1 +- this (uniform)
+  std::optional<double> facing;  // compass degrees the flower heads face; default: random
+  double facing_jitter = 30.0;   // degrees, +- around `facing`
+};
+
+// [camera]: position and target, each either ENU meters or latitude/longitude; a height
+// above the ground replaces the third coordinate.
+struct CameraPoint {
+  std::optional<std::array<double, 3>> enu;         // [east, north, up] meters
+  std::optional<std::array<double, 2>> enu_ground;  // [east, north]; up = ground + height_above_ground
+  std::optional<double> latitude, longitude;        // WGS 84 degrees
+  double height_above_ground = 2.0;                 // meters (used without a full ENU point)
+};
+
+struct CameraConfig {
+  CameraPoint position;
+  CameraPoint target;
+  std::optional<double> heading;  // compass degrees, with pitch instead of a target
+  double pitch = 0.0;             // degrees above the horizontal
+  double fov = 50.0;              // horizontal field of view, degrees
+};
+
+// [sun]: azimuth/elevation, or a date and time (with a UTC offset) at the origin.
+struct SunConfig {
+  double azimuth = 135.0;                 // compass degrees (0 north, 90 east)
+  double elevation = 35.0;                // degrees above the horizon
+  std::optional<std::int64_t> time_unix;  // seconds since 1970-01-01 UTC, from `time`
+  std::string time_text;                  // as written, for messages
+  double strength = 1.0;
+};
+
+// [image]
+struct ImageConfig {
+  int width = 640, height = 360;
+  int antialias = 3;  // POV-Ray antialias depth (1 = off)
+  int threads = 0;    // 0 = all cores
+  bool radiosity = false;
+};
+
+// [exports]
+struct ExportsConfig {
+  bool povray = true;
+  bool blender = false;
+  bool gltf = false;
+};
+
+struct SceneConfig {
+  std::filesystem::path source;    // the TOML file (or "<embedded default scene>")
+  std::filesystem::path base_dir;  // relative paths in the file resolve against it
+  std::string name = "wangscape";
+  TerrainConfig terrain;
+  TilesConfig tiles;
+  MasksConfig masks;
+  ModelsConfig models;
+  CameraConfig camera;
+  SunConfig sun;
+  ImageConfig image;
+  ExportsConfig exports;
+  std::string text;  // the TOML as read (copied into the output folder)
+};
+
+// Parses TOML text. `source` names it in messages; `base_dir` resolves relative paths.
+// Throws SceneConfigError "<source>:<line>: <what>" for syntax errors, unknown keys, wrong
+// types and values out of range.
+SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem::path& source,
+                               const std::filesystem::path& base_dir);
+// Reads and parses a scene file; relative paths resolve against its folder.
+SceneConfig load_scene_config(const std::filesystem::path& file);
+
+// The default scene (templates/scenes/default.toml, embedded in the program). Its data
+// paths (data/SainteHelens.dem) resolve against the source tree or the installed data folder.
+SceneConfig default_scene_config();
+std::string_view default_scene_text();
+
+// The sun's position seen from (latitude, longitude) at a moment (NOAA solar position
+// algorithm, about 0.01 degree for years 1901-2099; refraction included near the horizon).
+struct SolarPosition {
+  double azimuth_degrees = 0;    // compass, clockwise from north
+  double elevation_degrees = 0;  // above the horizon, refraction included
+};
+SolarPosition solar_position(double latitude_degrees, double longitude_degrees, std::int64_t unix_seconds);
+
+}  // namespace wangscape::cli
