@@ -53,8 +53,9 @@ inline void write_raster(const std::filesystem::path& path, const char* driver, 
   for (int b = 1; b <= bands; ++b) {
     for (int row = 0; row < height; ++row)
       for (int col = 0; col < width; ++col) pixels[std::size_t(row) * width + col] = value(col, row);
-    (void)source->GetRasterBand(b)->RasterIO(GF_Write, 0, 0, width, height, pixels.data(), width, height, GDT_Float64,
-                                             0, 0, nullptr);
+    if (source->GetRasterBand(b)->RasterIO(GF_Write, 0, 0, width, height, pixels.data(), width, height, GDT_Float64, 0,
+                                           0, nullptr) != CE_None)
+      throw std::runtime_error("cannot fill the in-memory raster for " + path.string());
   }
   GDALDriver* out = GetGDALDriverManager()->GetDriverByName(driver);
   GDALDataset* copy = out->CreateCopy(path.c_str(), source, FALSE, nullptr, nullptr, nullptr);

@@ -1,0 +1,118 @@
+// Placement over a real DEM (generator's place_instances with cli's terrain bridge):
+// every instance stands on the ground, below the threshold; fair edges follow the contour;
+// a hashed tiling of a sub-area equals the same part of the whole.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <tuple>
+
+#include "cli/terrain_ground.h"
+#include "generator/placement.h"
+#include "generator/poisson_tiles.h"
+#include "terrain_test_support.h"
+
+namespace wangscape {
+namespace {
+
+const Terrain& helens() {
+  static const Terrain terrain = Terrain::load(test::saint_helens());
+  return terrain;
+}
+
+const FilledTileSet& tiles() {
+  static const FilledTileSet filled = [] {
+    PoissonFillOptions options;
+    options.points_per_tile = 6;
+    options.seed = 3;
+    return fill_poisson_tiles(builtin_tileset("complete-edge-2"), options);
+  }();
+  return filled;
+}
+
+using Instance = std::tuple<float, float, float, std::uint16_t, std::uint32_t>;
+
+std::vector<Instance> scatter(const Extent& area, double tile_size, const TerrainFilter& filter, bool fair) {
+  PlacementOptions options;
+  options.tile_size = tile_size;
+  options.algorithm = TilingAlgorithm::hash;
+  options.seed = 42;
+  options.area = area;
+  options.batch_points = 5000;  // several batches
+  std::vector<Instance> out;
+  place_instances(
+      tiles(), cli::TerrainGround{&helens()}, options,
+      [&](const InstanceBatch& b) {
+        for (std::size_t k = 0; k < b.size(); ++k) out.emplace_back(b.x[k], b.y[k], b.z[k], b.variant[k], b.tile[k]);
+      },
+      cli::TerrainTileFilter{&filter, fair}, cli::TerrainPointFilter{&filter, fair});
+  return out;
+}
+
+const Extent kWindow{-2000, -2500, 1500, 1000};
+
+TEST(PlacementOnDem, EveryInstanceStandsOnTheGroundBelowTheThreshold) {
+  const TerrainFilter filter(helens(), {.max_height_m = 1500.0, .max_slope_deg = {}, .mask_image = {}});
+  for (const bool fair : {false, true}) {
+    const auto instances = scatter(kWindow, 8.0, filter, fair);
+    ASSERT_GT(instances.size(), 1000u);
+    for (const auto& [x, y, z, variant, tile] : instances) {
+      const auto ground = helens().height(x, y);
+      ASSERT_TRUE(ground.has_value()) << x << ", " << y;
+      ASSERT_NEAR(z, *ground, 0.01) << x << ", " << y;  // z from the double position, checked at the float one
+      ASSERT_LE(z, 1500.0f);
+    }
+  }
+}
+
+TEST(PlacementOnDem, FairEdgesKeepEveryStrictFlowerAndFollowTheContour) {
+  const TerrainFilter filter(helens(), {.max_height_m = 1500.0, .max_slope_deg = {}, .mask_image = {}});
+  auto strict = scatter(kWindow, 8.0, filter, false);
+  auto fair = scatter(kWindow, 8.0, filter, true);
+  EXPECT_GT(fair.size(), strict.size());  // partial tiles along the contour are kept
+  std::sort(strict.begin(), strict.end());
+  std::sort(fair.begin(), fair.end());
+  EXPECT_TRUE(std::includes(fair.begin(), fair.end(), strict.begin(), strict.end()));
+  // Near the contour, fair-edge flowers stand higher than any strict one can get close to.
+  float strict_top = 0, fair_top = 0;
+  for (const auto& i : strict) strict_top = std::max(strict_top, std::get<2>(i));
+  for (const auto& i : fair) fair_top = std::max(fair_top, std::get<2>(i));
+  EXPECT_GT(fair_top, strict_top);
+  EXPECT_GT(fair_top, 1499.0f);
+}
+
+TEST(PlacementOnDem, HashedSubAreaEqualsThatPartOfTheWhole) {
+  const TerrainFilter filter(helens(), {.max_height_m = 1800.0, .max_slope_deg = 35.0, .mask_image = {}});
+  const double s = 8.0;
+  for (const bool fair : {false, true}) {
+    auto whole = scatter(kWindow, s, filter, fair);
+    ASSERT_GT(whole.size(), 1000u);
+    // A sub-window around a flower of the whole run, with edges inside tiles: the tiles it
+    // touches are whole tiles of the big run.
+    const float cx = std::get<0>(whole[whole.size() / 2]), cy = std::get<1>(whole[whole.size() / 2]);
+    const Extent sub{cx - 403.3, cy - 297.1, cx + 305.25, cy + 401.9};
+    auto part = scatter(sub, s, filter, fair);
+    ASSERT_FALSE(part.empty());
+    const TileRange r = tile_range(sub, s);
+    std::vector<Instance> expected;
+    for (const auto& i : whole) {
+      const auto ti = std::int64_t(std::floor(std::get<0>(i) / s)), tj = std::int64_t(std::floor(std::get<1>(i) / s));
+      if (ti >= r.i0 && ti < r.i1 && tj >= r.j0 && tj < r.j1) expected.push_back(i);
+    }
+    std::sort(expected.begin(), expected.end());
+    std::sort(part.begin(), part.end());
+    EXPECT_EQ(part, expected);
+  }
+}
+
+TEST(PlacementOnDem, NodataIsNeverPlanted) {
+  // The quadrangle's no-data corners: a window over the north-west corner of the raster.
+  const TerrainFilter filter(helens(), {.max_height_m = {}, .max_slope_deg = {}, .mask_image = {}});
+  const EnuRect e = helens().extent();
+  const Extent corner{e.min_x, e.max_y - 600, e.min_x + 600, e.max_y};
+  for (const bool fair : {false, true})
+    for (const auto& [x, y, z, variant, tile] : scatter(corner, 4.0, filter, fair))
+      ASSERT_TRUE(helens().height(x, y).has_value());
+}
+
+}  // namespace
+}  // namespace wangscape
