@@ -3,6 +3,7 @@
 #include "exporters/blender_export.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -16,7 +17,8 @@ namespace wangscape {
 namespace {
 
 std::filesystem::path scratch(const std::string& name) {
-  const auto path = std::filesystem::temp_directory_path() / ("wangscape_blender_export_" + name);
+  const auto path =
+      std::filesystem::temp_directory_path() / ("wangscape_blender_export_" + std::to_string(::getpid()) + "_" + name);
   std::filesystem::remove_all(path);
   return path;
 }

@@ -4,6 +4,7 @@
 #include "exporters/gltf_writer.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -18,11 +19,21 @@
 namespace wangscape {
 namespace {
 
-std::filesystem::path scratch(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / "wangscape_gltf_tests";
-  std::filesystem::create_directories(dir);
-  return dir / name;
+const std::filesystem::path& scratch_dir() {
+  // Removed when the test program exits.
+  static const struct Dir {
+    std::filesystem::path path =
+        std::filesystem::temp_directory_path() / ("wangscape_gltf_tests_" + std::to_string(::getpid()));
+    Dir() { std::filesystem::create_directories(path); }
+    ~Dir() {
+      std::error_code ec;
+      std::filesystem::remove_all(path, ec);
+    }
+  } dir;
+  return dir.path;
 }
+
+std::filesystem::path scratch(const std::string& name) { return scratch_dir() / name; }
 
 struct Glb {
   nlohmann::json json;

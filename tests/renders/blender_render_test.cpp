@@ -4,6 +4,7 @@
 #include "renders/blender_render.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
@@ -17,7 +18,8 @@ namespace wangscape {
 namespace {
 
 std::filesystem::path scratch(const std::string& name) {
-  const auto path = std::filesystem::temp_directory_path() / ("wangscape_blender_render_" + name);
+  const auto path =
+      std::filesystem::temp_directory_path() / ("wangscape_blender_render_" + std::to_string(::getpid()) + "_" + name);
   std::filesystem::remove_all(path);
   std::filesystem::create_directories(path);
   return path;
