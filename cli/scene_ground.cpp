@@ -5,7 +5,9 @@
 #include <sstream>
 #include <variant>
 
+#include "terrain/mask.h"
 #include "terrain/terrain.h"
+#include "terrain/terrain_mesh.h"
 
 namespace wangscape::cli {
 
@@ -14,6 +16,8 @@ struct SceneGround::Impl {
   FlatGround flat;
   Extent area;                    // after the crop
   std::optional<EnuFrame> frame;  // flat ground: around the configured origin
+  MasksConfig masks;
+  std::optional<TerrainFilter> filter;  // with a DEM
   std::string description;
 };
 
@@ -33,8 +37,9 @@ std::string number(double value) {
 }
 }  // namespace
 
-SceneGround SceneGround::load(const TerrainConfig& config) {
+SceneGround SceneGround::load(const TerrainConfig& config, const MasksConfig& masks) {
   auto impl = std::make_shared<Impl>();
+  impl->masks = masks;
   if (!config.dem.empty()) {
     TerrainOptions options;
     if (config.origin_latitude) options.origin = LatLon{*config.origin_latitude, *config.origin_longitude};
@@ -59,6 +64,15 @@ SceneGround SceneGround::load(const TerrainConfig& config) {
     throw SceneConfigError("terrain.crop [" + number((*config.crop)[0]) + ", " + number((*config.crop)[1]) + ", " +
                            number((*config.crop)[2]) + ", " + number((*config.crop)[3]) +
                            "] does not overlap the ground (" + impl->description + ")");
+  if (impl->terrain) {
+    TerrainFilterOptions filter;
+    filter.max_height_m = masks.max_height;
+    filter.max_slope_deg = masks.max_slope;
+    impl->filter.emplace(*impl->terrain, filter);
+    impl->filter->check_satisfiable();
+  } else if ((masks.max_height && *masks.max_height < 0) || (masks.min_height && *masks.min_height > 0)) {
+    throw SceneConfigError("masks: the flat ground (height 0 m) is outside the height limits");
+  }
   SceneGround ground;
   ground.impl_ = std::move(impl);
   return ground;
@@ -86,51 +100,53 @@ std::array<double, 2> SceneGround::origin() const {
   return {frame.origin().lat, frame.origin().lon};
 }
 
-Mesh SceneGround::mesh(int max_vertices_per_side) const {
+Mesh SceneGround::mesh(std::size_t max_vertices) const {
   const Extent area = impl_->area;
-  double step = 10.0;
-  if (impl_->terrain) {
-    const auto spacing = impl_->terrain->spacing_m();
-    step = std::min(spacing[0], spacing[1]);
-  } else {
-    step = std::max(area.width(), area.height()) / 16.0;
-  }
-  step = std::max(step, std::max(area.width(), area.height()) / double(max_vertices_per_side - 1));
-  const int nx = std::max(2, int(std::ceil(area.width() / step)) + 1);
-  const int ny = std::max(2, int(std::ceil(area.height() / step)) + 1);
-  const double dx = area.width() / (nx - 1), dy = area.height() / (ny - 1);
-
   Mesh mesh;
   mesh.name = "terrain";
   mesh.materials = {{"ground", {0.2f, 0.18f, 0.12f}, 0.9f, 0.0f}};
-  constexpr std::uint32_t kNone = ~0u;
-  std::vector<std::uint32_t> index(std::size_t(nx) * std::size_t(ny), kNone);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      // Pull the border a hair inwards so edge samples fall inside the DEM.
-      const double x = std::clamp(area.min_x + i * dx, area.min_x + 1e-6, area.max_x - 1e-6);
-      const double y = std::clamp(area.min_y + j * dy, area.min_y + 1e-6, area.max_y - 1e-6);
-      const auto h = height(x, y);
-      if (!h) continue;
-      // Normal from central differences of the heights (smooth across cells).
-      const auto hx0 = height(x - dx, y), hx1 = height(x + dx, y), hy0 = height(x, y - dy), hy1 = height(x, y + dy);
-      const double gx = (hx1 && hx0) ? (*hx1 - *hx0) / (2 * dx) : hx1 ? (*hx1 - *h) / dx : hx0 ? (*h - *hx0) / dx : 0;
-      const double gy = (hy1 && hy0) ? (*hy1 - *hy0) / (2 * dy) : hy1 ? (*hy1 - *h) / dy : hy0 ? (*h - *hy0) / dy : 0;
-      const double len = std::sqrt(gx * gx + gy * gy + 1);
-      index[std::size_t(j) * std::size_t(nx) + std::size_t(i)] = std::uint32_t(mesh.positions.size());
-      mesh.positions.push_back({float(x), float(y), float(*h)});
-      mesh.normals.push_back({float(-gx / len), float(-gy / len), float(1 / len)});
-    }
-  for (int j = 0; j + 1 < ny; ++j)
-    for (int i = 0; i + 1 < nx; ++i) {
-      const auto at = [&](int a, int b) { return index[std::size_t(b) * std::size_t(nx) + std::size_t(a)]; };
-      const std::uint32_t a = at(i, j), b = at(i + 1, j), c = at(i, j + 1), d = at(i + 1, j + 1);
-      // Counter-clockwise seen from above (+z).
-      if (a != kNone && b != kNone && d != kNone) mesh.triangles.push_back({a, b, d});
-      if (a != kNone && d != kNone && c != kNone) mesh.triangles.push_back({a, d, c});
-    }
+  if (impl_->terrain) {
+    TerrainMeshOptions options;
+    options.max_vertices = max_vertices;
+    options.crop = EnuRect{area.min_x, area.min_y, area.max_x, area.max_y};
+    auto terrain_mesh = make_terrain_mesh(*impl_->terrain, options);
+    mesh.positions = std::move(terrain_mesh.positions);
+    mesh.normals = std::move(terrain_mesh.normals);
+    mesh.triangles = std::move(terrain_mesh.triangles);
+  } else {
+    // A flat square: 4 corners, 2 triangles, counter-clockwise seen from above.
+    const float z = 0.0f;
+    mesh.positions = {{float(area.min_x), float(area.min_y), z},
+                      {float(area.max_x), float(area.min_y), z},
+                      {float(area.max_x), float(area.max_y), z},
+                      {float(area.min_x), float(area.max_y), z}};
+    mesh.normals.assign(4, {0.0f, 0.0f, 1.0f});
+    mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  }
   mesh.triangle_material.assign(mesh.triangles.size(), 0);
   return mesh;
+}
+
+PlacementStats SceneGround::place(const FilledTileSet& filled, const PlacementOptions& options,
+                                  const std::function<void(const InstanceBatch&)>& sink) const {
+  const Impl& impl = *impl_;
+  const auto min_height = impl.masks.min_height;
+  if (!impl.terrain) {
+    return place_instances(filled, impl.flat, options, sink);  // the flat ground passed the masks at load
+  }
+  const TerrainFilter& filter = *impl.filter;
+  const auto point_filter = [&filter, min_height](double x, double y, double z) {
+    return (!min_height || z >= *min_height) && filter.point_passes(x, y, z);
+  };
+  const auto rect = [](const TileCell& cell) {
+    return EnuRect{cell.bounds.min_x, cell.bounds.min_y, cell.bounds.max_x, cell.bounds.max_y};
+  };
+  if (impl.masks.fair_edges)
+    return place_instances(
+        filled, *this, options, sink, [&](const TileCell& cell) { return filter.tile_may_pass(rect(cell)); },
+        point_filter);
+  return place_instances(
+      filled, *this, options, sink, [&](const TileCell& cell) { return filter.tile_passes(rect(cell)); }, point_filter);
 }
 
 std::vector<std::pair<std::string, std::string>> SceneGround::georeference() const {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -12,6 +13,7 @@
 
 #include "cli/scene_config.h"
 #include "generator/ground.h"
+#include "generator/placement.h"
 #include "templates/mesh.h"
 
 namespace wangscape::cli {
@@ -20,7 +22,9 @@ class SceneGround {
  public:
   // Loads the DEM of `config` (or makes a flat plane without one) and crops it. Throws
   // TerrainError naming the file, or SceneConfigError when the crop misses the DEM.
-  static SceneGround load(const TerrainConfig& config);
+  // `masks` are checked once here (a height threshold below every height of the DEM is an
+  // error naming it).
+  static SceneGround load(const TerrainConfig& config, const MasksConfig& masks = {});
 
   // --- Ground concept (ENU meters; thread-safe).
   Extent extent() const;
@@ -32,9 +36,15 @@ class SceneGround {
   // WGS 84 latitude, longitude (degrees) of the ENU origin.
   std::array<double, 2> origin() const;
 
-  // The ground as a mesh in ENU meters over extent(), one vertex per DEM sample spacing
-  // (at most `max_vertices_per_side` per side), with smooth normals.
-  Mesh mesh(int max_vertices_per_side = 1200) const;
+  // The ground as a mesh in ENU meters over extent(), a vertex per DEM sample (or every k-th,
+  // to stay within `max_vertices`), with smooth normals.
+  Mesh mesh(std::size_t max_vertices = 1'000'000) const;
+
+  // Lays the filled tiles over the ground (placement.h) and streams the instances that pass
+  // the masks: with fair edges, every tile that may pass and then each point is tested;
+  // without, only tiles whose whole ground passes (seed 003). Thread-safe.
+  PlacementStats place(const FilledTileSet& filled, const PlacementOptions& options,
+                       const std::function<void(const InstanceBatch&)>& sink) const;
 
   // Ordered key/value strings for scene headers and manifests.
   std::vector<std::pair<std::string, std::string>> georeference() const;

@@ -11,6 +11,7 @@
 #include "cli/scene_ground.h"
 #include "exporters/atomic_file.h"
 #include "exporters/povray_writer.h"
+#include "generator/placement.h"
 #include "generator/poisson_tiles.h"
 #include "generator/tiling.h"
 #include "templates/mesh_io.h"
@@ -52,74 +53,30 @@ std::vector<Mesh> make_models(const ModelsConfig& config) {
 
 // ---- the field: tiles laid over the ground, flowers where the masks allow -------------------
 
-std::uint64_t mix(std::uint64_t x) {  // splitmix64 finalizer
-  x += 0x9e3779b97f4a7c15ull;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-  return x ^ (x >> 31);
-}
-
 struct Field {
   SceneGround ground;
   FilledTileSet filled;
-  TilingOptions tiling;
-  Extent area;
-  double tile_size = 4;
-  int tiles_x = 0, tiles_y = 0;
-  MasksConfig masks;
-  std::uint16_t variants = 1;
-  std::uint64_t seed = 1;
+  PlacementOptions placement;
   std::optional<double> facing_yaw;  // radians, counter-clockwise from east; empty = the tile's yaw
   double facing_jitter = 0;          // radians
 
-  // The yaw a flower gets: the point's own (uniform) yaw, or the configured facing with the
-  // point's yaw spread over +- jitter (still a function of the point's identity only).
+  // The configured facing, spread over +- jitter by the point's own uniform yaw (so it stays a
+  // function of the point's identity).
   float yaw_of(float point_yaw) const {
-    if (!facing_yaw) return point_yaw;
     const double u = point_yaw / (2 * std::numbers::pi);
     return float(*facing_yaw + (2 * u - 1) * facing_jitter);
   }
 
-  // Probability (0..1) that a flower stands at ground height h with the given slope: 0 or 1
-  // without fair edges; with them, a ramp near each mask's limit (15 m of height, 5 degrees of
-  // slope) so the field thins out instead of ending along a contour line.
-  double keep_probability(double h, double slope) const {
-    double p = 1.0;
-    const auto ramp = [&](double margin, double band) {
-      p = std::min(p, masks.fair_edges ? std::clamp(margin / band, 0.0, 1.0) : (margin >= 0 ? 1.0 : 0.0));
-    };
-    if (masks.max_height) ramp(*masks.max_height - h, 15.0);
-    if (masks.min_height) ramp(h - *masks.min_height, 15.0);
-    if (masks.max_slope) ramp(*masks.max_slope - slope, 5.0);
-    return p;
-  }
-
   void place(const std::function<void(const InstanceBatch&)>& sink) const {
-    InstanceBatch batch;
-    stream_tiling(filled.set, tiles_x, tiles_y, tiling, [&](int local_j, std::span<const std::uint16_t> row) {
-      batch.clear();
-      for (std::size_t local_i = 0; local_i < row.size(); ++local_i) {
-        const auto tile = row[local_i];
-        for (const auto& point : filled.tiles[tile]) {
-          const double x = area.min_x + (double(local_i) + point.x) * tile_size;
-          const double y = area.min_y + (double(local_j) + point.y) * tile_size;
-          const auto h = ground.height(x, y);
-          if (!h) continue;
-          if (masks.max_height || masks.min_height || masks.max_slope) {
-            const double slope = masks.max_slope ? ground.slope_degrees(x, y).value_or(90.0) : 0.0;
-            const double p = keep_probability(*h, slope);
-            if (p <= 0) continue;
-            if (p < 1) {
-              const std::uint64_t key =
-                  mix(seed ^ mix((std::uint64_t(local_j) << 32) ^ local_i ^ (std::uint64_t(point.id) << 48)));
-              if (double(key >> 11) * 0x1.0p-53 >= p) continue;
-            }
-          }
-          batch.push_back(float(x), float(y), float(*h), yaw_of(point.yaw), point.scale,
-                          std::uint16_t(point.variant % variants), tile);
-        }
-      }
-      if (!batch.empty()) sink(batch);
+    if (!facing_yaw) {
+      ground.place(filled, placement, sink);
+      return;
+    }
+    InstanceBatch turned;
+    ground.place(filled, placement, [&](const InstanceBatch& batch) {
+      turned = batch;
+      for (auto& yaw : turned.yaw) yaw = yaw_of(yaw);
+      sink(turned);
     });
   }
 };
@@ -127,18 +84,17 @@ struct Field {
 std::shared_ptr<const Field> make_field(const SceneConfig& config, const SceneGround& ground, std::size_t model_count) {
   auto field = std::make_shared<Field>();
   field->ground = ground;
-  field->area = ground.extent();
+  Extent area = ground.extent();
   if (config.tiles.area) {
     const auto& a = *config.tiles.area;
-    field->area = {std::max(field->area.min_x, a[0]), std::max(field->area.min_y, a[1]),
-                   std::min(field->area.max_x, a[2]), std::min(field->area.max_y, a[3])};
-    if (!(field->area.width() > 0 && field->area.height() > 0))
+    area = {std::max(area.min_x, a[0]), std::max(area.min_y, a[1]), std::min(area.max_x, a[2]),
+            std::min(area.max_y, a[3])};
+    if (!(area.width() > 0 && area.height() > 0))
       throw SceneConfigError(config.source.string() + ": tiles.area does not overlap the ground (" +
                              ground.description() + ")");
   }
-  field->tile_size = config.tiles.tile_size;
-  const double tiles_x = std::ceil(field->area.width() / field->tile_size);
-  const double tiles_y = std::ceil(field->area.height() / field->tile_size);
+  const double tile_size = config.tiles.tile_size;
+  const double tiles_x = std::ceil(area.width() / tile_size) + 1, tiles_y = std::ceil(area.height() / tile_size) + 1;
   const double estimate = tiles_x * tiles_y * config.tiles.points_per_tile;
   constexpr double kMaxInstances = 50e6;
   if (estimate > kMaxInstances)
@@ -146,27 +102,24 @@ std::shared_ptr<const Field> make_field(const SceneConfig& config, const SceneGr
                            std::to_string(std::llround(estimate)) + " flowers (" +
                            std::to_string(std::llround(tiles_x)) + " x " + std::to_string(std::llround(tiles_y)) +
                            " tiles); limit it with tiles.area or a larger tiles.tile_size (at most 50 million)");
-  field->tiles_x = int(tiles_x);
-  field->tiles_y = int(tiles_y);
-  field->masks = config.masks;
-  field->variants = std::uint16_t(std::max<std::size_t>(1, model_count));
-  field->seed = config.tiles.seed;
-  if (config.models.facing) {
-    // Compass (clockwise from north) to yaw (counter-clockwise from east).
-    field->facing_yaw = (90.0 - *config.models.facing) * std::numbers::pi / 180;
-    field->facing_jitter = config.models.facing_jitter * std::numbers::pi / 180;
-  }
+  field->placement.tile_size = tile_size;
+  field->placement.algorithm = parse_tiling_algorithm(config.tiles.algorithm);
+  field->placement.seed = config.tiles.seed;
+  field->placement.area = area;
 
   PoissonFillOptions fill;
   fill.points_per_tile = config.tiles.points_per_tile;
   fill.seed = config.tiles.seed;
   fill.relax_rounds = config.tiles.relaxation_rounds;
-  fill.variants = field->variants;
+  fill.variants = int(std::max<std::size_t>(1, model_count));
   fill.min_scale = 1.0 - config.models.scale_jitter;
   fill.max_scale = 1.0 + config.models.scale_jitter;
   field->filled = fill_poisson_tiles(builtin_tileset(config.tiles.set), fill);
-  field->tiling.algorithm = parse_tiling_algorithm(config.tiles.algorithm);
-  field->tiling.seed = config.tiles.seed;
+  if (config.models.facing) {
+    // Compass (clockwise from north) to yaw (counter-clockwise from east).
+    field->facing_yaw = (90.0 - *config.models.facing) * std::numbers::pi / 180;
+    field->facing_jitter = config.models.facing_jitter * std::numbers::pi / 180;
+  }
   return field;
 }
 
@@ -244,7 +197,7 @@ Scene make_scene(const SceneConfig& config, const PipelineObserver& observer) {
   Scene scene;
   scene.name = config.name;
   say(observer, config.terrain.dem.empty() ? "making flat ground" : "loading terrain " + config.terrain.dem.string());
-  const auto ground = SceneGround::load(config.terrain);
+  const auto ground = SceneGround::load(config.terrain, config.masks);
   scene.terrain = ground.mesh();
   scene.georeference = ground.georeference();
 
@@ -258,13 +211,12 @@ Scene make_scene(const SceneConfig& config, const PipelineObserver& observer) {
                     " points per tile");
   const auto field = make_field(config, ground, scene.models.size());
   scene.instances = [field](const std::function<void(const InstanceBatch&)>& sink) { field->place(sink); };
-  say(observer,
-      "placing flowers over " + std::to_string(field->tiles_x) + " x " + std::to_string(field->tiles_y) + " tiles");
+  say(observer, "placing flowers");
   std::uint64_t count = 0;
   scene.instances([&](const InstanceBatch& batch) { count += batch.size(); });
   scene.instance_count = count;
 
-  scene.camera = make_camera(config, ground, field->area);
+  scene.camera = make_camera(config, ground, *field->placement.area);
   scene.sun = make_sun(config, ground);
   scene.render.width = config.image.width;
   scene.render.height = config.image.height;
