@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "cli/command.h"
+#include "exporters/filled_tileset_json.h"
 #include "exporters/image_io.h"
 #include "exporters/tileset_json.h"
 #include "generator/tiling_preview.h"
@@ -18,7 +19,30 @@ struct TilesetOptions {
   std::string sheet;  // PNG (or any OIIO format) of the set's tiles
   int tile_pixels = 48;
   std::uint64_t seed = 1;  // for filling tiles with content (see below)
+  int per_tile = 0;        // Poisson points per tile; 0 = colors only
+  int relax = 0;           // relaxation rounds after dart throwing
+  std::string out;         // the filled set as JSON (docs/filled-tileset-format.md)
 };
+
+// --per-tile N: fill the set with Poisson-disk points, write --out, draw --sheet with discs.
+void fill(const TileSet& set, const TilesetOptions& options) {
+  PoissonFillOptions fill_options;
+  fill_options.points_per_tile = options.per_tile;
+  fill_options.relax_rounds = options.relax;
+  fill_options.seed = options.seed;
+  PoissonFillReport report;
+  const FilledTileSet filled = fill_poisson_tiles(set, fill_options, &report);
+  if (!options.out.empty()) write_filled_tileset_json(options.out, filled);
+  if (!options.sheet.empty())
+    write_image(options.sheet, draw_filled_tileset_sheet(filled, std::max(options.tile_pixels, 96)));
+  const double spacing = hexagonal_spacing(1.0, options.per_tile);
+  fmt::print(
+      "{}: {} distinct points; rho over every configuration {:.4f} after darts, {:.4f} after {} relaxation "
+      "rounds{}; radius_packing {:.5f}, radius_tight {:.5f} (tile sides)\n",
+      set.name, report.class_points, report.dart_min_distance / spacing, report.final_min_distance / spacing,
+      report.relax_rounds_run, report.stopped_before_lattice ? " (stopped before a lattice)" : "",
+      filled.radius_packing, filled.radius_tight);
+}
 
 void print_summary(const TileSet& set) {
   fmt::print("name:    {}\n", set.name);
@@ -31,6 +55,8 @@ void print_summary(const TileSet& set) {
 
 void run(const TilesetOptions& options) {
   const TileSet set = load_tileset(options.set);
+  if (options.per_tile > 0) return fill(set, options);
+  if (!options.out.empty()) throw std::runtime_error("--out needs --per-tile N (the points to write)");
   // Tile contents (Poisson points per tile, --per-tile N --relax R --out tiles.json) plug in
   // here: fill the set, then write it with write_tileset_json's format plus per-tile keys
   // (points, radius_packing, radius_tight, seed; see exporters/tileset_json.h).
@@ -57,6 +83,12 @@ void register_tileset_command(CLI::App& app, const GlobalOptions&) {
       ->check(CLI::Range(8, 1024))
       ->capture_default_str();
   sub->add_option("--seed", options->seed, "Random seed")->capture_default_str();
+  sub->add_option("--per-tile", options->per_tile, "Fill every tile with this many Poisson-disk points")
+      ->check(CLI::Range(1, 100000));
+  sub->add_option("--relax", options->relax, "Relaxation rounds after dart throwing (stops before a lattice)")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
+  sub->add_option("--out", options->out, "With --per-tile: write the filled set as JSON");
   sub->callback([options] { run(*options); });
 }
 

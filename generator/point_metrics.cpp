@@ -129,7 +129,11 @@ NeighbourStats nearest_neighbour_stats(std::span<const float> x, std::span<const
 std::size_t count_close_pairs(std::span<const float> x, std::span<const float> y, const Extent& area, double diameter) {
   if (x.size() < 2 || diameter <= 0) return 0;
   const PointGrid grid(x, y, area, std::max(diameter, grid_cell(area, x.size())));
-  const double d2 = diameter * diameter;
+  // Coordinates are floats: a pair exactly at the diameter may round either way by a few ulps.
+  const double magnitude =
+      std::max({std::abs(area.min_x), std::abs(area.max_x), std::abs(area.min_y), std::abs(area.max_y)});
+  const double tolerance = magnitude * 0x1.0p-21;
+  const double d2 = (diameter - tolerance) * (diameter - tolerance);
   return tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, x.size()), std::size_t{0},
       [&](const tbb::blocked_range<std::size_t>& range, std::size_t count) {
@@ -276,6 +280,50 @@ PointMetrics measure_points(std::span<const float> x, std::span<const float> y, 
     m.spectrum =
         radial_power_spectrum(x, y, area, options.spectrum_window_tiles * options.tile_size, options.spectrum_windows);
   return m;
+}
+
+ImageRgb8 draw_spectrum_plot(const RadialSpectrum& spectrum, int height) {
+  const int side = std::max(height, 32);
+  ImageRgb8 image(3 * side, side, {255, 255, 255});
+  if (spectrum.image_size == 0 || spectrum.power.empty()) return image;
+  // Periodogram, log10 power mapped from -2..1 to black..white.
+  for (int py = 0; py < side; ++py)
+    for (int px = 0; px < side; ++px) {
+      const int row = py * spectrum.image_size / side, col = px * spectrum.image_size / side;
+      const double p = spectrum.image[static_cast<std::size_t>(row) * spectrum.image_size + col];
+      const double v = std::clamp((std::log10(std::max(p, 1e-3)) + 2.0) / 3.0, 0.0, 1.0);
+      const auto g = static_cast<std::uint8_t>(255 * v);
+      image.set(px, py, {g, g, g});
+    }
+  // Radial curves: x = frequency (0..max), power on 0..2, anisotropy on -20..+10 dB.
+  const int x0 = side + side / 8, width = 2 * side - side / 4;
+  const double f_max = spectrum.frequency.back();
+  auto to_x = [&](double f) { return x0 + static_cast<int>(width * f / f_max); };
+  auto power_y = [&](double p) { return static_cast<int>((side - 1) * (1.0 - std::clamp(p / 2.0, 0.0, 1.0))); };
+  auto aniso_y = [&](double db) {
+    return static_cast<int>((side - 1) * (1.0 - std::clamp((db + 20.0) / 30.0, 0.0, 1.0)));
+  };
+  auto plot = [&](auto value_y, auto value_at, Rgb8 color, bool dashed) {
+    for (std::size_t k = 1; k < spectrum.frequency.size(); ++k) {
+      const int xa = to_x(spectrum.frequency[k - 1]), xb = to_x(spectrum.frequency[k]);
+      const int ya = value_y(value_at(k - 1)), yb = value_y(value_at(k));
+      const int steps = std::max({1, std::abs(xb - xa), std::abs(yb - ya)});
+      for (int s = 0; s <= steps; ++s) {
+        if (dashed && (xa + s * (xb - xa) / steps) / 4 % 2) continue;
+        image.fill_rect(xa + s * (xb - xa) / steps, ya + s * (yb - ya) / steps, 2, 2, color);
+      }
+    }
+  };
+  image.fill_rect(x0, 0, 1, side, {0, 0, 0});
+  image.fill_rect(x0, power_y(1.0), width, 1, {150, 150, 150});
+  for (int m = 1; m <= 3; ++m) image.fill_rect(to_x(m * spectrum.peak_frequency), 0, 1, side, {220, 220, 220});
+  plot(
+      aniso_y, [&](std::size_t) { return spectrum.noise_floor_db; }, {230, 120, 120}, true);
+  plot(
+      aniso_y, [&](std::size_t k) { return spectrum.anisotropy_db[k]; }, {200, 30, 30}, false);
+  plot(
+      power_y, [&](std::size_t k) { return spectrum.power[k]; }, {30, 60, 200}, false);
+  return image;
 }
 
 }  // namespace wangscape

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "generator/ground.h"
+#include "generator/image.h"
 
 namespace wangscape {
 
@@ -24,7 +25,8 @@ struct NeighbourStats {
 // outside `area` (closer to its border than to any neighbour) are left out of mean and std.
 NeighbourStats nearest_neighbour_stats(std::span<const float> x, std::span<const float> y, const Extent& area);
 
-// Number of pairs closer than `diameter`.
+// Number of pairs closer than `diameter`, by more than the float rounding of coordinates of the
+// area's magnitude (2^-21 of it: a few ulps), so pairs exactly at the diameter do not count.
 std::size_t count_close_pairs(std::span<const float> x, std::span<const float> y, const Extent& area, double diameter);
 
 struct RadialSpectrum {
@@ -73,5 +75,10 @@ struct PointMetrics {
 };
 
 PointMetrics measure_points(std::span<const float> x, std::span<const float> y, const PointMetricsOptions& options);
+
+// A picture of the spectrum: left, the averaged periodogram (log scale, DC at the centre);
+// right, the radial power (white: 1 = white noise level, blue: power) and the anisotropy (red,
+// with its noise floor dashed) against frequency, up to 3.5 peak frequencies.
+ImageRgb8 draw_spectrum_plot(const RadialSpectrum& spectrum, int height = 256);
 
 }  // namespace wangscape

@@ -15,6 +15,7 @@
 
 #include "generator/point_metrics.h"
 #include "generator/tiling.h"
+#include "generator/tiling_preview.h"
 
 namespace wangscape {
 
@@ -120,7 +121,6 @@ class ContentModel {
     // New darts go to the class of the region they land in (cuts at w), but relaxation may move a
     // point a margin m past that line: hard walls between classes would line points up along them.
     const double m = 0.5 * w;
-    const std::array<double, 4> cuts = {0.0, w, 1.0 - w, 1.0};
     const Rect whole{0.0, 0.0, 1.0, 1.0};
     const std::vector<Vec2> tile_corners = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
     group_of_.assign(tile_count_ * 9, -1);
@@ -777,6 +777,34 @@ FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& o
   filled.shared_width = w;
   if (report) *report = rep;
   return filled;
+}
+
+ImageRgb8 draw_filled_tileset_sheet(const FilledTileSet& filled, int tile_pixels) {
+  ImageRgb8 image = draw_tileset_sheet(filled.set, tile_pixels);
+  // The same grid as draw_tileset_sheet (tiling_preview.cpp): columns ~ sqrt(n), gap, pitch.
+  const int count = static_cast<int>(filled.set.size());
+  const int columns = std::clamp(static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count)))), 1, 16);
+  const int gap = std::max(2, tile_pixels / 8);
+  const int pitch = tile_pixels + gap;
+  for (int t = 0; t < count; ++t) {
+    const int x0 = gap + (t % columns) * pitch, y0 = gap + (t / columns) * pitch;
+    for (int y = 0; y < tile_pixels; ++y)
+      for (int x = 0; x < tile_pixels; ++x) {
+        Rgb8 c = image.at(x0 + x, y0 + y);
+        c = {static_cast<std::uint8_t>(255 - (255 - c.r) * 2 / 5), static_cast<std::uint8_t>(255 - (255 - c.g) * 2 / 5),
+             static_cast<std::uint8_t>(255 - (255 - c.b) * 2 / 5)};
+        const double u = (x + 0.5) / tile_pixels, v = 1.0 - (y + 0.5) / tile_pixels;  // tile-local, y north
+        for (const TilePoint& p : filled.tiles[static_cast<std::size_t>(t)]) {
+          const double r = std::hypot(u - p.x, v - p.y);
+          if (r < filled.radius_tight)
+            c = {40, 130, 40};
+          else if (std::abs(r - filled.radius_packing) < 0.6 / tile_pixels)
+            c = {30, 30, 30};
+        }
+        image.set(x0 + x, y0 + y, c);
+      }
+  }
+  return image;
 }
 
 }  // namespace wangscape

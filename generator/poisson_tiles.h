@@ -20,6 +20,7 @@
 #include <span>
 #include <vector>
 
+#include "generator/image.h"
 #include "generator/tileset.h"
 
 namespace wangscape {
@@ -113,6 +114,11 @@ struct PointAttributes {
 };
 PointAttributes point_attributes(std::uint64_t seed, std::uint32_t id, int variants, double min_scale,
                                  double max_scale);
+
+// The tile-set sheet (draw_tileset_sheet's layout and colors, paled) with every tile's points:
+// packing discs as dark rings, tight discs filled (replicas show in every tile that holds them,
+// cut at the tile's border).
+ImageRgb8 draw_filled_tileset_sheet(const FilledTileSet& filled, int tile_pixels = 192);
 
 // sqrt(2 A / (sqrt(3) N)): the spacing of N points on a hexagonal lattice over area A; rho is
 // the minimum distance over this.

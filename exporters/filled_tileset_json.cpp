@@ -1,0 +1,168 @@
+#include "exporters/filled_tileset_json.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "exporters/atomic_file.h"
+
+namespace wangscape {
+
+namespace {
+
+constexpr const char* kFormat = "wangscape-filled-tileset";
+constexpr int kVersion = 1;
+
+std::string where(std::string_view source) { return "filled tile set '" + std::string(source) + "'"; }
+
+const Json& required(const Json& object, const char* key, const std::string& at, const char* expected) {
+  const auto it = object.find(key);
+  if (it == object.end()) throw ExportError(at + ": missing key \"" + key + "\"; expected " + expected);
+  return *it;
+}
+
+double number_in(const Json& value, const std::string& at, const char* key, double lo, double hi, bool hi_open) {
+  if (!value.is_number() || !(value.get<double>() >= lo) ||
+      !(hi_open ? value.get<double>() < hi : value.get<double>() <= hi))
+    throw ExportError(at + ": \"" + key + "\" is " + value.dump() + "; expected a number in [" + std::to_string(lo) +
+                      ", " + std::to_string(hi) + (hi_open ? ")" : "]"));
+  return value.get<double>();
+}
+
+std::uint64_t integer_in(const Json& value, const std::string& at, const char* key, std::uint64_t hi) {
+  if (!value.is_number_unsigned() && !(value.is_number_integer() && value.get<std::int64_t>() >= 0))
+    throw ExportError(at + ": \"" + key + "\" is " + value.dump() + "; expected a non-negative integer");
+  const auto v = value.get<std::uint64_t>();
+  if (v > hi)
+    throw ExportError(at + ": \"" + key + "\" is " + value.dump() + "; expected at most " + std::to_string(hi));
+  return v;
+}
+
+}  // namespace
+
+Json filled_tileset_to_json(const FilledTileSet& filled) {
+  Json document = tileset_to_json(filled.set);
+  Json tiles = std::move(document["tiles"]);
+  document.erase("tiles");
+  document["format"] = kFormat;
+  document["version"] = kVersion;
+  document["seed"] = filled.seed;
+  document["radius_packing"] = filled.radius_packing;
+  document["radius_tight"] = filled.radius_tight;
+  document["shared_width"] = filled.shared_width;
+  document["variants"] = filled.variants;
+  for (std::size_t t = 0; t < filled.tiles.size(); ++t) {
+    Json points = Json::array();
+    for (const TilePoint& p : filled.tiles[t]) {
+      // Floats widen to doubles exactly, and the shortest double that reads back is written.
+      Json point;
+      point["id"] = p.id;
+      point["x"] = static_cast<double>(p.x);
+      point["y"] = static_cast<double>(p.y);
+      point["variant"] = p.variant;
+      point["yaw"] = static_cast<double>(p.yaw);
+      point["scale"] = static_cast<double>(p.scale);
+      points.push_back(std::move(point));
+    }
+    tiles[t]["points"] = std::move(points);
+  }
+  document["tiles"] = std::move(tiles);
+  return document;
+}
+
+FilledTileSet filled_tileset_from_json(const Json& document, std::string_view source) {
+  FilledTileSet filled;
+  filled.set = tileset_from_json(document, source);  // colors, with tileset_json's checks
+  const std::string at = where(source);
+  const Json& format = required(document, "format", at, "\"wangscape-filled-tileset\"");
+  if (format != kFormat)
+    throw ExportError(at + ": \"format\" is " + format.dump() + "; expected \"" + kFormat +
+                      "\" (write one with `wangscape tileset --per-tile N --out FILE`)");
+  if (const auto v = integer_in(required(document, "version", at, "1"), at, "version", 1000); v != kVersion)
+    throw ExportError(at + ": version " + std::to_string(v) + "; this wangscape reads version " +
+                      std::to_string(kVersion));
+  filled.seed = integer_in(required(document, "seed", at, "an integer"), at, "seed", UINT64_MAX);
+  filled.radius_packing =
+      number_in(required(document, "radius_packing", at, "a number"), at, "radius_packing", 1e-9, 0.5, false);
+  filled.radius_tight =
+      number_in(required(document, "radius_tight", at, "a number"), at, "radius_tight", 0.0, 0.5, false);
+  filled.shared_width =
+      number_in(required(document, "shared_width", at, "a number"), at, "shared_width", 0.0, 0.5, false);
+  filled.variants =
+      static_cast<int>(integer_in(required(document, "variants", at, "an integer"), at, "variants", 65535));
+  if (filled.variants < 1) throw ExportError(at + ": \"variants\" is 0; expected at least 1");
+
+  const Json& tiles = document["tiles"];
+  filled.tiles.resize(tiles.size());
+  for (std::size_t t = 0; t < tiles.size(); ++t) {
+    const std::string tile_at = at + ": tile " + std::to_string(t);
+    const Json& points = required(tiles[t], "points", tile_at, "an array of points");
+    if (!points.is_array()) throw ExportError(tile_at + ": \"points\" is " + points.dump() + "; expected an array");
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const std::string point_at = tile_at + " point " + std::to_string(k);
+      const Json& p = points[k];
+      if (!p.is_object()) throw ExportError(point_at + " is " + p.dump() + "; expected an object");
+      TilePoint tp;
+      tp.id =
+          static_cast<std::uint32_t>(integer_in(required(p, "id", point_at, "an integer"), point_at, "id", UINT32_MAX));
+      tp.x = static_cast<float>(number_in(required(p, "x", point_at, "a number"), point_at, "x", 0.0, 1.0, true));
+      tp.y = static_cast<float>(number_in(required(p, "y", point_at, "a number"), point_at, "y", 0.0, 1.0, true));
+      tp.variant = static_cast<std::uint16_t>(integer_in(required(p, "variant", point_at, "an integer"), point_at,
+                                                         "variant", static_cast<std::uint64_t>(filled.variants - 1)));
+      tp.yaw =
+          static_cast<float>(number_in(required(p, "yaw", point_at, "a number"), point_at, "yaw", -7.0, 7.0, false));
+      tp.scale = static_cast<float>(
+          number_in(required(p, "scale", point_at, "a number"), point_at, "scale", 1e-6, 1e6, false));
+      filled.tiles[t].push_back(tp);
+    }
+  }
+  return filled;
+}
+
+std::string format_filled_tileset_json(const Json& document) {
+  std::string text = "{\n";
+  bool first_key = true;
+  for (const auto& [key, value] : document.items()) {
+    text += first_key ? "  " : ",\n  ";
+    first_key = false;
+    text += Json(key).dump() + ": ";
+    if (key != "tiles" || !value.is_array()) {
+      text += value.dump();
+      continue;
+    }
+    text += "[";
+    for (std::size_t t = 0; t < value.size(); ++t) {
+      Json colors = value[t];
+      colors.erase("points");
+      std::string line = colors.dump();
+      line.pop_back();  // the closing brace: the points follow
+      text += (t ? ",\n    " : "\n    ") + line + ", \"points\": [";
+      const Json& points = value[t]["points"];
+      for (std::size_t k = 0; k < points.size(); ++k) text += (k ? ",\n      " : "\n      ") + points[k].dump();
+      text += points.empty() ? "]}" : "\n    ]}";
+    }
+    text += value.empty() ? "]" : "\n  ]";
+  }
+  return text + "\n}\n";
+}
+
+void write_filled_tileset_json(const std::filesystem::path& path, const FilledTileSet& filled) {
+  write_file_atomically(path, format_filled_tileset_json(filled_tileset_to_json(filled)));
+}
+
+FilledTileSet read_filled_tileset_json(const std::filesystem::path& path) {
+  const std::string source = path.string();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ExportError(where(source) + ": cannot open the file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  Json document;
+  try {
+    document = Json::parse(buffer.str());
+  } catch (const Json::parse_error& e) {
+    throw ExportError(where(source) + ": not valid JSON (" + e.what() + ")");
+  }
+  return filled_tileset_from_json(document, source);
+}
+
+}  // namespace wangscape

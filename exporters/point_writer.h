@@ -1,0 +1,44 @@
+// Instances to a point file, batch by batch (any scatter: plane or DEM): CSV with the header
+// `x,y,z,variant,yaw,scale,tile` (meters, radians; shortest round-trip numbers, locale-free), or
+// binary little-endian PLY when the name ends in .ply (vertex element with float x, y, z, ushort
+// variant, float yaw, float scale, uint tile). Written atomically: nothing appears at `path`
+// unless commit() succeeds.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "exporters/atomic_file.h"
+#include "generator/instances.h"
+
+namespace wangscape {
+
+enum class PointFileFormat { csv, ply };
+
+// .ply (any case) -> ply, anything else -> csv.
+PointFileFormat point_file_format(const std::filesystem::path& path);
+
+class PointWriter {
+ public:
+  explicit PointWriter(const std::filesystem::path& path);
+  PointWriter(const PointWriter&) = delete;
+  PointWriter& operator=(const PointWriter&) = delete;
+
+  // Appends the batch. Throws ExportError naming the file when writing fails.
+  void write(const InstanceBatch& batch);
+  // Completes the file (the PLY vertex count) and renames it into place.
+  void commit();
+
+  std::uint64_t count() const { return count_; }
+  PointFileFormat format() const { return format_; }
+
+ private:
+  AtomicFile file_;
+  PointFileFormat format_;
+  std::uint64_t count_ = 0;
+  std::streamoff count_field_ = 0;  // PLY: where the padded vertex count goes
+  std::string buffer_;
+};
+
+}  // namespace wangscape
