@@ -82,14 +82,7 @@ void register_terrain_command(CLI::App& app, const GlobalOptions&) {
   info->add_option("file", options->file, "DEM file (USGS ASCII DEM, GeoTIFF, SRTM .hgt, ESRI .asc)")->required();
   info->add_flag("--json", options->json, "Print JSON instead of text");
   info->add_option("--origin", options->origin, "Scene origin LAT,LON in WGS 84 degrees (default: DEM center)")
-      ->check([](const std::string& text) {
-        try {
-          parse_lat_lon(text);
-          return std::string();
-        } catch (const std::exception& e) {
-          return std::string(e.what());
-        }
-      });
+      ->check(lat_lon_validator());
   info->callback([options] {
     TerrainOptions terrain_options;
     if (!options->origin.empty()) terrain_options.origin = parse_lat_lon(options->origin);

@@ -3,6 +3,11 @@
 // share. Header-only parts are usable from bench/.
 #pragma once
 
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -53,5 +58,44 @@ struct TerrainPointFilter {
 // "LAT,LON" in WGS 84 degrees (e.g. "46.2,-122.19"). Throws std::invalid_argument naming
 // the text when it is not two numbers in range.
 LatLon parse_lat_lon(const std::string& text);
+// A CLI11 check for --origin (a usage error, exit 2, when the text is not LAT,LON).
+CLI::Validator lat_lon_validator();
+
+// `wangscape scatter` over a DEM: --dem FILE --max-height M --max-slope DEG --mask PNG
+// --fair-edges --origin LAT,LON.
+struct TerrainScatterOptions {
+  std::string dem;
+  double max_height_m = std::numeric_limits<double>::quiet_NaN();  // NaN: no limit
+  double max_slope_deg = std::numeric_limits<double>::quiet_NaN();
+  std::string mask;  // PNG stretched over the terrain, white = flowers
+  bool fair_edges = false;
+  std::string origin;  // LAT,LON; empty = the DEM's center
+  bool active() const { return !dem.empty(); }
+};
+// Adds those options to a subcommand; the terrain ones need --dem. Returns the --dem option.
+CLI::Option* add_terrain_scatter_options(CLI::App& sub, TerrainScatterOptions& options);
+
+// A loaded DEM with its ground tests, ready to scatter over.
+class TerrainScatter {
+ public:
+  // Loads the DEM and checks that the tile size fits the terrain and that some ground can
+  // pass the tests. Throws TerrainError or std::runtime_error with the file or value at fault.
+  TerrainScatter(const TerrainScatterOptions& options, double tile_size);
+
+  const Terrain& terrain() const { return *terrain_; }
+  // The ENU area the scatter covers: the terrain's extent.
+  Extent area() const { return TerrainGround{terrain_.get()}.extent(); }
+  // place_instances over the terrain with the tile and point filters; z = ground height.
+  PlacementStats place(const FilledTileSet& filled, const PlacementOptions& options,
+                       const std::function<void(const InstanceBatch&)>& sink) const;
+  // Why a scatter produced no instance, in one sentence (for an explained empty result).
+  std::string explain_empty() const;
+
+ private:
+  std::unique_ptr<Terrain> terrain_;
+  std::unique_ptr<TerrainFilter> filter_;
+  bool fair_edges_ = false;
+  double tile_size_ = 0;
+};
 
 }  // namespace wangscape::cli

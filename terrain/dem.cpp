@@ -95,6 +95,19 @@ DemRaster read_dem(const std::filesystem::path& path) {
     CPLFree(wkt);
   }
   dem.crs_name = crs->GetName() != nullptr ? crs->GetName() : "";
+  if (dem.crs_name.empty() || dem.crs_name == "unnamed") {  // USGS DEMs: describe it ourselves
+    const char* datum = crs->GetAttrValue("GEOGCS");
+    dem.crs_name = datum != nullptr ? datum : "unknown datum";
+    int north = 0;
+    const int zone = crs->IsProjected() ? crs->GetUTMZone(&north) : 0;
+    if (zone > 0) {
+      dem.crs_name += " / UTM zone " + std::to_string(zone) + (north ? "N" : "S");
+    } else if (crs->IsProjected()) {
+      const char* projection = crs->GetAttrValue("PROJECTION");
+      dem.crs_name += " / ";
+      dem.crs_name += projection != nullptr ? projection : "unnamed projection";
+    }
+  }
   dem.geographic = crs->IsGeographic() != 0;
   dem.linear_unit_m = dem.geographic ? 1.0 : crs->GetLinearUnits();
 
