@@ -125,6 +125,11 @@ void run(const TilingCommandOptions& options, const GlobalOptions& global) {
   tiling_options.forbid_identical_neighbours = options.no_identical_neighbours;
   int width = 0, height = 0;
   parse_pair(options.size, 'x', width, height);
+  // The window is held in memory (2 bytes per tile) for the outputs and statistics.
+  constexpr std::int64_t kMaxTiles = std::int64_t{1} << 30;
+  if (std::int64_t{width} * height > kMaxTiles)
+    throw std::runtime_error("size '" + options.size + "' is " + std::to_string(std::int64_t{width} * height) +
+                             " tiles; at most 2^30 (" + std::to_string(kMaxTiles) + ") fit in memory");
   parse_pair(options.origin, ',', tiling_options.origin_i, tiling_options.origin_j);
 
   Tiling tiling;

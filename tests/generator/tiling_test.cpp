@@ -120,6 +120,36 @@ TEST(HashedTiling, RowsEqualTileAtAcrossLongRows) {
   }
 }
 
+TEST(HashedTiling, UserSetsThatAreCompleteInAnyOrderWork) {
+  for (const char* name : {"complete-edge-3", "corner-2"}) {
+    std::vector<Tile> tiles = builtin_tileset(name).tiles;
+    std::reverse(tiles.begin(), tiles.end());
+    std::rotate(tiles.begin(), tiles.begin() + 5, tiles.end());
+    const TileSet set = make_tileset("mine", tiles, "mine.json");
+    TilingOptions options;
+    options.algorithm = TilingAlgorithm::hash;
+    for (std::uint64_t seed = 1; seed <= kSeeds; ++seed) {
+      options.seed = seed;
+      ASSERT_NO_THROW(check_tiling(set, make_tiling(set, 9, 7, options)));
+    }
+  }
+  // Separate N/S and E/W alphabets: all 2 * 2 * 3 * 3 combinations.
+  std::vector<Tile> mixed;
+  for (int n = 0; n < 2; ++n)
+    for (int e = 0; e < 3; ++e)
+      for (int s = 0; s < 2; ++s)
+        for (int w = 0; w < 3; ++w) mixed.push_back(Tile::edges(n, e, s, w));
+  const TileSet set = make_tileset("mixed", mixed, "mixed.json");
+  TilingOptions options;
+  options.algorithm = TilingAlgorithm::hash;
+  options.origin_i = -50;
+  const Tiling tiling = make_tiling(set, 40, 40, options);
+  EXPECT_NO_THROW(check_tiling(set, tiling));
+  std::vector<int> count(set.size());
+  for (const std::uint16_t t : tiling.tiles) ++count[t];
+  EXPECT_EQ(std::count(count.begin(), count.end(), 0), 0);
+}
+
 TEST(HashedTiling, WorksFarFromTheOrigin) {
   const TileSet set = builtin_tileset("complete-edge-3");
   TilingOptions options;
