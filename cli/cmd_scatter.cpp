@@ -1,6 +1,8 @@
 // wangscape scatter --tileset tiles.json --plane 64x64 --tile-size 4 --out points.csv
 // Lays a tiling of a filled tile set over a flat plane and writes every instance (CSV, or
 // binary PLY for .ply); --metrics measures the quality figures of the result.
+// With --dem FILE the ground is a DEM (cli/terrain_ground.h): z = ground height, tiles only
+// where --max-height / --max-slope / --mask allow (seed 003), --fair-edges for partial tiles.
 #include <fmt/core.h>
 
 #include <chrono>
@@ -9,6 +11,7 @@
 
 #include "cli/command.h"
 #include "cli/progress.h"
+#include "cli/terrain_ground.h"
 #include "exporters/filled_tileset_json.h"
 #include "exporters/image_io.h"
 #include "exporters/point_writer.h"
@@ -29,6 +32,7 @@ struct ScatterOptions {
   bool metrics = false;
   bool json = false;
   std::string spectrum_png;
+  TerrainScatterOptions terrain;  // --dem and its tests
 };
 
 Extent parse_plane(const std::string& text) {
@@ -91,7 +95,10 @@ void run(const ScatterOptions& options, const GlobalOptions& global) {
     throw std::runtime_error("scatter: nothing to do; give --out FILE and/or --metrics");
   if (!(options.tile_size > 0))
     throw std::runtime_error("--tile-size " + std::to_string(options.tile_size) + ": expected meters > 0");
-  const Extent plane = parse_plane(options.plane);
+  // Over a DEM: loaded and checked before any output is opened.
+  std::optional<TerrainScatter> dem;
+  if (options.terrain.active()) dem.emplace(options.terrain, options.tile_size);
+  const Extent plane = dem ? dem->area() : parse_plane(options.plane);
   const FilledTileSet filled = read_filled_tileset_json(options.tileset);
 
   PlacementOptions placement;
@@ -111,13 +118,17 @@ void run(const ScatterOptions& options, const GlobalOptions& global) {
                                                static_cast<double>(std::max<std::size_t>(filled.tiles.size(), 1))),
                     global.quiet);
   const auto start = std::chrono::steady_clock::now();
-  const PlacementStats stats = place_instances(filled, FlatGround{plane, 0.0}, placement, [&](const InstanceBatch& b) {
+  const auto sink = [&](const InstanceBatch& b) {
     if (writer) writer->write(b);
     if (options.metrics) {
       xs.insert(xs.end(), b.x.begin(), b.x.end());
       ys.insert(ys.end(), b.y.begin(), b.y.end());
     }
-  });
+  };
+  const PlacementStats stats =
+      dem ? dem->place(filled, placement, sink) : place_instances(filled, FlatGround{plane, 0.0}, placement, sink);
+  if (dem && stats.points == 0 && !global.quiet)
+    fmt::print(stderr, "wangscape: empty result: {}\n", dem->explain_empty());
   progress.finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (writer) writer->commit();
@@ -145,7 +156,8 @@ void register_scatter_command(CLI::App& app, const GlobalOptions& global) {
   auto options = std::make_shared<ScatterOptions>();
   sub->add_option("--tileset", options->tileset, "Filled tile set (wangscape tileset --per-tile N --out FILE)")
       ->required();
-  sub->add_option("--plane", options->plane, "Plane size WIDTHxHEIGHT in meters (east x north)")->capture_default_str();
+  auto* plane = sub->add_option("--plane", options->plane, "Plane size WIDTHxHEIGHT in meters (east x north)")
+                    ->capture_default_str();
   sub->add_option("--tile-size", options->tile_size, "Tile side in meters")->capture_default_str();
   sub->add_option("--out", options->out, "Instances: CSV (x,y,z,variant,yaw,scale,tile), or binary PLY for .ply");
   sub->add_option("--seed", options->seed, "Tiling seed")->capture_default_str();
@@ -155,6 +167,7 @@ void register_scatter_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_flag("--metrics", options->metrics, "Print quality figures (rho, NN distances, densities, spectrum)");
   sub->add_flag("--json", options->json, "With --metrics: print them as JSON");
   sub->add_option("--spectrum-png", options->spectrum_png, "With --metrics: plot the power spectrum into this PNG");
+  add_terrain_scatter_options(*sub, options->terrain)->excludes(plane);
   sub->callback([options, &global] { run(*options, global); });
 }
 
