@@ -45,3 +45,12 @@ terrain_cli_test(info_no_file 2 "terrain|info")
 terrain_cli_test(info_bad_origin 2 "terrain|info|--origin|95,0|${_terrain_dem}/SainteHelens.dem" ERR "LAT,LON")
 terrain_cli_test(info_unknown_option 2 "terrain|info|--bogus|${_terrain_dem}/SainteHelens.dem")
 terrain_cli_test(no_subcommand 2 "terrain")
+
+# wangscape scatter --dem (tests/cli/terrain/scatter_check.cmake, one MODE per test).
+foreach(mode IN ITEMS below_threshold explained_empty errors)
+  add_test(NAME cli_terrain_scatter_${mode}
+    COMMAND ${CMAKE_COMMAND} -DBIN=${WANGSCAPE_BIN} -DSCRATCH=${CLI_SCRATCH}/terrain_scatter_${mode}
+            -DDEM=${PROJECT_SOURCE_DIR}/data/SainteHelens.dem -DMODE=${mode}
+            -P ${CMAKE_CURRENT_LIST_DIR}/terrain/scatter_check.cmake)
+  set_tests_properties(cli_terrain_scatter_${mode} PROPERTIES LABELS "cli;terrain" TIMEOUT 300)
+endforeach()
