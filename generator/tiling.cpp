@@ -114,6 +114,7 @@ class CandidateTable {
     return {tiles_.data() + begin_[key], tiles_.data() + begin_[key + 1]};
   }
   const std::vector<int>& slots() const { return slots_; }
+  std::size_t key_count() const { return begin_.size() - 1; }
   // Colors per slot encoded in `key` (for messages).
   std::array<std::uint32_t, kSlotCount> decode(std::uint32_t key, const TileSet& set) const {
     std::array<std::uint32_t, kSlotCount> values{};
@@ -204,6 +205,7 @@ class SweepTiler {
       require(first_row_, first_row_.key_from(tile, west_only_), algorithm);
       require(first_column_, first_column_.key_from(tile, vertical_), algorithm);
     }
+    prepare_pairs();
     if (options.forbid_identical_neighbours) {
       if (set.size() <= kMaskTiles) {
         prepare_row_lookahead();
@@ -233,7 +235,19 @@ class SweepTiler {
             choose(interior_.candidates(vertical_key_[previous[i]] + west_key_[row[i - 1]]), previous[i], row[i - 1]);
       return;
     }
-    // The hot loop: two table lookups and one random draw per tile.
+    if (!pairs_.empty()) {
+      // The hot loop for two-choice sets (cohen*): one table load and one random bit per tile;
+      // the entry carries each candidate's west key, so the loop never looks the tile up again.
+      std::uint32_t west = west_key_[row[0]];
+      for (std::size_t i = 1; i < width; ++i) {
+        const std::uint64_t entry = pairs_[vertical_key_[previous[i]] + west];
+        const auto half = static_cast<std::uint32_t>(entry >> (32 * next_bit()));
+        row[i] = static_cast<std::uint16_t>(half);
+        west = half >> 16;
+      }
+      return;
+    }
+    // The general hot loop: two table lookups and one random draw per tile.
     for (std::size_t i = 1; i < width; ++i) {
       const auto candidates = interior_.candidates(vertical_key_[previous[i]] + west_key_[row[i - 1]]);
       row[i] = candidates[scale(next_bits(), static_cast<std::uint32_t>(candidates.size()))];
@@ -241,6 +255,33 @@ class SweepTiler {
   }
 
  private:
+  // When every interior constraint leaves at most two candidates and keys fit 16 bits, packs
+  // each key's candidates as two (tile, west key) halves of a 64-bit entry.
+  void prepare_pairs() {
+    if (options_.forbid_identical_neighbours || interior_.key_count() > 65536) return;
+    std::vector<std::uint64_t> pairs(interior_.key_count(), 0);
+    for (std::size_t key = 0; key < pairs.size(); ++key) {
+      const auto candidates = interior_.candidates(static_cast<std::uint32_t>(key));
+      if (candidates.size() > 2) return;
+      if (candidates.empty()) continue;  // never reached: require() checked every reachable key
+      const auto half = [&](std::uint16_t t) { return std::uint64_t{t} | (std::uint64_t{west_key_[t]} << 16); };
+      pairs[key] = half(candidates.front()) | (half(candidates.back()) << 32);
+    }
+    pairs_ = std::move(pairs);
+  }
+
+  // One random bit (0 or 1), 64 per generator draw.
+  unsigned next_bit() {
+    if (bits_left_ == 0) {
+      bit_word_ = splitmix64(rng_);
+      bits_left_ = 64;
+    }
+    --bits_left_;
+    const auto bit = static_cast<unsigned>(bit_word_ & 1);
+    bit_word_ >>= 1;
+    return bit;
+  }
+
   // Sets of at most 64 tiles forbid identical neighbours with a row lookahead: a backward pass
   // marks, per position, the tiles from which the rest of the row can still be completed, so a
   // pair of neighbours that leaves no other choice (cohen12: north (1,2,1,0), west (1,0,0,0))
@@ -376,6 +417,9 @@ class SweepTiler {
   std::vector<std::uint32_t> vertical_key_, west_key_;
   std::uint64_t rng_ = mix64(options_.seed ^ 0x5CA11E5EED5ull);
   std::uint32_t spare_bits_ = 0;
+  std::uint64_t bit_word_ = 0;
+  int bits_left_ = 0;
+  std::vector<std::uint64_t> pairs_;                          // two-choice fast path (see prepare_pairs)
   std::vector<TileMask> vertical_mask_, east_mask_, viable_;  // row lookahead (forbid, <= 64 tiles)
   int rows_done_ = 0;
   bool spare_bits_left_ = false;
