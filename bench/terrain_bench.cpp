@@ -100,6 +100,26 @@ void BM_ScatterWithHeight(benchmark::State& state) {
 }
 BENCHMARK(BM_ScatterWithHeight)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The same scatter over a flat plane: what placement costs without a DEM (for comparison).
+void BM_ScatterFlatReference(benchmark::State& state) {
+  const FilledTileSet& filled = sunflower_tiles();
+  PlacementOptions options;
+  options.tile_size = 4.0;
+  options.algorithm = TilingAlgorithm::hash;
+  const Extent window{-2000, -2000, 2000, 2000};
+  options.area = window;
+  std::uint64_t instances = 0;
+  for (auto _ : state) {
+    double checksum = 0;
+    const auto stats = place_instances(filled, FlatGround{window, 100.0}, options,
+                                       [&](const InstanceBatch& batch) { checksum += batch.z.front(); });
+    instances += stats.points;
+    benchmark::DoNotOptimize(checksum);
+  }
+  state.SetItemsProcessed(std::int64_t(instances));
+}
+BENCHMARK(BM_ScatterFlatReference)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // 100 M instances streamed over the DEM: nothing holds them, so memory stays bounded.
 void BM_Scatter100MPeakMemory(benchmark::State& state) {
   const Terrain& terrain = helens();

@@ -199,3 +199,37 @@ TEST(Dem, SrtmHgtLoads) {
 
 }  // namespace
 }  // namespace wangscape
+
+namespace wangscape {
+namespace {
+
+TEST(Dem, OneDegreeGeographicUsgsDemLoads) {
+  // A 1-degree USGS DEM (3 arc-second, geographic), written by GDAL's own USGSDEM driver.
+  const auto dir = test::scratch_dir("one_degree");
+  const double step = 3.0 / 3600;
+  const auto value = [](int col, int row) { return 1000.0 + col + 2.0 * row; };
+  test::write_raster(dir / "one_degree.dem", "USGSDEM", GDT_Int16, 1201, 1201,
+                     {-106 - step / 2, step, 0, 41 + step / 2, 0, -step}, "EPSG:4326", value);
+  const Terrain terrain = Terrain::load(dir / "one_degree.dem");
+  const DemRaster& dem = terrain.dem();
+  EXPECT_EQ(dem.driver, "USGSDEM");
+  EXPECT_TRUE(dem.geographic);
+  EXPECT_EQ(dem.width, 1201);
+  EXPECT_EQ(dem.height, 1201);
+  EXPECT_NEAR(dem.spacing_x(), step, 1e-9);
+  EXPECT_DOUBLE_EQ(dem.min_height, 1000.0);
+  EXPECT_DOUBLE_EQ(dem.max_height, 1000.0 + 1200 + 2400);
+  EXPECT_NEAR(terrain.spacing_m()[0], 70.6, 0.5);  // 3" of longitude at 40.5 N
+  EXPECT_NEAR(terrain.spacing_m()[1], 92.5, 0.5);  // 3" of latitude
+  for (const auto& [col, row] : {std::pair{0, 0}, {600, 600}, {17, 1100}, {1200, 3}}) {
+    ASSERT_TRUE(dem.at(col, row).has_value());
+    EXPECT_DOUBLE_EQ(*dem.at(col, row), value(col, row));
+  }
+  double x = 600, y = 600;
+  terrain.samples_to_enu(std::span(&x, 1), std::span(&y, 1));
+  EXPECT_NEAR(x, 0.0, 1e-6);  // the center sample is the default origin
+  EXPECT_NEAR(*terrain.height(x, y), value(600, 600), 1e-3);
+}
+
+}  // namespace
+}  // namespace wangscape
