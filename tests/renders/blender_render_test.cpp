@@ -33,7 +33,7 @@ TEST(BlenderRender, AddonImportMatchesManifestInsideBlender) {
   const ChildExit exit =
       run_logged({find_blender().string(), "-b", "--factory-startup", "--python-exit-code", "1", "--python",
                   std::string(WANGSCAPE_SOURCE_DIR) + "/tests/blender/check_import.py", "--",
-                  (dir / "blender" / "wangscape_import.zip").string(), summary.manifest.string()},
+                  (dir / "blender" / "wangscape_import.zip").string(), summary.manifest.string(), "5"},
                  log);
   EXPECT_TRUE(exit.exited && exit.status == 0) << exit.describe() << last_log_lines(log, 30);
   EXPECT_NE(last_log_lines(log, 200).find("wangscape-check: OK: 2500 instances"), std::string::npos)

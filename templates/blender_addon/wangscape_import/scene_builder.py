@@ -270,7 +270,7 @@ def build_camera(context, spec, scene_extent):
 def build_sun_and_sky(context, spec):
     """A sun lamp shining along -direction and a Nishita sky whose sun sits at the same place."""
     data = bpy.data.lights.new("Wangscape sun", "SUN")
-    data.energy = 4.0 * float(spec.get("strength", 1.0))  # W/m^2: bright daylight under Filmic
+    data.energy = 3.0 * float(spec.get("strength", 1.0))  # W/m^2: bright daylight under Filmic
     data.angle = math.radians(0.53)  # the sun's apparent diameter
     obj = bpy.data.objects.new("Wangscape sun", data)
     obj.rotation_mode = "QUATERNION"
@@ -286,10 +286,25 @@ def build_sun_and_sky(context, spec):
     sky.sun_disc = False  # the lamp is the sun; a disc too would light the scene twice
     sky.sun_elevation = math.radians(float(spec["elevation_degrees"]))
     sky.sun_rotation = math.radians(float(spec["azimuth_degrees"]))  # both clockwise from north
-    background.inputs["Strength"].default_value = 0.4
+    background.inputs["Strength"].default_value = 0.3
     tree.links.new(sky.outputs["Color"], background.inputs["Color"])
     context.scene.world = world
     return obj
+
+
+def set_view_transform(scene):
+    """Filmic with a high-contrast look: closest to POV-Ray's sRGB output for a sunlit field."""
+    settings = scene.view_settings
+    try:
+        settings.view_transform = "Filmic"
+    except TypeError:
+        return  # a build without Filmic: keep its default
+    for look in ("High Contrast", "Filmic - High Contrast"):  # the look's name changed in 4.0
+        try:
+            settings.look = look
+            return
+        except TypeError:
+            continue
 
 
 def apply_render_settings(scene, spec):
@@ -299,6 +314,7 @@ def apply_render_settings(scene, spec):
     scene.cycles.use_denoising = False  # Debian's Blender is built without OpenImageDenoise
     if hasattr(scene.cycles, "use_preview_denoising"):
         scene.cycles.use_preview_denoising = False
+    set_view_transform(scene)
     scene.render.resolution_x = int(spec["width"])
     scene.render.resolution_y = int(spec["height"])
     scene.render.resolution_percentage = 100
