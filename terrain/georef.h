@@ -43,7 +43,7 @@ class EnuFrame {
   double convergence_deg() const {
     return gamma_;
   }                                                // meridian convergence at the origin, degrees
-                                                   // (bearing of UTM grid north from true north)
+                                                   // (bearing of UTM grid north, clockwise from true north)
   double utm_scale() const { return utm_scale_; }  // UTM point scale factor at the origin
 
  private:

@@ -48,7 +48,8 @@ struct TerrainFilterOptions {
 };
 
 // The ground tests for placement. Built once per terrain (a table over the DEM's cells),
-// then thread-safe (const).
+// then thread-safe (const). Keeps a pointer to the terrain: the terrain must outlive the
+// filter and not move.
 //
 // A DEM cell passes when its four corners have data, none is higher than max_height
 // (so no point of the bilinear surface is), and the slope at each corner is at most
