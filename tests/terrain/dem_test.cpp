@@ -233,3 +233,25 @@ TEST(Dem, OneDegreeGeographicUsgsDemLoads) {
 
 }  // namespace
 }  // namespace wangscape
+
+namespace wangscape {
+namespace {
+
+TEST(Dem, HeightsInFeetBecomeMeters) {
+  const auto dir = test::scratch_dir("feet");
+  const auto path = dir / "feet.tif";
+  test::write_raster(path, "GTiff", GDT_Float32, 10, 10, {500000, 30, 0, 4000000, 0, -30}, "EPSG:26913",
+                     [](int col, int) { return 1000.0 + col; });
+  {
+    GDALDataset* d = GDALDataset::FromHandle(GDALOpen(path.c_str(), GA_Update));
+    d->GetRasterBand(1)->SetUnitType("ft");
+    GDALClose(d);
+  }
+  const DemRaster dem = read_dem(path);
+  EXPECT_EQ(dem.height_unit_in_file, "ft");
+  EXPECT_NEAR(dem.min_height, 1000 * 0.3048, 1e-3);
+  EXPECT_NEAR(dem.max_height, 1009 * 0.3048, 1e-3);
+}
+
+}  // namespace
+}  // namespace wangscape
