@@ -144,8 +144,7 @@ TerrainFilter::TerrainFilter(const Terrain& terrain, TerrainFilterOptions option
                               ? std::pow(std::tan(*options_.max_slope_deg * std::numbers::pi / 180), 2)
                               : std::numeric_limits<double>::infinity();
   double min_tan2 = std::numeric_limits<double>::infinity();
-  cell_passes_.assign(std::size_t(cells_x_) * std::size_t(cells_y_), 0);
-  cell_may_pass_.assign(cell_passes_.size(), 0);
+  cell_flags_.assign(std::size_t(cells_x_) * std::size_t(cells_y_), 0);
   for (int row = 0; row < cells_y_; ++row)
     for (int col = 0; col < cells_x_; ++col) {
       const float* p = &dem.heights[dem.index(col, row)];
@@ -161,10 +160,14 @@ TerrainFilter::TerrainFilter(const Terrain& terrain, TerrainFilterOptions option
         highest = std::max(highest, double(h));
         some_low = some_low || h <= max_height;
       }
-      const std::size_t k = std::size_t(row) * std::size_t(cells_x_) + std::size_t(col);
-      cell_may_pass_[k] = some_low;
-      maybe_cells_ += some_low;
-      if (!all_data || highest > max_height) continue;
+      std::uint8_t& flags = cell_flags_[std::size_t(row) * std::size_t(cells_x_) + std::size_t(col)];
+      if (some_low) {
+        flags |= kSomeLow;
+        ++maybe_cells_;
+      }
+      if (!all_data) continue;
+      flags |= kData;
+      if (highest <= max_height) flags |= kLow;
       // The gradient at each corner, from the cell's edges that meet there.
       const double along_top = p[1] - p[0], along_bottom = q[1] - q[0];
       const double down_left = q[0] - p[0], down_right = q[1] - p[1];
@@ -175,15 +178,15 @@ TerrainFilter::TerrainFilter(const Terrain& terrain, TerrainFilterOptions option
         const double dz_dx = g[0] * col_x + g[1] * row_x, dz_dy = g[0] * col_y + g[1] * row_y;
         steepest = std::max(steepest, dz_dx * dz_dx + dz_dy * dz_dy);
       }
-      min_tan2 = std::min(min_tan2, steepest);
+      if (some_low) min_tan2 = std::min(min_tan2, steepest);
       if (steepest > max_tan2) continue;
-      cell_passes_[k] = 1;
-      ++passing_cells_;
+      flags |= kFlat;
+      if (flags & kLow) ++passing_cells_;
     }
   min_cell_slope_deg_ = std::atan(std::sqrt(min_tan2)) * 180 / std::numbers::pi;
 }
 
-bool TerrainFilter::touched_cells(const EnuRect& tile, bool clamp, int& c0, int& r0, int& c1, int& r1) const {
+bool TerrainFilter::touched_cells(const EnuRect& tile, bool clamp, SampleBox& box) const {
   EnuRect rect = tile;
   if (clamp) {
     const EnuRect e = terrain_->extent();
@@ -191,42 +194,76 @@ bool TerrainFilter::touched_cells(const EnuRect& tile, bool clamp, int& c0, int&
             std::min(rect.max_y, e.max_y)};
     if (!(rect.min_x <= rect.max_x && rect.min_y <= rect.max_y)) return false;
   }
-  double col_lo = std::numeric_limits<double>::infinity(), col_hi = -col_lo, row_lo = col_lo, row_hi = -col_lo;
+  box.col_lo = box.row_lo = std::numeric_limits<double>::infinity();
+  box.col_hi = box.row_hi = -box.col_lo;
   const double xs[2] = {rect.min_x, rect.max_x}, ys[2] = {rect.min_y, rect.max_y};
   for (double x : xs)
     for (double y : ys) {
       double col, row;
       if (!terrain_->map_to_sample(x, y, col, row)) return false;
-      col_lo = std::min(col_lo, col);
-      col_hi = std::max(col_hi, col);
-      row_lo = std::min(row_lo, row);
-      row_hi = std::max(row_hi, row);
+      box.col_lo = std::min(box.col_lo, col);
+      box.col_hi = std::max(box.col_hi, col);
+      box.row_lo = std::min(box.row_lo, row);
+      box.row_hi = std::max(box.row_hi, row);
     }
-  if (!clamp && (col_lo < 0 || row_lo < 0 || col_hi > cells_x_ || row_hi > cells_y_)) return false;
-  if (col_hi < 0 || row_hi < 0 || col_lo > cells_x_ || row_lo > cells_y_) return false;
-  c0 = std::clamp(int(std::floor(col_lo)), 0, cells_x_ - 1);
-  c1 = std::clamp(int(std::floor(col_hi)), 0, cells_x_ - 1);
-  r0 = std::clamp(int(std::floor(row_lo)), 0, cells_y_ - 1);
-  r1 = std::clamp(int(std::floor(row_hi)), 0, cells_y_ - 1);
+  if (!clamp && (box.col_lo < 0 || box.row_lo < 0 || box.col_hi > cells_x_ || box.row_hi > cells_y_)) return false;
+  if (box.col_hi < 0 || box.row_hi < 0 || box.col_lo > cells_x_ || box.row_lo > cells_y_) return false;
+  box.c0 = std::clamp(int(std::floor(box.col_lo)), 0, cells_x_ - 1);
+  box.c1 = std::clamp(int(std::floor(box.col_hi)), 0, cells_x_ - 1);
+  box.r0 = std::clamp(int(std::floor(box.row_lo)), 0, cells_y_ - 1);
+  box.r1 = std::clamp(int(std::floor(box.row_hi)), 0, cells_y_ - 1);
+  return true;
+}
+
+bool TerrainFilter::box_below(const SampleBox& box, double max_height) const {
+  // Along any row or column line the bilinear surface is linear between grid lines, so its
+  // maximum over an axis-aligned box is reached where the box's edges or corners meet the
+  // grid lines (or at grid nodes inside). The box is padded by a hair: the tile's image
+  // in sample coordinates is a slightly bent quadrilateral inside it.
+  constexpr double kPad = 1e-6;
+  const double max_col = cells_x_, max_row = cells_y_;
+  const double col_lo = std::max(0.0, box.col_lo - kPad), col_hi = std::min(max_col, box.col_hi + kPad);
+  const double row_lo = std::max(0.0, box.row_lo - kPad), row_hi = std::min(max_row, box.row_hi + kPad);
+  auto lines = [](double lo, double hi, std::vector<double>& out) {
+    out.clear();
+    out.push_back(lo);
+    for (double k = std::floor(lo) + 1; k < hi; ++k) out.push_back(k);
+    out.push_back(hi);
+  };
+  thread_local std::vector<double> cols, rows;
+  lines(col_lo, col_hi, cols);
+  lines(row_lo, row_hi, rows);
+  for (double row : rows)
+    for (double col : cols) {
+      const auto h = terrain_->height_at_sample(col, row);
+      if (!h || *h > max_height) return false;
+    }
   return true;
 }
 
 bool TerrainFilter::tile_passes(const EnuRect& tile) const {
-  int c0, r0, c1, r1;
-  if (!touched_cells(tile, false, c0, r0, c1, r1)) return false;
-  for (int row = r0; row <= r1; ++row)
-    for (int col = c0; col <= c1; ++col)
-      if (!cell_passes_[std::size_t(row) * std::size_t(cells_x_) + std::size_t(col)]) return false;
+  SampleBox box;
+  if (!touched_cells(tile, false, box)) return false;
+  bool all_low = true;
+  for (int row = box.r0; row <= box.r1; ++row)
+    for (int col = box.c0; col <= box.c1; ++col) {
+      const std::uint8_t flags = cell_flags_[std::size_t(row) * std::size_t(cells_x_) + std::size_t(col)];
+      if ((flags & (kData | kFlat)) != (kData | kFlat)) return false;
+      all_low = all_low && (flags & kLow);
+    }
+  // Cells whose corners are all low need nothing more; otherwise the tile's own ground decides.
+  if (!all_low && !box_below(box, options_.max_height_m.value_or(std::numeric_limits<double>::infinity())))
+    return false;
   return !mask_ || mask_->allows_all(tile);
 }
 
 bool TerrainFilter::tile_may_pass(const EnuRect& tile) const {
-  int c0, r0, c1, r1;
-  if (!touched_cells(tile, true, c0, r0, c1, r1)) return false;
+  SampleBox box;
+  if (!touched_cells(tile, true, box)) return false;
   bool some = false;
-  for (int row = r0; row <= r1 && !some; ++row)
-    for (int col = c0; col <= c1 && !some; ++col)
-      some = cell_may_pass_[std::size_t(row) * std::size_t(cells_x_) + std::size_t(col)] != 0;
+  for (int row = box.r0; row <= box.r1 && !some; ++row)
+    for (int col = box.c0; col <= box.c1 && !some; ++col)
+      some = (cell_flags_[std::size_t(row) * std::size_t(cells_x_) + std::size_t(col)] & kSomeLow) != 0;
   return some && (!mask_ || mask_->allows_any(tile));
 }
 

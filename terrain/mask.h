@@ -51,10 +51,11 @@ struct TerrainFilterOptions {
 // then thread-safe (const). Keeps a pointer to the terrain: the terrain must outlive the
 // filter and not move.
 //
-// A DEM cell passes when its four corners have data, none is higher than max_height
-// (so no point of the bilinear surface is), and the slope at each corner is at most
-// max_slope (the bilinear slope is largest at a corner). The slope table converts DEM
-// gradients to ENU with the Jacobian at the DEM center: exact for 7.5' quadrangles,
+// A tile passes when every DEM cell it touches has data at its four corners and a slope
+// of at most max_slope at each corner (the bilinear slope is largest at a corner), and
+// the ground over the tile is nowhere above max_height: exactly, with the bilinear
+// surface's maximum over the tile's box in sample coordinates. The slope table converts
+// DEM gradients to ENU with the Jacobian at the DEM center: exact for 7.5' quadrangles,
 // within ~1% of the slope's tangent over a 1-degree DEM.
 class TerrainFilter {
  public:
@@ -80,16 +81,26 @@ class TerrainFilter {
   const PaintedMask* mask() const { return mask_ ? &*mask_ : nullptr; }
 
  private:
-  // Cells [c0, c1] x [r0, r1] the rectangle touches; false if any corner of it is off
-  // the lattice or the DEM (when `clamp` is false), or it misses the DEM (clamp true).
-  bool touched_cells(const EnuRect& tile, bool clamp, int& c0, int& r0, int& c1, int& r1) const;
+  // A tile in DEM sample coordinates: the bounding box of its corners, and the cells
+  // [c0, c1] x [r0, r1] it touches.
+  struct SampleBox {
+    double col_lo, col_hi, row_lo, row_hi;
+    int c0, r0, c1, r1;
+  };
+  // False if a corner of the rectangle is off the lattice or the DEM (clamp false), or the
+  // rectangle misses the DEM (clamp true: it is first cut to the terrain's extent).
+  bool touched_cells(const EnuRect& tile, bool clamp, SampleBox& box) const;
+  // The bilinear ground over the box has data and is nowhere above max_height (exact).
+  bool box_below(const SampleBox& box, double max_height) const;
 
   const Terrain* terrain_;
   TerrainFilterOptions options_;
   std::optional<PaintedMask> mask_;
   int cells_x_ = 0, cells_y_ = 0;
-  std::vector<std::uint8_t> cell_passes_;    // all of the cell passes height, slope, data
-  std::vector<std::uint8_t> cell_may_pass_;  // some corner has data and is low enough
+  // Per DEM cell: all four corners have data, its slope is within the limit, all corners
+  // are low enough, some corner (with data) is low enough.
+  enum CellFlag : std::uint8_t { kData = 1, kFlat = 2, kLow = 4, kSomeLow = 8 };
+  std::vector<std::uint8_t> cell_flags_;
   std::size_t passing_cells_ = 0, maybe_cells_ = 0;
   double min_cell_slope_deg_ = 0;
 };

@@ -50,6 +50,35 @@ TEST(Mask, PassingTilesLieWhollyBelowTheThresholdAndFlatEnough) {
   EXPECT_GT(maybe, passing);
 }
 
+TEST(Mask, TileTestIsExactNotAStaircaseOfCells) {
+  // A 4 m tile whose own ground is below the threshold passes even when a corner of its
+  // 30 m DEM cell is above it: the strict border follows the contour at the tile size.
+  const Terrain& terrain = helens();
+  const TerrainFilter filter(terrain, {.max_height_m = 1500.0, .max_slope_deg = {}, .mask_image = {}});
+  std::mt19937 rng(8);
+  int near_contour = 0;
+  for (int k = 0; k < 20000 && near_contour < 300; ++k) {
+    const EnuRect tile = random_tile(terrain.extent(), 4.0, rng);
+    double highest = -1e9;
+    bool data = true;
+    for (int a = 0; a <= 8 && data; ++a)
+      for (int b = 0; b <= 8 && data; ++b) {
+        const auto h = terrain.height(tile.min_x + a * 0.5, tile.min_y + b * 0.5);
+        data = h.has_value();
+        if (h) highest = std::max(highest, *h);
+      }
+    if (!data || highest < 1450.0 || highest > 1550.0) continue;  // only tiles near the contour
+    ++near_contour;
+    if (highest < 1500.0 - 0.05) {
+      EXPECT_TRUE(filter.tile_passes(tile)) << "max " << highest;
+    }
+    if (highest > 1500.0) {
+      EXPECT_FALSE(filter.tile_passes(tile)) << "max " << highest;
+    }
+  }
+  EXPECT_GE(near_contour, 300);
+}
+
 TEST(Mask, PointTestFollowsTheGround) {
   const Terrain& terrain = helens();
   const TerrainFilter filter(terrain, {.max_height_m = 1200.0, .max_slope_deg = {}, .mask_image = {}});

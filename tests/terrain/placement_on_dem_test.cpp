@@ -88,7 +88,13 @@ TEST(PlacementOnDem, HashedSubAreaEqualsThatPartOfTheWhole) {
     ASSERT_GT(whole.size(), 1000u);
     // A sub-window around a flower of the whole run, with edges inside tiles: the tiles it
     // touches are whole tiles of the big run.
-    const float cx = std::get<0>(whole[whole.size() / 2]), cy = std::get<1>(whole[whole.size() / 2]);
+    // (The window must stay inside kWindow's tiles: pick a flower 500 m inside it.)
+    const auto inner = std::find_if(whole.begin() + std::ptrdiff_t(whole.size() / 2), whole.end(), [](const auto& i) {
+      return std::get<0>(i) > kWindow.min_x + 500 && std::get<0>(i) < kWindow.max_x - 500 &&
+             std::get<1>(i) > kWindow.min_y + 500 && std::get<1>(i) < kWindow.max_y - 500;
+    });
+    ASSERT_NE(inner, whole.end());
+    const float cx = std::get<0>(*inner), cy = std::get<1>(*inner);
     const Extent sub{cx - 403.3, cy - 297.1, cx + 305.25, cy + 401.9};
     auto part = scatter(sub, s, filter, fair);
     ASSERT_FALSE(part.empty());
