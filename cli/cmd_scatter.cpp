@@ -66,6 +66,7 @@ Json metrics_json(const PointMetrics& m, double seconds) {
   j["edge_density_ratio"] = m.edge_density_ratio;
   j["corner_density_ratio"] = m.corner_density_ratio;
   j["anisotropy_db"] = m.spectrum.mean_anisotropy_db;
+  j["anisotropy_off_grid_db"] = m.spectrum.mean_anisotropy_off_grid_db;
   j["anisotropy_noise_floor_db"] = m.spectrum.noise_floor_db;
   j["scatter_seconds"] = seconds;
   Json spectrum;
@@ -86,8 +87,9 @@ void print_metrics(const PointMetrics& m, double packing_diameter) {
   fmt::print("pairs < {:.4f} m:      {}\n", packing_diameter, m.close_pairs);
   fmt::print("edge density ratio:    {:.3f}\n", m.edge_density_ratio);
   fmt::print("corner density ratio:  {:.3f}\n", m.corner_density_ratio);
-  fmt::print("anisotropy:            {:.2f} dB (noise floor {:.2f} dB, {} windows)\n", m.spectrum.mean_anisotropy_db,
-             m.spectrum.noise_floor_db, m.spectrum.windows);
+  fmt::print("anisotropy:            {:.2f} dB, {:.2f} dB off the tile grid (noise floor {:.2f} dB, {} windows)\n",
+             m.spectrum.mean_anisotropy_db, m.spectrum.mean_anisotropy_off_grid_db, m.spectrum.noise_floor_db,
+             m.spectrum.windows);
 }
 
 void run(const ScatterOptions& options, const GlobalOptions& global) {

@@ -5,6 +5,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -152,7 +153,7 @@ std::size_t count_close_pairs(std::span<const float> x, std::span<const float> y
 }
 
 RadialSpectrum radial_power_spectrum(std::span<const float> x, std::span<const float> y, const Extent& area,
-                                     double window, int max_windows) {
+                                     double window, int max_windows, double grid_period) {
   RadialSpectrum s;
   s.window = window;
   const int wx = static_cast<int>(std::floor(area.width() / window + 1e-9));
@@ -198,35 +199,57 @@ RadialSpectrum radial_power_spectrum(std::span<const float> x, std::span<const f
   for (const auto& pg : periodograms)
     for (std::size_t k = 0; k < mean.size(); ++k) mean[k] += pg[k] / s.windows;
 
-  std::vector<double> bin_sum(static_cast<std::size_t>(kmax) + 1, 0.0), bin_sum2(bin_sum.size(), 0.0);
-  std::vector<int> bin_count(bin_sum.size(), 0);
+  // Annulus sums, all frequencies and (set 1) without the tile-grid frequencies.
+  const int grid = grid_period > 0 ? static_cast<int>(std::lround(window / grid_period)) : 0;
+  struct Bins {
+    std::vector<double> sum, sum2;
+    std::vector<int> count;
+  };
+  std::array<Bins, 2> bins;
+  for (Bins& b : bins) {
+    b.sum.assign(static_cast<std::size_t>(kmax) + 1, 0.0);
+    b.sum2.assign(b.sum.size(), 0.0);
+    b.count.assign(b.sum.size(), 0);
+  }
   for (int a = 0; a < nxh; ++a)
     for (int b = -kmax; b <= kmax; ++b) {
       if (a == 0 && b <= 0) continue;  // DC, and the mirror half of the kx = 0 column
       const int r = static_cast<int>(std::lround(std::hypot(a, b)));
       if (r < 1 || r > kmax) continue;
       const double pw = mean[static_cast<std::size_t>(a) * ny + static_cast<std::size_t>(b + kmax)];
-      bin_sum[static_cast<std::size_t>(r)] += pw;
-      bin_sum2[static_cast<std::size_t>(r)] += pw * pw;
-      ++bin_count[static_cast<std::size_t>(r)];
+      const bool on_grid = grid > 0 && a % grid == 0 && b % grid == 0;
+      for (int set = 0; set < 2; ++set) {
+        if (set == 1 && on_grid) continue;
+        Bins& bin = bins[static_cast<std::size_t>(set)];
+        bin.sum[static_cast<std::size_t>(r)] += pw;
+        bin.sum2[static_cast<std::size_t>(r)] += pw * pw;
+        ++bin.count[static_cast<std::size_t>(r)];
+      }
     }
-  double aniso_sum = 0;
+  auto anisotropy = [](const Bins& b, std::size_t r, double& mean_power) {
+    mean_power = b.sum[r] / b.count[r];
+    const double var = std::max(0.0, b.sum2[r] / b.count[r] - mean_power * mean_power);
+    return mean_power > 0 && var > 0 ? 10.0 * std::log10(var / (mean_power * mean_power)) : -100.0;
+  };
+  double aniso_sum = 0, off_grid_sum = 0;
   int aniso_bins = 0;
   for (int r = 1; r <= kmax; ++r) {
     const auto ru = static_cast<std::size_t>(r);
-    if (bin_count[ru] == 0) continue;
-    const double m = bin_sum[ru] / bin_count[ru];
-    const double var = std::max(0.0, bin_sum2[ru] / bin_count[ru] - m * m);
+    if (bins[0].count[ru] == 0) continue;
+    double m = 0, m_off = 0;
     const double f = r / window;
     s.frequency.push_back(f);
+    s.anisotropy_db.push_back(anisotropy(bins[0], ru, m));
     s.power.push_back(m);
-    s.anisotropy_db.push_back(m > 0 && var > 0 ? 10.0 * std::log10(var / (m * m)) : -100.0);
+    const double off = bins[1].count[ru] > 0 ? anisotropy(bins[1], ru, m_off) : s.anisotropy_db.back();
     if (f >= 0.5 * s.peak_frequency && f <= 3.0 * s.peak_frequency) {
       aniso_sum += s.anisotropy_db.back();
+      off_grid_sum += off;
       ++aniso_bins;
     }
   }
   s.mean_anisotropy_db = aniso_bins > 0 ? aniso_sum / aniso_bins : 0.0;
+  s.mean_anisotropy_off_grid_db = aniso_bins > 0 ? off_grid_sum / aniso_bins : 0.0;
   s.noise_floor_db = -10.0 * std::log10(static_cast<double>(s.windows));
 
   s.image_size = ny;
@@ -277,8 +300,8 @@ PointMetrics measure_points(std::span<const float> x, std::span<const float> y, 
     }
   }
   if (options.spectrum)
-    m.spectrum =
-        radial_power_spectrum(x, y, area, options.spectrum_window_tiles * options.tile_size, options.spectrum_windows);
+    m.spectrum = radial_power_spectrum(x, y, area, options.spectrum_window_tiles * options.tile_size,
+                                       options.spectrum_windows, options.tile_size);
   return m;
 }
 

@@ -38,6 +38,10 @@ struct RadialSpectrum {
   std::vector<double> frequency, power, anisotropy_db;
   double noise_floor_db = 0;      // anisotropy of averaged white-noise periodograms: -10 log10(windows)
   double mean_anisotropy_db = 0;  // mean over annuli between 0.5 and 3 peak frequencies
+  // The same without the frequencies of the tile grid (multiples of 1 / grid_period in both
+  // axes), where tilings of a few tiles have spikes (seed 000 Fig. 10b): the anisotropy of
+  // the point process itself.
+  double mean_anisotropy_off_grid_db = 0;
   // The averaged periodogram over the full frequency plane, image_size x image_size, row 0 =
   // highest positive ky, DC at the centre.
   int image_size = 0;
@@ -45,9 +49,10 @@ struct RadialSpectrum {
 };
 
 // Averages periodograms of up to `max_windows` square windows of side `window` laid over `area`
-// (row by row from its south-west corner), frequencies up to 3.5 / spacing.
+// (row by row from its south-west corner), frequencies up to 3.5 / spacing. grid_period: the
+// tile size, whose grid frequencies mean_anisotropy_off_grid_db leaves out (0: none).
 RadialSpectrum radial_power_spectrum(std::span<const float> x, std::span<const float> y, const Extent& area,
-                                     double window, int max_windows);
+                                     double window, int max_windows, double grid_period = 0);
 
 struct PointMetricsOptions {
   Extent area;                  // what the points cover
