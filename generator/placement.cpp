@@ -1,5 +1,6 @@
 #include "generator/placement.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -9,6 +10,7 @@ PlacementTable::PlacementTable(const FilledTileSet& filled) {
   first.reserve(filled.tiles.size() + 1);
   first.push_back(0);
   for (const auto& points : filled.tiles) {
+    max_points_per_tile = std::max(max_points_per_tile, points.size());
     for (const TilePoint& p : points) {
       x.push_back(p.x);
       y.push_back(p.y);
@@ -18,6 +20,16 @@ PlacementTable::PlacementTable(const FilledTileSet& filled) {
     }
     first.push_back(static_cast<std::uint32_t>(x.size()));
   }
+}
+
+void resize_batch(InstanceBatch& batch, std::size_t n) {
+  batch.x.resize(n);
+  batch.y.resize(n);
+  batch.z.resize(n);
+  batch.yaw.resize(n);
+  batch.scale.resize(n);
+  batch.variant.resize(n);
+  batch.tile.resize(n);
 }
 
 TileRange tile_range(const Extent& area, double tile_size) {

@@ -57,6 +57,7 @@ struct PlacementTable {
   std::vector<std::uint32_t> first;  // tile t's points are [first[t], first[t+1])
   std::vector<float> x, y, yaw, scale;
   std::vector<std::uint16_t> variant;
+  std::size_t max_points_per_tile = 0;
   explicit PlacementTable(const FilledTileSet& filled);
 };
 
@@ -82,6 +83,9 @@ class RowTiles {
   std::optional<HashedTiling> hashed_;
 };
 
+// Sets every array of `batch` to n entries.
+void resize_batch(InstanceBatch& batch, std::size_t n);
+
 // Lays the tiling over `ground` and calls sink(const InstanceBatch&) once per batch.
 //  tile_filter(const TileCell&) -> bool: a tile is instantiated only if it holds;
 //  point_filter(x, y, z) -> bool (meters): an instance is kept only if it holds.
@@ -106,6 +110,8 @@ PlacementStats place_instances(const FilledTileSet& filled, const G& ground, con
   const int rows_per_batch =
       std::clamp(static_cast<int>(static_cast<double>(options.batch_points) / row_points), 1, range.height());
   const int batch_count = (range.height() + rows_per_batch - 1) / rows_per_batch;
+  const std::size_t rows_per_batch_capacity =
+      static_cast<std::size_t>(rows_per_batch) * static_cast<std::size_t>(range.width()) * table.max_points_per_tile;
   const int tokens = std::max(2, 2 * tbb::this_task_arena::max_concurrency());
 
   struct BatchSlot {
@@ -128,11 +134,18 @@ PlacementStats place_instances(const FilledTileSet& filled, const G& ground, con
         // reuse the slot of batch b - tokens.
         BatchSlot& slot = slots[static_cast<std::size_t>(b % tokens)];
         InstanceBatch& out = slot.batch;
-        out.clear();
         slot.kept = 0;
         slot.row_tiles.resize(static_cast<std::size_t>(range.width()));
-        const int r_end = std::min(range.height(), (b + 1) * rows_per_batch);
-        for (int r = b * rows_per_batch; r < r_end; ++r) {
+        const int r_begin = b * rows_per_batch, r_end = std::min(range.height(), (b + 1) * rows_per_batch);
+        // Sized for the most points these rows can hold and written through pointers (no
+        // per-point capacity checks), then cut to the real count.
+        resize_batch(out, rows_per_batch_capacity);
+        float *ox = out.x.data(), *oy = out.y.data(), *oz = out.z.data(), *oyaw = out.yaw.data(),
+              *oscale = out.scale.data();
+        std::uint16_t* ovariant = out.variant.data();
+        std::uint32_t* otile = out.tile.data();
+        std::size_t n = 0;
+        for (int r = r_begin; r < r_end; ++r) {
           rows.row(r, slot.row_tiles);
           const std::int64_t j = range.j0 + r;
           for (int c = 0; c < range.width(); ++c) {
@@ -145,11 +158,18 @@ PlacementStats place_instances(const FilledTileSet& filled, const G& ground, con
               const double x = x0 + table.x[k] * s, y = y0 + table.y[k] * s;
               const std::optional<double> z = ground.height(x, y);
               if (!z || !point_filter(x, y, *z)) continue;
-              out.push_back(static_cast<float>(x), static_cast<float>(y), static_cast<float>(*z), table.yaw[k],
-                            table.scale[k], table.variant[k], t);
+              ox[n] = static_cast<float>(x);
+              oy[n] = static_cast<float>(y);
+              oz[n] = static_cast<float>(*z);
+              oyaw[n] = table.yaw[k];
+              oscale[n] = table.scale[k];
+              ovariant[n] = table.variant[k];
+              otile[n] = t;
+              ++n;
             }
           }
         }
+        resize_batch(out, n);
         return b;
       }) & tbb::make_filter<int, void>(tbb::filter_mode::serial_in_order, [&](int b) {
         const BatchSlot& slot = slots[static_cast<std::size_t>(b % tokens)];
