@@ -5,7 +5,9 @@
 //   scene.ini       size, antialiasing, threads, Library_Path (POV-Ray resolves includes
 //                   against the current directory and the library paths, not the .pov's folder)
 //   models.inc      each model variant declared once as `mesh2` (Sunflower_0 .. Sunflower_{V-1}):
-//                   copies of a mesh2 share its data, so a million flowers cost little memory
+//                   copies of a mesh2 share its data, so a million flowers cost little memory;
+//                   materials are one uv-mapped palette texture (a texture_list would be
+//                   copied with every instance)
 //   terrain.inc     the terrain as one mesh2 (Terrain), absent when the scene has no terrain
 //   instances.inc   one `object { Sunflower_v rotate ... scale ... translate ... }` per instance
 // Axes: ENU (x east, y north, z up) becomes POV (x east, y up, z north). Swapping y and z is a
