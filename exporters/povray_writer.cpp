@@ -155,7 +155,8 @@ void append_mesh2(std::string& out, const Mesh& mesh, int position_decimals, con
       }
       out += "  // " + material.name;
     }
-    out += "\n    } }\n    finish { Wangscape_Finish(" + fixed(roughness, 3) + ", " + fixed(translucency, 3) + ") }\n  }\n";
+    out += "\n    } }\n    finish { Wangscape_Finish(" + fixed(roughness, 3) + ", " + fixed(translucency, 3) +
+           ") }\n  }\n";
   }
   if (!texture_override.empty()) {
     out += "  texture { " + texture_override + " }\n";
