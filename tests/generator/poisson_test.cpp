@@ -4,9 +4,11 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <string>
 
+#include "generator/point_metrics.h"
 #include "generator/poisson_tiles.h"
 #include "generator/tiling.h"
 
@@ -196,6 +198,54 @@ TEST(PoissonTiles, TilesReachTheirTargetCount) {
     EXPECT_GE(tile.size(), 16u);
     EXPECT_LE(tile.size(), 24u);
   }
+}
+
+// Mean edge and corner densities over the interior's (point_metrics, zones one packing diameter
+// wide) of 32 x 32 scanline tilings of `name` filled with 20 points per tile, over fill seeds
+// 1..seeds: one seed's figures scatter by about 0.1 (8 tiles of 20 points), the mean does not.
+std::pair<double, double> mean_edge_corner_density(const std::string& name, int relax_rounds, int seeds) {
+  double edge = 0, corner = 0;
+  for (int s = 1; s <= seeds; ++s) {
+    PoissonFillOptions options;
+    options.seed = static_cast<std::uint64_t>(s);
+    options.relax_rounds = relax_rounds;
+    const FilledTileSet filled = fill_poisson_tiles(builtin_tileset(name), options);
+    TilingOptions tiling_options;
+    tiling_options.seed = 100 + static_cast<std::uint64_t>(s);
+    const Tiling tiling = make_tiling(filled.set, 32, 32, tiling_options);
+    std::vector<float> x, y;
+    for (int j = 0; j < tiling.height; ++j)
+      for (int i = 0; i < tiling.width; ++i)
+        for (const TilePoint& p : filled.tiles[tiling.at(i, j)]) {
+          x.push_back(static_cast<float>(i + p.x));
+          y.push_back(static_cast<float>(j + p.y));
+        }
+    PointMetricsOptions metrics;
+    metrics.area = {0, 0, double(tiling.width), double(tiling.height)};
+    metrics.packing_diameter = 2 * filled.radius_packing;
+    metrics.spectrum = false;
+    const PointMetrics m = measure_points(x, y, metrics);
+    edge += m.edge_density_ratio / seeds;
+    corner += m.corner_density_ratio / seeds;
+  }
+  return {edge, corner};
+}
+
+TEST(PoissonTiles, EdgeAndCornerDensitiesMatchTheInteriorInPlainEdgeSets) {
+  // The issue-3 goal (within 5 % of the interior after relaxation), for cohen8; darts alone and
+  // the 12-tile set within 7 %. Before the strip quotas and wider strips: cohen8 0.95 / 0.93
+  // after relaxation (edge / corner), so the band can fail.
+  const auto [edge, corner] = mean_edge_corner_density("cohen8", 100, 16);
+  EXPECT_NEAR(edge, 1.0, 0.05);
+  EXPECT_NEAR(corner, 1.0, 0.05);
+  const auto [dart_edge, dart_corner] = mean_edge_corner_density("cohen8", 0, 16);
+  EXPECT_NEAR(dart_edge, 1.0, 0.07);
+  EXPECT_NEAR(dart_corner, 1.0, 0.07);
+  const auto [edge12, corner12] = mean_edge_corner_density("cohen12", 100, 8);
+  EXPECT_NEAR(edge12, 1.0, 0.07);
+  EXPECT_NEAR(corner12, 1.0, 0.07);
+  std::printf("cohen8 relaxed edge %.3f corner %.3f, darts %.3f %.3f; cohen12 relaxed %.3f %.3f\n", edge, corner,
+              dart_edge, dart_corner, edge12, corner12);
 }
 
 TEST(PoissonTiles, RejectsBadOptions) {
