@@ -151,18 +151,7 @@ void write_filled_tileset_json(const std::filesystem::path& path, const FilledTi
 }
 
 FilledTileSet read_filled_tileset_json(const std::filesystem::path& path) {
-  const std::string source = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ExportError(where(source) + ": cannot open the file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  Json document;
-  try {
-    document = Json::parse(buffer.str());
-  } catch (const Json::parse_error& e) {
-    throw ExportError(where(source) + ": not valid JSON (" + e.what() + ")");
-  }
-  return filled_tileset_from_json(document, source);
+  return filled_tileset_from_json(read_json_file(path, "filled tile set"), path.string());
 }
 
 }  // namespace wangscape

@@ -148,19 +148,21 @@ std::string format_tileset_json(const Json& document) {
   return text + "\n}\n";
 }
 
-TileSet read_tileset_json(const std::filesystem::path& path) {
-  const std::string source = path.string();
+Json read_json_file(const std::filesystem::path& path, std::string_view what) {
+  const std::string at = std::string(what) + " '" + path.string() + "'";
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw ExportError(where(source) + ": cannot open the file");
+  if (!in) throw ExportError(at + ": cannot open the file");
   std::stringstream buffer;
   buffer << in.rdbuf();
-  Json document;
   try {
-    document = Json::parse(buffer.str());
+    return Json::parse(buffer.str());
   } catch (const Json::parse_error& e) {
-    throw ExportError(where(source) + ": not valid JSON (" + e.what() + ")");
+    throw ExportError(at + ": not valid JSON (" + e.what() + ")");
   }
-  return tileset_from_json(document, source);
+}
+
+TileSet read_tileset_json(const std::filesystem::path& path) {
+  return tileset_from_json(read_json_file(path, "tile set"), path.string());
 }
 
 void write_tileset_json(const std::filesystem::path& path, const TileSet& set) {

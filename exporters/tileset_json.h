@@ -40,6 +40,10 @@ TileSet tileset_from_json(const Json& document, std::string_view source);
 // One key per line, one tile per line: readable and diff-friendly.
 std::string format_tileset_json(const Json& document);
 
+// Reads and parses a JSON file; `what` names the kind of document in errors ("tile set").
+// Throws ExportError "<what> '<path>': cannot open the file" or "...: not valid JSON (...)".
+Json read_json_file(const std::filesystem::path& path, std::string_view what);
+
 TileSet read_tileset_json(const std::filesystem::path& path);
 void write_tileset_json(const std::filesystem::path& path, const TileSet& set);
 
