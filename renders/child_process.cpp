@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 namespace wangscape {
 
@@ -35,7 +36,7 @@ std::string ChildExit::describe() const {
 }
 
 ChildExit run_logged(const std::vector<std::string>& args, const std::filesystem::path& log,
-                     const std::filesystem::path& working_dir) {
+                     const std::filesystem::path& working_dir, const std::function<void()>& while_running) {
   // Everything the child needs, prepared before fork (only async-signal-safe calls after it).
   std::vector<std::string> owned = args;
   std::vector<char*> argv;
@@ -60,8 +61,15 @@ ChildExit run_logged(const std::vector<std::string>& args, const std::filesystem
     ::_exit(127);
   }
   int status = 0;
-  while (::waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) throw std::runtime_error("lost the process '" + args.at(0) + "': " + std::strerror(errno));
+  for (;;) {
+    const pid_t done = ::waitpid(pid, &status, while_running ? WNOHANG : 0);
+    if (done == pid) break;
+    if (done < 0 && errno != EINTR)
+      throw std::runtime_error("lost the process '" + args.at(0) + "': " + std::strerror(errno));
+    if (done == 0) {
+      while_running();
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    }
   }
   ChildExit result;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -70,23 +78,36 @@ ChildExit run_logged(const std::vector<std::string>& args, const std::filesystem
   return result;
 }
 
-std::string last_log_lines(const std::filesystem::path& path, int count) {
+std::string read_log_tail(const std::filesystem::path& path, std::size_t max_bytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return {};
   in.seekg(0, std::ios::end);
-  const auto size = static_cast<std::streamoff>(in.tellg());
-  const std::streamoff keep = 16384;
-  in.seekg(size > keep ? size - keep : 0);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto size = static_cast<std::size_t>(in.tellg());
+  const auto start = size > max_bytes ? size - max_bytes : 0;
+  in.seekg(static_cast<std::streamoff>(start));
+  std::string text(size - start, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  return text;
+}
+
+std::string last_log_lines(const std::filesystem::path& path, int count) {
   std::vector<std::string> lines;
-  std::stringstream stream(text);
-  for (std::string line; std::getline(stream, line);) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (!line.empty()) lines.push_back(line);
+  std::string line;
+  const auto flush = [&] {
+    if (line.find_first_not_of(" \t") != std::string::npos) lines.push_back(line);
+    line.clear();
+  };
+  for (const char c : read_log_tail(path, 16384)) {
+    if (c == '\n' || c == '\r')
+      flush();
+    else
+      line.push_back(c);
   }
+  flush();
   std::string quoted;
-  for (std::size_t i = lines.size() > static_cast<std::size_t>(count) ? lines.size() - count : 0; i < lines.size(); ++i)
-    quoted += "\n  " + lines[i];
+  const auto first =
+      lines.size() > static_cast<std::size_t>(count) ? lines.size() - static_cast<std::size_t>(count) : 0;
+  for (auto i = first; i < lines.size(); ++i) quoted += "\n  | " + lines[i];
   return quoted;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,13 +22,18 @@ struct ChildExit {
 };
 
 // Runs argv[0] (a path) with argv, stdin from /dev/null, stdout and stderr appended to
-// `log`, in `working_dir` (empty: the current one). Waits for it. Throws std::runtime_error
-// only when the process cannot be started.
+// `log`, in `working_dir` (empty: the current one). Waits for it, calling `while_running`
+// (if set) about five times a second, e.g. to report progress read from the log. Throws
+// std::runtime_error only when the process cannot be started.
 ChildExit run_logged(const std::vector<std::string>& argv, const std::filesystem::path& log,
-                     const std::filesystem::path& working_dir = {});
+                     const std::filesystem::path& working_dir = {}, const std::function<void()>& while_running = {});
 
-// The last `count` lines of the text file `path` (at most its last 16 KiB), each prefixed
-// with "\n  ", for quoting a tool's error in a message.
+// The last `max_bytes` bytes of the file `path` (empty when it cannot be read).
+std::string read_log_tail(const std::filesystem::path& path, std::size_t max_bytes);
+
+// The last `count` non-empty lines of the text file `path` (at most its last 16 KiB; lines
+// end with '\n' or '\r', as progress lines do), each prefixed with "\n  | ", for quoting a
+// tool's error in a message.
 std::string last_log_lines(const std::filesystem::path& path, int count);
 
 }  // namespace wangscape
