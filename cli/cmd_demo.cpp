@@ -16,10 +16,11 @@ void register_demo_command(CLI::App& app, const GlobalOptions& global) {
   };
   auto options = std::make_shared<Options>();
   sub->add_option("--out,-o", options->out, "Output folder")->capture_default_str();
-  sub->add_flag("--print-scene", options->print_scene, "Print the default scene file and exit");
+  sub->add_flag("--print-scene", options->print_scene,
+                "Print the default scene file (data paths made absolute) and exit");
   sub->callback([options, &global] {
     if (options->print_scene) {
-      const auto text = default_scene_text();
+      const std::string text = default_scene_text_for_saving();
       std::fwrite(text.data(), 1, text.size(), stdout);
       return;
     }

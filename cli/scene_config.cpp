@@ -372,6 +372,17 @@ std::filesystem::path default_scene_base() {
 }
 }  // namespace
 
+std::string default_scene_text_for_saving() {
+  // The embedded scene names its DEM relative to the data folder; a copy saved elsewhere
+  // must name it absolutely so it still loads.
+  std::string text(kDefaultSceneToml);
+  const std::string relative = "= \"data/";
+  const std::string absolute = "= \"" + (default_scene_base() / "data").string() + "/";
+  for (auto at = text.find(relative); at != std::string::npos; at = text.find(relative, at + absolute.size()))
+    text.replace(at, relative.size(), absolute);
+  return text;
+}
+
 SceneConfig default_scene_config() {
   return parse_scene_config(kDefaultSceneToml, "<embedded default scene templates/scenes/default.toml>",
                             default_scene_base());

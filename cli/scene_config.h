@@ -126,6 +126,8 @@ SceneConfig load_scene_config(const std::filesystem::path& file);
 // The default scene (templates/scenes/default.toml, embedded in the program). Its data
 // paths (data/SainteHelens.dem) resolve against the source tree or the installed data folder.
 SceneConfig default_scene_config();
+// The default scene as a file to save and edit: its data paths made absolute.
+std::string default_scene_text_for_saving();
 std::string_view default_scene_text();
 
 // The sun's position seen from (latitude, longitude) at a moment (NOAA solar position
