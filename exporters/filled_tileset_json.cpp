@@ -120,30 +120,17 @@ FilledTileSet filled_tileset_from_json(const Json& document, std::string_view so
 }
 
 std::string format_filled_tileset_json(const Json& document) {
-  std::string text = "{\n";
-  bool first_key = true;
-  for (const auto& [key, value] : document.items()) {
-    text += first_key ? "  " : ",\n  ";
-    first_key = false;
-    text += Json(key).dump() + ": ";
-    if (key != "tiles" || !value.is_array()) {
-      text += value.dump();
-      continue;
-    }
-    text += "[";
-    for (std::size_t t = 0; t < value.size(); ++t) {
-      Json colors = value[t];
-      colors.erase("points");
-      std::string line = colors.dump();
-      line.pop_back();  // the closing brace: the points follow
-      text += (t ? ",\n    " : "\n    ") + line + ", \"points\": [";
-      const Json& points = value[t]["points"];
-      for (std::size_t k = 0; k < points.size(); ++k) text += (k ? ",\n      " : "\n      ") + points[k].dump();
-      text += points.empty() ? "]}" : "\n    ]}";
-    }
-    text += value.empty() ? "]" : "\n  ]";
-  }
-  return text + "\n}\n";
+  // A tile's colors on its first line, then one point per line.
+  return format_tileset_json(document, [](const Json& tile) {
+    Json colors = tile;
+    colors.erase("points");
+    std::string text = colors.dump();
+    text.pop_back();  // the closing brace: the points follow
+    text += ", \"points\": [";
+    const Json& points = tile.contains("points") ? tile["points"] : Json::array();
+    for (std::size_t k = 0; k < points.size(); ++k) text += (k ? ",\n      " : "\n      ") + points[k].dump();
+    return text + (points.empty() ? "]}" : "\n    ]}");
+  });
 }
 
 void write_filled_tileset_json(const std::filesystem::path& path, const FilledTileSet& filled) {

@@ -131,6 +131,10 @@ TileSet tileset_from_json(const Json& document, std::string_view source) {
 }
 
 std::string format_tileset_json(const Json& document) {
+  return format_tileset_json(document, [](const Json& tile) { return tile.dump(); });
+}
+
+std::string format_tileset_json(const Json& document, const std::function<std::string(const Json& tile)>& format_tile) {
   std::string text = "{\n";
   bool first_key = true;
   for (const auto& [key, value] : document.items()) {
@@ -139,7 +143,7 @@ std::string format_tileset_json(const Json& document) {
     text += Json(key).dump() + ": ";
     if (key == "tiles" && value.is_array()) {
       text += "[";
-      for (std::size_t i = 0; i < value.size(); ++i) text += (i ? ",\n    " : "\n    ") + value[i].dump();
+      for (std::size_t i = 0; i < value.size(); ++i) text += (i ? ",\n    " : "\n    ") + format_tile(value[i]);
       text += value.empty() ? "]" : "\n  ]";
     } else {
       text += value.dump();

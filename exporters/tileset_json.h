@@ -8,6 +8,7 @@
 
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
@@ -37,8 +38,12 @@ Json tileset_to_json(const TileSet& set);
 // the input in errors. Kind may be omitted: the first tile's keys decide.
 TileSet tileset_from_json(const Json& document, std::string_view source);
 
-// One key per line, one tile per line: readable and diff-friendly.
+// One top-level key per line, one tile per line: readable and diff-friendly.
 std::string format_tileset_json(const Json& document);
+
+// The same layout with each tile's text produced by `format_tile` (e.g. a tile whose points
+// go one per line).
+std::string format_tileset_json(const Json& document, const std::function<std::string(const Json& tile)>& format_tile);
 
 // Reads and parses a JSON file; `what` names the kind of document in errors ("tile set").
 // Throws ExportError "<what> '<path>': cannot open the file" or "...: not valid JSON (...)".

@@ -7,19 +7,12 @@
 #include <string>
 
 #include "generator/tiling_preview.h"
+#include "tests/generator/test_support.h"
 
 namespace wangscape {
 namespace {
 
-template <typename Body>
-std::string error_of(Body&& body) {
-  try {
-    body();
-  } catch (const GeneratorError& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::error_of;
 
 TEST(TileSet, BuiltinSizes) {
   const std::map<std::string, std::size_t> sizes = {{"cohen8", 8},           {"cohen12", 12},

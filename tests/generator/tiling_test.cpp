@@ -1,4 +1,5 @@
 #include "generator/tiling.h"
+#include "tests/generator/test_support.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -15,16 +16,7 @@ bool hash_applies(const TileSet& set) {
   return set.name.rfind("complete-edge-", 0) == 0 || set.name.rfind("corner-", 0) == 0;
 }
 
-// Runs `body` and returns the GeneratorError message it throws ("" when it does not throw).
-template <typename Body>
-std::string error_of(Body&& body) {
-  try {
-    body();
-  } catch (const GeneratorError& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::error_of;
 
 TEST(Tiling, EveryBuiltinSetAndAlgorithmMatchesEverywhereOverManySeeds) {
   for (const std::string& name : builtin_tileset_names()) {
