@@ -25,6 +25,7 @@ void Progress::update(std::uint64_t done) {
   const std::int64_t t = now_ms();
   if (done < total_ && last_draw_ms_ >= 0 && t - last_draw_ms_ < 50) return;
   last_draw_ms_ = t;
+  last_drawn_ = done;
   constexpr int kWidth = 30;
   const double fraction = std::min(1.0, static_cast<double>(done) / static_cast<double>(total_));
   const int filled = static_cast<int>(fraction * kWidth);
@@ -35,7 +36,7 @@ void Progress::update(std::uint64_t done) {
 
 void Progress::finish() {
   if (!enabled_ || finished_) return;
-  update(total_);
+  if (last_drawn_ < total_) update(total_);
   finished_ = true;
   std::fputc('\n', stderr);
 }

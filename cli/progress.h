@@ -24,6 +24,7 @@ class Progress {
   bool enabled_;
   bool finished_ = false;
   std::int64_t last_draw_ms_ = -1;
+  std::uint64_t last_drawn_ = 0;
 };
 
 }  // namespace wangscape::cli
