@@ -87,20 +87,20 @@ TEST(Dem, BoulderNodataZeroIsAMaskNotAHeight) {
 }
 
 TEST(Dem, EdgeCaseChecksumsMatchGdalsOwnTests) {
-  EXPECT_EQ(gdal_checksum(shared_dem("edge-cases/39109h1_truncated.dem")), 39443);
-  EXPECT_EQ(gdal_checksum(shared_dem("edge-cases/39079G6_truncated.dem")), 61424);
-  EXPECT_EQ(gdal_checksum(shared_dem("edge-cases/114p01_0100_deme_truncated.dem")), 53864);
-  EXPECT_THROW(gdal_checksum(shared_dem("edge-cases/fema06-140cm_2995441b_truncated.dem")), TerrainError);
+  EXPECT_EQ(gdal_checksum(test_dem("edge-cases/39109h1_truncated.dem")), 39443);
+  EXPECT_EQ(gdal_checksum(test_dem("edge-cases/39079G6_truncated.dem")), 61424);
+  EXPECT_EQ(gdal_checksum(test_dem("edge-cases/114p01_0100_deme_truncated.dem")), 53864);
+  EXPECT_THROW(gdal_checksum(test_dem("edge-cases/fema06-140cm_2995441b_truncated.dem")), TerrainError);
 }
 
 TEST(Dem, EdgeCaseTruncatedUtmDemsLoad) {
-  const DemRaster a = read_dem(shared_dem("edge-cases/39109h1_truncated.dem"));
+  const DemRaster a = read_dem(test_dem("edge-cases/39109h1_truncated.dem"));
   EXPECT_EQ(a.width, 2);
   EXPECT_EQ(a.height, 1411);
   EXPECT_DOUBLE_EQ(a.spacing_x(), 10.0);
   EXPECT_NEAR(a.min_height, 1687.4, 0.01);
   EXPECT_NEAR(a.max_height, 1716.99, 0.01);
-  const DemRaster b = read_dem(shared_dem("edge-cases/39079G6_truncated.dem"));
+  const DemRaster b = read_dem(test_dem("edge-cases/39079G6_truncated.dem"));
   EXPECT_EQ(b.width, 2);
   EXPECT_EQ(b.height, 470);
   EXPECT_NE(b.crs_wkt.find("WGS 72"), std::string::npos);
@@ -108,7 +108,7 @@ TEST(Dem, EdgeCaseTruncatedUtmDemsLoad) {
   EXPECT_DOUBLE_EQ(b.max_height, 385.0);
   // Both become terrains with heights where they have data.
   for (const char* name : {"edge-cases/39109h1_truncated.dem", "edge-cases/39079G6_truncated.dem"}) {
-    const Terrain terrain = Terrain::load(shared_dem(name));
+    const Terrain terrain = Terrain::load(test_dem(name));
     const EnuRect e = terrain.extent();
     int found = 0;
     for (int k = 0; k <= 200; ++k) {
@@ -124,11 +124,11 @@ TEST(Dem, EdgeCaseTruncatedUtmDemsLoad) {
 }
 
 TEST(Dem, EdgeCaseCdedAllNodataFailsCleanly) {
-  expect_failure(shared_dem("edge-cases/114p01_0100_deme_truncated.dem"), "no valid heights");
+  expect_failure(test_dem("edge-cases/114p01_0100_deme_truncated.dem"), "no valid heights");
 }
 
 TEST(Dem, EdgeCaseFemaHeaderWithoutProfilesFailsCleanly) {
-  expect_failure(shared_dem("edge-cases/fema06-140cm_2995441b_truncated.dem"), "elevation profiles cannot be read");
+  expect_failure(test_dem("edge-cases/fema06-140cm_2995441b_truncated.dem"), "elevation profiles cannot be read");
 }
 
 TEST(Dem, TruncatedAndGarbageFilesFailCleanly) {
