@@ -15,7 +15,7 @@ namespace {
 
 using test::boulder;
 using test::saint_helens;
-using test::shared_dem;
+using test::test_dem;
 
 // Loading must fail with a TerrainError whose message names the file and says why.
 void expect_failure(const std::filesystem::path& path, const std::string& reason) {
