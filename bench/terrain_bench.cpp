@@ -50,7 +50,7 @@ BENCHMARK(BM_LoadSainteHelens)->Unit(benchmark::kMillisecond);
 
 void BM_HeightLookup(benchmark::State& state) {
   const Terrain& terrain = helens();
-  const EnuRect e = terrain.extent();
+  const Extent e = terrain.extent();
   std::vector<double> xs(1 << 16), ys(1 << 16);
   std::mt19937 rng(1);
   for (std::size_t k = 0; k < xs.size(); ++k) {

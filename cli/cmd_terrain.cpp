@@ -22,7 +22,7 @@ struct TerrainInfoOptions {
 
 nlohmann::ordered_json to_json(const Terrain& terrain) {
   const DemRaster& dem = terrain.dem();
-  const EnuRect extent = terrain.extent();
+  const Extent extent = terrain.extent();
   nlohmann::ordered_json out;
   out["file"] = dem.path.string();
   out["driver"] = dem.driver;
@@ -49,7 +49,7 @@ nlohmann::ordered_json to_json(const Terrain& terrain) {
 void print_text(const Terrain& terrain) {
   const DemRaster& dem = terrain.dem();
   const TerrainGeoreference& g = terrain.georeference();
-  const EnuRect e = terrain.extent();
+  const Extent e = terrain.extent();
   const char* unit = dem.geographic ? "deg" : "m";
   fmt::print("file:             {}\n", dem.path.string());
   fmt::print("driver:           {}\n", dem.driver);

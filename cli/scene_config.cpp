@@ -108,8 +108,7 @@ class Section {
   }
 
   [[noreturn]] void fail(const toml::node& node, std::string_view key, const std::string& what) const {
-    throw SceneConfigError(source_ + ":" + std::to_string(node.source().begin.line) + ": '" + qualified(key) + "' " +
-                           what);
+    throw Error(source_ + ":" + std::to_string(node.source().begin.line) + ": '" + qualified(key) + "' " + what);
   }
   void check_range(std::string_view key, double value, double lo, double hi) {
     if (value < lo || value > hi) {
@@ -127,8 +126,8 @@ class Section {
       const auto line = key.source().begin.line ? key.source().begin.line : value.source().begin.line;
       std::string known;
       for (const auto& k : asked_) known += (known.empty() ? "" : ", ") + k;
-      throw SceneConfigError(source_ + ":" + std::to_string(line) + ": unknown key '" + qualified(key.str()) + "'" +
-                             (known.empty() ? std::string() : " (known here: " + known + ")"));
+      throw Error(source_ + ":" + std::to_string(line) + ": unknown key '" + qualified(key.str()) + "'" +
+                  (known.empty() ? std::string() : " (known here: " + known + ")"));
     }
   }
 
@@ -207,7 +206,7 @@ SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem
   try {
     root = toml::parse(toml_text, source);
   } catch (const toml::parse_error& e) {
-    throw SceneConfigError(source + ":" + std::to_string(e.source().begin.line) + ": " + std::string(e.description()));
+    throw Error(source + ":" + std::to_string(e.source().begin.line) + ": " + std::string(e.description()));
   }
 
   SceneConfig config;
@@ -340,7 +339,7 @@ SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem
 
 SceneConfig load_scene_config(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw SceneConfigError(file.string() + ": cannot read the scene file");
+  if (!in) throw Error(file.string() + ": cannot read the scene file");
   std::stringstream text;
   text << in.rdbuf();
   auto base = file.parent_path();

@@ -3,6 +3,8 @@
 // naming the key and its line.
 #pragma once
 
+#include "core/error.h"
+
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -12,12 +14,6 @@
 #include <string_view>
 
 namespace wangscape::cli {
-
-// A bad scene file: the message starts with "<file>:<line>: " and names the key at fault.
-class SceneConfigError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 // [terrain]
 struct TerrainConfig {
@@ -116,7 +112,7 @@ struct SceneConfig {
 };
 
 // Parses TOML text. `source` names it in messages; `base_dir` resolves relative paths.
-// Throws SceneConfigError "<source>:<line>: <what>" for syntax errors, unknown keys, wrong
+// Throws Error "<source>:<line>: <what>" for syntax errors, unknown keys, wrong
 // types and values out of range.
 SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem::path& source,
                                const std::filesystem::path& base_dir);

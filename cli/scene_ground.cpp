@@ -61,9 +61,9 @@ SceneGround SceneGround::load(const TerrainConfig& config, const MasksConfig& ma
     impl->description = "flat ground " + number(impl->area.width()) + " x " + number(impl->area.height()) + " m";
   }
   if (!(impl->area.width() > 0 && impl->area.height() > 0))
-    throw SceneConfigError("terrain.crop [" + number((*config.crop)[0]) + ", " + number((*config.crop)[1]) + ", " +
-                           number((*config.crop)[2]) + ", " + number((*config.crop)[3]) +
-                           "] does not overlap the ground (" + impl->description + ")");
+    throw Error("terrain.crop [" + number((*config.crop)[0]) + ", " + number((*config.crop)[1]) + ", " +
+                number((*config.crop)[2]) + ", " + number((*config.crop)[3]) + "] does not overlap the ground (" +
+                impl->description + ")");
   if (impl->terrain) {
     TerrainFilterOptions filter;
     filter.max_height_m = masks.max_height;
@@ -71,7 +71,7 @@ SceneGround SceneGround::load(const TerrainConfig& config, const MasksConfig& ma
     impl->filter.emplace(*impl->terrain, filter);
     impl->filter->check_satisfiable();
   } else if ((masks.max_height && *masks.max_height < 0) || (masks.min_height && *masks.min_height > 0)) {
-    throw SceneConfigError("masks: the flat ground (height 0 m) is outside the height limits");
+    throw Error("masks: the flat ground (height 0 m) is outside the height limits");
   }
   SceneGround ground;
   ground.impl_ = std::move(impl);
@@ -108,7 +108,7 @@ Mesh SceneGround::mesh(std::size_t max_vertices) const {
   if (impl_->terrain) {
     TerrainMeshOptions options;
     options.max_vertices = max_vertices;
-    options.crop = EnuRect{area.min_x, area.min_y, area.max_x, area.max_y};
+    options.crop = Extent{area.min_x, area.min_y, area.max_x, area.max_y};
     auto terrain_mesh = make_terrain_mesh(*impl_->terrain, options);
     mesh.positions = std::move(terrain_mesh.positions);
     mesh.normals = std::move(terrain_mesh.normals);
@@ -139,7 +139,7 @@ PlacementStats SceneGround::place(const FilledTileSet& filled, const PlacementOp
     return (!min_height || z >= *min_height) && filter.point_passes(x, y, z);
   };
   const auto rect = [](const TileCell& cell) {
-    return EnuRect{cell.bounds.min_x, cell.bounds.min_y, cell.bounds.max_x, cell.bounds.max_y};
+    return Extent{cell.bounds.min_x, cell.bounds.min_y, cell.bounds.max_x, cell.bounds.max_y};
   };
   if (impl.masks.fair_edges)
     return place_instances(

@@ -21,7 +21,7 @@ namespace wangscape::cli {
 class SceneGround {
  public:
   // Loads the DEM of `config` (or makes a flat plane without one) and crops it. Throws
-  // TerrainError naming the file, or SceneConfigError when the crop misses the DEM.
+  // Error naming the file, or Error when the crop misses the DEM.
   // `masks` are checked once here (a height threshold below every height of the DEM is an
   // error naming it).
   static SceneGround load(const TerrainConfig& config, const MasksConfig& masks = {});

@@ -90,18 +90,16 @@ std::shared_ptr<const Field> make_field(const SceneConfig& config, const SceneGr
     area = {std::max(area.min_x, a[0]), std::max(area.min_y, a[1]), std::min(area.max_x, a[2]),
             std::min(area.max_y, a[3])};
     if (!(area.width() > 0 && area.height() > 0))
-      throw SceneConfigError(config.source.string() + ": tiles.area does not overlap the ground (" +
-                             ground.description() + ")");
+      throw Error(config.source.string() + ": tiles.area does not overlap the ground (" + ground.description() + ")");
   }
   const double tile_size = config.tiles.tile_size;
   const double tiles_x = std::ceil(area.width() / tile_size) + 1, tiles_y = std::ceil(area.height() / tile_size) + 1;
   const double estimate = tiles_x * tiles_y * config.tiles.points_per_tile;
   constexpr double kMaxInstances = 50e6;
   if (estimate > kMaxInstances)
-    throw SceneConfigError(config.source.string() + ": the field would hold up to " +
-                           std::to_string(std::llround(estimate)) + " flowers (" +
-                           std::to_string(std::llround(tiles_x)) + " x " + std::to_string(std::llround(tiles_y)) +
-                           " tiles); limit it with tiles.area or a larger tiles.tile_size (at most 50 million)");
+    throw Error(config.source.string() + ": the field would hold up to " + std::to_string(std::llround(estimate)) +
+                " flowers (" + std::to_string(std::llround(tiles_x)) + " x " + std::to_string(std::llround(tiles_y)) +
+                " tiles); limit it with tiles.area or a larger tiles.tile_size (at most 50 million)");
   field->placement.tile_size = tile_size;
   field->placement.algorithm = parse_tiling_algorithm(config.tiles.algorithm);
   field->placement.seed = config.tiles.seed;
@@ -138,9 +136,8 @@ std::array<double, 3> resolve_point(const CameraPoint& point, const SceneGround&
   }
   const auto h = ground.height(xy[0], xy[1]);
   if (!h)
-    throw SceneConfigError(config.source.string() + ": camera." + key + " (east " + std::to_string(xy[0]) +
-                           " m, north " + std::to_string(xy[1]) + " m) is not over the ground (" +
-                           ground.description() + ")");
+    throw Error(config.source.string() + ": camera." + key + " (east " + std::to_string(xy[0]) + " m, north " +
+                std::to_string(xy[1]) + " m) is not over the ground (" + ground.description() + ")");
   return {xy[0], xy[1], *h + point.height_above_ground};
 }
 
@@ -165,10 +162,9 @@ Camera make_camera(const SceneConfig& config, const SceneGround& ground, const E
   const double dx = camera.target[0] - camera.position[0], dy = camera.target[1] - camera.position[1],
                dz = camera.target[2] - camera.position[2];
   if (std::sqrt(dx * dx + dy * dy + dz * dz) < 1e-6)
-    throw SceneConfigError(config.source.string() + ": the camera's position and target are the same point");
+    throw Error(config.source.string() + ": the camera's position and target are the same point");
   if (std::sqrt(dx * dx + dy * dy) < 1e-6)
-    throw SceneConfigError(config.source.string() +
-                           ": the camera looks straight up or down; move camera.target sideways");
+    throw Error(config.source.string() + ": the camera looks straight up or down; move camera.target sideways");
   return camera;
 }
 
@@ -181,9 +177,8 @@ Sun make_sun(const SceneConfig& config, const SceneGround& ground) {
     sun.azimuth_degrees = position.azimuth_degrees;
     sun.elevation_degrees = position.elevation_degrees;
     if (sun.elevation_degrees <= 0)
-      throw SceneConfigError(config.source.string() + ": sun.time " + config.sun.time_text +
-                             " is night at the origin (sun " + std::to_string(sun.elevation_degrees) +
-                             " degrees below the horizon)");
+      throw Error(config.source.string() + ": sun.time " + config.sun.time_text + " is night at the origin (sun " +
+                  std::to_string(sun.elevation_degrees) + " degrees below the horizon)");
   } else {
     sun.azimuth_degrees = config.sun.azimuth;
     sun.elevation_degrees = config.sun.elevation;
@@ -239,12 +234,12 @@ void publish(const fs::path& staging, const fs::path& out_dir) {
   if (!fs::exists(out_dir)) {
     fs::rename(staging, out_dir, ec);
     if (!ec) return;
-    throw ExportError("cannot create '" + out_dir.string() + "': " + ec.message());
+    throw Error("cannot create '" + out_dir.string() + "': " + ec.message());
   }
-  if (!fs::is_directory(out_dir)) throw ExportError("cannot write into '" + out_dir.string() + "': not a folder");
+  if (!fs::is_directory(out_dir)) throw Error("cannot write into '" + out_dir.string() + "': not a folder");
   for (const auto& entry : fs::directory_iterator(staging)) {
     fs::rename(entry.path(), out_dir / entry.path().filename(), ec);
-    if (ec) throw ExportError("cannot write '" + (out_dir / entry.path().filename()).string() + "': " + ec.message());
+    if (ec) throw Error("cannot write '" + (out_dir / entry.path().filename()).string() + "': " + ec.message());
   }
   fs::remove_all(staging, ec);
 }
@@ -255,10 +250,9 @@ BuildSummary build_scene_folder(const SceneConfig& config, const fs::path& out_d
   const auto start = std::chrono::steady_clock::now();
   const auto& hooks = scene_exporter_hooks();
   if (config.exports.blender && !hooks.blender)
-    throw SceneConfigError(config.source.string() +
-                           ": exports.blender = true, but this wangscape has no Blender exporter");
+    throw Error(config.source.string() + ": exports.blender = true, but this wangscape has no Blender exporter");
   if (config.exports.gltf && !hooks.gltf)
-    throw SceneConfigError(config.source.string() + ": exports.gltf = true, but this wangscape has no glTF exporter");
+    throw Error(config.source.string() + ": exports.gltf = true, but this wangscape has no glTF exporter");
 
   const Scene scene = make_scene(config, observer);
   BuildSummary summary;
@@ -272,7 +266,7 @@ BuildSummary build_scene_folder(const SceneConfig& config, const fs::path& out_d
       out_dir.parent_path() / ("." + out_dir.filename().string() + ".partial-" + std::to_string(::getpid()));
   fs::remove_all(staging, ec);
   if (!fs::create_directory(staging, ec) || ec)
-    throw ExportError("cannot create '" + staging.string() + "' beside the output folder: " + ec.message());
+    throw Error("cannot create '" + staging.string() + "' beside the output folder: " + ec.message());
   try {
     if (config.exports.povray) {
       say(observer, "writing POV-Ray scene (" + std::to_string(scene.instance_count) + " flowers)");

@@ -21,8 +21,8 @@ struct PipelineObserver {
 
 // Assembles the Scene a config describes. Terrain, models and the instance count are computed
 // here; the instances themselves are placed again each time Scene::instances is called (the
-// stream is deterministic and owns everything it needs). Throws SceneConfigError, TerrainError,
-// MeshError or GeneratorError naming what is wrong.
+// stream is deterministic and owns everything it needs). Throws Error, Error,
+// Error or Error naming what is wrong.
 Scene make_scene(const SceneConfig& config, const PipelineObserver& observer = {});
 
 // Exporters besides POV-Ray plug in here (Blender arrays, glTF): each is called with the scene

@@ -68,7 +68,7 @@ TerrainScatter::TerrainScatter(const TerrainScatterOptions& options, double tile
   TerrainOptions terrain_options;
   if (!options.origin.empty()) terrain_options.origin = parse_lat_lon(options.origin);
   terrain_ = std::make_unique<Terrain>(Terrain::load(options.dem, terrain_options));
-  const EnuRect e = terrain_->extent();
+  const Extent e = terrain_->extent();
   if (!(tile_size > 0) || tile_size > std::min(e.width(), e.height()))
     throw std::runtime_error(fmt::format(
         "--tile-size {:g} m does not fit DEM '{}' ({:.0f} x {:.0f} m): expected more than 0 and at most the "

@@ -24,7 +24,7 @@ struct TerrainGround {
   const Terrain* terrain = nullptr;
 
   Extent extent() const {
-    const EnuRect r = terrain->extent();
+    const Extent r = terrain->extent();
     return {r.min_x, r.min_y, r.max_x, r.max_y};
   }
   std::optional<double> height(double x, double y) const { return terrain->height(x, y); }
@@ -40,7 +40,7 @@ struct TerrainTileFilter {
   const TerrainFilter* filter = nullptr;
   bool fair_edges = false;
   bool operator()(const TileCell& cell) const {
-    const EnuRect r{cell.bounds.min_x, cell.bounds.min_y, cell.bounds.max_x, cell.bounds.max_y};
+    const Extent r{cell.bounds.min_x, cell.bounds.min_y, cell.bounds.max_x, cell.bounds.max_y};
     return fair_edges ? filter->tile_may_pass(r) : filter->tile_passes(r);
   }
 };
@@ -79,7 +79,7 @@ CLI::Option* add_terrain_scatter_options(CLI::App& sub, TerrainScatterOptions& o
 class TerrainScatter {
  public:
   // Loads the DEM and checks that the tile size fits the terrain and that some ground can
-  // pass the tests. Throws TerrainError or std::runtime_error with the file or value at fault.
+  // pass the tests. Throws Error or std::runtime_error with the file or value at fault.
   TerrainScatter(const TerrainScatterOptions& options, double tile_size);
 
   const Terrain& terrain() const { return *terrain_; }

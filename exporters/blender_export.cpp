@@ -146,7 +146,7 @@ BlenderExportSummary export_blender(const Scene& scene, const std::filesystem::p
                                     const BlenderExportOptions& options) {
   std::error_code error;
   std::filesystem::create_directories(folder, error);
-  if (error) throw ExportError("cannot create Blender export folder '" + folder.string() + "': " + error.message());
+  if (error) throw Error("cannot create Blender export folder '" + folder.string() + "': " + error.message());
 
   std::uint64_t bytes = 0;
   const MaterialTable table = build_material_table(scene);

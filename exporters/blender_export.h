@@ -27,7 +27,7 @@ struct BlenderExportSummary {
 
 // Writes the scene into `folder` (created if missing). Instances are streamed batch by
 // batch from scene.instances, never held at once. Every file is written atomically and the
-// manifest last, so a manifest present means a complete export. Throws ExportError naming
+// manifest last, so a manifest present means a complete export. Throws Error naming
 // the file or value at fault (e.g. the stream's count differs from scene.instance_count).
 BlenderExportSummary export_blender(const Scene& scene, const std::filesystem::path& folder,
                                     const BlenderExportOptions& options = {});

@@ -44,12 +44,12 @@ struct MaterialTable {
 };
 MaterialTable build_material_table(const Scene& scene);
 
-// Throws ExportError naming `what` when the mesh's arrays disagree in size or its vertex or
+// Throws Error naming `what` when the mesh's arrays disagree in size or its vertex or
 // material indices point outside. (Absent triangle_material means material 0 everywhere.)
 void check_mesh(const Mesh& mesh, const std::string& what);
 
 // Runs the scene's instance stream, checking each batch (consistent array sizes, variants
-// below the model count) and the total against scene.instance_count. Throws ExportError.
+// below the model count) and the total against scene.instance_count. Throws Error.
 // Returns the number of instances streamed.
 std::uint64_t stream_checked_instances(const Scene& scene, const std::function<void(const InstanceBatch&)>& sink);
 

@@ -109,7 +109,7 @@ class GltfBuilder {
                                 {"material", material_slots[slot]},
                                 {"mode", 4}});
     }
-    if (primitives.empty()) throw ExportError("mesh '" + mesh.name + "' has no triangles: glTF meshes cannot be empty");
+    if (primitives.empty()) throw Error("mesh '" + mesh.name + "' has no triangles: glTF meshes cannot be empty");
     return Json{{"name", mesh.name}, {"primitives", primitives}};
   }
 };
@@ -125,8 +125,7 @@ class InstanceSpill {
         files.paths[a] = std::make_unique<AtomicPath>(
             output.parent_path() / (output.filename().string() + ".v" + std::to_string(v) + "." + names[a]));
         files.streams[a].open(files.paths[a]->temp_path(), std::ios::binary | std::ios::trunc);
-        if (!files.streams[a])
-          throw ExportError("cannot write '" + output.string() + "': cannot create a temporary file");
+        if (!files.streams[a]) throw Error("cannot write '" + output.string() + "': cannot create a temporary file");
       }
     }
   }
@@ -149,7 +148,7 @@ class InstanceSpill {
     for (auto& v : variants_) {
       for (auto& stream : v.streams) {
         stream.close();
-        if (stream.fail()) throw ExportError("cannot write '" + output.string() + "': temporary file write failed");
+        if (stream.fail()) throw Error("cannot write '" + output.string() + "': temporary file write failed");
       }
     }
   }
@@ -170,7 +169,7 @@ void copy_file_into(std::ostream& out, const std::filesystem::path& path, const 
     in.read(buffer.data(), std::streamsize(buffer.size()));
     out.write(buffer.data(), in.gcount());
   }
-  if (!in.eof()) throw ExportError("cannot write '" + output.string() + "': cannot read back a temporary file");
+  if (!in.eof()) throw Error("cannot write '" + output.string() + "': cannot read back a temporary file");
 }
 
 void put_u32(std::ostream& out, std::uint32_t value) { out.write(reinterpret_cast<const char*>(&value), 4); }
@@ -345,8 +344,8 @@ GltfSummary write_gltf(const Scene& scene, const std::filesystem::path& path, co
   json.resize((json.size() + 3) & ~std::size_t(3), ' ');
   const std::uint64_t total = 12 + 8 + json.size() + (bin_size > 0 ? 8 + bin_size : 0);
   if (total > 0xffffffffull) {
-    throw ExportError("cannot write '" + path.string() + "': " + std::to_string(total) +
-                      " bytes exceed glTF's 4 GiB limit; export fewer instances");
+    throw Error("cannot write '" + path.string() + "': " + std::to_string(total) +
+                " bytes exceed glTF's 4 GiB limit; export fewer instances");
   }
 
   AtomicFile out(path);

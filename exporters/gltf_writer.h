@@ -29,7 +29,7 @@ struct GltfSummary {
 
 // Writes `path` (.glb) atomically. With gpu_instancing the instances are streamed once into
 // per-variant temporary files beside `path` (never all in memory) and copied into the
-// binary chunk. Throws ExportError naming the file or value at fault (e.g. more than 4 GiB).
+// binary chunk. Throws Error naming the file or value at fault (e.g. more than 4 GiB).
 GltfSummary write_gltf(const Scene& scene, const std::filesystem::path& path, const GltfOptions& options = {});
 
 }  // namespace wangscape

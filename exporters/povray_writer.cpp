@@ -175,12 +175,12 @@ void append_mesh2(std::string& out, const Mesh& mesh, int position_decimals, con
 }
 
 void check_mesh(const Mesh& mesh, const std::string& what) {
-  if (mesh.triangles.empty()) throw ExportError("POV-Ray export: " + what + " has no triangles");
+  if (mesh.triangles.empty()) throw Error("POV-Ray export: " + what + " has no triangles");
   for (const auto& tri : mesh.triangles)
     for (auto index : tri)
       if (index >= mesh.positions.size())
-        throw ExportError("POV-Ray export: " + what + " has a triangle index " + std::to_string(index) + " past its " +
-                          std::to_string(mesh.positions.size()) + " vertices");
+        throw Error("POV-Ray export: " + what + " has a triangle index " + std::to_string(index) + " past its " +
+                    std::to_string(mesh.positions.size()) + " vertices");
 }
 
 // ---- the scene file ---------------------------------------------------------------------------
@@ -353,9 +353,8 @@ void PovrayInstanceWriter::flush() {
 PovrayExportStats write_povray_scene(const Scene& scene, const std::filesystem::path& dir,
                                      const PovrayExportOptions& options) {
   if (!std::filesystem::is_directory(dir))
-    throw ExportError("POV-Ray export: output folder '" + dir.string() + "' does not exist");
-  if (scene.models.empty() && scene.instances)
-    throw ExportError("POV-Ray export: the scene has instances but no models");
+    throw Error("POV-Ray export: output folder '" + dir.string() + "' does not exist");
+  if (scene.models.empty() && scene.instances) throw Error("POV-Ray export: the scene has instances but no models");
   for (std::size_t v = 0; v < scene.models.size(); ++v) check_mesh(scene.models[v], "model " + povray_model_name(v));
   const bool has_terrain = !scene.terrain.triangles.empty();
   if (has_terrain) check_mesh(scene.terrain, "the terrain");
@@ -406,15 +405,15 @@ PovrayExportStats write_povray_scene(const Scene& scene, const std::filesystem::
     scene.instances([&](const InstanceBatch& batch) {
       for (std::size_t i = 0; i < batch.size(); ++i)
         if (batch.variant[i] >= scene.models.size())
-          throw ExportError("POV-Ray export: instance uses model variant " + std::to_string(batch.variant[i]) +
-                            " but the scene has " + std::to_string(scene.models.size()) + " models");
+          throw Error("POV-Ray export: instance uses model variant " + std::to_string(batch.variant[i]) +
+                      " but the scene has " + std::to_string(scene.models.size()) + " models");
       writer.write(batch);
       if (options.on_instances) options.on_instances(writer.instances());
     });
     writer.flush();
     if (writer.instances() != scene.instance_count)
-      throw ExportError("POV-Ray export: the instance stream produced " + std::to_string(writer.instances()) +
-                        " instances, the scene announced " + std::to_string(scene.instance_count));
+      throw Error("POV-Ray export: the instance stream produced " + std::to_string(writer.instances()) +
+                  " instances, the scene announced " + std::to_string(scene.instance_count));
     stats.instances = writer.instances();
     stats.instance_bytes = writer.bytes() + header.size();
     stats.total_bytes += stats.instance_bytes;

@@ -41,7 +41,7 @@ struct PovrayExportStats {
 
 // Writes the files above into `dir` (which must exist). Every file is written to a temporary
 // name and renamed only after all files are complete, so a failure leaves none of them.
-// Throws ExportError naming the file at fault, or when Scene::instance_count does not match
+// Throws Error naming the file at fault, or when Scene::instance_count does not match
 // the number of instances the stream produced.
 PovrayExportStats write_povray_scene(const Scene& scene, const std::filesystem::path& dir,
                                      const PovrayExportOptions& options = {});

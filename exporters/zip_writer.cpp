@@ -51,7 +51,7 @@ std::string make_zip(std::span<const ZipEntry> entries) {
   std::string directory;
   for (const ZipEntry& entry : entries) {
     if (entry.contents.size() >= 0xffffffffu || entry.path.size() >= 0xffffu) {
-      throw ExportError("zip entry '" + std::string(entry.path) + "' is too large for a zip without zip64");
+      throw Error("zip entry '" + std::string(entry.path) + "' is too large for a zip without zip64");
     }
     const auto offset = static_cast<std::uint32_t>(archive.size());
     const std::uint32_t crc = crc32(entry.contents);

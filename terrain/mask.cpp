@@ -25,7 +25,7 @@ std::vector<float> read_unit_band(GDALDataset& dataset, int index, const std::st
   const int w = dataset.GetRasterXSize(), h = dataset.GetRasterYSize();
   std::vector<float> values(std::size_t(w) * std::size_t(h));
   if (band->RasterIO(GF_Read, 0, 0, w, h, values.data(), w, h, GDT_Float32, 0, 0, nullptr) != CE_None)
-    throw TerrainError("cannot read the pixels of mask image '" + path + "'");
+    throw Error("cannot read the pixels of mask image '" + path + "'");
   const GDALDataType type = band->GetRasterDataType();
   const float full = type == GDT_Byte ? 255.0f : type == GDT_UInt16 ? 65535.0f : 1.0f;
   for (float& v : values) v /= full;
@@ -37,19 +37,19 @@ std::vector<float> read_unit_band(GDALDataset& dataset, int index, const std::st
 // ---------------------------------------------------------------------------------------
 // PaintedMask
 
-PaintedMask PaintedMask::load(const std::filesystem::path& image, const EnuRect& over) {
+PaintedMask PaintedMask::load(const std::filesystem::path& image, const Extent& over) {
   gdal_support::ErrorCapture capture;
   const std::string path = image.string();
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(image, ec)) throw TerrainError("mask image '" + path + "' does not exist");
+  if (!std::filesystem::is_regular_file(image, ec)) throw Error("mask image '" + path + "' does not exist");
   struct Closer {
     void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
   };
   std::unique_ptr<GDALDataset, Closer> dataset(
       GDALDataset::FromHandle(GDALOpenEx(image.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!dataset || dataset->GetRasterCount() < 1)
-    throw TerrainError("cannot read mask image '" + path + "': not an image GDAL recognizes (expected PNG)" +
-                       capture.suffix());
+    throw Error("cannot read mask image '" + path + "': not an image GDAL recognizes (expected PNG)" +
+                capture.suffix());
 
   PaintedMask mask;
   mask.width_ = dataset->GetRasterXSize();
@@ -80,7 +80,7 @@ bool PaintedMask::allows(double x, double y) const {
   return allowed_[std::size_t(py) * std::size_t(width_) + std::size_t(px)] != 0;
 }
 
-bool PaintedMask::pixel_range(const EnuRect& r, int& x0, int& y0, int& x1, int& y1, bool& clamped) const {
+bool PaintedMask::pixel_range(const Extent& r, int& x0, int& y0, int& x1, int& y1, bool& clamped) const {
   const double fx0 = (r.min_x - area_.min_x) / area_.width() * width_;
   const double fx1 = (r.max_x - area_.min_x) / area_.width() * width_;
   const double fy0 = (area_.max_y - r.max_y) / area_.height() * height_;
@@ -94,7 +94,7 @@ bool PaintedMask::pixel_range(const EnuRect& r, int& x0, int& y0, int& x1, int& 
   return true;
 }
 
-bool PaintedMask::allows_all(const EnuRect& r) const {
+bool PaintedMask::allows_all(const Extent& r) const {
   int x0, y0, x1, y1;
   bool clamped = false;
   if (!pixel_range(r, x0, y0, x1, y1, clamped) || clamped) return false;
@@ -104,7 +104,7 @@ bool PaintedMask::allows_all(const EnuRect& r) const {
   return true;
 }
 
-bool PaintedMask::allows_any(const EnuRect& r) const {
+bool PaintedMask::allows_any(const Extent& r) const {
   int x0, y0, x1, y1;
   bool clamped = false;
   if (!pixel_range(r, x0, y0, x1, y1, clamped)) return false;
@@ -122,9 +122,9 @@ std::size_t PaintedMask::allowed_count() const { return std::size_t(std::count(a
 TerrainFilter::TerrainFilter(const Terrain& terrain, TerrainFilterOptions options)
     : terrain_(&terrain), options_(std::move(options)) {
   if (options_.max_slope_deg && !(*options_.max_slope_deg >= 0 && *options_.max_slope_deg <= 90))
-    throw TerrainError("maximum slope " + number(*options_.max_slope_deg) + " is not an angle in [0, 90] degrees");
+    throw Error("maximum slope " + number(*options_.max_slope_deg) + " is not an angle in [0, 90] degrees");
   if (options_.max_height_m && !std::isfinite(*options_.max_height_m))
-    throw TerrainError("maximum height is not a finite number of meters");
+    throw Error("maximum height is not a finite number of meters");
   if (options_.mask_image) mask_ = PaintedMask::load(*options_.mask_image, terrain.extent());
 
   const DemRaster& dem = terrain.dem();
@@ -186,10 +186,10 @@ TerrainFilter::TerrainFilter(const Terrain& terrain, TerrainFilterOptions option
   min_cell_slope_deg_ = std::atan(std::sqrt(min_tan2)) * 180 / std::numbers::pi;
 }
 
-bool TerrainFilter::touched_cells(const EnuRect& tile, bool clamp, SampleBox& box) const {
-  EnuRect rect = tile;
+bool TerrainFilter::touched_cells(const Extent& tile, bool clamp, SampleBox& box) const {
+  Extent rect = tile;
   if (clamp) {
-    const EnuRect e = terrain_->extent();
+    const Extent e = terrain_->extent();
     rect = {std::max(rect.min_x, e.min_x), std::max(rect.min_y, e.min_y), std::min(rect.max_x, e.max_x),
             std::min(rect.max_y, e.max_y)};
     if (!(rect.min_x <= rect.max_x && rect.min_y <= rect.max_y)) return false;
@@ -241,7 +241,7 @@ bool TerrainFilter::box_below(const SampleBox& box, double max_height) const {
   return true;
 }
 
-bool TerrainFilter::tile_passes(const EnuRect& tile) const {
+bool TerrainFilter::tile_passes(const Extent& tile) const {
   SampleBox box;
   if (!touched_cells(tile, false, box)) return false;
   bool all_low = true;
@@ -257,7 +257,7 @@ bool TerrainFilter::tile_passes(const EnuRect& tile) const {
   return !mask_ || mask_->allows_all(tile);
 }
 
-bool TerrainFilter::tile_may_pass(const EnuRect& tile) const {
+bool TerrainFilter::tile_may_pass(const Extent& tile) const {
   SampleBox box;
   if (!touched_cells(tile, true, box)) return false;
   bool some = false;
@@ -296,18 +296,16 @@ void TerrainFilter::check_satisfiable() const {
   range += number(dem.max_height);
   range += " m)";
   if (options_.max_height_m && *options_.max_height_m < dem.min_height)
-    throw TerrainError("maximum height " + number(*options_.max_height_m) + " m is below every height of DEM '" +
-                       dem.path.string() + "' " + range + ": no tile would be instantiated");
+    throw Error("maximum height " + number(*options_.max_height_m) + " m is below every height of DEM '" +
+                dem.path.string() + "' " + range + ": no tile would be instantiated");
   if (mask_ && mask_->allowed_count() == 0)
-    throw TerrainError("mask image '" + options_.mask_image->string() +
-                       "' allows flowers nowhere (no pixel is white): no tile would be instantiated");
-  if (maybe_cells_ == 0)
-    throw TerrainError("no ground of DEM '" + dem.path.string() + "' passes the height test " + range);
+    throw Error("mask image '" + options_.mask_image->string() +
+                "' allows flowers nowhere (no pixel is white): no tile would be instantiated");
+  if (maybe_cells_ == 0) throw Error("no ground of DEM '" + dem.path.string() + "' passes the height test " + range);
   if (options_.max_slope_deg && passing_cells_ == 0 && *options_.max_slope_deg < min_cell_slope_deg_)
-    throw TerrainError("maximum slope " + number(*options_.max_slope_deg) +
-                       " deg is below the slope of every cell of DEM '" + dem.path.string() +
-                       "' (the flattest cell reaches " + number(min_cell_slope_deg_) +
-                       " deg): no tile would be instantiated");
+    throw Error("maximum slope " + number(*options_.max_slope_deg) + " deg is below the slope of every cell of DEM '" +
+                dem.path.string() + "' (the flattest cell reaches " + number(min_cell_slope_deg_) +
+                " deg): no tile would be instantiated");
 }
 
 }  // namespace wangscape

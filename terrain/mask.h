@@ -19,26 +19,26 @@ namespace wangscape {
 // it is light (luminance >= 50%) and opaque (alpha >= 50%, when there is alpha).
 class PaintedMask {
  public:
-  // Throws TerrainError naming the file if GDAL cannot read it.
-  static PaintedMask load(const std::filesystem::path& image, const EnuRect& over);
+  // Throws Error naming the file if GDAL cannot read it.
+  static PaintedMask load(const std::filesystem::path& image, const Extent& over);
 
   int width() const { return width_; }
   int height() const { return height_; }
   // The pixel under ENU (x, y) allows flowers; false outside the rectangle.
   bool allows(double x, double y) const;
   // Every pixel the rectangle touches allows flowers (false if it reaches outside).
-  bool allows_all(const EnuRect& r) const;
+  bool allows_all(const Extent& r) const;
   // Some pixel the rectangle touches allows flowers.
-  bool allows_any(const EnuRect& r) const;
+  bool allows_any(const Extent& r) const;
   std::size_t allowed_count() const;
 
  private:
   // Pixel ranges the rectangle touches, clamped; false if it misses the image.
-  bool pixel_range(const EnuRect& r, int& x0, int& y0, int& x1, int& y1, bool& clamped) const;
+  bool pixel_range(const Extent& r, int& x0, int& y0, int& x1, int& y1, bool& clamped) const;
 
   std::vector<std::uint8_t> allowed_;  // row-major, row 0 = north
   int width_ = 0, height_ = 0;
-  EnuRect area_;
+  Extent area_;
 };
 
 struct TerrainFilterOptions {
@@ -63,16 +63,16 @@ class TerrainFilter {
 
   // All of the tile's ground passes: every DEM cell the rectangle touches passes, and
   // every mask pixel it touches allows flowers. (Seed 003: instantiate only these tiles.)
-  bool tile_passes(const EnuRect& tile) const;
+  bool tile_passes(const Extent& tile) const;
   // Some of the tile's ground may pass (a cheap superset, for fair edges, where each
   // point is then tested with point_passes).
-  bool tile_may_pass(const EnuRect& tile) const;
+  bool tile_may_pass(const Extent& tile) const;
   // The ground at ENU (x, y) has data, is low enough, flat enough and painted white.
   bool point_passes(double x, double y) const;
   // The same, for a point whose ground height z (meters) is already known.
   bool point_passes(double x, double y, double z) const;
 
-  // Throws TerrainError explaining why no ground can pass (a height threshold below every
+  // Throws Error explaining why no ground can pass (a height threshold below every
   // height of the DEM, a slope limit below every slope, an all-black mask), so a scatter
   // reports that instead of writing an empty result.
   void check_satisfiable() const;
@@ -89,7 +89,7 @@ class TerrainFilter {
   };
   // False if a corner of the rectangle is off the lattice or the DEM (clamp false), or the
   // rectangle misses the DEM (clamp true: it is first cut to the terrain's extent).
-  bool touched_cells(const EnuRect& tile, bool clamp, SampleBox& box) const;
+  bool touched_cells(const Extent& tile, bool clamp, SampleBox& box) const;
   // The bilinear ground over the box has data and is nowhere above max_height (exact).
   bool box_below(const SampleBox& box, double max_height) const;
 

@@ -119,8 +119,8 @@ TEST(BlenderExport, CountMismatchIsRefusedWithoutManifest) {
   scene.instance_count = 101;
   try {
     export_blender(scene, folder);
-    FAIL() << "expected ExportError";
-  } catch (const ExportError& error) {
+    FAIL() << "expected Error";
+  } catch (const Error& error) {
     EXPECT_NE(std::string(error.what()).find("announced 101"), std::string::npos) << error.what();
   }
   EXPECT_FALSE(std::filesystem::exists(folder / "manifest.json"));
@@ -131,7 +131,7 @@ TEST(BlenderExport, CountMismatchIsRefusedWithoutManifest) {
 TEST(BlenderExport, VariantOutsideModelsIsRefused) {
   Scene scene = testing::make_test_scene(10, 4, 10.0f);
   scene.models.resize(2);  // instances use variants 0..2
-  EXPECT_THROW(export_blender(scene, scratch("variant")), ExportError);
+  EXPECT_THROW(export_blender(scene, scratch("variant")), Error);
 }
 
 TEST(BlenderExport, BlenderGisKeysFromGeoreference) {

@@ -210,7 +210,7 @@ TEST(PovrayRender, FailureQuotesPovrayAndLeavesNoImage) {
   try {
     render_povray(dir);
     FAIL() << "a broken scene rendered";
-  } catch (const RenderError& e) {
+  } catch (const Error& e) {
     const std::string message = e.what();
     EXPECT_NE(message.find("POV-Ray exited"), std::string::npos) << message;
     EXPECT_NE(message.find("models.inc"), std::string::npos) << message;
@@ -229,14 +229,14 @@ TEST(PovrayRender, MissingPovrayIsNamed) {
   try {
     render_povray(dir, options);
     FAIL();
-  } catch (const RenderError& e) {
+  } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("povray-that-does-not-exist"), std::string::npos) << e.what();
   }
 }
 
 TEST(PovrayRender, FolderWithoutSceneIsAnError) {
   const auto dir = scratch("nothing");
-  EXPECT_THROW(render_povray(dir), RenderError);
+  EXPECT_THROW(render_povray(dir), Error);
 }
 
 }  // namespace

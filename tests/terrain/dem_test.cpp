@@ -17,13 +17,13 @@ using test::boulder;
 using test::saint_helens;
 using test::test_dem;
 
-// Loading must fail with a TerrainError whose message names the file and says why.
+// Loading must fail with a Error whose message names the file and says why.
 void expect_failure(const std::filesystem::path& path, const std::string& reason) {
   testing::internal::CaptureStderr();
   try {
     (void)Terrain::load(path);
     ADD_FAILURE() << "loading " << path << " should fail";
-  } catch (const TerrainError& e) {
+  } catch (const Error& e) {
     const std::string message = e.what();
     EXPECT_NE(message.find(path.string()), std::string::npos) << message;
     EXPECT_NE(message.find(reason), std::string::npos) << message;
@@ -90,7 +90,7 @@ TEST(Dem, EdgeCaseChecksumsMatchGdalsOwnTests) {
   EXPECT_EQ(gdal_checksum(test_dem("edge-cases/39109h1_truncated.dem")), 39443);
   EXPECT_EQ(gdal_checksum(test_dem("edge-cases/39079G6_truncated.dem")), 61424);
   EXPECT_EQ(gdal_checksum(test_dem("edge-cases/114p01_0100_deme_truncated.dem")), 53864);
-  EXPECT_THROW(gdal_checksum(test_dem("edge-cases/fema06-140cm_2995441b_truncated.dem")), TerrainError);
+  EXPECT_THROW(gdal_checksum(test_dem("edge-cases/fema06-140cm_2995441b_truncated.dem")), Error);
 }
 
 TEST(Dem, EdgeCaseTruncatedUtmDemsLoad) {
@@ -109,7 +109,7 @@ TEST(Dem, EdgeCaseTruncatedUtmDemsLoad) {
   // Both become terrains with heights where they have data.
   for (const char* name : {"edge-cases/39109h1_truncated.dem", "edge-cases/39079G6_truncated.dem"}) {
     const Terrain terrain = Terrain::load(test_dem(name));
-    const EnuRect e = terrain.extent();
+    const Extent e = terrain.extent();
     int found = 0;
     for (int k = 0; k <= 200; ++k) {
       const auto h = terrain.height((e.min_x + e.max_x) / 2, e.min_y + e.height() * k / 200);
@@ -141,7 +141,7 @@ TEST(Dem, TruncatedAndGarbageFilesFailCleanly) {
     try {
       const Terrain terrain = Terrain::load(path);
       ADD_FAILURE() << path << " loaded although truncated";
-    } catch (const TerrainError& e) {
+    } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
     }
     EXPECT_EQ(testing::internal::GetCapturedStderr(), "");

@@ -72,7 +72,7 @@ TEST(Georef, UtmZoneAndConvergenceOfTheOrigin) {
   EXPECT_LT(frame.convergence_deg(), 0.7);
   EXPECT_EQ(EnuFrame({-33.9, 18.4}).utm_zone(), 34);
   EXPECT_FALSE(EnuFrame({-33.9, 18.4}).utm_north());
-  EXPECT_THROW(EnuFrame({95, 0}), TerrainError);
+  EXPECT_THROW(EnuFrame({95, 0}), Error);
 }
 
 // PROJ (through OSR, straight from the file's CRS) and our path (OSR datum shift +

@@ -113,7 +113,7 @@ TEST(PlacementOnDem, HashedSubAreaEqualsThatPartOfTheWhole) {
 TEST(PlacementOnDem, NodataIsNeverPlanted) {
   // The quadrangle's no-data corners: a window over the north-west corner of the raster.
   const TerrainFilter filter(helens(), {.max_height_m = {}, .max_slope_deg = {}, .mask_image = {}});
-  const EnuRect e = helens().extent();
+  const Extent e = helens().extent();
   const Extent corner{e.min_x, e.max_y - 600, e.min_x + 600, e.max_y};
   for (const bool fair : {false, true})
     for (const auto& [x, y, z, variant, tile] : scatter(corner, 4.0, filter, fair))
