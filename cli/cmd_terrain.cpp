@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.h"
-#include "cli/terrain_ground.h"
+#include "scene/ground.h"
 #include "terrain/terrain.h"
 
 namespace wangscape::cli {
@@ -85,7 +85,10 @@ void register_terrain_command(CLI::App& app, const GlobalOptions&) {
       ->check(lat_lon_validator());
   info->callback([options] {
     TerrainOptions terrain_options;
-    if (!options->origin.empty()) terrain_options.origin = parse_lat_lon(options->origin);
+    if (!options->origin.empty()) {
+      const auto origin = parse_lat_lon(options->origin);
+      terrain_options.origin = LatLon{origin[0], origin[1]};
+    }
     const Terrain terrain = Terrain::load(options->file, terrain_options);
     if (options->json)
       fmt::print("{}\n", to_json(terrain).dump(2));

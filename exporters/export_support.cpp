@@ -6,7 +6,7 @@
 
 #include <GeographicLib/UTMUPS.hpp>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 
 namespace wangscape {
 
@@ -135,32 +135,6 @@ void check_mesh(const Mesh& mesh, const std::string& what) {
                   " materials");
     }
   }
-}
-
-std::uint64_t stream_checked_instances(const Scene& scene, const std::function<void(const InstanceBatch&)>& sink) {
-  std::uint64_t streamed = 0;
-  if (scene.instances) {
-    scene.instances([&](const InstanceBatch& batch) {
-      const std::size_t n = batch.size();
-      if (batch.y.size() != n || batch.z.size() != n || batch.yaw.size() != n || batch.scale.size() != n ||
-          batch.variant.size() != n) {
-        throw Error("scene '" + scene.name + "': an instance batch has arrays of different lengths");
-      }
-      for (const std::uint16_t variant : batch.variant) {
-        if (variant >= scene.models.size()) {
-          throw Error("scene '" + scene.name + "': instance variant " + std::to_string(variant) +
-                      " but the scene has " + std::to_string(scene.models.size()) + " models");
-        }
-      }
-      streamed += n;
-      sink(batch);
-    });
-  }
-  if (streamed != scene.instance_count) {
-    throw Error("scene '" + scene.name + "': the instance stream produced " + std::to_string(streamed) +
-                " instances, the scene announced " + std::to_string(scene.instance_count));
-  }
-  return streamed;
 }
 
 std::vector<std::pair<std::string, std::string>> blendergis_properties(const Georeference& georeference) {

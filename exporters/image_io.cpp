@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 
 namespace wangscape {
 

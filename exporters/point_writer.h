@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 #include "generator/instances.h"
 
 namespace wangscape {

@@ -4,7 +4,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
+#include "templates/blender_addon.h"
 
 namespace wangscape {
 
@@ -102,6 +103,12 @@ std::string make_zip(std::span<const ZipEntry> entries) {
   put32(archive, directory_offset);
   put16(archive, 0);  // comment
   return archive;
+}
+
+std::string blender_addon_zip() {
+  std::vector<ZipEntry> entries;
+  for (const EmbeddedFile& file : blender_addon_files()) entries.push_back({file.path, file.contents});
+  return make_zip(entries);
 }
 
 }  // namespace wangscape

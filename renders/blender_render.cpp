@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 #include "exporters/zip_writer.h"
 #include "renders/child_process.h"
 #include "templates/blender_addon.h"
@@ -86,9 +86,7 @@ BlenderRenderResult render_blender(const std::filesystem::path& dir_in, const Bl
   // The export normally carries the add-on zip; write the embedded one if it does not.
   const auto addon_zip = result.manifest.parent_path() / "wangscape_import.zip";
   if (!std::filesystem::is_regular_file(addon_zip)) {
-    std::vector<ZipEntry> entries;
-    for (const EmbeddedFile& file : blender_addon_files()) entries.push_back({file.path, file.contents});
-    write_file_atomically(addon_zip, make_zip(entries));
+    write_file_atomically(addon_zip, blender_addon_zip());
   }
 
   result.image = dir / options.image_name;

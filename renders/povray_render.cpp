@@ -7,7 +7,7 @@
 #include <sstream>
 #include <vector>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 #include "renders/child_process.h"
 
 namespace wangscape {

@@ -42,7 +42,8 @@ class PaintedMask {
 };
 
 struct TerrainFilterOptions {
-  std::optional<double> max_height_m;               // orthometric meters
+  std::optional<double> max_height_m;               // orthometric meters; no flowers above
+  std::optional<double> min_height_m;               // orthometric meters; no flowers below
   std::optional<double> max_slope_deg;              // degrees from horizontal
   std::optional<std::filesystem::path> mask_image;  // painted mask over the terrain's extent
 };
@@ -53,8 +54,8 @@ struct TerrainFilterOptions {
 //
 // A tile passes when every DEM cell it touches has data at its four corners and a slope
 // of at most max_slope at each corner (the bilinear slope is largest at a corner), and
-// the ground over the tile is nowhere above max_height: exactly, with the bilinear
-// surface's maximum over the tile's box in sample coordinates. The slope table converts
+// the ground over the tile is nowhere above max_height nor below min_height: exactly, with the
+// bilinear surface's extremes over the tile's box in sample coordinates. The slope table converts
 // DEM gradients to ENU with the Jacobian at the DEM center: exact for 7.5' quadrangles,
 // within ~1% of the slope's tangent over a 1-degree DEM.
 class TerrainFilter {
@@ -90,16 +91,20 @@ class TerrainFilter {
   // False if a corner of the rectangle is off the lattice or the DEM (clamp false), or the
   // rectangle misses the DEM (clamp true: it is first cut to the terrain's extent).
   bool touched_cells(const Extent& tile, bool clamp, SampleBox& box) const;
-  // The bilinear ground over the box has data and is nowhere above max_height (exact).
-  bool box_below(const SampleBox& box, double max_height) const;
+  bool height_in_range(double z) const {
+    return (!options_.max_height_m || z <= *options_.max_height_m) &&
+           (!options_.min_height_m || z >= *options_.min_height_m);
+  }
+  // The bilinear ground over the box has data and stays within [min_height, max_height] (exact).
+  bool box_within(const SampleBox& box, double min_height, double max_height) const;
 
   const Terrain* terrain_;
   TerrainFilterOptions options_;
   std::optional<PaintedMask> mask_;
   int cells_x_ = 0, cells_y_ = 0;
   // Per DEM cell: all four corners have data, its slope is within the limit, all corners
-  // are low enough, some corner (with data) is low enough.
-  enum CellFlag : std::uint8_t { kData = 1, kFlat = 2, kLow = 4, kSomeLow = 8 };
+  // are within the height limits, some of its ground (between its corners) may be.
+  enum CellFlag : std::uint8_t { kData = 1, kFlat = 2, kInRange = 4, kSomeInRange = 8 };
   std::vector<std::uint8_t> cell_flags_;
   std::size_t passing_cells_ = 0, maybe_cells_ = 0;
   double min_cell_slope_deg_ = 0;

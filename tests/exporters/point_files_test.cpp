@@ -6,8 +6,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "exporters/filled_tileset_json.h"
 #include "exporters/point_writer.h"
+#include "scene/filled_tileset_file.h"
 
 namespace wangscape {
 namespace {

@@ -1,11 +1,11 @@
-#include "exporters/tileset_json.h"
+#include "scene/tileset_file.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <fstream>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 #include "exporters/image_io.h"
 #include "generator/tiling_preview.h"
 

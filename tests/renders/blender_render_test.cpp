@@ -9,7 +9,7 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 #include "exporters/blender_export.h"
 #include "renders/child_process.h"
 #include "tests/blender/test_scene.h"

@@ -74,7 +74,6 @@ Scene tiny_scene(bool with_instances = true) {
   scene.terrain = flat_terrain(400, 8);
   scene.models = {test_flower(0.25f), test_flower(0.3f)};
   if (with_instances) {
-    scene.instance_count = 100;
     scene.instances = [](const std::function<void(const InstanceBatch&)>& sink) {
       InstanceBatch batch;
       for (int j = 0; j < 10; ++j)

@@ -7,8 +7,8 @@
 #include <string>
 #include <string_view>
 
-#include "exporters/tileset_json.h"
 #include "generator/poisson_tiles.h"
+#include "scene/tileset_file.h"
 
 namespace wangscape {
 

@@ -1,10 +1,10 @@
-#include "exporters/filled_tileset_json.h"
+#include "scene/filled_tileset_file.h"
 
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 
 namespace wangscape {
 

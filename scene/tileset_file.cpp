@@ -1,10 +1,10 @@
-#include "exporters/tileset_json.h"
+#include "scene/tileset_file.h"
 
 #include <algorithm>
 #include <fstream>
 #include <sstream>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 
 namespace wangscape {
 
