@@ -395,6 +395,7 @@ void GltfWriter::finish(const StreamTotals& totals) {
     }
   }
   out.commit();
+  spill.reset();  // its temporary files go now, before the folder they are in is published
   impl.summary = GltfSummary{path, count, total};
 }
 
