@@ -54,9 +54,10 @@ struct Problem {
   int size = 0, half = 0, band = 0, separation = 0;
   std::span<const ImageRgb8> exemplars;
   std::vector<Diamond> diamonds;
-  std::vector<std::array<std::size_t, 4>> tile_diamonds;  // per tile, per slot
-  std::vector<std::vector<std::size_t>> window_diamonds;  // diamonds reading each window
-  std::vector<std::vector<std::size_t>> window_tiles;     // tiles reading each window
+  std::vector<std::array<std::size_t, 4>> tile_diamonds;   // per tile, per slot
+  std::vector<std::vector<std::size_t>> window_diamonds;   // diamonds reading each window
+  std::vector<std::vector<std::size_t>> window_tiles;      // tiles reading each window
+  std::vector<std::vector<std::size_t>> window_quadrants;  // tile * 4 + quadrant of the quadrants reading each window
 };
 
 struct Layout {
@@ -179,23 +180,41 @@ std::uint64_t quadrant_cut(const Problem& p, const Layout& layout, std::size_t t
   const int second_slot = kSecondSlot[static_cast<std::size_t>(quadrant)];
   const auto length = [&](int k) { return std::min(k, last - k) + 1; };
   const auto limit = [&](int k) { return std::min(band, length(k) - 2); };
-  const auto allowed = [&](int k, int c) {
-    if (k == 0 || k == last) return c == 1;
-    return ((c - k - 1) & 1) == 0 && std::abs(c) <= limit(k);
+  // Per anti-diagonal, pixel errors for q in [-(band + 2), band + 2].
+  const int reach = band + 2, span = 2 * reach + 1;
+  // A slot whose diamond is one window maps tile pixels to exemplar bytes by a fixed offset:
+  // the fast path. Mixed diamonds go through their cut.
+  struct Fetch {
+    const std::uint8_t* pixels = nullptr;
+    std::ptrdiff_t origin = 0, width = 0;  // byte offset of tile pixel (0, 0); exemplar width
   };
-  // Per anti-diagonal, pixel errors for q in [-(band + 4), band + 4].
-  const int reach = band + 4, span = 2 * reach + 1;
+  const auto fetch = [&](int slot) {
+    Fetch f;
+    const Diamond& d = p.diamonds[p.tile_diamonds[tile][static_cast<std::size_t>(slot)]];
+    if (d.mixed()) return f;
+    const TextureWindow& w = layout.windows[d.first];
+    const ImageRgb8& image = p.exemplars[static_cast<std::size_t>(w.exemplar)];
+    const auto [x0, y0] = texture_source_pixel(p.size, w, slot, 0, 0);
+    f.pixels = image.pixels.data();
+    f.width = image.width;
+    f.origin = (static_cast<std::ptrdiff_t>(y0) * f.width + x0) * 3;
+    return f;
+  };
+  const Fetch first_fetch = fetch(first_slot), second_fetch = fetch(second_slot);
+  const auto color = [&](const Fetch& f, int slot, int x, int y) {
+    if (f.pixels) return f.pixels + f.origin + (static_cast<std::ptrdiff_t>(y) * f.width + x) * 3;
+    return source_color(p, layout, pixel_source(p, layout, tile, slot, x, y), x, y);
+  };
+  const auto [x0, y0] = quadrant_pixel(p.half, quadrant, 0, 0);
+  const int step_x = quadrant == kNEq || quadrant == kSEq ? 1 : -1,
+            step_y = quadrant == kSEq || quadrant == kSWq ? 1 : -1;
   const auto errors = [&](int k, std::vector<std::uint64_t>& e) {
-    for (int q = -reach; q <= reach; ++q) {
-      std::uint64_t value = kInfinite;
-      if (((q - k) & 1) == 0 && std::abs(q) <= length(k) - 1) {
-        const auto [x, y] = quadrant_pixel(p.half, quadrant, (k + q) / 2, (k - q) / 2);
-        const Source first = pixel_source(p, layout, tile, first_slot, x, y);
-        const Source second = pixel_source(p, layout, tile, second_slot, x, y);
-        value = static_cast<std::uint64_t>(
-            square_difference(source_color(p, layout, first, x, y), source_color(p, layout, second, x, y)));
-      }
-      e[static_cast<std::size_t>(q + reach)] = value;
+    std::fill(e.begin(), e.end(), kInfinite);
+    const int extent = std::min(length(k) - 1, reach);
+    for (int q = ((extent - k) & 1) ? 1 - extent : -extent; q <= extent; q += 2) {
+      const int x = x0 + step_x * ((k + q) / 2), y = y0 + step_y * ((k - q) / 2);
+      e[static_cast<std::size_t>(q + reach)] = static_cast<std::uint64_t>(
+          square_difference(color(first_fetch, first_slot, x, y), color(second_fetch, second_slot, x, y)));
     }
   };
   const int states = 2 * band + 3, offset = band + 1;  // c in [-band - 1, band + 1]
@@ -207,24 +226,18 @@ std::uint64_t quadrant_cut(const Problem& p, const Layout& layout, std::size_t t
   for (int k = 0; k < last; ++k) {
     errors(k + 1, e_next);
     std::fill(next.begin(), next.end(), kInfinite);
-    for (int c2 = -band - 1; c2 <= band + 1; ++c2) {
-      if (!allowed(k + 1, c2)) continue;
+    // Allowed thresholds on k + 1: parity opposite to its pixels', within the limit.
+    const int lim = k + 1 == last ? 1 : limit(k + 1);
+    const int lo = k + 1 == last ? 1 : (((lim + k) & 1) ? 1 - lim : -lim);
+    for (int c2 = lo; c2 <= lim; c2 += 2) {
       for (const int step : {-1, 1}) {
         const int c = c2 + step;
         if (c < -band - 1 || c > band + 1 || cost[static_cast<std::size_t>(c + offset)] >= kInfinite) continue;
-        // Seam pairs between anti-diagonals k and k+1 lie within 3 of the threshold.
-        std::uint64_t pairs = 0;
-        for (int q = c - 3; q <= c + 3; ++q) {
-          if (q < -reach || q > reach) continue;
-          const std::uint64_t eq = e[static_cast<std::size_t>(q + reach)];
-          if (eq >= kInfinite) continue;
-          for (const int r : {q + 1, q - 1}) {
-            if (r < -reach || r > reach) continue;
-            const std::uint64_t er = e_next[static_cast<std::size_t>(r + reach)];
-            if (er >= kInfinite) continue;
-            if ((q < c) != (r < c2)) pairs += eq + er;
-          }
-        }
+        // Moving the threshold by one between anti-diagonals leaves exactly one seam pair: pixel
+        // q = c2 on k against pixel c on k+1 (when both exist).
+        const std::uint64_t eq = e[static_cast<std::size_t>(c2 + reach)],
+                            er = e_next[static_cast<std::size_t>(c + reach)];
+        const std::uint64_t pairs = eq < kInfinite && er < kInfinite ? eq + er : 0;
         const std::uint64_t total = cost[static_cast<std::size_t>(c + offset)] + pairs;
         if (total < next[static_cast<std::size_t>(c2 + offset)]) {
           next[static_cast<std::size_t>(c2 + offset)] = total;
@@ -261,11 +274,8 @@ std::uint64_t centre_pairs(const Problem& p, const Layout& layout, std::size_t t
   return total;
 }
 
-std::uint64_t tile_cost(const Problem& p, const Layout& layout, std::size_t tile) {
-  std::uint64_t total = centre_pairs(p, layout, tile);
-  for (int quadrant = 0; quadrant < 4; ++quadrant) total += quadrant_cut(p, layout, tile, quadrant, nullptr);
-  return total;
-}
+// The quadrants a slot's diamond reaches into.
+constexpr std::array<std::array<int, 2>, 4> kSlotQuadrants = {{{kNEq, kNWq}, {kNEq, kSEq}, {kSEq, kSWq}, {kSWq, kNWq}}};
 
 // Far enough from every other window of its exemplar, also at the offsets where diamonds meet.
 bool well_separated(const Problem& p, const Layout& layout, std::size_t window, const TextureWindow& at) {
@@ -337,6 +347,7 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
   p.exemplars = exemplars;
   p.window_diamonds.resize(window_count);
   p.window_tiles.resize(window_count);
+  p.window_quadrants.resize(window_count);
   std::map<std::array<int, 4>, std::size_t> diamond_ids;
   const auto color = [](int c) { return c < 0 ? 0 : c; };
   for (std::size_t t = 0; t < set.size(); ++t) {
@@ -360,10 +371,17 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
       }
       slots[static_cast<std::size_t>(slot)] = it->second;
       const Diamond& d = p.diamonds[it->second];
-      for (const std::size_t w : {d.first, d.second})
+      for (const std::size_t w : {d.first, d.second}) {
         if (p.window_tiles[w].empty() || p.window_tiles[w].back() != t) p.window_tiles[w].push_back(t);
+        for (const int q : kSlotQuadrants[static_cast<std::size_t>(slot)])
+          p.window_quadrants[w].push_back(t * 4 + static_cast<std::size_t>(q));
+      }
     }
     p.tile_diamonds.push_back(slots);
+  }
+  for (std::vector<std::size_t>& quadrants : p.window_quadrants) {
+    std::sort(quadrants.begin(), quadrants.end());
+    quadrants.erase(std::unique(quadrants.begin(), quadrants.end()), quadrants.end());
   }
 
   // Initial windows: random, well separated; window w reads exemplar (its mark) mod exemplars.
@@ -389,14 +407,19 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
                            std::to_string(p.separation) +
                            " pixels apart; use a larger exemplar, smaller tiles or a smaller separation");
   }
-  std::vector<std::uint64_t> diamond_cost(p.diamonds.size(), 0), tile_costs(set.size(), 0);
+  std::vector<std::uint64_t> diamond_cost(p.diamonds.size(), 0), centre_costs(set.size(), 0);
+  std::vector<std::uint64_t> quadrant_costs(set.size() * 4, 0);
   for (std::size_t d = 0; d < p.diamonds.size(); ++d)
     if (p.diamonds[d].mixed()) diamond_cost[d] = bisector_cut(p, layout, d, &layout.cuts[d]);
-  tbb::parallel_for(std::size_t{0}, set.size(), [&](std::size_t t) { tile_costs[t] = tile_cost(p, layout, t); });
+  tbb::parallel_for(std::size_t{0}, set.size(), [&](std::size_t t) {
+    centre_costs[t] = centre_pairs(p, layout, t);
+    for (int q = 0; q < 4; ++q)
+      quadrant_costs[t * 4 + static_cast<std::size_t>(q)] = quadrant_cut(p, layout, t, q, nullptr);
+  });
   const auto objective = [&] {
     std::uint64_t total = 0;
-    for (const std::uint64_t c : diamond_cost) total += c;
-    for (const std::uint64_t c : tile_costs) total += c;
+    for (const auto* costs : {&diamond_cost, &centre_costs, &quadrant_costs})
+      for (const std::uint64_t c : *costs) total += c;
     return total;
   };
   TextureTileReport stats;
@@ -408,16 +431,18 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
     TextureWindow at;
     std::uint64_t cost = kInfinite;
     std::vector<std::vector<int>> cuts;  // of the window's mixed diamonds
-    std::vector<std::uint64_t> diamond_costs, tile_costs;
+    std::vector<std::uint64_t> diamond_costs, centre_costs, quadrant_costs;
   };
   for (int round = 0; round < options.rounds; ++round)
     for (std::size_t w = 0; w < window_count; ++w) {
       const std::vector<std::size_t>& diamonds = p.window_diamonds[w];
       const std::vector<std::size_t>& tiles = p.window_tiles[w];
+      const std::vector<std::size_t>& quadrants = p.window_quadrants[w];
       if (tiles.empty()) continue;
       std::uint64_t current = 0;
       for (const std::size_t d : diamonds) current += diamond_cost[d];
-      for (const std::size_t t : tiles) current += tile_costs[t];
+      for (const std::size_t t : tiles) current += centre_costs[t];
+      for (const std::size_t q : quadrants) current += quadrant_costs[q];
       std::vector<Trial> trials(static_cast<std::size_t>(options.candidates));
       Draws draws(options.seed, (static_cast<std::uint64_t>(round) << 32) + w);
       for (Trial& trial : trials) {
@@ -443,8 +468,12 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
           trial.cost += c;
         }
         for (const std::size_t t : tiles) {
-          trial.tile_costs.push_back(tile_cost(p, local, t));
-          trial.cost += trial.tile_costs.back();
+          trial.centre_costs.push_back(centre_pairs(p, local, t));
+          trial.cost += trial.centre_costs.back();
+        }
+        for (const std::size_t q : quadrants) {
+          trial.quadrant_costs.push_back(quadrant_cut(p, local, q / 4, static_cast<int>(q % 4), nullptr));
+          trial.cost += trial.quadrant_costs.back();
         }
       });
       stats.candidates_tried += options.candidates;
@@ -453,12 +482,14 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
         if (trials[k].cost < trials[best].cost) best = k;
       if (trials[best].cost >= current) continue;
       ++stats.moves_accepted;
-      layout.windows[w] = trials[best].at;
+      Trial& chosen = trials[best];
+      layout.windows[w] = chosen.at;
       for (std::size_t k = 0; k < diamonds.size(); ++k) {
-        layout.cuts[diamonds[k]] = std::move(trials[best].cuts[k]);
-        diamond_cost[diamonds[k]] = trials[best].diamond_costs[k];
+        layout.cuts[diamonds[k]] = std::move(chosen.cuts[k]);
+        diamond_cost[diamonds[k]] = chosen.diamond_costs[k];
       }
-      for (std::size_t k = 0; k < tiles.size(); ++k) tile_costs[tiles[k]] = trials[best].tile_costs[k];
+      for (std::size_t k = 0; k < tiles.size(); ++k) centre_costs[tiles[k]] = chosen.centre_costs[k];
+      for (std::size_t k = 0; k < quadrants.size(); ++k) quadrant_costs[quadrants[k]] = chosen.quadrant_costs[k];
     }
   stats.final_cost = objective();
   if (report) *report = stats;
