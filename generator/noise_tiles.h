@@ -101,7 +101,7 @@ class NoiseTileSet {
 
 struct MarbleParams {
   float stripes = 1.5f;    // stripes per tile side, across the x + y diagonal
-  float distortion = 2.f;  // phase shift (turns) per unit of turbulence difference
+  float distortion = 1.f;  // phase shift (turns) per unit of turbulence difference
 };
 
 struct WoodParams {
