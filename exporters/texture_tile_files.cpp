@@ -5,9 +5,9 @@
 #include <string>
 #include <system_error>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 #include "exporters/image_io.h"
-#include "exporters/tileset_json.h"
+#include "scene/tileset_file.h"
 
 namespace wangscape {
 
@@ -16,7 +16,7 @@ namespace {
 void make_folder(const std::filesystem::path& dir) {
   std::error_code error;
   std::filesystem::create_directories(dir, error);
-  if (error) throw ExportError("cannot create folder '" + dir.string() + "': " + error.message());
+  if (error) throw Error("cannot create folder '" + dir.string() + "': " + error.message());
 }
 
 // The tile entries: file name plus the tile's colors, in set order.
@@ -35,28 +35,28 @@ Json tile_entries(const TileSet& set, const std::string& prefix) {
 
 void write_image_gray16(const std::filesystem::path& path, const ImageGray16& image) {
   const std::string name = path.string();
-  if (image.width < 1 || image.height < 1) throw ExportError("cannot write '" + name + "': the image is empty");
+  if (image.width < 1 || image.height < 1) throw Error("cannot write '" + name + "': the image is empty");
   AtomicPath atomic(path);
   auto output = OIIO::ImageOutput::create(name);
   if (!output)
-    throw ExportError("cannot write '" + name + "': no image format for extension '" + path.extension().string() +
-                      "' (" + OIIO::geterror() + ")");
+    throw Error("cannot write '" + name + "': no image format for extension '" + path.extension().string() + "' (" +
+                OIIO::geterror() + ")");
   const OIIO::ImageSpec spec(image.width, image.height, 1, OIIO::TypeDesc::UINT16);
   const std::string temp = atomic.temp_path().string();
   if (!output->open(temp, spec) || !output->write_image(OIIO::TypeDesc::UINT16, image.pixels.data()) ||
       !output->close())
-    throw ExportError("cannot write '" + name + "': " + output->geterror());
+    throw Error("cannot write '" + name + "': " + output->geterror());
   atomic.commit();
 }
 
 ImageGray16 read_image_gray16(const std::filesystem::path& path) {
   const std::string name = path.string();
   auto input = OIIO::ImageInput::open(name);
-  if (!input) throw ExportError("cannot read image '" + name + "': " + OIIO::geterror());
+  if (!input) throw Error("cannot read image '" + name + "': " + OIIO::geterror());
   const OIIO::ImageSpec& spec = input->spec();
   ImageGray16 image(spec.width, spec.height);
   if (!input->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT16, image.pixels.data()))
-    throw ExportError("cannot read image '" + name + "': " + input->geterror());
+    throw Error("cannot read image '" + name + "': " + input->geterror());
   return image;
 }
 

@@ -1,6 +1,6 @@
 // Noise tiles and texture tiles as files (docs/texture-tiles.md): one PNG per tile (16-bit grey
 // for noise, 8-bit RGB for textures) plus a JSON description naming each tile's file and colors.
-// Every file is written atomically; a failed write throws ExportError naming the file.
+// Every file is written atomically; a failed write throws Error naming the file.
 #pragma once
 
 #include <filesystem>
@@ -13,7 +13,7 @@ namespace wangscape {
 
 // 16-bit grey images through OpenImageIO (the format from the extension: .png, .tif, ...).
 void write_image_gray16(const std::filesystem::path& path, const ImageGray16& image);
-// Reads any image as 16-bit grey (the first channel). Throws ExportError naming the file.
+// Reads any image as 16-bit grey (the first channel). Throws Error naming the file.
 ImageGray16 read_image_gray16(const std::filesystem::path& path);
 
 // DIR/noise_tile_<k>.png (pixels x pixels, `pattern`: noise, fbm or turbulence) for every tile

@@ -37,20 +37,19 @@ const char* to_string(NoisePattern pattern) { return kPatternNames[static_cast<s
 NoisePattern parse_noise_pattern(const char* text) {
   for (std::size_t k = 0; k < kPatternNames.size(); ++k)
     if (std::strcmp(text, kPatternNames[k]) == 0) return static_cast<NoisePattern>(k);
-  throw GeneratorError(std::string("unknown noise pattern '") + text +
-                       "'; expected noise, fbm, turbulence, marble or wood");
+  throw Error(std::string("unknown noise pattern '") + text + "'; expected noise, fbm, turbulence, marble or wood");
 }
 
 NoiseTileSet::NoiseTileSet(const TileSet& set, const NoiseTileOptions& options)
     : set_(set), lattice_(options.lattice), seed_(options.seed) {
   const std::string where = "noise tiles of " + set.describe();
-  if (set.tiles.empty()) throw GeneratorError(where + ": no tiles");
+  if (set.tiles.empty()) throw Error(where + ": no tiles");
   if (lattice_ < 4 || lattice_ > 4096 || !std::has_single_bit(static_cast<unsigned>(lattice_)))
-    throw GeneratorError(where + ": lattice " + std::to_string(lattice_) + "; expected a power of two in 4..4096");
+    throw Error(where + ": lattice " + std::to_string(lattice_) + "; expected a power of two in 4..4096");
   const int max_levels = std::countr_zero(static_cast<unsigned>(lattice_)) - 1;  // down to 4 x 4 cells
   if (options.octaves < 0 || options.octaves > max_levels)
-    throw GeneratorError(where + ": " + std::to_string(options.octaves) + " octaves; a lattice of " +
-                         std::to_string(lattice_) + " holds 1.." + std::to_string(max_levels) + " (0 = all)");
+    throw Error(where + ": " + std::to_string(options.octaves) + " octaves; a lattice of " + std::to_string(lattice_) +
+                " holds 1.." + std::to_string(max_levels) + " (0 = all)");
   levels_ = options.octaves == 0 ? max_levels : options.octaves;
 
   for (std::size_t k = 0; k < table_.size(); ++k) {
@@ -102,8 +101,7 @@ NoiseTileSet::NoiseTileSet(const TileSet& set, const NoiseTileOptions& options)
 NoiseField make_noise_field(const TileSet& set, const NoiseTileOptions& options, std::uint64_t tiling_seed,
                             double tile_size) {
   if (!(tile_size > 0))
-    throw GeneratorError("noise field of " + set.describe() + ": tile size " + std::to_string(tile_size) +
-                         "; expected > 0");
+    throw Error("noise field of " + set.describe() + ": tile size " + std::to_string(tile_size) + "; expected > 0");
   return NoiseField(NoiseTileSet(set, options), HashedTiling(set, tiling_seed), tile_size);
 }
 
@@ -115,13 +113,12 @@ std::uint16_t noise_to_gray16(NoisePattern pattern, float value) {
 
 ImageGray16 rasterize_noise_tile(const NoiseTileSet& tiles, std::uint32_t tile, int pixels, NoisePattern pattern) {
   if (pixels < 1 || pixels > 16384)
-    throw GeneratorError("noise tile raster: " + std::to_string(pixels) + " pixels; expected 1..16384");
+    throw Error("noise tile raster: " + std::to_string(pixels) + " pixels; expected 1..16384");
   if (tile >= tiles.size())
-    throw GeneratorError("noise tile raster: tile " + std::to_string(tile) + " of a set of " +
-                         std::to_string(tiles.size()));
+    throw Error("noise tile raster: tile " + std::to_string(tile) + " of a set of " + std::to_string(tiles.size()));
   if (pattern == NoisePattern::marble || pattern == NoisePattern::wood)
-    throw GeneratorError(std::string("noise tile raster: pattern '") + to_string(pattern) +
-                         "' needs a tiling; expected noise, fbm or turbulence");
+    throw Error(std::string("noise tile raster: pattern '") + to_string(pattern) +
+                "' needs a tiling; expected noise, fbm or turbulence");
   ImageGray16 image(pixels, pixels);
   tbb::parallel_for(0, pixels, [&](int row) {
     const float v = 1 - (static_cast<float>(row) + 0.5f) / static_cast<float>(pixels);
@@ -139,10 +136,9 @@ ImageGray16 rasterize_noise_tile(const NoiseTileSet& tiles, std::uint32_t tile, 
 ImageGray16 render_noise_preview(const NoiseField& field, NoisePattern pattern, int width, int height,
                                  double pixel_size, double x0, double y0) {
   if (width < 1 || height < 1 || static_cast<std::int64_t>(width) * height > (std::int64_t{1} << 28))
-    throw GeneratorError("noise preview: " + std::to_string(width) + " x " + std::to_string(height) +
-                         " pixels; expected a positive size of at most 2^28 pixels");
-  if (!(pixel_size > 0))
-    throw GeneratorError("noise preview: pixel size " + std::to_string(pixel_size) + "; expected > 0");
+    throw Error("noise preview: " + std::to_string(width) + " x " + std::to_string(height) +
+                " pixels; expected a positive size of at most 2^28 pixels");
+  if (!(pixel_size > 0)) throw Error("noise preview: pixel size " + std::to_string(pixel_size) + "; expected > 0");
   ImageGray16 image(width, height);
   tbb::parallel_for(tbb::blocked_range<int>(0, height, 8), [&](const tbb::blocked_range<int>& rows) {
     for (int row = rows.begin(); row < rows.end(); ++row) {

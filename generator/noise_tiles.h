@@ -49,7 +49,7 @@ struct NoiseSample {
 // signed 1/f sum, in [-1, 1]; turbulence: the sum of |octaves|, in [0, 1]; marble, wood: [0, 1].
 enum class NoisePattern : std::uint8_t { noise, fbm, turbulence, marble, wood };
 
-// "noise", "fbm", "turbulence", "marble", "wood"; parse throws GeneratorError naming the value.
+// "noise", "fbm", "turbulence", "marble", "wood"; parse throws Error naming the value.
 const char* to_string(NoisePattern pattern);
 NoisePattern parse_noise_pattern(const char* text);
 
@@ -57,7 +57,7 @@ NoisePattern parse_noise_pattern(const char* text);
 // thread-safe and allocation-free.
 class NoiseTileSet {
  public:
-  // Throws GeneratorError naming the set or the option out of range.
+  // Throws Error naming the set or the option out of range.
   NoiseTileSet(const TileSet& set, const NoiseTileOptions& options);
 
   const TileSet& set() const { return set_; }
@@ -215,7 +215,7 @@ using NoiseField = TiledNoise<HashedTiling>;
 // Noise over one finite tiling (any algorithm).
 using WindowNoise = TiledNoise<WindowTiles>;
 
-// Throws GeneratorError (from NoiseTileSet or HashedTiling) when the set is not complete or an
+// Throws Error (from NoiseTileSet or HashedTiling) when the set is not complete or an
 // option is out of range; tile_size must be > 0.
 NoiseField make_noise_field(const TileSet& set, const NoiseTileOptions& options, std::uint64_t tiling_seed,
                             double tile_size);

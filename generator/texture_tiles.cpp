@@ -319,18 +319,18 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
   const std::string where = "texture tiles of " + set.describe();
   const int size = options.tile_size;
   if (size < 16 || size > 4096 || size % 2 != 0)
-    throw GeneratorError(where + ": tile size " + std::to_string(size) + "; expected an even number in 16..4096");
+    throw Error(where + ": tile size " + std::to_string(size) + "; expected an even number in 16..4096");
   if (exemplars.empty() || exemplars.size() > 2)
-    throw GeneratorError(where + ": " + std::to_string(exemplars.size()) + " exemplars; expected 1 or 2");
+    throw Error(where + ": " + std::to_string(exemplars.size()) + " exemplars; expected 1 or 2");
   for (std::size_t e = 0; e < exemplars.size(); ++e)
     if (exemplars[e].width < size + 2 || exemplars[e].height < size + 2)
-      throw GeneratorError(where + ": exemplar " + std::to_string(e + 1) + " is " + std::to_string(exemplars[e].width) +
-                           " x " + std::to_string(exemplars[e].height) + " pixels; tiles of " + std::to_string(size) +
-                           " need at least " + std::to_string(size + 2) + " x " + std::to_string(size + 2));
+      throw Error(where + ": exemplar " + std::to_string(e + 1) + " is " + std::to_string(exemplars[e].width) + " x " +
+                  std::to_string(exemplars[e].height) + " pixels; tiles of " + std::to_string(size) +
+                  " need at least " + std::to_string(size + 2) + " x " + std::to_string(size + 2));
   if (options.band < 0 || options.band > size / 8)
-    throw GeneratorError(where + ": band " + std::to_string(options.band) + "; expected 0..tile size / 8");
+    throw Error(where + ": band " + std::to_string(options.band) + "; expected 0..tile size / 8");
   if (options.rounds < 0 || options.candidates < 1 || options.min_separation < 0)
-    throw GeneratorError(where + ": expected rounds >= 0, candidates >= 1, min separation >= 0");
+    throw Error(where + ": expected rounds >= 0, candidates >= 1, min separation >= 0");
 
   TextureTileSet result;
   result.set = set;
@@ -402,10 +402,10 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
       placed = well_separated(p, placed_only, w, at);
     }
     if (!placed)
-      throw GeneratorError(where + ": exemplar " + std::to_string(exemplar + 1) + " has no room for " +
-                           std::to_string(window_count) + " windows of " + std::to_string(size) + " pixels kept " +
-                           std::to_string(p.separation) +
-                           " pixels apart; use a larger exemplar, smaller tiles or a smaller separation");
+      throw Error(where + ": exemplar " + std::to_string(exemplar + 1) + " has no room for " +
+                  std::to_string(window_count) + " windows of " + std::to_string(size) + " pixels kept " +
+                  std::to_string(p.separation) +
+                  " pixels apart; use a larger exemplar, smaller tiles or a smaller separation");
   }
   std::vector<std::uint64_t> diamond_cost(p.diamonds.size(), 0), centre_costs(set.size(), 0);
   std::vector<std::uint64_t> quadrant_costs(set.size() * 4, 0);
@@ -543,13 +543,12 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
 ImageRgb8 draw_texture_tiling(const TextureTileSet& tiles, const Tiling& tiling) {
   const std::int64_t t = tiles.tile_size;
   if (tiling.width < 1 || tiling.height < 1 || tiling.width * t * tiling.height * t > (std::int64_t{1} << 28))
-    throw GeneratorError("texture tiling preview: " + std::to_string(tiling.width) + " x " +
-                         std::to_string(tiling.height) + " tiles of " + std::to_string(t) +
-                         " pixels; expected a positive size of at most 2^28 pixels");
+    throw Error("texture tiling preview: " + std::to_string(tiling.width) + " x " + std::to_string(tiling.height) +
+                " tiles of " + std::to_string(t) + " pixels; expected a positive size of at most 2^28 pixels");
   for (const std::uint16_t index : tiling.tiles)
     if (index >= tiles.tiles.size())
-      throw GeneratorError("texture tiling preview: tile " + std::to_string(index) + " of a set of " +
-                           std::to_string(tiles.tiles.size()));
+      throw Error("texture tiling preview: tile " + std::to_string(index) + " of a set of " +
+                  std::to_string(tiles.tiles.size()));
   const int size = tiles.tile_size;
   ImageRgb8 image(tiling.width * size, tiling.height * size);
   tbb::parallel_for(0, tiling.height, [&](int lj) {

@@ -101,13 +101,13 @@ inline std::array<int, 2> texture_source_pixel(int tile_size, const TextureWindo
 
 // Builds every tile of `set` (an edge set, a corner set, or an edge set with corner marks) from
 // one or two exemplars. Deterministic from options.seed: the same bytes on any thread count.
-// Throws GeneratorError naming the problem (exemplar smaller than a tile, no room for the
+// Throws Error naming the problem (exemplar smaller than a tile, no room for the
 // windows at that separation, options out of range).
 TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8> exemplars,
                                   const TextureTileOptions& options, TextureTileReport* report = nullptr);
 
 // The tiles laid by `tiling` (north at the top): width * T x height * T pixels. Throws
-// GeneratorError when the image would exceed 2^28 pixels or a tile index is out of range.
+// Error when the image would exceed 2^28 pixels or a tile index is out of range.
 ImageRgb8 draw_texture_tiling(const TextureTileSet& tiles, const Tiling& tiling);
 
 }  // namespace wangscape

@@ -6,9 +6,9 @@
 
 #include <fstream>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 #include "exporters/image_io.h"
-#include "exporters/tileset_json.h"
+#include "scene/tileset_file.h"
 
 namespace wangscape {
 namespace {
@@ -80,7 +80,7 @@ TEST(TextureTileFiles, AnUnwritableFolderIsNamed) {
   try {
     write_noise_tile_files(file / "sub", tiles, 8);
     FAIL() << "no error";
-  } catch (const ExportError& e) {
+  } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("blocker"), std::string::npos) << e.what();
   }
 }
