@@ -72,9 +72,10 @@ void BM_ScatterWithHeight(benchmark::State& state) {
   const FilledTileSet& filled = sunflower_tiles();
   const Terrain& ground = terrain;
   const bool threshold = state.range(0) != 0;
-  const TerrainFilter filter(
-      terrain,
-      {.max_height_m = threshold ? std::optional(1500.0) : std::nullopt, .max_slope_deg = {}, .mask_image = {}});
+  const TerrainFilter filter(terrain, {.max_height_m = threshold ? std::optional(1500.0) : std::nullopt,
+                                       .min_height_m = {},
+                                       .max_slope_deg = {},
+                                       .mask_image = {}});
   PlacementOptions options;
   options.tile_size = 4.0;
   options.algorithm = TilingAlgorithm::hash;

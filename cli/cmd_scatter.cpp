@@ -17,6 +17,7 @@
 #include "generator/placement.h"
 #include "generator/point_metrics.h"
 #include "scene/filled_tileset_file.h"
+#include "scene/scene.h"
 
 namespace wangscape::cli {
 
@@ -139,10 +140,14 @@ void run(const ScatterOptions& options, const GlobalOptions& global) {
   const double tiles = static_cast<double>(range.width()) * range.height();
   std::size_t total_points = 0;
   for (const auto& t : filled.tiles) total_points += t.size();
-  Progress progress("scatter",
-                    static_cast<std::uint64_t>(tiles * static_cast<double>(total_points) /
-                                               static_cast<double>(std::max<std::size_t>(filled.tiles.size(), 1))),
-                    global.quiet);
+  const double estimate =
+      tiles * static_cast<double>(total_points) / double(std::max<std::size_t>(filled.tiles.size(), 1));
+  if (estimate > kMaxFieldInstances)
+    throw Error(
+        fmt::format("scatter: {:.0f} x {:.0f} m in {:g} m tiles would place about {:.3g} instances; at most {:.0f} "
+                    "million: a smaller --plane or a larger --tile-size",
+                    plane.width(), plane.height(), options.tile_size, estimate, kMaxFieldInstances / 1e6));
+  Progress progress("scatter", static_cast<std::uint64_t>(estimate), global.quiet);
   const auto start = std::chrono::steady_clock::now();
   const auto sink = [&](const InstanceBatch& b) {
     if (writer) writer->write(b);
@@ -186,7 +191,7 @@ void register_scatter_command(CLI::App& app, const GlobalOptions& global) {
                     ->capture_default_str();
   sub->add_option("--tile-size", options->tile_size, "Tile side in meters")->capture_default_str();
   sub->add_option("--out", options->out, "Instances: CSV (x,y,z,variant,yaw,scale,tile), or binary PLY for .ply");
-  sub->add_option("--seed", options->seed, "Tiling seed")->capture_default_str();
+  sub->add_option("--seed", options->seed, "Tiling seed")->check(seed_number())->capture_default_str();
   sub->add_option("--algorithm", options->algorithm, "Tiling: scanline, bottom-left or hash (complete sets)")
       ->check(CLI::IsMember({"scanline", "bottom-left", "hash"}))
       ->capture_default_str();

@@ -82,7 +82,7 @@ void register_tileset_command(CLI::App& app, const GlobalOptions&) {
   sub->add_option("--tile-pixels", options->tile_pixels, "Size of each tile on the sheet, in pixels")
       ->check(CLI::Range(8, 1024))
       ->capture_default_str();
-  sub->add_option("--seed", options->seed, "Random seed")->capture_default_str();
+  sub->add_option("--seed", options->seed, "Random seed")->check(seed_number())->capture_default_str();
   sub->add_option("--per-tile", options->per_tile, "Fill every tile with this many Poisson-disk points")
       ->check(CLI::Range(1, 100000));
   sub->add_option("--relax", options->relax, "Relaxation rounds after dart throwing (stops before a lattice)")

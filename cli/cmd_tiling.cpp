@@ -171,7 +171,7 @@ void register_tiling_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--size", options->size, "Window size in tiles, WxH")
       ->check(CLI::Validator(validate_size, "WxH", "size"))
       ->capture_default_str();
-  sub->add_option("--seed", options->seed, "Random seed")->capture_default_str();
+  sub->add_option("--seed", options->seed, "Random seed")->check(seed_number())->capture_default_str();
   sub->add_option("--algorithm", options->algorithm,
                   "scanline (north-west to south-east), bottom-left (south-west start) or hash (O(1) random access, "
                   "complete sets)")

@@ -37,6 +37,18 @@ inline CLI::Validator finite_number() {
       "NUMBER");
 }
 
+// A CLI11 check for seeds: a whole number 0 .. 2^64 - 1 (CLI11 alone reads -1 as 2^64 - 1 and
+// saturates larger numbers).
+inline CLI::Validator seed_number() {
+  return CLI::Validator(
+      [](std::string& text) {
+        const bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        if (digits && (text.size() < 20 || (text.size() == 20 && text <= "18446744073709551615"))) return std::string();
+        return "'" + text + "' is not a seed (a whole number 0 .. 18446744073709551615)";
+      },
+      "SEED");
+}
+
 // A CLI11 check for --origin LAT,LON (a usage error, exit 2, when the text is not that).
 inline CLI::Validator lat_lon_validator() {
   return CLI::Validator(

@@ -3,6 +3,7 @@
 #include <clocale>
 #include <cstdio>
 #include <exception>
+#include <new>
 
 #include "cli/command.h"
 
@@ -31,6 +32,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
+  } catch (const std::bad_alloc&) {
+    // Sizes are estimated and refused before large allocations; this is the last line of defence.
+    std::fprintf(stderr, "wangscape: error: out of memory: the request needs more memory than this machine has\n");
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "wangscape: error: %s\n", e.what());
     return 1;

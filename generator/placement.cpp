@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace wangscape {
@@ -32,12 +33,30 @@ void resize_batch(InstanceBatch& batch, std::size_t n) {
   batch.tile.resize(n);
 }
 
+namespace {
+std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+}  // namespace
+
 TileRange tile_range(const Extent& area, double tile_size) {
+  if (!(tile_size > 0) || !std::isfinite(tile_size))
+    throw Error("placement: tile size " + number_text(tile_size) + " m; expected a finite number of meters > 0");
+  // Checked as doubles first: a tiny tile or a huge area must not overflow the conversion.
+  const double bounds[4] = {std::floor(area.min_x / tile_size), std::floor(area.min_y / tile_size),
+                            std::ceil(area.max_x / tile_size), std::ceil(area.max_y / tile_size)};
+  for (const double b : bounds)
+    if (!(std::abs(b) <= static_cast<double>(kMaxTileCoordinate)))
+      throw Error("placement: an area of " + number_text(area.width()) + " x " + number_text(area.height()) +
+                  " m at tile size " + number_text(tile_size) +
+                  " m reaches beyond tile coordinate +-2^60, the largest a tiling addresses");
   TileRange r;
-  r.i0 = static_cast<std::int64_t>(std::floor(area.min_x / tile_size));
-  r.j0 = static_cast<std::int64_t>(std::floor(area.min_y / tile_size));
-  r.i1 = static_cast<std::int64_t>(std::ceil(area.max_x / tile_size));
-  r.j1 = static_cast<std::int64_t>(std::ceil(area.max_y / tile_size));
+  r.i0 = static_cast<std::int64_t>(bounds[0]);
+  r.j0 = static_cast<std::int64_t>(bounds[1]);
+  r.i1 = static_cast<std::int64_t>(bounds[2]);
+  r.j1 = static_cast<std::int64_t>(bounds[3]);
   constexpr std::int64_t kMaxSide = 1 << 30;
   if (r.i1 - r.i0 > kMaxSide || r.j1 - r.j0 > kMaxSide)
     throw Error("placement: area of " + std::to_string(area.width()) + " x " + std::to_string(area.height()) +

@@ -430,6 +430,18 @@ void check_size(const TileSet& set, int width, int height) {
                 " is empty; expected at least 1x1");
 }
 
+// A window that is not empty and whose tile coordinates stay within +-kMaxTileCoordinate.
+void check_window(const TileSet& set, int width, int height, const TilingOptions& options) {
+  check_size(set, width, height);
+  const auto within = [](std::int64_t origin, int size) {
+    return origin >= -kMaxTileCoordinate && origin <= kMaxTileCoordinate - size;
+  };
+  if (!within(options.origin_i, width) || !within(options.origin_j, height))
+    throw Error(set.describe() + ": a " + std::to_string(width) + "x" + std::to_string(height) + " window at origin " +
+                std::to_string(options.origin_i) + "," + std::to_string(options.origin_j) +
+                " reaches beyond tile coordinate +-2^60, the largest a tiling addresses");
+}
+
 // Rows of hashed tiles computed in parallel this many at a time when streaming.
 constexpr int kHashRowBlock = 64;
 
@@ -637,7 +649,7 @@ void HashedTiling::fill_row(std::int64_t first_i, std::int64_t j, std::span<std:
 // ---------------------------------------------------------------------------------------------
 
 void stream_tiling(const TileSet& set, int width, int height, const TilingOptions& options, const TilingRowSink& row) {
-  check_size(set, width, height);
+  check_window(set, width, height, options);
   const auto w = static_cast<std::size_t>(width);
   if (options.algorithm == TilingAlgorithm::hash) {
     const HashedTiling hashed(set, options.seed, options.forbid_identical_neighbours);
@@ -665,7 +677,7 @@ void stream_tiling(const TileSet& set, int width, int height, const TilingOption
 }
 
 Tiling make_tiling(const TileSet& set, int width, int height, const TilingOptions& options) {
-  check_size(set, width, height);
+  check_window(set, width, height, options);
   Tiling tiling;
   tiling.width = width;
   tiling.height = height;

@@ -33,9 +33,13 @@ struct TilingOptions {
   // For hash tilings, no tile equals any of its four neighbours (re-hashing the colors).
   bool forbid_identical_neighbours = false;
   // Tile coordinates of the window's south-west tile. Only hash tilings depend on it (other
-  // algorithms just label their window with it).
+  // algorithms just label their window with it). |i|, |j| stay within kMaxTileCoordinate.
   std::int64_t origin_i = 0, origin_j = 0;
 };
+
+// The largest tile coordinate (either sign) of any tiling: hashed tilings address edges on a
+// grid twice as dense, which must not overflow 64 bits. Windows reaching beyond are refused.
+inline constexpr std::int64_t kMaxTileCoordinate = std::int64_t{1} << 60;
 
 // A width x height window; tiles[(local_j) * width + local_i], local_j = 0 is the southern row
 // (j = origin_j), i grows east, j grows north; values index TileSet::tiles.

@@ -63,8 +63,7 @@ std::shared_ptr<const SceneField> make_field(const SceneConfig& config, const Sc
   const double tile_size = config.tiles.tile_size;
   const double tiles_x = std::ceil(area.width() / tile_size) + 1, tiles_y = std::ceil(area.height() / tile_size) + 1;
   const double estimate = tiles_x * tiles_y * config.tiles.points_per_tile;
-  constexpr double kMaxInstances = 50e6;
-  if (estimate > kMaxInstances)
+  if (estimate > kMaxFieldInstances)
     throw config.error_at("tiles.area", "gives a field of up to " + std::to_string(std::llround(estimate)) +
                                             " flowers (" + std::to_string(std::llround(tiles_x)) + " x " +
                                             std::to_string(std::llround(tiles_y)) +

@@ -71,6 +71,10 @@ struct Scene {
   Georeference georeference;
 };
 
+// The most flowers a field (or a scatter) may hold, counted before masks: above it the outputs
+// would outgrow what POV-Ray can hold (about 1.4 GB per million flowers) and the disk.
+inline constexpr double kMaxFieldInstances = 50e6;
+
 // Stage messages while a scene is assembled (a program shows them, e.g. on a terminal).
 using StageObserver = std::function<void(const std::string& message)>;
 

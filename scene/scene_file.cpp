@@ -14,6 +14,7 @@
 #include <sstream>
 #include <vector>
 
+#include "core/text_file.h"
 #include "templates/sunflower.h"
 
 namespace wangscape {
@@ -210,6 +211,7 @@ void read_camera_point(Section& camera, const std::string& prefix, CameraPoint& 
 SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem::path& source_path,
                                const std::filesystem::path& base_dir) {
   const std::string source = source_path.string();
+  check_nesting(toml_text, source_path, kMaxNesting);  // toml++ recurses: refuse deep input first
   toml::table root;
   try {
     root = toml::parse(toml_text, source);
@@ -364,18 +366,10 @@ Error SceneConfig::error_at(std::string_view key, const std::string& what) const
 }
 
 SceneConfig load_scene_config(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec))
-    throw Error(file, "",
-                std::filesystem::exists(file, ec) ? "the scene file is not a regular file"
-                                                  : "cannot read the scene file: no such file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error(file, "", "cannot read the scene file");
-  std::stringstream text;
-  text << in.rdbuf();
+  const std::string text = read_text_file(file, kMaxSceneFileBytes, "scene file");
   auto base = file.parent_path();
   if (base.empty()) base = ".";
-  return parse_scene_config(text.str(), file, base);
+  return parse_scene_config(text, file, base);
 }
 
 std::string_view default_scene_text() { return kDefaultSceneToml; }

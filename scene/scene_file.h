@@ -125,7 +125,11 @@ struct SceneConfig {
 // types and values out of range.
 SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem::path& source,
                                const std::filesystem::path& base_dir);
-// Reads and parses a scene file; relative paths resolve against its folder.
+// Scene files are small; anything larger is not one (docs/limits.md).
+inline constexpr std::uintmax_t kMaxSceneFileBytes = 1u << 20;
+
+// Reads and parses a scene file; relative paths resolve against its folder. Refuses a file
+// that is not a regular file or is over kMaxSceneFileBytes, naming it.
 SceneConfig load_scene_config(const std::filesystem::path& file);
 
 // The default scene (templates/scenes/default.toml, embedded in the program). Its data

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "core/text_file.h"
 
 namespace wangscape {
 
@@ -152,14 +153,17 @@ std::string format_tileset_json(const Json& document, const std::function<std::s
 
 Json read_json_file(const std::filesystem::path& path, std::string_view what) {
   const std::string at = std::string(what) + " '" + path.string() + "'";
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(at + ": cannot open the file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
+  const std::string text = read_text_file(path, kMaxJsonFileBytes, what);
+  check_nesting(text, path, kMaxNesting);  // nlohmann's parser and dump() recurse
   try {
-    return Json::parse(buffer.str());
-  } catch (const Json::parse_error& e) {
-    throw Error(at + ": not valid JSON (" + e.what() + ")");
+    return Json::parse(text);
+  } catch (const Json::exception& e) {
+    // nlohmann's text starts with "[json.exception.parse_error.101] parse error at ...": keep the
+    // part after the id, which says where and what.
+    std::string reason = e.what();
+    if (const auto close = reason.find("] "); reason.starts_with("[json.exception") && close != std::string::npos)
+      reason.erase(0, close + 2);
+    throw Error(at + ": not valid JSON: " + reason);
   }
 }
 

@@ -45,6 +45,9 @@ std::string format_tileset_json(const Json& document);
 // go one per line).
 std::string format_tileset_json(const Json& document, const std::function<std::string(const Json& tile)>& format_tile);
 
+// Tile-set and filled tile-set files larger than this are refused before reading (docs/limits.md).
+inline constexpr std::uintmax_t kMaxJsonFileBytes = std::uintmax_t{256} << 20;
+
 // Reads and parses a JSON file; `what` names the kind of document in errors ("tile set").
 // Throws Error "<what> '<path>': cannot open the file" or "...: not valid JSON (...)".
 Json read_json_file(const std::filesystem::path& path, std::string_view what);

@@ -29,9 +29,13 @@ std::string quoted(const std::filesystem::path& path) {
 
 DatasetPtr open_raster(const std::filesystem::path& path, gdal_support::ErrorCapture& capture) {
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw Error("DEM file " + quoted(path) + " does not exist");
+  const bool gdal_virtual = path.string().starts_with("/vsi");  // GDAL's in-memory and archive files
+  if (!gdal_virtual && !std::filesystem::exists(path, ec)) throw Error("DEM file " + quoted(path) + " does not exist");
   if (std::filesystem::is_directory(path, ec))
     throw Error("DEM file " + quoted(path) + " is a directory, expected a DEM file");
+  // A pipe or a device would block GDAL forever or never end.
+  if (!gdal_virtual && !std::filesystem::is_regular_file(path, ec))
+    throw Error("DEM file " + quoted(path) + " is not a regular file (a pipe or a device), expected a DEM file");
   DatasetPtr dataset(
       GDALDataset::FromHandle(GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!dataset)

@@ -106,7 +106,7 @@ TEST(TilesetJson, ErrorsNameFileTileKeyAndExpectation) {
   EXPECT_NE(error_of([&] { read_tileset_json(bad); }).find("tile set '" + bad.string() + "': not valid JSON"),
             std::string::npos);
   EXPECT_EQ(error_of([] { read_tileset_json("/nonexistent/x.json"); }),
-            "tile set '/nonexistent/x.json': cannot open the file");
+            "/nonexistent/x.json: cannot read the tile set: no such file");
 }
 
 TEST(TilesetJson, LoadTilesetPicksBuiltinsThenFiles) {

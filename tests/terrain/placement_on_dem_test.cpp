@@ -52,7 +52,8 @@ std::vector<Instance> scatter(const Extent& area, double tile_size, const Terrai
 const Extent kWindow{-2000, -2500, 1500, 1000};
 
 TEST(PlacementOnDem, EveryInstanceStandsOnTheGroundBelowTheThreshold) {
-  const TerrainFilter filter(helens(), {.max_height_m = 1500.0, .max_slope_deg = {}, .mask_image = {}});
+  const TerrainFilter filter(helens(),
+                             {.max_height_m = 1500.0, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}});
   for (const bool fair : {false, true}) {
     const auto instances = scatter(kWindow, 8.0, filter, fair);
     ASSERT_GT(instances.size(), 1000u);
@@ -66,7 +67,8 @@ TEST(PlacementOnDem, EveryInstanceStandsOnTheGroundBelowTheThreshold) {
 }
 
 TEST(PlacementOnDem, FairEdgesKeepEveryStrictFlowerAndFollowTheContour) {
-  const TerrainFilter filter(helens(), {.max_height_m = 1500.0, .max_slope_deg = {}, .mask_image = {}});
+  const TerrainFilter filter(helens(),
+                             {.max_height_m = 1500.0, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}});
   auto strict = scatter(kWindow, 8.0, filter, false);
   auto fair = scatter(kWindow, 8.0, filter, true);
   EXPECT_GT(fair.size(), strict.size());  // partial tiles along the contour are kept
@@ -82,7 +84,8 @@ TEST(PlacementOnDem, FairEdgesKeepEveryStrictFlowerAndFollowTheContour) {
 }
 
 TEST(PlacementOnDem, HashedSubAreaEqualsThatPartOfTheWhole) {
-  const TerrainFilter filter(helens(), {.max_height_m = 1800.0, .max_slope_deg = 35.0, .mask_image = {}});
+  const TerrainFilter filter(helens(),
+                             {.max_height_m = 1800.0, .min_height_m = {}, .max_slope_deg = 35.0, .mask_image = {}});
   const double s = 8.0;
   for (const bool fair : {false, true}) {
     auto whole = scatter(kWindow, s, filter, fair);
@@ -113,7 +116,7 @@ TEST(PlacementOnDem, HashedSubAreaEqualsThatPartOfTheWhole) {
 
 TEST(PlacementOnDem, NodataIsNeverPlanted) {
   // The quadrangle's no-data corners: a window over the north-west corner of the raster.
-  const TerrainFilter filter(helens(), {.max_height_m = {}, .max_slope_deg = {}, .mask_image = {}});
+  const TerrainFilter filter(helens(), {.max_height_m = {}, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}});
   const Extent e = helens().extent();
   const Extent corner{e.min_x, e.max_y - 600, e.min_x + 600, e.max_y};
   for (const bool fair : {false, true})
