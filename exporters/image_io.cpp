@@ -1,5 +1,6 @@
 #include "exporters/image_io.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <string>
@@ -21,6 +22,18 @@ void write_image(const std::filesystem::path& path, const ImageRgb8& image) {
   if (!output->open(temp, spec) || !output->write_image(OIIO::TypeDesc::UINT8, image.pixels.data()) || !output->close())
     throw Error("cannot write '" + name + "': " + output->geterror());
   atomic.commit();
+}
+
+std::string encode_png(const ImageRgb8& image) {
+  if (image.width < 1 || image.height < 1) throw Error("cannot encode a PNG: the image is empty");
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput proxy(bytes);
+  auto output = OIIO::ImageOutput::create("memory.png");
+  const OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
+  if (!output || !output->set_ioproxy(&proxy) || !output->open("memory.png", spec) ||
+      !output->write_image(OIIO::TypeDesc::UINT8, image.pixels.data()) || !output->close())
+    throw Error(std::string("cannot encode a PNG: ") + (output ? output->geterror() : OIIO::geterror()));
+  return std::string(bytes.begin(), bytes.end());
 }
 
 ImageRgb8 read_image(const std::filesystem::path& path) {
