@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.h"
 #include "exporters/export_support.h"
+#include "exporters/image_io.h"
 #include "exporters/zip_writer.h"
 #include "templates/blender_addon.h"
 
@@ -151,9 +152,10 @@ struct BlenderWriter::Impl {
   std::uint64_t bytes = 0;
   Json files = Json::array();
   Json terrain = nullptr;
+  Json ground_texture = nullptr;  // {"file", "extent": [min_x, min_y, max_x, max_y]} or null
   Json models = Json::array();
-  std::unique_ptr<InstanceArrays> arrays;
-  BlenderExportSummary summary;
+  std::unique_ptr<InstanceArrays> arrays{};
+  BlenderExportSummary summary{};
 
   void list_files(const Json& mesh_entry) {
     for (const char* key : {"positions", "normals", "indices", "material_indices"})
@@ -172,6 +174,14 @@ BlenderWriter::BlenderWriter(const Scene& scene, const std::filesystem::path& fo
   if (scene.terrain.vertex_count() > 0) {
     impl.terrain = write_mesh(scene.terrain, "terrain", table.terrain_slots, folder, impl.bytes);
     impl.list_files(impl.terrain);
+    if (scene.ground_texture) {
+      // The scene's baked [ground] look; the add-on maps it over `extent` by vertex position.
+      const Extent& e = scene.ground_texture->extent;
+      write_image(folder / "ground.png", scene.ground_texture->image);
+      impl.bytes += std::filesystem::file_size(folder / "ground.png", error);
+      impl.ground_texture = Json{{"file", "ground.png"}, {"extent", {e.min_x, e.min_y, e.max_x, e.max_y}}};
+      impl.files.push_back("ground.png");
+    }
   }
   for (std::size_t i = 0; i < scene.models.size(); ++i) {
     char prefix[32];
@@ -209,6 +219,7 @@ void BlenderWriter::finish(const StreamTotals& totals) {
   manifest["materials"] = Json::array();
   for (const Material& material : table.materials) manifest["materials"].push_back(material_json(material));
   manifest["terrain"] = impl.terrain;
+  manifest["ground_texture"] = impl.ground_texture;
   manifest["models"] = impl.models;
   manifest["instances"] = instances;
   manifest["camera"] = Json{

@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.h"
 #include "exporters/export_support.h"
+#include "exporters/image_io.h"
 
 namespace wangscape {
 
@@ -85,8 +86,10 @@ class GltfBuilder {
     return add_accessor(view, kFloat, values.size(), "VEC3", bounds.min, bounds.max);
   }
 
-  // A glTF mesh for `mesh`: shared POSITION/NORMAL, one primitive per material used.
-  Json add_mesh(const Mesh& mesh, const std::vector<std::uint32_t>& material_slots) {
+  // A glTF mesh for `mesh`: shared POSITION/NORMAL (and TEXCOORD_0 when `texture` is given:
+  // the ENU rectangle an image is stretched over, north at the image's top), one primitive
+  // per material used.
+  Json add_mesh(const Mesh& mesh, const std::vector<std::uint32_t>& material_slots, const Extent* texture = nullptr) {
     std::vector<Vec3f> positions, normals;
     positions.reserve(mesh.vertex_count());
     normals.reserve(mesh.vertex_count());
@@ -94,6 +97,16 @@ class GltfBuilder {
     for (const auto& n : mesh.normals) normals.push_back(unit_gltf_normal(n));
     const int position = add_vec3(positions, kArrayBuffer, true);
     const int normal = add_vec3(normals, kArrayBuffer, false);
+    Json attributes{{"POSITION", position}, {"NORMAL", normal}};
+    if (texture) {
+      std::vector<std::array<float, 2>> uv;
+      uv.reserve(mesh.vertex_count());
+      for (const auto& p : mesh.positions)
+        uv.push_back(
+            {float((p[0] - texture->min_x) / texture->width()), float((texture->max_y - p[1]) / texture->height())});
+      const int view = add_view(uv.data(), uv.size() * sizeof(uv[0]), kArrayBuffer);
+      attributes["TEXCOORD_0"] = add_accessor(view, kFloat, uv.size(), "VEC2");
+    }
 
     Json primitives = Json::array();
     for (std::size_t slot = 0; slot < material_slots.size(); ++slot) {
@@ -104,7 +117,7 @@ class GltfBuilder {
       }
       if (indices.empty()) continue;
       const int view = add_view(indices.data(), indices.size() * sizeof(std::uint32_t), kElementArrayBuffer);
-      primitives.push_back(Json{{"attributes", {{"POSITION", position}, {"NORMAL", normal}}},
+      primitives.push_back(Json{{"attributes", attributes},
                                 {"indices", add_accessor(view, kUnsignedInt, indices.size(), "SCALAR")},
                                 {"material", material_slots[slot]},
                                 {"mode", 4}});
@@ -230,14 +243,15 @@ struct GltfWriter::Impl {
   std::filesystem::path path;
   GltfOptions options;
   MaterialTable table;
-  GltfBuilder builder;
+  GltfBuilder builder{};
   Json meshes = Json::array();
   Json nodes = Json::array();
   Json root_children = Json::array();
   std::size_t first_model_mesh = 0;
-  std::unique_ptr<InstanceSpill> spill;
-  std::vector<std::uint64_t> per_variant;
-  GltfSummary summary;
+  int ground_image_view = -1;  // buffer view of the baked ground PNG, -1 without one
+  std::unique_ptr<InstanceSpill> spill{};
+  std::vector<std::uint64_t> per_variant{};
+  GltfSummary summary{};
 };
 
 GltfWriter::GltfWriter(const Scene& scene, const std::filesystem::path& path, const GltfOptions& options)
@@ -251,7 +265,13 @@ GltfWriter::GltfWriter(const Scene& scene, const std::filesystem::path& path, co
   Impl& impl = *impl_;
   impl.nodes.push_back(Json{{"name", scene.name}});  // root, children filled at finish()
   if (scene.terrain.vertex_count() > 0) {
-    impl.meshes.push_back(impl.builder.add_mesh(scene.terrain, impl.table.terrain_slots));
+    const Extent* texture = scene.ground_texture ? &scene.ground_texture->extent : nullptr;
+    impl.meshes.push_back(impl.builder.add_mesh(scene.terrain, impl.table.terrain_slots, texture));
+    if (texture) {
+      // The baked ground (the same pixels POV-Ray and Blender get), embedded as a PNG.
+      const std::string png = encode_png(scene.ground_texture->image);
+      impl.ground_image_view = impl.builder.add_view(png.data(), png.size(), 0);
+    }
     impl.nodes.push_back(Json{{"name", "terrain"}, {"mesh", impl.meshes.size() - 1}});
     impl.root_children.push_back(impl.nodes.size() - 1);
   }
@@ -340,6 +360,18 @@ void GltfWriter::finish(const StreamTotals& totals) {
                              {"doubleSided", bool(double_sided[i])},
                              {"extras", {{"translucency", m.translucency}}}});
   }
+  Json images, textures, samplers;
+  if (impl.ground_image_view >= 0) {
+    images = Json::array({Json{{"name", "ground"}, {"bufferView", impl.ground_image_view}, {"mimeType", "image/png"}}});
+    // Linear magnification, trilinear minification, clamped: the image covers the terrain once.
+    samplers = Json::array({Json{{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 33071}, {"wrapT", 33071}}});
+    textures = Json::array({Json{{"sampler", 0}, {"source", 0}}});
+    for (const auto slot : table.terrain_slots) {
+      auto& pbr = materials[slot]["pbrMetallicRoughness"];
+      pbr["baseColorTexture"] = Json{{"index", 0}};
+      pbr["baseColorFactor"] = {1.0, 1.0, 1.0, 1.0};
+    }
+  }
 
   Json georeference = Json::object();
   for (const auto& [key, value] : scene.georeference) georeference[key] = value;
@@ -366,6 +398,11 @@ void GltfWriter::finish(const StreamTotals& totals) {
   gltf["cameras"] = cameras;
   if (!meshes.empty()) gltf["meshes"] = meshes;
   if (!materials.empty()) gltf["materials"] = materials;
+  if (!images.is_null()) {
+    gltf["images"] = images;
+    gltf["samplers"] = samplers;
+    gltf["textures"] = textures;
+  }
   if (!builder.accessors.empty()) gltf["accessors"] = builder.accessors;
   if (!builder.buffer_views.empty()) gltf["bufferViews"] = builder.buffer_views;
   if (bin_size > 0) gltf["buffers"] = Json::array({Json{{"byteLength", bin_size}}});

@@ -3,6 +3,8 @@
 // node per variant; listed in extensionsUsed, never required, so readers without it still
 // load the file and show one flower per variant). glTF is y-up: ENU (x east, y north, z up)
 // becomes glTF (x, y, z) = (east, up, -north). The georeference goes in the scene's extras.
+// With a [ground] look the terrain gets TEXCOORD_0 and its material the baked ground
+// (Scene::ground_texture) as baseColorTexture, a PNG embedded in the binary chunk.
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,6 @@
 #include "exporters/image_io.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <string>
@@ -44,6 +45,18 @@ ImageGray16 read_image_gray16(const std::filesystem::path& path) {
   if (!input->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT16, image.pixels.data()))
     throw Error("cannot read image '" + name + "': " + input->geterror());
   return image;
+}
+
+std::string encode_png(const ImageRgb8& image) {
+  if (image.width < 1 || image.height < 1) throw Error("cannot encode a PNG: the image is empty");
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput proxy(bytes);
+  auto output = OIIO::ImageOutput::create("memory.png");
+  const OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
+  if (!output || !output->set_ioproxy(&proxy) || !output->open("memory.png", spec) ||
+      !output->write_image(OIIO::TypeDesc::UINT8, image.pixels.data()) || !output->close())
+    throw Error(std::string("cannot encode a PNG: ") + (output ? output->geterror() : OIIO::geterror()));
+  return std::string(bytes.begin(), bytes.end());
 }
 
 ImageRgb8 read_image(const std::filesystem::path& path) {

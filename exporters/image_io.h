@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include "generator/image.h"
 
@@ -10,6 +11,9 @@ namespace wangscape {
 // Writes `image` in the format its extension names (.png, .tif, .jpg, ...). Throws Error
 // naming the file when the format is unknown or the write fails.
 void write_image(const std::filesystem::path& path, const ImageRgb8& image);
+
+// `image` as the bytes of a PNG file (for containers such as .glb). Throws Error on failure.
+std::string encode_png(const ImageRgb8& image);
 
 // Reads any image OpenImageIO understands as 8-bit RGB (gray is replicated, alpha dropped).
 // Throws Error naming the file.

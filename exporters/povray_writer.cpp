@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "exporters/image_io.h"
 
 namespace wangscape {
 
@@ -215,6 +216,8 @@ HeightRange terrain_heights(const Mesh& terrain) {
   return range;
 }
 
+constexpr const char* kPovrayGroundImage = "ground.png";
+
 std::string scene_pov(const Scene& scene, bool has_terrain, bool has_instances, std::uint64_t instance_count) {
   std::string s;
   s += "// " + comment_safe(scene.name) + ": written by wangscape for POV-Ray 3.7.\n";
@@ -273,6 +276,20 @@ std::string scene_pov(const Scene& scene, bool has_terrain, bool has_instances, 
 
   if (has_terrain) {
     s += "#include \"terrain.inc\"\n";
+  }
+  if (has_terrain && scene.ground_texture) {
+    // The scene's [ground] look, baked once over the terrain's extent (ground.png, north at
+    // the top): the planar map lies in x-y, rotated into x-z (top to north), stretched over the extent.
+    const Extent& e = scene.ground_texture->extent;
+    s += "// Ground: the scene's [ground] look baked into ground.png over the terrain's extent.\n";
+    s += "#declare Ground_Texture =\n  texture {\n    pigment {\n";
+    s += "      image_map { png \"" + std::string(kPovrayGroundImage) +
+         "\" gamma srgb map_type 0 interpolate 2 once }\n";
+    s += "      rotate x * 90\n      scale <" + fixed(e.width(), 3) + ", 1, " + fixed(e.height(), 3) + ">\n";
+    s += "      translate <" + fixed(e.min_x, 3) + ", 0, " + fixed(e.min_y, 3) + ">\n    }\n";
+    s += "    normal { granite 0.12 scale 3 }\n    finish { ambient Ambient_Level diffuse 0.75 }\n  }\n";
+    s += "object { Terrain texture { Ground_Texture } }\n\n";
+  } else if (has_terrain) {
     s += "// Ground: vegetation low, soil and ash higher up, rock on steep slopes.\n";
     s += "#declare Ground_Texture =\n  texture {\n    pigment {\n      gradient y\n      color_map {\n";
     s += "        [0.00 rgb <0.050, 0.100, 0.020>]\n        [0.25 rgb <0.080, 0.120, 0.030>]\n";
@@ -356,11 +373,11 @@ struct PovrayWriter::Impl {
   std::filesystem::path dir;
   PovrayExportOptions options;
   bool has_terrain = false, has_instances = false;
-  PovrayExportStats stats;
+  PovrayExportStats stats{};
   // All files stay temporary until every one is complete.
-  std::vector<std::unique_ptr<AtomicFile>> files;
-  std::unique_ptr<AtomicFile> instances_file;
-  std::unique_ptr<PovrayInstanceWriter> instances;
+  std::vector<std::unique_ptr<AtomicFile>> files{};
+  std::unique_ptr<AtomicFile> instances_file{};
+  std::unique_ptr<PovrayInstanceWriter> instances{};
 
   void write_whole(const char* name, const std::string& contents) {
     files.push_back(std::make_unique<AtomicFile>(dir / name));
@@ -428,6 +445,12 @@ void PovrayWriter::finish(const StreamTotals& totals) {
     impl.stats.instances = impl.instances->instances();
     impl.stats.instance_bytes = impl.instances->bytes() + trailer.size();
     impl.stats.total_bytes += impl.stats.instance_bytes;
+  }
+  if (impl.has_terrain && impl.scene.ground_texture) {
+    // Written last but one, so a failure here still leaves none of the text files.
+    write_image(impl.dir / kPovrayGroundImage, impl.scene.ground_texture->image);
+    std::error_code ec;
+    impl.stats.total_bytes += std::filesystem::file_size(impl.dir / kPovrayGroundImage, ec);
   }
   impl.write_whole("scene.pov", scene_pov(impl.scene, impl.has_terrain, impl.has_instances, totals.instances));
   for (auto& file : impl.files) file->commit();

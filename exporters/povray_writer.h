@@ -11,6 +11,7 @@
 //   terrain.inc     the terrain as one mesh2 (Terrain), absent when the scene has no terrain
 //   instances.inc   one `object { Sunflower_v rotate ... scale ... translate ... }` per instance,
 //                   closed by a comment with the count
+//   ground.png      with a [ground] look: Scene::ground_texture, an image_map over the terrain
 // Axes: ENU (x east, y north, z up) becomes POV (x east, y up, z north). Swapping y and z is a
 // reflection, which is exactly what POV's left-handed axes need: the picture is not mirrored.
 // Numbers are written with std::to_chars (locale-independent).

@@ -1,10 +1,15 @@
 #include "exporters/texture_tile_files.h"
 
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
 #include <string>
 #include <system_error>
 
 #include "core/atomic_file.h"
 #include "exporters/image_io.h"
+#include "scene/ground_look.h"
 #include "scene/tileset_file.h"
 
 namespace wangscape {
@@ -29,7 +34,81 @@ Json tile_entries(const TileSet& set, const std::string& prefix) {
   return tiles;
 }
 
+// "WxH" of a --preview, each 1..16384.
+std::array<int, 2> parse_preview_size(const std::string& text) {
+  int w = 0, h = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
+    throw Error("--preview '" + text + "' must be WIDTHxHEIGHT in pixels, each 1..16384 (e.g. 1024x512)");
+  return {w, h};
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A finite tiling of `set` covering w x h pixels at `tile` pixels per tile (any set, any algorithm).
+Tiling preview_tiling(const TileSet& set, int w, int h, int tile, std::uint64_t seed) {
+  TilingOptions options;
+  options.seed = seed;
+  return make_tiling(set, (w + tile - 1) / tile, (h + tile - 1) / tile, options);
+}
+
 }  // namespace
+
+std::string run_tiles_job(const NoiseTilesJob& job) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::array<int, 2> size =
+      job.preview_size.empty() ? std::array<int, 2>{} : parse_preview_size(job.preview_size);
+  const NoiseTileSet tiles(load_tileset(job.set), job.options);
+  write_noise_tile_files(job.out, tiles, job.pixels);
+  if (!job.preview_size.empty()) {
+    // Turbulence over a window of the set's own tiling, one tile per `pixels` pixels.
+    const WindowNoise field(
+        tiles, WindowTiles{preview_tiling(tiles.set(), size[0], size[1], job.pixels, job.options.seed)}, 1.0);
+    ImageGray16 image(size[0], size[1]);
+    const double pixel = 1.0 / job.pixels;
+    for (int y = 0; y < size[1]; ++y)
+      for (int x = 0; x < size[0]; ++x)
+        image.set(x, y,
+                  noise_to_gray16(NoisePattern::turbulence,
+                                  field.turbulence((x + 0.5) * pixel, (size[1] - y - 0.5) * pixel)));
+    write_image_gray16(job.preview, image);
+  }
+  char line[256];
+  std::snprintf(line, sizeof line, "%s: %zu noise tiles, lattice %d, %d octaves, %.3f s", tiles.set().name.c_str(),
+                tiles.size(), tiles.lattice(), tiles.levels(), seconds_since(start));
+  return line;
+}
+
+std::string run_tiles_job(const TextureTilesJob& job) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::array<int, 2> size =
+      job.preview_size.empty() ? std::array<int, 2>{} : parse_preview_size(job.preview_size);
+  std::vector<ImageRgb8> exemplars;
+  for (const auto& name : job.exemplars) {
+    const auto shipped = shipped_exemplar(name);
+    exemplars.push_back(read_image(shipped.empty() ? std::filesystem::path(name) : shipped));
+  }
+  TextureTileReport report;
+  const TextureTileSet tiles = make_texture_tiles(load_tileset(job.set), exemplars, job.options, &report);
+  write_texture_tile_files(job.out, tiles);
+  if (!job.preview_size.empty()) {
+    const ImageRgb8 all =
+        draw_texture_tiling(tiles, preview_tiling(tiles.set, size[0], size[1], tiles.tile_size, job.options.seed));
+    ImageRgb8 image(size[0], size[1]);
+    for (int y = 0; y < size[1]; ++y)
+      std::copy_n(&all.pixels[all.offset(0, y)], std::size_t(size[0]) * 3, &image.pixels[image.offset(0, y)]);
+    write_image(job.preview, image);
+  }
+  char line[256];
+  std::snprintf(line, sizeof line, "%s: %zu texture tiles of %d px, quilting error %llu (search %llu -> %llu), %.3f s",
+                tiles.set.name.c_str(), tiles.tiles.size(), tiles.tile_size,
+                static_cast<unsigned long long>(tiles.total_error()),
+                static_cast<unsigned long long>(report.initial_cost),
+                static_cast<unsigned long long>(report.final_cost), seconds_since(start));
+  return line;
+}
 
 void write_noise_tile_files(const std::filesystem::path& dir, const NoiseTileSet& tiles, int pixels,
                             NoisePattern pattern) {

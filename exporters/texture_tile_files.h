@@ -4,6 +4,8 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "exporters/image_io.h"
 #include "generator/image.h"
@@ -26,5 +28,29 @@ void write_noise_tile_files(const std::filesystem::path& dir, const NoiseTileSet
 //    "tiles": [{"file": "texture_tile_0.png", "error": 123, "n": 0, ...}, ...]}
 // Creates DIR if needed.
 void write_texture_tile_files(const std::filesystem::path& dir, const TextureTileSet& tiles);
+
+// `wangscape noise tiles` and `wangscape texture tiles`: make a set's tiles, write them to
+// `out` as above and, with a preview size, a preview_size stochastic tiling of them (preview_size
+// is "WxH", at most 16384 each) into `preview`. Return a one-line summary. Throw Error
+// naming the value at fault (the preview size, the set, an exemplar file).
+struct NoiseTilesJob {
+  std::string set = "corner-3";
+  NoiseTileOptions options;
+  int pixels = 128;  // per tile side in the tile files
+  std::filesystem::path out;
+  std::string preview_size;  // "WxH"; empty = no preview
+  std::filesystem::path preview;
+};
+std::string run_tiles_job(const NoiseTilesJob& job);
+
+struct TextureTilesJob {
+  std::string set = "cohen8";
+  std::vector<std::string> exemplars;  // image files, or shipped names (meadow, pumice)
+  TextureTileOptions options;
+  std::filesystem::path out;
+  std::string preview_size;
+  std::filesystem::path preview;
+};
+std::string run_tiles_job(const TextureTilesJob& job);
 
 }  // namespace wangscape

@@ -210,6 +210,21 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage) {
   scene.field_area = *field->placement.area;
   scene.instances = [field](const InstanceSink& sink) { field->place(sink); };
 
+  if (config.ground) {
+    say(stage, "baking the ground's look (" + config.ground->look + ", " + std::to_string(config.ground->bake_pixels) +
+                   " pixels)");
+    const auto exemplars = load_ground_exemplars(config);
+    std::shared_ptr<const GroundLook> look;
+    try {
+      look = std::make_shared<const GroundLook>(*config.ground, exemplars);
+    } catch (const Error& e) {
+      // The texture tiles' limits (exemplar smaller than a tile) come from these keys.
+      throw config.error_at("ground.texture_pixels", e.message());
+    }
+    scene.ground_texture = std::make_shared<const GroundBake>(bake_ground(*look, ground, config.ground->bake_pixels));
+    scene.ground_look = std::move(look);
+  }
+
   scene.camera = make_camera(config, ground, scene.field_area);
   scene.sun = make_sun(config, ground);
   scene.render.width = config.image.width;

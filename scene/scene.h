@@ -17,6 +17,7 @@
 #include "generator/placement.h"
 #include "generator/poisson_tiles.h"
 #include "scene/ground.h"
+#include "scene/ground_look.h"
 #include "scene/scene_file.h"
 #include "scene/sun.h"
 #include "templates/mesh.h"
@@ -69,6 +70,10 @@ struct Scene {
   Sun sun;
   RenderSettings render;
   Georeference georeference;
+  // [ground]: the look (what renderers sample) and its bake over the terrain (what the
+  // exporters write: made once here, shared by every writer). Both empty without [ground].
+  std::shared_ptr<const GroundLook> ground_look;
+  std::shared_ptr<const GroundBake> ground_texture;
 };
 
 // The most flowers a field (or a scatter) may hold, counted before masks: above it the outputs

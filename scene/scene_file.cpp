@@ -345,6 +345,35 @@ SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem
     s.read("radiosity", config.image.radiosity);
     s.reject_unknown();
   }
+  if (const auto* table = top.table("ground")) {
+    Section s(table, "ground", source, config.key_lines);
+    GroundConfig& g = config.ground.emplace();
+    if (s.read("look", g.look) && g.look != "materials" && g.look != "texture" && g.look != "both")
+      s.fail(*s.node("look"), "look", "must be \"materials\", \"texture\" or \"both\"");
+    if (s.read("noise_scale", g.noise_scale)) s.check_range("noise_scale", g.noise_scale, 0.01, 1e6);
+    if (s.read_int("noise_lattice", g.noise_lattice, 8, 1024) && (g.noise_lattice & (g.noise_lattice - 1)) != 0)
+      s.fail(*s.node("noise_lattice"), "noise_lattice", "must be a power of two");
+    s.read_int("seed", g.seed, 0, std::numeric_limits<std::int64_t>::max());
+    if (s.read("pumice_above", g.pumice_above)) s.check_range("pumice_above", g.pumice_above, -1000, 10000);
+    if (s.read("snow_above", g.snow_above)) s.check_range("snow_above", g.snow_above, -1000, 10000);
+    if (s.read("height_blend", g.height_blend)) s.check_range("height_blend", g.height_blend, 0, 10000);
+    if (s.read("rock_slope", g.rock_slope)) s.check_range("rock_slope", g.rock_slope, 0, 90);
+    if (s.read("slope_blend", g.slope_blend)) s.check_range("slope_blend", g.slope_blend, 0, 90);
+    // A shipped exemplar's name, or an image file relative to the scene file.
+    const auto exemplar = [&](const char* key, std::string& out) {
+      if (s.read(key, out) && out.empty()) s.fail(*s.node(key), key, "must name an exemplar or an image file");
+      if (out.find('/') != std::string::npos || out.find('.') != std::string::npos)
+        out = resolve(base_dir, out).string();
+    };
+    exemplar("exemplar", g.exemplar);
+    exemplar("exemplar2", g.exemplar2);
+    if (s.read("texture_scale", g.texture_scale)) s.check_range("texture_scale", g.texture_scale, 0.01, 1e6);
+    if (s.read_int("texture_pixels", g.texture_pixels, 16, 512) && g.texture_pixels % 2 != 0)
+      s.fail(*s.node("texture_pixels"), "texture_pixels", "must be even");
+    if (s.read("texture_strength", g.texture_strength)) s.check_range("texture_strength", g.texture_strength, 0, 1);
+    s.read_int("bake_pixels", g.bake_pixels, 16, 8192);
+    s.reject_unknown();
+  }
   {
     Section s(top.table("exports"), "exports", source, config.key_lines);
     s.read("povray", config.exports.povray);
@@ -395,6 +424,8 @@ std::filesystem::path default_scene_base() {
   return WANGSCAPE_SOURCE_DIR;
 }
 }  // namespace
+
+std::filesystem::path data_root() { return default_scene_base(); }
 
 std::string default_scene_text_for_saving() {
   // The embedded scene names its DEM relative to the data folder; a copy saved elsewhere

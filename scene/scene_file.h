@@ -92,6 +92,26 @@ struct ImageConfig {
   bool radiosity = false;
 };
 
+// [ground]: the ground's look (scene/ground_look.h). Without the section the exporters keep
+// their plain ground.
+struct GroundConfig {
+  std::string look = "both";        // "materials", "texture" or "both" (texture detail over the materials)
+  double noise_scale = 256.0;       // meters per noise tile
+  int noise_lattice = 16;           // lattice cells per noise tile side (power of two)
+  std::uint64_t seed = 1;           // noise gradients and both hashed tilings
+  double pumice_above = 1400.0;     // meters: meadow soil below, pumice above
+  double snow_above = 2300.0;       // meters: snow above
+  double height_blend = 80.0;       // meters over which one material fades into the next
+  double rock_slope = 32.0;         // degrees: rock on steeper ground
+  double slope_blend = 6.0;         // degrees
+  std::string exemplar = "meadow";  // shipped exemplar name (meadow, pumice) or an image path
+  std::string exemplar2;            // optional second exemplar (corner-marked tiles)
+  double texture_scale = 64.0;      // meters per texture tile
+  int texture_pixels = 64;          // pixels per texture tile side
+  double texture_strength = 0.6;    // with look = "both": 0 = materials only, 1 = full texture detail
+  int bake_pixels = 2048;           // longer side of the baked ground texture
+};
+
 // [exports]
 struct ExportsConfig {
   bool povray = true;
@@ -110,6 +130,7 @@ struct SceneConfig {
   CameraConfig camera;
   SunConfig sun;
   ImageConfig image;
+  std::optional<GroundConfig> ground;  // [ground], when the file has it
   ExportsConfig exports;
   std::string text;  // the TOML as read (copied into the output folder)
   // The line of every key the file gave ("camera.position" -> 31), so errors found after
@@ -138,5 +159,9 @@ SceneConfig default_scene_config();
 // The default scene as a file to save and edit: its data paths made absolute.
 std::string default_scene_text_for_saving();
 std::string_view default_scene_text();
+// The folder the default scene's data (data/...) and the shipped templates
+// (templates/exemplars/...) resolve against: $WANGSCAPE_DATA_DIR, the source tree, or an
+// ancestor of the executable holding data/.
+std::filesystem::path data_root();
 
 }  // namespace wangscape

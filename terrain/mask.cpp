@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <memory>
 #include <numbers>
 
 #include "terrain/gdal_support.h"
@@ -25,31 +26,58 @@ std::vector<float> read_unit_band(GDALDataset& dataset, int index, const std::st
   const int w = dataset.GetRasterXSize(), h = dataset.GetRasterYSize();
   std::vector<float> values(std::size_t(w) * std::size_t(h));
   if (band->RasterIO(GF_Read, 0, 0, w, h, values.data(), w, h, GDT_Float32, 0, 0, nullptr) != CE_None)
-    throw Error("cannot read the pixels of mask image '" + path + "'");
+    throw Error("cannot read the pixels of image '" + path + "'");
   const GDALDataType type = band->GetRasterDataType();
   const float full = type == GDT_Byte ? 255.0f : type == GDT_UInt16 ? 65535.0f : 1.0f;
   for (float& v : values) v /= full;
   return values;
 }
 
+struct DatasetCloser {
+  void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
+};
+using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
+
+// Opens an image file through GDAL; `what` names it in errors ("mask image").
+DatasetPtr open_image(const std::filesystem::path& image, const std::string& what) {
+  gdal_support::ensure_registered();
+  gdal_support::ErrorCapture capture;
+  const std::string path = image.string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(image, ec)) throw Error(what + " '" + path + "' does not exist");
+  DatasetPtr dataset(
+      GDALDataset::FromHandle(GDALOpenEx(image.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+  if (!dataset || dataset->GetRasterCount() < 1)
+    throw Error("cannot read " + what + " '" + path + "': not an image GDAL recognizes (expected PNG)" +
+                capture.suffix());
+  return dataset;
+}
+
 }  // namespace
+
+RgbRaster read_rgb_raster(const std::filesystem::path& image) {
+  const std::string path = image.string();
+  const auto dataset = open_image(image, "image");
+  RgbRaster raster;
+  raster.width = dataset->GetRasterXSize();
+  raster.height = dataset->GetRasterYSize();
+  const int bands = dataset->GetRasterCount();
+  raster.pixels.resize(std::size_t(raster.width) * std::size_t(raster.height) * 3);
+  for (int c = 0; c < 3; ++c) {
+    const auto values = read_unit_band(*dataset, bands >= 3 ? c + 1 : 1, path);
+    for (std::size_t k = 0; k < values.size(); ++k)
+      raster.pixels[k * 3 + std::size_t(c)] =
+          static_cast<std::uint8_t>(std::lround(std::clamp(values[k], 0.0f, 1.0f) * 255.0f));
+  }
+  return raster;
+}
 
 // ---------------------------------------------------------------------------------------
 // PaintedMask
 
 PaintedMask PaintedMask::load(const std::filesystem::path& image, const Extent& over) {
-  gdal_support::ErrorCapture capture;
   const std::string path = image.string();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(image, ec)) throw Error("mask image '" + path + "' does not exist");
-  struct Closer {
-    void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
-  };
-  std::unique_ptr<GDALDataset, Closer> dataset(
-      GDALDataset::FromHandle(GDALOpenEx(image.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
-  if (!dataset || dataset->GetRasterCount() < 1)
-    throw Error("cannot read mask image '" + path + "': not an image GDAL recognizes (expected PNG)" +
-                capture.suffix());
+  const auto dataset = open_image(image, "mask image");
 
   PaintedMask mask;
   mask.width_ = dataset->GetRasterXSize();

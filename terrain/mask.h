@@ -41,6 +41,15 @@ class PaintedMask {
   Extent area_;
 };
 
+// An 8-bit RGB image read through GDAL (gray replicated, alpha dropped), top row first,
+// 3 bytes per pixel: what a scene's user exemplar is read with (terrain/ is the scene's GDAL).
+struct RgbRaster {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> pixels;
+};
+// Throws Error naming the file if it is missing or GDAL cannot read it.
+RgbRaster read_rgb_raster(const std::filesystem::path& image);
+
 struct TerrainFilterOptions {
   std::optional<double> max_height_m;               // orthometric meters; no flowers above
   std::optional<double> min_height_m;               // orthometric meters; no flowers below

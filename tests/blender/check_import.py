@@ -115,6 +115,11 @@ low, high = bounds_of(terrain)
 bounds = manifest["terrain"]["bounds"]
 check(close(low, bounds["min"], 1e-4) and close(high, bounds["max"], 1e-4), "terrain bounds %s %s" % (low, high))
 check(len(terrain.data.polygons) == manifest["terrain"]["triangle_count"], "terrain triangle count")
+# The baked [ground] look: the terrain's one material shows ground.png through its UVs.
+if manifest.get("ground_texture"):
+    images = [n.image for m in terrain.data.materials for n in m.node_tree.nodes if n.type == "TEX_IMAGE"]
+    check(len(images) == 1 and images[0].size[0] > 0, "terrain ground texture %s" % images)
+    check("ground" in terrain.data.uv_layers, "terrain ground UVs")
 for index, model in enumerate(manifest["models"]):
     obj = bpy.data.objects["variant %04d" % index]
     low, high = bounds_of(obj)

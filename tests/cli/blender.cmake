@@ -2,13 +2,14 @@
 # real Blender (issue 6). A tiny flat field at 160x120 keeps the Blender run to a few seconds.
 set(blender_dir "${CLI_SCRATCH}/blender")
 file(MAKE_DIRECTORY "${blender_dir}")
+# With a [ground] look: the baked texture goes into the Blender material and the .glb.
 tiny_scene("${blender_dir}/field.toml" TERRAIN "" IMAGE "antialias = 1"
-           EXPORTS "povray = false\nblender = true\ngltf = true")
+           EXPORTS "povray = false\nblender = true\ngltf = true\n[ground]\nbake_pixels = 256\ntexture_scale = 4.0")
 
 # Build: the Blender folder (manifest, arrays, add-on zip) and scene.glb, which the Khronos
 # validator accepts with 0 errors.
 add_test(NAME blender_build_exports
-  COMMAND ${cli_expect} 0 "scene.glb: 0 errors" sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$1.toml\" --out \"$1\" && test -s \"$1/blender/manifest.json\" && test -s \"$1/blender/instances_variant.u16\" && test -s \"$1/blender/wangscape_import.zip\" && node \"$2/tools/validate_gltf.mjs\" \"$1/scene.glb\""
+  COMMAND ${cli_expect} 0 "scene.glb: 0 errors" sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$1.toml\" --out \"$1\" && test -s \"$1/blender/manifest.json\" && test -s \"$1/blender/instances_variant.u16\" && test -s \"$1/blender/wangscape_import.zip\" && test -s \"$1/blender/ground.png\" && grep -aq baseColorTexture \"$1/scene.glb\" && node \"$2/tools/validate_gltf.mjs\" \"$1/scene.glb\""
           "${WANGSCAPE_BIN}" "${blender_dir}/field" "${PROJECT_SOURCE_DIR}")
 
 # Render: the add-on imports the build in headless Blender; Cycles writes the PNG and the

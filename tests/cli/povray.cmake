@@ -121,3 +121,42 @@ add_test(NAME povray_demo
   COMMAND sh -c "rm -rf \"$1\" && \"$0\" --quiet demo --out \"$1\" && test -s \"$1/render.png\" && test -s \"$1/scene.toml\""
           "${WANGSCAPE_BIN}" "${povray_dir}/demo")
 set_tests_properties(povray_demo PROPERTIES TIMEOUT 120)
+
+# The ground look ([ground]): the ground of the still is not one color. Flowers shrunk to 1 cm
+# leave the ground in view; the luminance over the lower rows (all ground) must vary, and the
+# same scene without [ground] (one flat color) is below that bar, so the check can fail.
+find_program(system_python3 python3 PATHS /usr/bin NO_DEFAULT_PATH)  # the one with python3-numpy
+foreach(look IN ITEMS ground plain)
+  set(ground_lines "[ground]\nbake_pixels = 512\nnoise_scale = 8.0\ntexture_scale = 2.0")
+  if(look STREQUAL "plain")
+    set(ground_lines "")
+  endif()
+  tiny_scene("${povray_dir}/povray_${look}_look.toml" MODELS "scale = 0.01"
+             EXPORTS "povray = true\n${ground_lines}")
+endforeach()
+add_test(NAME povray_ground_look_varies
+  COMMAND ${cli_expect} 0 "luminance stddev ([5-9]|[1-9][0-9])\\."
+          sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$1.toml\" --out \"$1\" && test -s \"$1/ground.png\" && grep -q 'image_map { png \"ground.png\"' \"$1/scene.pov\" && \"$0\" --quiet render \"$1\" --width 160 --height 120 && \"$2\" \"$3\" \"$1/render.png\" 0.6 1.0 5"
+          "${WANGSCAPE_BIN}" "${povray_dir}/povray_ground_look" "${system_python3}" "${CMAKE_CURRENT_SOURCE_DIR}/ground_variance.py")
+add_test(NAME povray_plain_ground_is_one_color
+  COMMAND ${cli_expect} 0 "luminance stddev [0-4]\\."
+          sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$1.toml\" --out \"$1\" && test ! -e \"$1/ground.png\" && \"$0\" --quiet render \"$1\" --width 160 --height 120 && { \"$2\" \"$3\" \"$1/render.png\" 0.6 1.0 5; test $? -eq 1; }"
+          "${WANGSCAPE_BIN}" "${povray_dir}/povray_plain_look" "${system_python3}" "${CMAKE_CURRENT_SOURCE_DIR}/ground_variance.py")
+
+# [ground] errors name the key and its line.
+file(WRITE "${povray_dir}/ground_unknown.toml" "[terrain]\nflat_size = 50.0\n[ground]\nlook = \"both\"\ncolour = 3\n")
+add_test(NAME povray_ground_unknown_key
+  COMMAND ${cli_expect} 1 "ground_unknown.toml:5: unknown key 'ground.colour'"
+          "${WANGSCAPE_BIN}" build "${povray_dir}/ground_unknown.toml" --out "${povray_dir}/ground_unknown")
+file(WRITE "${povray_dir}/ground_range.toml" "[ground]\n\nrock_slope = 120.0\n")
+add_test(NAME povray_ground_out_of_range
+  COMMAND ${cli_expect} 1 "ground_range.toml:3: 'ground.rock_slope' must be between 0 and 90"
+          "${WANGSCAPE_BIN}" build "${povray_dir}/ground_range.toml" --out "${povray_dir}/ground_range")
+file(WRITE "${povray_dir}/ground_look.toml" "[ground]\nlook = \"plaid\"\n")
+add_test(NAME povray_ground_bad_look
+  COMMAND ${cli_expect} 1 "ground_look.toml:2: 'ground.look' must be \"materials\", \"texture\" or \"both\""
+          "${WANGSCAPE_BIN}" build "${povray_dir}/ground_look.toml" --out "${povray_dir}/ground_look")
+file(WRITE "${povray_dir}/ground_exemplar.toml" "[terrain]\nflat_size = 50.0\n[ground]\nexemplar = \"gravel\"\n")
+add_test(NAME povray_ground_unknown_exemplar
+  COMMAND ${cli_expect} 1 "ground_exemplar.toml:4: 'ground.exemplar' 'gravel' is no shipped exemplar"
+          "${WANGSCAPE_BIN}" build "${povray_dir}/ground_exemplar.toml" --out "${povray_dir}/ground_exemplar")

@@ -124,6 +124,37 @@ def build_mesh(name, folder, spec, materials):
     return mesh
 
 
+def apply_ground_texture(mesh, folder, spec):
+    """The scene's baked [ground] look: one image over the ENU extent, UVs from vertex positions."""
+    min_x, min_y, max_x, max_y = (float(v) for v in spec["extent"])
+    co = np.empty(len(mesh.vertices) * 3, dtype=np.float32)
+    mesh.vertices.foreach_get("co", co)
+    co = co.reshape(-1, 3)
+    loops = np.empty(len(mesh.loops), dtype=np.int32)
+    mesh.loops.foreach_get("vertex_index", loops)
+    uv = np.empty((len(loops), 2), dtype=np.float32)
+    uv[:, 0] = (co[loops, 0] - min_x) / (max_x - min_x)
+    uv[:, 1] = (co[loops, 1] - min_y) / (max_y - min_y)  # Blender's v runs up: north at the top
+    mesh.uv_layers.new(name="ground").data.foreach_set("uv", uv.ravel())
+
+    material = bpy.data.materials.new("Wangscape ground")
+    material.use_nodes = True
+    tree = material.node_tree
+    principled = next(node for node in tree.nodes if node.type == "BSDF_PRINCIPLED")
+    principled.inputs["Roughness"].default_value = 0.9
+    specular = principled_input(principled, "Specular", "Specular IOR Level")
+    if specular is not None:
+        specular.default_value = 0.2
+    texture = tree.nodes.new("ShaderNodeTexImage")
+    texture.image = bpy.data.images.load(os.path.join(folder, spec["file"]), check_existing=True)
+    texture.extension = "EXTEND"
+    tree.links.new(texture.outputs["Color"], principled.inputs["Base Color"])
+    material["wangscape_name"] = "ground"
+    mesh.materials.clear()
+    mesh.materials.append(material)
+    mesh.polygons.foreach_set("material_index", np.zeros(len(mesh.polygons), dtype=np.int32))
+
+
 def _loop_total_writable():
     # Blender 3.6+ derives polygon sizes from loop_start and made loop_total read-only.
     prop = bpy.types.MeshPolygon.bl_rna.properties.get("loop_total")
@@ -359,7 +390,10 @@ def import_manifest(context, path, set_render_settings=True, set_world=True):
     materials = [build_material(spec) for spec in manifest["materials"]]
     terrain_spec = manifest.get("terrain")
     if terrain_spec:
-        terrain = bpy.data.objects.new("Wangscape terrain", build_mesh("Wangscape terrain", folder, terrain_spec, materials))
+        terrain_mesh = build_mesh("Wangscape terrain", folder, terrain_spec, materials)
+        if manifest.get("ground_texture"):
+            apply_ground_texture(terrain_mesh, folder, manifest["ground_texture"])
+        terrain = bpy.data.objects.new("Wangscape terrain", terrain_mesh)
         scene.collection.objects.link(terrain)
     collection = build_models_collection(context, folder, manifest, materials)
     build_field(context, folder, manifest, collection)

@@ -1,0 +1,40 @@
+// wangscape noise tiles / texture tiles: Wang tiles as PNG + JSON (docs/texture-tiles.md), with
+// an optional preview tiling. The work is in exporters/texture_tile_files.h.
+#include <fmt/core.h>
+
+#include <memory>
+
+#include "cli/command.h"
+#include "exporters/texture_tile_files.h"
+
+namespace wangscape::cli {
+
+template <class Job>  // --set, --out, --preview WxH FILE: the same in both commands
+static CLI::App* add_tiles(CLI::App& app, const char* name, const char* help, std::shared_ptr<Job> job) {
+  auto* sub = app.add_subcommand(name, help)->require_subcommand(1)->add_subcommand("tiles", help);
+  sub->add_option("--set", job->set, "Built-in tile set or tile-set JSON")->capture_default_str();
+  sub->add_option("--out", job->out, "Folder for the tile PNGs and JSON")->required();
+  const auto preview = [job](const std::vector<std::string>& v) { job->preview_size = v[0], job->preview = v[1]; };
+  sub->add_option_function<std::vector<std::string>>("--preview", preview, "WxH FILE: a preview tiling")->expected(2);
+  sub->callback([job] { fmt::print("{}\n", run_tiles_job(*job)); });
+  return sub;
+}
+
+void register_tiles_commands(CLI::App& app, const GlobalOptions&) {
+  auto noise = std::make_shared<NoiseTilesJob>();
+  auto* n = add_tiles(app, "noise", "Perlin-noise Wang tiles (seed 001)", noise);
+  n->add_option("--lattice", noise->options.lattice, "Cells per tile side (power of two)")->capture_default_str();
+  n->add_option("--octaves", noise->options.octaves, "Mip levels (0 = all)")->check(CLI::Range(0, 12));
+  auto texture = std::make_shared<TextureTilesJob>();
+  auto* t = add_tiles(app, "texture", "Quilted texture Wang tiles (seed 000)", texture);
+  const auto slot = [texture](std::size_t k) {  // whatever order CLI11 runs the two options in
+    return [texture, k](const std::string& file) {
+      texture->exemplars.resize(std::max<std::size_t>(texture->exemplars.size(), k + 1)), texture->exemplars[k] = file;
+    };
+  };
+  t->add_option_function<std::string>("--exemplar", slot(0), "Exemplar image, or meadow / pumice")->required();
+  t->add_option_function<std::string>("--exemplar2", slot(1), "Second exemplar (corner-marked sets)");
+  t->add_option("--size", texture->options.tile_size, "Pixels per tile side")->capture_default_str();
+}
+
+}  // namespace wangscape::cli
