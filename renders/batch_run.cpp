@@ -222,6 +222,29 @@ fs::path render_blender_task(const fs::path& dir, const Plan& plan, const BatchT
   return render_blender(work, options).image;
 }
 
+// Publishes a rendered PNG as the task's still without the chunks that record when it was
+// rendered (POV-Ray writes tIME and a "Render Date" comment), so a still is a function of its
+// inputs: reruns and executors give the same bytes.
+void publish_still(const fs::path& image, const fs::path& still) {
+  const std::string png = read_text(image);
+  static constexpr std::string_view kSignature = "\x89PNG\r\n\x1a\n";
+  if (png.compare(0, kSignature.size(), kSignature) != 0) throw Error(image, "", "is not a PNG image");
+  std::string out(kSignature);
+  for (std::size_t at = kSignature.size(); at + 12 <= png.size();) {
+    const auto byte = [&](std::size_t k) {
+      return static_cast<std::uint32_t>(static_cast<unsigned char>(png[at + k]));
+    };
+    const std::size_t length = (byte(0) << 24) | (byte(1) << 16) | (byte(2) << 8) | byte(3);
+    const std::string_view type(png.data() + at + 4, 4);
+    if (at + 12 + length > png.size()) throw Error(image, "", "is a truncated PNG image");
+    const bool dated = type == "tIME" || (type == "tEXt" && png.compare(at + 8, 8, "Comment\0", 8) == 0);
+    if (!dated) out.append(png, at, 12 + length);
+    at += 12 + length;
+  }
+  write_file_atomically(still, out);
+  fs::remove(image);
+}
+
 // Runs one task unless it is done. Returns true when its still is done.
 bool run_task(const fs::path& dir, const Plan& plan, const BatchTask& t) {
   if (task_done(dir, t)) {
@@ -236,7 +259,7 @@ bool run_task(const fs::path& dir, const Plan& plan, const BatchTask& t) {
   const auto start = std::chrono::steady_clock::now();
   try {
     const fs::path image = t.engine == "blender" ? render_blender_task(dir, plan, t) : render_povray_task(dir, plan, t);
-    fs::rename(image, still_of(dir, t));
+    publish_still(image, still_of(dir, t));
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const json record = {{"input_hash", t.input_hash},
                          {"seconds", std::round(seconds * 1000) / 1000},

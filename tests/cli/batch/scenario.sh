@@ -62,7 +62,7 @@ kill)
   pid=$!
   i=0
   while [ ! -e killed/tasks/0000.json ] && [ $i -lt 600 ]; do sleep 0.05; i=$((i + 1)); done
-  kill -KILL -- "-$pid" 2>/dev/null
+  kill -s KILL -- "-$pid" 2>/dev/null  # the run, its workers and their POV-Ray
   wait "$pid" 2>/dev/null
   [ -e killed/tasks/0000.json ] || fail "the first still never finished"
   "$bin" batch status killed
@@ -79,7 +79,7 @@ missing_dem)
   ;;
 failing)
   rm -rf failing
-  printf 'scene = "tiny.toml"\nengines = ["povray", "blender"]\nwidth = 48\nheight = 36\n[sun]\nangles = [[120.0, 30.0], [240.0, 50.0]]\n' > failing.toml
+  printf 'scene = "tiny.toml"\nengines = ["povray", "blender"]\nwidth = 48\nheight = 36\n[[viewpoints]]\ncount = 1\n[sun]\nangles = [[120.0, 30.0], [240.0, 50.0]]\n' > failing.toml
   WANGSCAPE_BLENDER=/bin/false sh "$here/../expect.sh" 1 "task 0001 .*failed: .*log: .*blender.log" \
     "$bin" batch run failing.toml --out failing --workers 2 || fail "failure not reported with its log"
   [ -s failing/stills/0000.png ] && [ -s failing/stills/0002.png ] || fail "the POV-Ray stills did not finish"
