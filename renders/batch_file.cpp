@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -108,6 +109,27 @@ std::string text_of(const toml::node& node) {
   return out.str();
 }
 
+// "2024-07-15T11:00:00-07:00": a moment as local time at a UTC offset (labels of from-to-step suns).
+std::string local_time_text(std::int64_t unix, int offset_minutes) {
+  using namespace std::chrono;
+  const sys_seconds local{seconds{unix + std::int64_t{offset_minutes} * 60}};
+  const auto day = floor<days>(local);
+  const year_month_day ymd{day};
+  const hh_mm_ss hms{local - day};
+  toml::date_time dt;
+  dt.date.year = static_cast<std::uint16_t>(static_cast<int>(ymd.year()));
+  dt.date.month = static_cast<std::uint8_t>(static_cast<unsigned>(ymd.month()));
+  dt.date.day = static_cast<std::uint8_t>(static_cast<unsigned>(ymd.day()));
+  dt.time.hour = static_cast<std::uint8_t>(hms.hours().count());
+  dt.time.minute = static_cast<std::uint8_t>(hms.minutes().count());
+  dt.time.second = static_cast<std::uint8_t>(hms.seconds().count());
+  dt.offset = toml::time_offset{};
+  dt.offset->minutes = static_cast<std::int16_t>(offset_minutes);
+  std::ostringstream out;
+  out << dt;
+  return out.str();
+}
+
 void read_suns(Table& sun, BatchConfig& config) {
   if (const auto* n = sun.node("times")) {
     const auto* array = n->as_array();
@@ -123,9 +145,9 @@ void read_suns(Table& sun, BatchConfig& config) {
     if (!(step >= 1)) sun.fail(*from, "step_minutes", "must be at least 1");
     const auto t0 = unix_seconds(*from, sun, "from"), t1 = unix_seconds(*to, sun, "to");
     if (t1 < t0) sun.fail(*to, "to", "is before 'from'");
-    const std::string base = text_of(*from);
+    const int offset = from->as_date_time()->get().offset->minutes;
     for (std::int64_t t = t0, k = 0; t <= t1 && k < 10000; ++k, t = t0 + static_cast<std::int64_t>(k * step * 60))
-      config.suns.push_back({t, base + " +" + std::to_string(static_cast<long long>(k * step)) + " min"});
+      config.suns.push_back({t, local_time_text(t, offset)});
   }
   for (const auto& [az, el] : sun.pairs("angles")) {
     if (!(el > 0 && el <= 90)) throw Error(sun.file(), "", "'sun.angles' elevations must be in (0, 90]");

@@ -395,7 +395,8 @@ void run_slurm(const BatchRunSettings& s, const Plan& plan) {
       if (!elements.empty()) elements += ',';
       elements += std::to_string(e);
     }
-    std::vector<std::string> sbatch{"sbatch", "--parsable", "--job-name=wangscape-batch", "--chdir=" + dir.string()};
+    std::vector<std::string> sbatch{"sbatch", "--parsable", "--requeue", "--job-name=wangscape-batch",
+                                    "--chdir=" + dir.string()};
     std::string after;
     if (!elements.empty()) {
       auto array = sbatch;

@@ -105,6 +105,23 @@ slurm)
   [ -s slurm-out/index.html ] && [ -s slurm-out/contact-sheet.png ] || fail "no gallery from the Slurm run"
   "$bin" batch status slurm-out | grep -q "done 4, running 0" || fail "status after Slurm"
   ;;
+terrain)
+  # Every viewpoint kind over a cropped real DEM, suns from-to-step; the path (ENU in dem.toml) in lat/lon.
+  origin=$("$bin" batch plan dem.toml --json | python3 -c '
+import json, sys
+t = [t for t in json.load(sys.stdin) if t["viewpoint"] == "grid 0,0"][0]["camera"]
+la, lo = t["latitude"], t["longitude"]
+print(f"[[{la:.7f}, {lo:.7f}], [{la + 0.0001:.7f}, {lo:.7f}]]")') ||
+    fail "plan of dem.toml"
+  sed "s/^enu = .*/latlon = $origin/" dem.toml > dem-latlon.toml
+  "$bin" batch plan dem-latlon.toml | grep -q "^10 tasks" || fail "dem-latlon.toml is not 10 tasks"
+  "$bin" batch plan dem-latlon.toml | grep -q "summit 1 .*sun 2024-07-15T15:00:00-06:00" || fail "summit or sun time"
+  rm -rf terrain
+  "$bin" --quiet batch run dem-latlon.toml --out terrain --workers 2 || fail "terrain run"
+  check_once terrain 10
+  [ "$(ls terrain/scenes | grep -vc lock)" = 1 ] || fail "the 10 stills did not share one scene folder"
+  grep -q "lat/lon 40\." terrain/index.html || fail "gallery without lat/lon"
+  ;;
 *) fail "unknown scenario" ;;
 esac
 echo "ok: $name"
