@@ -24,13 +24,12 @@ namespace {
 
 int line_of(const toml::node& node) { return static_cast<int>(node.source().begin.line); }
 
-// Reads one TOML table, failing on keys it does not know (naming the file and the line).
+// Reads one TOML table; finish() fails on the keys nothing read (naming the file and the line).
 class Table {
  public:
   Table(const toml::table& table, const std::filesystem::path& file, std::string name)
       : table_(table), file_(file), name_(std::move(name)) {}
-  ~Table() noexcept(false) {
-    if (std::uncaught_exceptions() > 0) return;
+  void finish() const {
     for (const auto& [key, node] : table_)
       if (!used_.count(std::string(key.str())))
         throw Error(file_, std::to_string(line_of(node)), "unknown key '" + name_ + std::string(key.str()) + "'");
@@ -116,7 +115,7 @@ std::string local_time_text(std::int64_t unix, int offset_minutes) {
   const auto day = floor<days>(local);
   const year_month_day ymd{day};
   const hh_mm_ss hms{local - day};
-  toml::date_time dt;
+  toml::date_time dt{};  // value-initialized: no stray nanoseconds
   dt.date.year = static_cast<std::uint16_t>(static_cast<int>(ymd.year()));
   dt.date.month = static_cast<std::uint8_t>(static_cast<unsigned>(ymd.month()));
   dt.date.day = static_cast<std::uint8_t>(static_cast<unsigned>(ymd.day()));
@@ -413,13 +412,16 @@ BatchConfig parse_batch_config(std::string_view toml_text, const std::filesystem
     for (const auto& item : *array) {
       Table v(*item.as_table(), source, "viewpoints.");
       config.viewpoints.push_back(read_viewpoint(v, line_of(item)));
+      v.finish();
     }
   }
   if (const auto* n = top.node("sun")) {
     if (!n->as_table()) top.fail(*n, "sun", "must be a [sun] table");
     Table sun(*n->as_table(), source, "sun.");
     read_suns(sun, config);
+    sun.finish();
   }
+  top.finish();
   if (config.viewpoints.empty()) config.viewpoints.push_back({});
   return config;
 }

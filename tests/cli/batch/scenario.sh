@@ -34,6 +34,9 @@ for t in tasks:
     assert "azimuth" in t["sun"] and "elevation" in t["sun"]
 assert len({t["input_hash"] for t in tasks}) == 4
 ' || fail "plan --json shape"
+  printf 'scene = "tiny.toml"\n[[viewpoints]]\nknd = "grid"\n' > typo.toml
+  sh "$here/../expect.sh" 1 "typo.toml:3: unknown key .viewpoints.knd." "$bin" batch plan typo.toml ||
+    fail "an unknown key is not named with its line"
   ;;
 example)
   "$bin" batch example > example.toml || fail "batch example"
