@@ -107,6 +107,13 @@ slurm)
   check_once slurm-out 4
   [ -s slurm-out/index.html ] && [ -s slurm-out/contact-sheet.png ] || fail "no gallery from the Slurm run"
   "$bin" batch status slurm-out | grep -q "done 4, running 0" || fail "status after Slurm"
+  # Failing elements (Blender tasks) are resubmitted once, then reported; the others finish.
+  rm -rf slurm-failing
+  printf 'scene = "tiny.toml"\nengines = ["povray", "blender"]\nwidth = 48\nheight = 36\n[[viewpoints]]\ncount = 1\n' > slurm-failing.toml
+  WANGSCAPE_BLENDER=/bin/false sh "$here/../expect.sh" 1 "task 0001 .*failed: .*log: " \
+    "$bin" batch run slurm-failing.toml --out slurm-failing --executor slurm --retries 1 || fail "Slurm failure report"
+  [ "$(ls slurm-failing/logs/slurm-*_1.log | wc -l)" = 2 ] || fail "the failed element was not resubmitted once"
+  [ -s slurm-failing/stills/0000.png ] || fail "the POV-Ray task did not finish on Slurm"
   ;;
 terrain)
   # Every viewpoint kind over a cropped real DEM, suns from-to-step; the path (ENU in dem.toml) in lat/lon.
