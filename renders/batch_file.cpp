@@ -384,6 +384,7 @@ BatchConfig parse_batch_config(std::string_view toml_text, const std::filesystem
   const std::string scene_name = scene->value_or(std::string());
   config.scene = scene_name == "default" ? default_scene_config() : load_scene_config(resolve(scene_name));
   for (const auto& dem : top.strings("dems")) config.dems.push_back(resolve(dem));
+  if (const auto* dems = root.get("dems")) config.dems_line = line_of(*dems);
   if (const auto* folder = top.node("dem_folder")) {
     const auto dir = resolve(folder->value_or(std::string()));
     std::error_code ec;
@@ -456,7 +457,8 @@ std::vector<BatchTask> expand_batch(const BatchConfig& config) {
   // Every DEM is checked before anything is loaded, so a typo fails at once.
   for (const auto& dem : config.dems)
     if (!std::filesystem::is_regular_file(dem))
-      throw Error(config.source, "", "DEM '" + dem.string() + "' does not exist (or is not a file)");
+      throw Error(config.source, config.dems_line ? std::to_string(config.dems_line) : "",
+                  "DEM '" + dem.string() + "' does not exist (or is not a file)");
   std::vector<std::filesystem::path> dems = config.dems;
   if (dems.empty()) dems.push_back(config.scene.terrain.dem);
   std::vector<BatchTask> tasks;

@@ -41,6 +41,7 @@ struct BatchConfig {
   std::filesystem::path source;             // the batch file, or "<example batch>"
   SceneConfig scene;                        // the base scene
   std::vector<std::filesystem::path> dems;  // empty = the scene's own terrain
+  int dems_line = 0;                        // line of `dems`, for messages
   std::vector<ViewpointRule> viewpoints;
   std::vector<BatchSun> suns;  // empty = the scene's sun
   std::vector<std::string> engines{"povray"};

@@ -76,7 +76,7 @@ kill)
 missing_dem)
   rm -rf missing
   printf 'scene = "tiny.toml"\ndems = ["no-such-valley.dem"]\nwidth = 48\nheight = 36\n' > missing.toml
-  sh "$here/../expect.sh" 1 "no-such-valley.dem.*does not exist" "$bin" batch run missing.toml --out missing ||
+  sh "$here/../expect.sh" 1 "missing.toml:2: DEM .*no-such-valley.dem.*does not exist" "$bin" batch run missing.toml --out missing ||
     fail "missing DEM not reported"
   [ -e missing/tasks ] && fail "tasks started although a DEM is missing"
   ;;
