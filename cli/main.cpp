@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   wangscape::cli::register_terrain_command(app, global);
   wangscape::cli::register_scatter_command(app, global);
   wangscape::cli::register_tiles_commands(app, global);
+  wangscape::cli::register_batch_command(app, global);
 
   try {
     app.parse(argc, argv);

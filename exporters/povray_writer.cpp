@@ -247,28 +247,7 @@ std::string scene_pov(const Scene& scene, bool has_terrain, bool has_instances, 
   s += "#macro Wangscape_Material(Color, Roughness, Translucency)\n";
   s += "  pigment { rgb Color }\n  finish { Wangscape_Finish(Roughness, Translucency) }\n#end\n\n";
 
-  const auto& cam = scene.camera;
-  s += "camera {\n  perspective\n  location ";
-  append_enu_as_pov(s, cam.position, 3);
-  s += "\n  look_at ";
-  append_enu_as_pov(s, cam.target, 3);
-  s += "\n  right x * image_width / image_height\n  angle " + fixed(cam.fov_degrees, 3) + "\n}\n\n";
-
-  const auto dir = scene.sun.direction();
-  const auto color = sun_color(scene.sun);
-  // A parallel light must sit outside every object to cast their shadows: far along the sun.
-  constexpr double kSunDistance = 1.0e6;
-  const std::array<double, 3> sun_position{cam.target[0] + dir[0] * kSunDistance, cam.target[1] + dir[1] * kSunDistance,
-                                           cam.target[2] + dir[2] * kSunDistance};
-  s += "// Sun: azimuth " + fixed(scene.sun.azimuth_degrees, 2) + " deg from north, elevation " +
-       fixed(scene.sun.elevation_degrees, 2) + " deg.\n";
-  s += "light_source {\n  ";
-  append_enu_as_pov(s, sun_position, 1);
-  s += "\n  color rgb ";
-  append_vector(s, color[0], color[1], color[2], 4);
-  s += "\n  parallel\n  point_at ";
-  append_enu_as_pov(s, cam.target, 3);
-  s += "\n}\n\n";
+  s += povray_camera_and_sun(scene.camera, scene.sun) + "\n";
 
   s += "sky_sphere {\n  pigment {\n    function { max(0, y) }\n    color_map {\n";
   s += "      [0.00 rgb <0.80, 0.86, 0.93>]\n      [0.06 rgb <0.56, 0.70, 0.90>]\n";
@@ -332,6 +311,32 @@ std::string scene_ini(const Scene& scene, const std::filesystem::path& library_d
 }
 
 }  // namespace
+
+std::string povray_camera_and_sun(const Camera& cam, const Sun& sun) {
+  std::string s;
+  s += "camera {\n  perspective\n  location ";
+  append_enu_as_pov(s, cam.position, 3);
+  s += "\n  look_at ";
+  append_enu_as_pov(s, cam.target, 3);
+  s += "\n  right x * image_width / image_height\n  angle " + fixed(cam.fov_degrees, 3) + "\n}\n\n";
+
+  const auto dir = sun.direction();
+  const auto color = sun_color(sun);
+  // A parallel light must sit outside every object to cast their shadows: far along the sun.
+  constexpr double kSunDistance = 1.0e6;
+  const std::array<double, 3> sun_position{cam.target[0] + dir[0] * kSunDistance, cam.target[1] + dir[1] * kSunDistance,
+                                           cam.target[2] + dir[2] * kSunDistance};
+  s += "// Sun: azimuth " + fixed(sun.azimuth_degrees, 2) + " deg from north, elevation " +
+       fixed(sun.elevation_degrees, 2) + " deg.\n";
+  s += "light_source {\n  ";
+  append_enu_as_pov(s, sun_position, 1);
+  s += "\n  color rgb ";
+  append_vector(s, color[0], color[1], color[2], 4);
+  s += "\n  parallel\n  point_at ";
+  append_enu_as_pov(s, cam.target, 3);
+  s += "\n}\n";
+  return s;
+}
 
 std::string povray_model_name(std::size_t variant) { return "Sunflower_" + std::to_string(variant); }
 

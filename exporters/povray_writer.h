@@ -65,6 +65,10 @@ class PovrayWriter final : public SceneWriter {
 PovrayExportStats write_povray_scene(const Scene& scene, const std::filesystem::path& dir,
                                      const PovrayExportOptions& options = {});
 
+// The camera and sun blocks of scene.pov (batch renders write one per still over a shared
+// scene folder, so a new viewpoint or hour costs no new placement).
+std::string povray_camera_and_sun(const Camera& camera, const Sun& sun);
+
 // POV-Ray's name of model variant `variant` in models.inc ("Sunflower_3").
 std::string povray_model_name(std::size_t variant);
 

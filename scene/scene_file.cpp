@@ -166,13 +166,9 @@ std::filesystem::path resolve(const std::filesystem::path& base, const std::stri
   return p.is_absolute() ? p : base / p;
 }
 
-// Seconds since 1970-01-01 UTC of a TOML date-time with a UTC offset.
 std::int64_t unix_seconds(const toml::date_time& dt) {
-  using namespace std::chrono;
-  const sys_days day = year_month_day{year{dt.date.year}, month{dt.date.month}, std::chrono::day{dt.date.day}};
-  const seconds local =
-      day.time_since_epoch() + hours{dt.time.hour} + minutes{dt.time.minute} + seconds{dt.time.second};
-  return (local - minutes{dt.offset->minutes}).count();
+  return unix_seconds_utc(dt.date.year, dt.date.month, dt.date.day, dt.time.hour, dt.time.minute, dt.time.second,
+                          dt.offset->minutes);
 }
 
 void read_camera_point(Section& camera, const std::string& prefix, CameraPoint& point, Section& owner_for_errors) {
@@ -207,6 +203,14 @@ void read_camera_point(Section& camera, const std::string& prefix, CameraPoint& 
 }
 
 }  // namespace
+
+std::int64_t unix_seconds_utc(int year, int month, int day, int hour, int minute, int second, int offset_minutes) {
+  using namespace std::chrono;
+  const sys_days date = year_month_day{std::chrono::year{year}, std::chrono::month{static_cast<unsigned>(month)},
+                                       std::chrono::day{static_cast<unsigned>(day)}};
+  const seconds local = date.time_since_epoch() + hours{hour} + minutes{minute} + seconds{second};
+  return (local - minutes{offset_minutes}).count();
+}
 
 SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem::path& source_path,
                                const std::filesystem::path& base_dir) {

@@ -141,6 +141,9 @@ struct SceneConfig {
   Error error_at(std::string_view key, const std::string& what) const;
 };
 
+// Seconds since 1970-01-01 UTC of a local date and time with its UTC offset (minutes east).
+std::int64_t unix_seconds_utc(int year, int month, int day, int hour, int minute, int second, int offset_minutes);
+
 // Parses TOML text. `source` names it in messages; `base_dir` resolves relative paths.
 // Throws Error "<source>:<line>: <what>" for syntax errors, unknown keys, wrong
 // types and values out of range.

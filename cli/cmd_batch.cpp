@@ -1,0 +1,42 @@
+// wangscape batch plan|example|run|status|run-task (hidden: what workers run): renders/batch_run.h.
+#include <iostream>
+#include "cli/command.h"
+#include "cli/progress.h"
+#include "renders/batch_run.h"
+
+namespace wangscape::cli {
+
+void register_batch_command(CLI::App& app, const GlobalOptions& global) {
+  auto* batch = app.add_subcommand("batch", "Stills over DEMs x viewpoints x suns x engines")->require_subcommand(1);
+  auto s = std::make_shared<BatchRunSettings>();
+  auto* plan = batch->add_subcommand("plan", "Print the tasks a batch file expands to (runs nothing)");
+  plan->add_option("batch", s->batch_file, "Batch file")->required();
+  plan->add_flag("--json", s->json, "A JSON list of tasks");
+  plan->callback([=] { std::cout << batch_plan_text(s->batch_file, s->json); });
+  batch->add_subcommand("example", "Print a small batch file")->callback([] { std::cout << example_batch_text(); });
+  auto* run = batch->add_subcommand("run", "Render every still of a batch not yet done into --out DIR");
+  run->add_option("batch", s->batch_file, "Batch file")->required();
+  run->add_option("--out", s->out_dir, "Output folder")->required();
+  run->add_option("--executor", s->executor, "local or slurm")->check(CLI::IsMember({"local", "slurm"}));
+  run->add_option("--workers", s->workers, "Local worker processes (default: the cores)")->check(CLI::PositiveNumber);
+  run->add_option("--chunk", s->chunk, "Slurm: tasks per array element")->check(CLI::PositiveNumber);
+  run->add_option("--throttle", s->throttle, "Slurm: array elements running at once")->check(CLI::PositiveNumber);
+  run->add_option("--retries", s->retries, "Slurm: resubmissions of failed elements")->check(CLI::NonNegativeNumber);
+  run->callback([=, &global] { s->chatty = chatty(global), run_batch(*s); });
+  auto* status = batch->add_subcommand("status", "Done / running / failed / pending per task of DIR");
+  status->add_option("dir", s->out_dir, "Batch output folder")->required();
+  status->add_flag("--progress", s->watch, "On a terminal: a bar until no task is running");
+  status->callback([=] { std::cout << batch_status_text(*s); });
+  auto* task = batch->add_subcommand("run-task")->group("")->callback([=] { run_batch_tasks(*s); });
+  task->add_option("dir", s->out_dir)->required();
+  task->add_option("tasks", s->task_range, "FIRST [COUNT]; none: assemble the gallery")->expected(0, 2);
+  // The bar of `run` and `status --progress` (only on a terminal, never with --quiet).
+  auto bar = std::make_shared<std::unique_ptr<Progress>>();
+  s->on_progress = [bar, &global](int done, int total) {
+    if (!*bar) *bar = std::make_unique<Progress>("stills", total, global.quiet);
+    (*bar)->update(done);
+    if (done >= total) bar->reset();
+  };
+}
+
+}  // namespace wangscape::cli

@@ -1,0 +1,85 @@
+// The batch file (TOML, docs/batch-file.md): a base scene plus what varies (DEMs, viewpoints
+// chosen from the terrain, sun times, engines, image size), and its expansion into tasks, one
+// still each. Expansion loads every ground once (SceneGround) and checks every input, so a
+// batch naming a missing DEM fails here, before any task runs.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "scene/scene.h"
+#include "scene/scene_file.h"
+
+namespace wangscape {
+
+// [[viewpoints]]: how cameras are chosen from the ground (ENU meters, heights above ground).
+struct ViewpointRule {
+  std::string kind = "flowers";                    // flowers, summits, grid, path
+  int count = 2;                                   // flowers: cameras; summits: at most this many
+  double eye_height = 1.7;                         // meters above the ground
+  double min_height = 0;                           // summits: meters, only summits at least this high
+  std::array<int, 2> grid{2, 2};                   // grid: columns x rows over the field
+  std::vector<std::array<double, 2>> path_enu;     // path: [east, north] meters
+  std::vector<std::array<double, 2>> path_latlon;  // path: [latitude, longitude] WGS 84 degrees
+  double fov = 0;                                  // degrees; 0 = the scene's
+  int line = 0;                                    // where it was written, for messages
+};
+
+// One sun: a time (at the scene's origin) or fixed angles.
+struct BatchSun {
+  std::optional<std::int64_t> time_unix;  // seconds since 1970 UTC
+  std::string label;                      // as written ("2024-07-15T09:00:00-07:00", "az 135 el 35")
+  double azimuth = 135, elevation = 35;   // compass degrees; set from the time by expansion
+};
+
+struct BatchConfig {
+  std::filesystem::path source;             // the batch file, or "<example batch>"
+  SceneConfig scene;                        // the base scene
+  std::vector<std::filesystem::path> dems;  // empty = the scene's own terrain
+  int dems_line = 0;                        // line of `dems`, for messages
+  std::vector<ViewpointRule> viewpoints;
+  std::vector<BatchSun> suns;  // empty = the scene's sun
+  std::vector<std::string> engines{"povray"};
+  int width = 0, height = 0;  // 0 = the scene's
+};
+
+// One still: everything a worker needs, resolved (no ground lookups at run time).
+struct BatchTask {
+  int index = 0;
+  std::string id;                             // "0007"
+  std::filesystem::path dem;                  // empty = flat ground
+  std::string scene_key;                      // hash of what the scene folder depends on (shared folders)
+  std::string viewpoint;                      // "flowers 2/4", "summit 1", "path 3" ...
+  Camera camera;                              // ENU meters
+  std::array<double, 2> camera_latlon{0, 0};  // WGS 84 degrees of the camera
+  BatchSun sun;
+  std::string engine;
+  int width = 0, height = 0;
+  std::string input_hash;  // scene key + camera + sun + engine + size: skip when unchanged
+};
+
+// Parses a batch file; relative paths resolve against its folder. Throws Error
+// "<file>:<line>: <what>" for unknown keys, wrong types and bad values.
+BatchConfig parse_batch_config(std::string_view toml_text, const std::filesystem::path& source,
+                               const std::filesystem::path& base_dir);
+BatchConfig load_batch_config(const std::filesystem::path& file);
+
+// The tasks a batch expands to, in a fixed order (DEM, viewpoint, sun, engine). Throws Error
+// naming the batch file when a DEM is missing, a time is night, or no viewpoint fits.
+std::vector<BatchTask> expand_batch(const BatchConfig& config);
+
+// The scene a task renders: the base scene over the task's DEM, with its camera, sun and size.
+SceneConfig task_scene_config(const SceneConfig& base, const BatchTask& task);
+
+// 16 hex digits of a 64-bit FNV-1a hash (input hashes, scene keys).
+std::string hash_hex(std::string_view text);
+
+// The small example batch (templates/batches/example.toml) over the embedded default scene.
+std::string_view example_batch_text();
+
+}  // namespace wangscape

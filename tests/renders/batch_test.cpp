@@ -1,0 +1,98 @@
+// The batch file and its expansion (renders/batch_file.h): viewpoints from the ground, suns,
+// input hashes, errors with file and line. The CLI runs are in tests/cli/batch.cmake.
+#include "renders/batch_file.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <string>
+
+namespace wangscape {
+namespace {
+
+// A flat 120 m ground, flowers on [-12, 12]^2 (as tests/cli/tiny_scene.toml).
+const char* const kScene = R"(name = "t"
+[terrain]
+flat_size = 120.0
+[tiles]
+area = [-12.0, -12.0, 12.0, 12.0]
+[camera]
+position = [0.0, -16.0, 2.2]
+target = [0.0, 0.0, 1.2]
+)";
+
+BatchConfig batch(const std::string& rest) {
+  BatchConfig config = parse_batch_config("scene = \"default\"\n" + rest, "b.toml", ".");
+  config.scene = parse_scene_config(kScene, "s.toml", ".");  // the tiny flat scene instead
+  return config;
+}
+
+TEST(BatchFile, FlowerViewpointsStandInTheFieldAtHeadHeight) {
+  const auto tasks = expand_batch(batch("[[viewpoints]]\nkind = \"flowers\"\ncount = 5\neye_height = 1.5\n"));
+  ASSERT_EQ(tasks.size(), 5u);
+  for (const auto& t : tasks) {
+    EXPECT_LE(std::abs(t.camera.position[0]), 12.0);
+    EXPECT_LE(std::abs(t.camera.position[1]), 12.0);
+    EXPECT_DOUBLE_EQ(t.camera.position[2], 1.5);
+    EXPECT_GE(std::hypot(t.camera.target[0] - t.camera.position[0], t.camera.target[1] - t.camera.position[1]), 5.0);
+  }
+}
+
+TEST(BatchFile, ExpandsViewpointsTimesSunsTimesEnginesWithDistinctHashesAndOneScene) {
+  const auto tasks =
+      expand_batch(batch("engines = [\"povray\", \"blender\"]\n[[viewpoints]]\nkind = \"grid\"\ngrid = [2, 1]\n"
+                         "[sun]\nangles = [[100.0, 20.0], [200.0, 40.0], [300.0, 60.0]]\n"));
+  ASSERT_EQ(tasks.size(), 2u * 3u * 2u);
+  std::set<std::string> hashes, scenes;
+  for (const auto& t : tasks) hashes.insert(t.input_hash), scenes.insert(t.scene_key);
+  EXPECT_EQ(hashes.size(), tasks.size());
+  EXPECT_EQ(scenes.size(), 1u);  // camera, sun and engine never change the scene folder
+  EXPECT_EQ(tasks[1].engine, "blender");
+  EXPECT_DOUBLE_EQ(tasks[2].sun.azimuth, 200.0);
+  const std::string grid = "[[viewpoints]]\nkind = \"grid\"\ngrid = [2, 1]\n";
+  EXPECT_EQ(expand_batch(batch(grid))[0].input_hash, expand_batch(batch(grid))[0].input_hash);  // deterministic
+}
+
+TEST(BatchFile, PathLooksAlongThePath) {
+  const auto tasks = expand_batch(batch("[[viewpoints]]\nkind = \"path\"\nenu = [[0.0, 0.0], [10.0, 0.0]]\n"));
+  ASSERT_EQ(tasks.size(), 2u);
+  for (const auto& t : tasks) EXPECT_GT(t.camera.target[0], t.camera.position[0]);  // eastwards, also the last
+}
+
+TEST(BatchFile, SunTimesFromToStepAndNight) {
+  const auto tasks = expand_batch(
+      batch("[sun]\nfrom = 2024-07-15T12:00:00+00:00\nto = 2024-07-15T14:00:00+00:00\nstep_minutes = 60\n"));
+  ASSERT_EQ(tasks.size(), 2u * 3u);  // the default rule: 2 flower cameras
+  EXPECT_EQ(tasks[1].sun.label, "2024-07-15T13:00:00Z");
+  EXPECT_GT(tasks[0].sun.elevation, 0.0);
+  EXPECT_THROW(expand_batch(batch("[sun]\ntimes = [2024-07-15T00:00:00+00:00]\n")), Error);  // night at 0, 0
+}
+
+TEST(BatchFile, ErrorsNameTheFileAndTheLine) {
+  try {
+    parse_batch_config("scene = \"default\"\n[[viewpoints]]\ncont = 3\n", "b.toml", ".");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "b.toml:3: unknown key 'viewpoints.cont'");
+  }
+  EXPECT_THROW(parse_batch_config("scene = \"default\"\nengines = [\"cycles\"]\n", "b.toml", "."), Error);
+  BatchConfig missing = batch("");
+  missing.dems = {"/no/such/dem.tif"};
+  try {
+    expand_batch(missing);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/no/such/dem.tif"), std::string::npos);
+  }
+}
+
+TEST(BatchFile, TheExampleIsTwoViewpointsTimesTwoSuns) {
+  const auto config = parse_batch_config(example_batch_text(), "<example batch>", ".");
+  EXPECT_EQ(config.viewpoints.size(), 1u);
+  EXPECT_EQ(config.viewpoints[0].count, 2);
+  EXPECT_EQ(config.suns.size(), 2u);
+}
+
+}  // namespace
+}  // namespace wangscape
