@@ -186,8 +186,10 @@ void LdiPackWriter::add(const LdiImage& ldi) {
   at += ldi.counts.size();
   pad_to(out, at, layout.depth_pixels);
   put_all(out, std::span<const DepthPixel>(ldi.depth_pixels));
+  at += ldi.depth_pixels.size() * sizeof(DepthPixel);
+  pad_to(out, at, align8(layout.total));  // the next block starts on 8 bytes too
   sizes_[e] = layout.total;
-  end_ += layout.total;  // a multiple of 8: depth pixels are 8 bytes
+  end_ += at;
 }
 
 void LdiPackWriter::commit() {
@@ -272,9 +274,7 @@ LdiView validate_block(const std::uint8_t* block, std::uint64_t bytes, std::uint
              std::to_string(span.first_depth) + " instead of " + std::to_string(pixel) + " / " + std::to_string(depth));
       if (pixel + span.length > f->pixel_count) fail("its spans hold more pixels than its count table");
       for (std::uint32_t k = 0; k < span.length; ++k) {
-        const std::uint8_t c = v.counts[pixel + k];
-        if (c == 0) fail("a pixel of span " + std::to_string(s) + " has no layer");
-        depth += c;
+        depth += v.counts[pixel + k];
       }
       pixel += span.length;
       row_end = std::uint32_t{span.x} + span.length;
@@ -399,7 +399,7 @@ LdiPackStats ldi_pack_stats(const LdiPack& pack) {
         s.depth_pixels += v.depth_pixels.size();
         s.depth_pixels_per_level[l] += v.depth_pixels.size();
         s.bytes_per_level[l] += pack.ldi_bytes(t, l, d);
-        s.layer_histogram[0] += pixels - v.counts.size();
+        s.layer_histogram[0] += pixels - v.counts.size();  // outside spans; zero counts inside add below
         for (std::uint8_t c : v.counts) ++s.layer_histogram[c];
       }
   while (s.layer_histogram.size() > 1 && s.layer_histogram.back() == 0) s.layer_histogram.pop_back();

@@ -98,7 +98,7 @@ struct LdiPackStats {
   std::uint64_t pixels = 0;        // all pixels of all LDIs (empty ones too)
   std::uint64_t depth_pixels = 0;  // all layers
   std::vector<std::uint64_t> depth_pixels_per_level, bytes_per_level;
-  std::vector<std::uint64_t> layer_histogram;  // [k]: non-empty pixels with k layers (k >= 1), [0]: empty
+  std::vector<std::uint64_t> layer_histogram;  // [k]: pixels with k layers (0: empty)
 };
 LdiPackStats ldi_pack_stats(const LdiPack& pack);
 
