@@ -244,6 +244,7 @@ struct TileContext {
 struct Counters {
   std::uint64_t primary = 0, secondary = 0, hits = 0, duplicate = 0, outside = 0, merged = 0, dropped = 0,
                 depth_pixels = 0;
+  double sampling_seconds = 0;  // wall clock inside the LDIs' parallel loops (no scene builds)
   void add(const Counters& o) {
     primary += o.primary, secondary += o.secondary, hits += o.hits, duplicate += o.duplicate;
     outside += o.outside, merged += o.merged, dropped += o.dropped, depth_pixels += o.depth_pixels;
@@ -258,6 +259,8 @@ struct RowOut {
 };
 
 constexpr int kMaxLanes = 16;
+// Empty runs up to this long stay inside a span as zero counts (1 byte each, a span is 12).
+constexpr int kMaxSpanGap = int(sizeof(LdiSpan)) - 1;
 
 // Per-thread scratch, allocated once per thread and reused by every ray it traces.
 struct Scratch {
@@ -438,9 +441,15 @@ class LdiSampler {
     }
     if (kept == 0) return;
 
-    if (out.spans.empty() || int(out.spans.back().x) + int(out.spans.back().length) != x)
+    // A gap shorter than a span record is cheaper stored as empty pixels inside the span.
+    const int gap = out.spans.empty() ? kMaxSpanGap + 1 : x - int(out.spans.back().x) - int(out.spans.back().length);
+    if (gap > kMaxSpanGap) {
       out.spans.push_back(
           {std::uint16_t(x), 0, std::uint32_t(out.counts.size()), std::uint32_t(out.depth_pixels.size())});
+    } else {
+      out.counts.insert(out.counts.end(), std::size_t(gap), std::uint8_t{0});
+      out.spans.back().length = std::uint16_t(out.spans.back().length + gap);
+    }
     ++out.spans.back().length;
     out.counts.push_back(std::uint8_t(kept));
     const float depth_scale = 65535.0f / f_.out.depth_range;
@@ -448,12 +457,11 @@ class LdiSampler {
       const Hit& h = hits[scratch.kept[std::size_t(j)]];
       SurfaceSample s;
       s.position = {ray.org[0] + h.t * forward_[0], ray.org[1] + h.t * forward_[1], ray.org[2] + h.t * forward_[2]};
-      std::uint8_t material = kGroundMaterial;
       if (h.inst == RTC_INVALID_GEOMETRY_ID) {
         s.normal = {0, 0, 1};
         s.base_color = c_.options.shading.ground_color;
       } else {
-        material = surface(h, s);
+        surface(h, s);
       }
       // Two-sided: turn the normal towards the viewer.
       if (s.normal[0] * forward_[0] + s.normal[1] * forward_[1] + s.normal[2] * forward_[2] > 0)
@@ -464,13 +472,13 @@ class LdiSampler {
       const auto rgb = to_srgb8(color);
       const float d = std::clamp(h.t * depth_scale, 0.0f, 65535.0f);
       out.depth_pixels.push_back(
-          {rgb[0], rgb[1], rgb[2], material, std::uint16_t(std::lround(d)), encode_octahedral(s.normal)});
+          DepthPixel::make(rgb[0], rgb[1], rgb[2], std::uint16_t(std::lround(d)), encode_octahedral(s.normal)));
     }
     k.depth_pixels += std::uint64_t(kept);
   }
 
-  // Normal (smooth where the model has normals) and material of a model hit; returns the slot.
-  std::uint8_t surface(const Hit& h, SurfaceSample& s) const {
+  // Normal (smooth where the model has normals) and material of a model hit.
+  void surface(const Hit& h, SurfaceSample& s) const {
     const Instances& in = c_.instances;
     const Mesh& mesh = c_.models[in.variant[h.inst]];
     const auto& tri = mesh.triangles[h.prim];
@@ -496,7 +504,6 @@ class LdiSampler {
       s.base_color = mesh.materials[slot].base_color;
       s.translucency = mesh.materials[slot].translucency;
     }
-    return std::uint8_t(std::min<std::uint16_t>(slot, kGroundMaterial - 1));
   }
 
   const TileContext& c_;
@@ -637,11 +644,15 @@ void build_tile(Device& device, std::span<const Scene> prototypes, const FilledT
   tbb::enumerable_thread_specific<Scratch> scratch([&] { return Scratch(options.max_hits); });
   const int L = options.view.levels, D = options.view.directions;
   out.assign(std::size_t(L * D), LdiImage{});
+  const auto start = std::chrono::steady_clock::now();
   tbb::parallel_for(0, L * D, [&](int i) {
     out[std::size_t(i)] = sample_ldi(c, i / D, i % D, scratch, counters, counters_mutex);
     if (ldi_done) ldi_done();
   });
   device.check("sampling tile " + std::to_string(tile));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::lock_guard lock(counters_mutex);
+  counters.sampling_seconds += seconds;
 }
 
 void fill_report(LdiBuildReport* report, const Counters& k, std::uint64_t ldis,
@@ -656,6 +667,7 @@ void fill_report(LdiBuildReport* report, const Counters& k, std::uint64_t ldis,
   report->merged_hits = k.merged;
   report->dropped_hits = k.dropped;
   report->depth_pixels = k.depth_pixels;
+  report->sampling_seconds = k.sampling_seconds;
   report->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

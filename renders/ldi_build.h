@@ -68,7 +68,8 @@ struct LdiBuildReport {
   std::uint64_t hits = 0;            // filter calls recorded (before de-duplication)
   std::uint64_t duplicate_hits = 0, outside_hits = 0, merged_hits = 0, dropped_hits = 0;
   std::uint64_t depth_pixels = 0;
-  double seconds = 0;
+  double seconds = 0;           // wall clock of the whole call
+  double sampling_seconds = 0;  // of it, tracing and shading (no Embree scene builds, no writing)
 };
 
 // Per-level figures of a set: what the pack header records.
