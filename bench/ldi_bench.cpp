@@ -46,25 +46,26 @@ void BM_LdiSamplerRays(benchmark::State& state) {
   o.shading.shadows = false;
   o.shading.ao_rays = 0;
   o.packet_width = int(state.range(0));
+  o.instancing = state.range(1) != 0;
   LdiBuildReport report;
   std::uint64_t rays = 0, hits = 0;
-  double seconds = 0;
+  double seconds = 0, cpu = 0;
   for (auto _ : state) {
     build_tile_ldis(s.filled, s.models, o, 0, &report);
     rays += report.primary_rays;
     hits += report.hits;
     seconds += report.sampling_seconds;
+    cpu += report.sampling_cpu_seconds;
   }
-  // Rays over the time spent tracing them (the scene builds of each iteration left out).
+  // Rays over the time spent tracing them (the scene builds of each iteration left out): per
+  // second of wall clock, and per CPU second (what one core does, whatever else runs).
   state.counters["rays_per_s"] = double(rays) / seconds;
+  state.counters["rays_per_cpu_s"] = double(rays) / cpu;
   state.counters["rays"] = double(rays) / double(state.iterations());
   state.counters["hits_per_ray"] = double(hits) / double(std::max<std::uint64_t>(rays, 1));
 }
 BENCHMARK(BM_LdiSamplerRays)
-    ->Arg(1)
-    ->Arg(4)
-    ->Arg(8)
-    ->Arg(16)
+    ->ArgsProduct({{1, 4, 8, 16}, {1, 0}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);
@@ -72,9 +73,15 @@ BENCHMARK(BM_LdiSamplerRays)
 // Where the bytes of one tile's LDIs go (tile 0, all levels and directions, default options).
 void BM_LdiTileBreakdown(benchmark::State& state) {
   const DefaultSet& s = default_set();
-  const LdiBuildOptions o;
+  LdiBuildOptions o;
+  o.instancing = state.range(0) != 0;
+  o.packet_width = int(state.range(1));
   std::vector<LdiImage> ldis;
-  for (auto _ : state) ldis = build_tile_ldis(s.filled, s.models, o, 0);
+  LdiBuildReport report;
+  for (auto _ : state) ldis = build_tile_ldis(s.filled, s.models, o, 0, &report);
+  state.counters["sampling_s"] = report.sampling_seconds;
+  state.counters["sampling_cpu_s"] = report.sampling_cpu_seconds;
+  state.counters["scenes_s"] = report.seconds - report.sampling_seconds;
   double spans = 0, pixels = 0, depth_pixels = 0, nonempty = 0, rows = 0, all_pixels = 0;
   for (const LdiImage& ldi : ldis) {
     spans += double(ldi.spans.size());
@@ -92,7 +99,13 @@ void BM_LdiTileBreakdown(benchmark::State& state) {
   state.counters["nonempty_share"] = nonempty / all_pixels;
   state.counters["layers_per_nonempty_pixel"] = depth_pixels / nonempty;
 }
-BENCHMARK(BM_LdiTileBreakdown)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+BENCHMARK(BM_LdiTileBreakdown)
+    ->Args({1, 1})
+    ->Args({0, 1})
+    ->Args({0, 16})
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime();
 
 void BM_LdiBuildCohen8(benchmark::State& state) {
   const DefaultSet& s = default_set();
@@ -109,6 +122,8 @@ void BM_LdiBuildCohen8(benchmark::State& state) {
   state.counters["pixels_M"] = double(stats.pixels) / 1e6;
   state.counters["top_level_MB"] = double(stats.bytes_per_level[0]) / 1e6;
   state.counters["rays_per_s"] = double(report.primary_rays + report.secondary_rays) / report.sampling_seconds;
+  state.counters["rays_per_cpu_s"] = double(report.primary_rays + report.secondary_rays) / report.sampling_cpu_seconds;
+  state.counters["build_s"] = report.seconds;
   state.counters["primary_M"] = double(report.primary_rays) / 1e6;
   state.counters["secondary_M"] = double(report.secondary_rays) / 1e6;
   state.counters["prism_top_m"] = double(pack.info().prism_top);

@@ -5,6 +5,8 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <time.h>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -115,9 +117,14 @@ void collect_hits(const RTCFilterFunctionNArguments* args) {
     HitBuffer& b = context->lanes[RTCRayN_id(args->ray, n, i)];
     ++b.recorded;
     if (b.count < b.capacity) {
-      b.hits[b.count++] = {RTCRayN_tfar(args->ray, n, i),   RTCHitN_u(args->hit, n, i),
-                           RTCHitN_v(args->hit, n, i),      RTCHitN_instID(args->hit, n, i, 0),
-                           RTCHitN_geomID(args->hit, n, i), RTCHitN_primID(args->hit, n, i)};
+      // The flower: the instance id, or without instancing the geometry id (one per flower).
+      const unsigned geom = RTCHitN_geomID(args->hit, n, i), inst = RTCHitN_instID(args->hit, n, i, 0);
+      b.hits[b.count++] = {RTCRayN_tfar(args->ray, n, i),
+                           RTCHitN_u(args->hit, n, i),
+                           RTCHitN_v(args->hit, n, i),
+                           inst == RTC_INVALID_GEOMETRY_ID ? geom : inst,
+                           geom,
+                           RTCHitN_primID(args->hit, n, i)};
     } else {
       ++b.dropped;
     }
@@ -140,11 +147,12 @@ RTCGeometry triangle_geometry(RTCDevice device, std::span<const std::array<float
   return g;
 }
 
-// The instances of one 3 x 3 context, as structure of arrays indexed by Embree instance id.
+// The flowers of one 3 x 3 context, as structure of arrays indexed by Hit::inst (the Embree
+// instance id, or the geometry id when the context is flattened).
 struct Instances {
   std::vector<std::uint16_t> variant;
   std::vector<float> cos_yaw, sin_yaw, scale, x, y;
-  unsigned ground_id = 0;  // geometry id of the ground quad in the context scene
+  unsigned ground_id = 0;  // Hit::inst of the ground quad
 };
 
 // ---- the tile set: model extents, contexts --------------------------------------------------
@@ -183,6 +191,13 @@ void check_inputs(const FilledTileSet& filled, std::span<const Mesh> models, con
     if (m.triangle_material.size() != m.triangles.size() ||
         (!m.normals.empty() && m.normals.size() != m.positions.size()))
       fail("model '" + m.name + "' has per-triangle materials or normals that do not match its triangles / vertices");
+}
+
+// CPU time of the whole process (every thread): what the build costs whatever else runs.
+double process_cpu_seconds() {
+  timespec t{};
+  ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
 // ---- one LDI's frame --------------------------------------------------------------------------
@@ -244,7 +259,8 @@ struct TileContext {
 struct Counters {
   std::uint64_t primary = 0, secondary = 0, hits = 0, duplicate = 0, outside = 0, merged = 0, dropped = 0,
                 depth_pixels = 0;
-  double sampling_seconds = 0;  // wall clock inside the LDIs' parallel loops (no scene builds)
+  double sampling_seconds = 0;      // wall clock inside the LDIs' parallel loops (no scene builds)
+  double sampling_cpu_seconds = 0;  // CPU time of this process (all threads) in those loops
   void add(const Counters& o) {
     primary += o.primary, secondary += o.secondary, hits += o.hits, duplicate += o.duplicate;
     outside += o.outside, merged += o.merged, dropped += o.dropped, depth_pixels += o.depth_pixels;
@@ -426,7 +442,7 @@ class LdiSampler {
         ++k.outside;
         continue;
       }
-      const bool is_ground = h.inst == RTC_INVALID_GEOMETRY_ID && h.geom == ground;
+      const bool is_ground = h.inst == ground;
       if (is_ground &&
           (c_.options.ground == LdiGround::none || (c_.options.ground == LdiGround::visible && flower_before)))
         continue;
@@ -457,7 +473,7 @@ class LdiSampler {
       const Hit& h = hits[scratch.kept[std::size_t(j)]];
       SurfaceSample s;
       s.position = {ray.org[0] + h.t * forward_[0], ray.org[1] + h.t * forward_[1], ray.org[2] + h.t * forward_[2]};
-      if (h.inst == RTC_INVALID_GEOMETRY_ID) {
+      if (h.inst == c_.instances.ground_id) {
         s.normal = {0, 0, 1};
         s.base_color = c_.options.shading.ground_color;
       } else {
@@ -588,10 +604,14 @@ std::vector<Scene> prototype_scenes(Device& device, std::span<const Mesh> models
   return scenes;
 }
 
-// The 3 x 3 context of `tile` as one Embree scene: an instance per point, the ground quad last.
-Scene context_scene(Device& device, const FilledTileSet& filled, std::span<const Scene> prototypes,
-                    const std::array<std::uint16_t, 9>& context, double tile_size, Instances& out) {
+// The 3 x 3 context of `tile` as one Embree scene: per point an instance of its model's scene, or
+// (flattened) its own copy of the model's triangles; the ground quad last.
+Scene context_scene(Device& device, const FilledTileSet& filled, std::span<const Mesh> models,
+                    std::span<const Scene> prototypes, const std::array<std::uint16_t, 9>& context,
+                    const LdiBuildOptions& options, Instances& out) {
+  const double tile_size = options.tile_size;
   Scene scene(device.get());
+  std::vector<std::array<float, 3>> moved;
   out = Instances{};
   unsigned id = 0;
   for (int block = 0; block < 9; ++block) {
@@ -601,12 +621,26 @@ Scene context_scene(Device& device, const FilledTileSet& filled, std::span<const
       const float x = float(ox + p.x * tile_size), y = float(oy + p.y * tile_size);
       // Column-major 3 x 4: rotation about z by yaw, uniform scale, translation.
       const float xfm[12] = {c * p.scale, s * p.scale, 0, -s * p.scale, c * p.scale, 0, 0, 0, p.scale, x, y, 0};
-      RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
-      rtcSetGeometryInstancedScene(g, prototypes[p.variant].get());
-      rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
-      rtcCommitGeometry(g);
-      rtcAttachGeometryByID(scene.get(), g, id++);
-      rtcReleaseGeometry(g);
+      const Mesh& mesh = models[p.variant];
+      RTCGeometry g = nullptr;
+      if (options.instancing) {
+        g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(g, prototypes[p.variant].get());
+        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+        rtcCommitGeometry(g);
+      } else if (!mesh.triangles.empty()) {
+        moved.resize(mesh.positions.size());
+        for (std::size_t v = 0; v < moved.size(); ++v) {
+          const auto& q = mesh.positions[v];
+          moved[v] = {xfm[0] * q[0] + xfm[3] * q[1] + xfm[9], xfm[1] * q[0] + xfm[4] * q[1] + xfm[10], xfm[8] * q[2]};
+        }
+        g = triangle_geometry(device.get(), moved, mesh.triangles);
+      }
+      if (g) {
+        rtcAttachGeometryByID(scene.get(), g, id);
+        rtcReleaseGeometry(g);
+      }
+      ++id;
       out.variant.push_back(p.variant);
       out.cos_yaw.push_back(c);
       out.sin_yaw.push_back(s);
@@ -639,20 +673,23 @@ void build_tile(Device& device, std::span<const Scene> prototypes, const FilledT
                       " has no 3 x 3 neighbourhood whose edges all match");
   const auto& context = contexts[std::size_t(std::max(0, options.context_choice)) % contexts.size()];
   Instances instances;
-  const Scene scene = context_scene(device, filled, prototypes, context, options.tile_size, instances);
+  const Scene scene = context_scene(device, filled, models, prototypes, context, options, instances);
   const TileContext c{filled, models, options, levels, tile, scene.get(), instances};
   tbb::enumerable_thread_specific<Scratch> scratch([&] { return Scratch(options.max_hits); });
   const int L = options.view.levels, D = options.view.directions;
   out.assign(std::size_t(L * D), LdiImage{});
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = process_cpu_seconds();
   tbb::parallel_for(0, L * D, [&](int i) {
     out[std::size_t(i)] = sample_ldi(c, i / D, i % D, scratch, counters, counters_mutex);
     if (ldi_done) ldi_done();
   });
   device.check("sampling tile " + std::to_string(tile));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double cpu = process_cpu_seconds() - cpu_start;
   std::lock_guard lock(counters_mutex);
   counters.sampling_seconds += seconds;
+  counters.sampling_cpu_seconds += cpu;
 }
 
 void fill_report(LdiBuildReport* report, const Counters& k, std::uint64_t ldis,
@@ -668,6 +705,7 @@ void fill_report(LdiBuildReport* report, const Counters& k, std::uint64_t ldis,
   report->dropped_hits = k.dropped;
   report->depth_pixels = k.depth_pixels;
   report->sampling_seconds = k.sampling_seconds;
+  report->sampling_cpu_seconds = k.sampling_cpu_seconds;
   report->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

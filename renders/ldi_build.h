@@ -55,7 +55,13 @@ struct LdiBuildOptions {
   // Which 3 x 3 context of matching neighbours each tile is sampled in: the k-th consistent one
   // in index order (modulo how many exist). The geometry does not depend on it.
   int context_choice = 0;
-  int packet_width = 1;  // 1: rtcIntersect1; 4, 8 or 16: rtcIntersectN over runs of a row
+  // 1: rtcIntersect1; 4, 8 or 16: rtcIntersectN over runs of a row (same LDIs; 16 measured
+  // fastest, bench/ldi_bench BM_LdiSamplerRays).
+  int packet_width = 16;
+  // Each flower an instance of its model's scene (single-level instancing), or false: each
+  // context flattened into one scene holding a transformed copy of every flower (about 20 % less
+  // CPU for the whole build, bench/ldi_bench BM_LdiTileBreakdown; 3 x 3 x 20 x 5,000 triangles).
+  bool instancing = false;
   // LDIs done / total and rays traced so far; called from worker threads, one call at a time.
   std::function<void(std::uint64_t done, std::uint64_t total, std::uint64_t rays)> progress;
 };
@@ -68,8 +74,9 @@ struct LdiBuildReport {
   std::uint64_t hits = 0;            // filter calls recorded (before de-duplication)
   std::uint64_t duplicate_hits = 0, outside_hits = 0, merged_hits = 0, dropped_hits = 0;
   std::uint64_t depth_pixels = 0;
-  double seconds = 0;           // wall clock of the whole call
-  double sampling_seconds = 0;  // of it, tracing and shading (no Embree scene builds, no writing)
+  double seconds = 0;               // wall clock of the whole call
+  double sampling_seconds = 0;      // of it, tracing and shading (no Embree scene builds, no writing)
+  double sampling_cpu_seconds = 0;  // CPU time (all threads of the process) of the tracing and shading
 };
 
 // Per-level figures of a set: what the pack header records.

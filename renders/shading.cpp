@@ -67,16 +67,36 @@ Vec3f shade(RTCSceneTy* scene, const ShadingSettings& s, const SurfaceSample& sa
     const Vec3f t{1.0f + sign * n[0] * n[0] * a, sign * b, -sign * n[0]};
     const Vec3f bt{b, sign + n[1] * n[1] * a, -n[1]};
     const Vec3f from = offset_along(p, n, s.ray_offset);
+    // Eight rays from one point at a time: one rtcOccluded8 packet (measured faster than singles).
     int open = 0;
-    for (int k = 0; k < s.ao_rays; ++k) {
-      const std::uint64_t h = mix64(random + static_cast<std::uint64_t>(k) * 0x632be59bd9b4e019ull);
-      // Stratified in the first coordinate so few rays still cover the hemisphere.
-      const float u1 = (static_cast<float>(k) + unit_float(h)) / static_cast<float>(s.ao_rays);
-      const float u2 = unit_float(mix64(h));
-      const float r = std::sqrt(u1), phi = 2.0f * std::numbers::pi_v<float> * u2;
-      const float x = r * std::cos(phi), y = r * std::sin(phi), z = std::sqrt(std::max(0.0f, 1.0f - u1));
-      const Vec3f d{x * t[0] + y * bt[0] + z * n[0], x * t[1] + y * bt[1] + z * n[1], x * t[2] + y * bt[2] + z * n[2]};
-      if (!occluded(scene, from, d, s.ao_distance)) ++open;
+    for (int k0 = 0; k0 < s.ao_rays; k0 += 8) {
+      alignas(32) RTCRay8 packet{};
+      alignas(32) int valid[8];
+      for (int l = 0; l < 8; ++l) {
+        const int k = k0 + l;
+        valid[l] = k < s.ao_rays ? -1 : 0;
+        if (k >= s.ao_rays) continue;
+        const std::uint64_t h = mix64(random + static_cast<std::uint64_t>(k) * 0x632be59bd9b4e019ull);
+        // Stratified in the first coordinate so few rays still cover the hemisphere.
+        const float u1 = (static_cast<float>(k) + unit_float(h)) / static_cast<float>(s.ao_rays);
+        const float u2 = unit_float(mix64(h));
+        const float r = std::sqrt(u1), phi = 2.0f * std::numbers::pi_v<float> * u2;
+        const float x = r * std::cos(phi), y = r * std::sin(phi), z = std::sqrt(std::max(0.0f, 1.0f - u1));
+        packet.org_x[l] = from[0];
+        packet.org_y[l] = from[1];
+        packet.org_z[l] = from[2];
+        packet.dir_x[l] = x * t[0] + y * bt[0] + z * n[0];
+        packet.dir_y[l] = x * t[1] + y * bt[1] + z * n[1];
+        packet.dir_z[l] = x * t[2] + y * bt[2] + z * n[2];
+        packet.tnear[l] = 0.0f;
+        packet.tfar[l] = s.ao_distance;
+        packet.mask[l] = 0xffffffffu;
+      }
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      rtcOccluded8(valid, scene, &context, &packet);
+      for (int l = 0; l < 8; ++l)
+        if (valid[l] != 0 && packet.tfar[l] >= 0.0f) ++open;  // tfar becomes -inf on a hit
     }
     sky = static_cast<float>(open) / static_cast<float>(s.ao_rays);
     rays += s.ao_rays;
