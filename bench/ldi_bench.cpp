@@ -8,6 +8,7 @@
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 
 #include "generator/poisson_tiles.h"
@@ -111,8 +112,11 @@ void BM_LdiBuildCohen8(benchmark::State& state) {
   const DefaultSet& s = default_set();
   LdiBuildOptions o;
   o.packet_width = int(state.range(0));
+  // WANGSCAPE_LDI_BENCH_PACK=FILE keeps the pack there (for `ldi info`, a sheet); else a temporary.
+  const char* keep = std::getenv("WANGSCAPE_LDI_BENCH_PACK");
   const auto path =
-      std::filesystem::temp_directory_path() / ("wangscape_ldi_bench_" + std::to_string(::getpid()) + ".ldi");
+      keep ? std::filesystem::path(keep)
+           : std::filesystem::temp_directory_path() / ("wangscape_ldi_bench_" + std::to_string(::getpid()) + ".ldi");
   LdiBuildReport report;
   for (auto _ : state) report = build_ldi_pack(s.filled, s.models, o, path);
   const LdiPack pack(path);
@@ -130,9 +134,9 @@ void BM_LdiBuildCohen8(benchmark::State& state) {
   std::string resolutions;
   for (auto r : pack.info().resolutions) resolutions += std::to_string(r) + " ";
   state.SetLabel("resolutions " + resolutions);
-  std::filesystem::remove(path);
+  if (!keep) std::filesystem::remove(path);
 }
-BENCHMARK(BM_LdiBuildCohen8)->Arg(1)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+BENCHMARK(BM_LdiBuildCohen8)->Arg(16)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 
 }  // namespace
 

@@ -8,10 +8,10 @@ namespace wangscape {
 
 Rgb8 layer_count_color(int layers) {
   if (layers <= 0) return {0, 0, 0};
-  // 1 layer dark blue ... 12 or more bright yellow, through purple and orange.
+  // 1 layer dark blue ... 8 or more bright yellow, through purple and orange.
   static constexpr std::array<Rgb8, 5> ramp{
       {{20, 30, 120}, {110, 40, 160}, {210, 60, 90}, {245, 150, 30}, {250, 240, 80}}};
-  const float u = std::min(1.0f, float(layers - 1) / 11.0f) * float(ramp.size() - 1);
+  const float u = std::min(1.0f, float(layers - 1) / 7.0f) * float(ramp.size() - 1);
   const int i = std::min(int(u), int(ramp.size()) - 2);
   const float f = u - float(i);
   auto mix = [&](std::uint8_t a, std::uint8_t b) { return std::uint8_t(float(a) + (float(b) - float(a)) * f + 0.5f); };
