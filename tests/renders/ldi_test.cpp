@@ -16,6 +16,7 @@
 #include "generator/poisson_tiles.h"
 #include "generator/tileset.h"
 #include "renders/ldi_build.h"
+#include "renders/ldi_info.h"
 #include "renders/ldi_pack.h"
 #include "renders/ldi_sheet.h"
 
@@ -471,6 +472,23 @@ TEST_F(ldi_pack_damage, OutOfRangeOffsetsAndCountsAreRefused) {
   bytes = good;
   poke32(bytes, first + 8, 0xffffffu);  // span count
   expect_refused("spans.ldi", bytes, "LDI (tile 0, level 0, direction 0)");
+}
+
+TEST(ldi_info, JsonStartsWithTheDocumentedKeys) {
+  const SmallSet s = small_set();
+  const fs::path path = scratch("info.ldi");
+  build_ldi_pack(s.filled, s.models, s.options, path);
+  const LdiPack pack(path);
+  const std::string json = ldi_info_json(pack);
+  const std::string head = "{\"tiles\":8,\"levels\":2,\"directions\":8,\"resolutions\":[" +
+                           std::to_string(pack.info().resolutions[0]) + "," +
+                           std::to_string(pack.info().resolutions[1]) +
+                           "],\"depth_pixels\":" + std::to_string(ldi_pack_stats(pack).depth_pixels) +
+                           ",\"bytes\":" + std::to_string(pack.file_bytes()) + ",";
+  EXPECT_EQ(json.substr(0, head.size()), head);
+  const std::string text = ldi_info_text(pack);
+  EXPECT_NE(text.find("tiles:        8"), std::string::npos) << text;
+  EXPECT_NE(text.find("depth pixels: " + std::to_string(ldi_pack_stats(pack).depth_pixels)), std::string::npos);
 }
 
 TEST(ldi_sheet, DrawsLevelsAsRowsAndDirectionsAsColumns) {
