@@ -131,6 +131,11 @@ void BM_LdiBuildCohen8(benchmark::State& state) {
   state.counters["primary_M"] = double(report.primary_rays) / 1e6;
   state.counters["secondary_M"] = double(report.secondary_rays) / 1e6;
   state.counters["prism_top_m"] = double(pack.info().prism_top);
+  state.counters["hits_M"] = double(report.hits) / 1e6;
+  state.counters["duplicate_hits"] = double(report.duplicate_hits);
+  state.counters["outside_hits"] = double(report.outside_hits);
+  state.counters["merged_hits"] = double(report.merged_hits);
+  state.counters["dropped_hits"] = double(report.dropped_hits);
   std::string resolutions;
   for (auto r : pack.info().resolutions) resolutions += std::to_string(r) + " ";
   state.SetLabel("resolutions " + resolutions);
