@@ -121,10 +121,15 @@ template <class T>
 void put_all(std::ostream& out, std::span<const T> values) {
   out.write(reinterpret_cast<const char*>(values.data()), static_cast<std::streamsize>(values.size_bytes()));
 }
+// Writes zeros from `at` up to `target` (alignment padding, and the room the header and index
+// take until commit() writes them).
 void pad_to(std::ostream& out, std::uint64_t& at, std::uint64_t target) {
-  static constexpr char zeros[8] = {};
-  out.write(zeros, static_cast<std::streamsize>(target - at));
-  at = target;
+  static constexpr char zeros[64] = {};
+  while (at < target) {
+    const std::uint64_t n = std::min<std::uint64_t>(sizeof(zeros), target - at);
+    out.write(zeros, static_cast<std::streamsize>(n));
+    at += n;
+  }
 }
 
 std::uint64_t index_offset_of(const LdiPackInfo& info) {
