@@ -41,7 +41,6 @@ void BM_PovrayExportScene(benchmark::State& state) {
   const auto batches = make_batches(count);
   Scene scene;
   for (const auto& model : make_sunflower_variants({11, 1, 400})) scene.models.push_back(model.mesh);
-  scene.instance_count = count;
   scene.instances = [&](const std::function<void(const InstanceBatch&)>& sink) {
     for (const auto& b : batches) sink(b);
   };

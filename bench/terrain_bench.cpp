@@ -6,7 +6,6 @@
 
 #include <random>
 
-#include "cli/terrain_ground.h"
 #include "generator/placement.h"
 #include "generator/poisson_tiles.h"
 #include "terrain/mask.h"
@@ -50,7 +49,7 @@ BENCHMARK(BM_LoadSainteHelens)->Unit(benchmark::kMillisecond);
 
 void BM_HeightLookup(benchmark::State& state) {
   const Terrain& terrain = helens();
-  const EnuRect e = terrain.extent();
+  const Extent e = terrain.extent();
   std::vector<double> xs(1 << 16), ys(1 << 16);
   std::mt19937 rng(1);
   for (std::size_t k = 0; k < xs.size(); ++k) {
@@ -71,7 +70,7 @@ BENCHMARK(BM_HeightLookup);
 void BM_ScatterWithHeight(benchmark::State& state) {
   const Terrain& terrain = helens();
   const FilledTileSet& filled = sunflower_tiles();
-  const cli::TerrainGround ground{&terrain};
+  const Terrain& ground = terrain;
   const bool threshold = state.range(0) != 0;
   const TerrainFilter filter(
       terrain,
@@ -86,8 +85,9 @@ void BM_ScatterWithHeight(benchmark::State& state) {
     const auto sink = [&](const InstanceBatch& batch) { checksum += batch.z.front(); };
     PlacementStats stats;
     if (threshold)
-      stats = place_instances(filled, ground, options, sink, cli::TerrainTileFilter{&filter, false},
-                              cli::TerrainPointFilter{&filter, false});
+      stats = place_instances(
+          filled, ground, options, sink, [&](const TileCell& cell) { return filter.tile_passes(cell.bounds); },
+          KeepAllPoints{});
     else
       stats = place_instances(filled, ground, options, sink);
     instances += stats.points;
@@ -124,7 +124,7 @@ BENCHMARK(BM_ScatterFlatReference)->Unit(benchmark::kMillisecond)->UseRealTime()
 void BM_Scatter100MPeakMemory(benchmark::State& state) {
   const Terrain& terrain = helens();
   const FilledTileSet& filled = sunflower_tiles();
-  const cli::TerrainGround ground{&terrain};
+  const Terrain& ground = terrain;
   PlacementOptions options;
   options.tile_size = 4.0;
   options.algorithm = TilingAlgorithm::hash;

@@ -7,30 +7,32 @@
 #include "cli/command.h"
 #include "cli/progress.h"
 #include "cli/scene_commands.h"
-#include "cli/scene_pipeline.h"
+#include "exporters/scene_folder.h"
 
 namespace wangscape::cli {
 
 bool chatty(const GlobalOptions& global) { return !global.quiet && ::isatty(STDERR_FILENO); }
 
 void run_build(const SceneConfig& config, const std::filesystem::path& out_dir, const GlobalOptions& global) {
-  PipelineObserver observer;
+  SceneFolderObserver observer;
   std::unique_ptr<Progress> progress;
   if (chatty(global)) {
     observer.stage = [&](const std::string& message) {
       progress.reset();
       std::fprintf(stderr, "wangscape: %s\n", message.c_str());
     };
-    observer.instances_written = [&](std::uint64_t done, std::uint64_t total) {
-      if (!progress) progress = std::make_unique<Progress>("instances", total, global.quiet);
-      progress->update(done);
+    constexpr std::uint64_t kSteps = 1000;  // the field's rows, as a fraction
+    observer.placing = [&](double fraction) {
+      if (!progress) progress = std::make_unique<Progress>("field", kSteps, global.quiet);
+      progress->update(static_cast<std::uint64_t>(fraction * kSteps));
     };
   }
   const auto summary = build_scene_folder(config, out_dir, observer);
   progress.reset();
   if (chatty(global))
-    std::fprintf(stderr, "wangscape: wrote %s (%llu flowers, %.1f MB, %.1f s)\n", out_dir.string().c_str(),
-                 static_cast<unsigned long long>(summary.instances), double(summary.bytes) / 1e6, summary.seconds);
+    std::fprintf(stderr, "wangscape: wrote %s (%llu flowers, %.1f MB of POV-Ray files, %.1f s)\n",
+                 out_dir.string().c_str(), static_cast<unsigned long long>(summary.instances),
+                 double(summary.povray_bytes) / 1e6, summary.seconds);
 }
 
 void register_build_command(CLI::App& app, const GlobalOptions& global) {

@@ -30,8 +30,7 @@ void run_blender_render(const std::filesystem::path& dir, const RenderRequest& r
 void run_render(const std::filesystem::path& dir, const RenderRequest& request, const GlobalOptions& global) {
   if (request.engine == "blender") return run_blender_render(dir, request, global);
   if (request.engine != "povray")
-    throw RenderError("render: engine '" + request.engine +
-                      "' is not available in this wangscape (known: povray, blender)");
+    throw Error("render: engine '" + request.engine + "' is not available in this wangscape (known: povray, blender)");
   PovrayRenderOptions options;
   options.width = request.width;
   options.height = request.height;

@@ -1,8 +1,9 @@
 // wangscape scatter --tileset tiles.json --plane 64x64 --tile-size 4 --out points.csv
 // Lays a tiling of a filled tile set over a flat plane and writes every instance (CSV, or
 // binary PLY for .ply); --metrics measures the quality figures of the result.
-// With --dem FILE the ground is a DEM (cli/terrain_ground.h): z = ground height, tiles only
-// where --max-height / --max-slope / --mask allow (seed 003), --fair-edges for partial tiles.
+// With --dem FILE the ground is a DEM, the scene's one ground (scene/ground.h): z = ground
+// height, tiles only where --max-height / --min-height / --max-slope / --mask allow (seed 003),
+// --fair-edges for partial tiles.
 #include <fmt/core.h>
 
 #include <chrono>
@@ -11,12 +12,11 @@
 
 #include "cli/command.h"
 #include "cli/progress.h"
-#include "cli/terrain_ground.h"
-#include "exporters/filled_tileset_json.h"
 #include "exporters/image_io.h"
 #include "exporters/point_writer.h"
 #include "generator/placement.h"
 #include "generator/point_metrics.h"
+#include "scene/filled_tileset_file.h"
 
 namespace wangscape::cli {
 
@@ -32,8 +32,29 @@ struct ScatterOptions {
   bool metrics = false;
   bool json = false;
   std::string spectrum_png;
-  TerrainScatterOptions terrain;  // --dem and its tests
+  // --dem and its masks: the scene file's [terrain] and [masks] (no fair edges unless asked).
+  std::string dem, origin, mask;
+  std::optional<double> max_height, min_height, max_slope;
+  bool fair_edges = false;
 };
+
+// The scene's ground for --dem, with every mask the flags give.
+SceneGround load_dem_ground(const ScatterOptions& options) {
+  TerrainConfig terrain;
+  terrain.dem = options.dem;
+  if (!options.origin.empty()) {
+    const auto origin = parse_lat_lon(options.origin);
+    terrain.origin_latitude = origin[0];
+    terrain.origin_longitude = origin[1];
+  }
+  MasksConfig masks;
+  masks.max_height = options.max_height;
+  masks.min_height = options.min_height;
+  masks.max_slope = options.max_slope;
+  masks.mask = options.mask;
+  masks.fair_edges = options.fair_edges;
+  return SceneGround::load(terrain, masks);
+}
 
 Extent parse_plane(const std::string& text) {
   const auto x = text.find('x');
@@ -98,9 +119,12 @@ void run(const ScatterOptions& options, const GlobalOptions& global) {
   if (!(options.tile_size > 0))
     throw std::runtime_error("--tile-size " + std::to_string(options.tile_size) + ": expected meters > 0");
   // Over a DEM: loaded and checked before any output is opened.
-  std::optional<TerrainScatter> dem;
-  if (options.terrain.active()) dem.emplace(options.terrain, options.tile_size);
-  const Extent plane = dem ? dem->area() : parse_plane(options.plane);
+  std::optional<SceneGround> dem;
+  if (!options.dem.empty()) {
+    dem = load_dem_ground(options);
+    dem->check_tile_size(options.tile_size, "--tile-size");
+  }
+  const Extent plane = dem ? dem->extent() : parse_plane(options.plane);
   const FilledTileSet filled = read_filled_tileset_json(options.tileset);
 
   PlacementOptions placement;
@@ -130,7 +154,7 @@ void run(const ScatterOptions& options, const GlobalOptions& global) {
   const PlacementStats stats =
       dem ? dem->place(filled, placement, sink) : place_instances(filled, FlatGround{plane, 0.0}, placement, sink);
   if (dem && stats.points == 0 && !global.quiet)
-    fmt::print(stderr, "wangscape: empty result: {}\n", dem->explain_empty());
+    fmt::print(stderr, "wangscape: empty result: {}\n", dem->explain_empty(options.tile_size));
   progress.finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (writer) writer->commit();
@@ -169,7 +193,26 @@ void register_scatter_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_flag("--metrics", options->metrics, "Print quality figures (rho, NN distances, densities, spectrum)");
   sub->add_flag("--json", options->json, "With --metrics: print them as JSON");
   sub->add_option("--spectrum-png", options->spectrum_png, "With --metrics: plot the power spectrum into this PNG");
-  add_terrain_scatter_options(*sub, options->terrain)->excludes(plane);
+  auto* dem = sub->add_option("--dem", options->dem, "Scatter over this DEM (USGS DEM, GeoTIFF, SRTM .hgt, ESRI .asc)")
+                  ->excludes(plane);
+  sub->add_option("--max-height", options->max_height, "With --dem: flowers only where the ground is at most this (m)")
+      ->check(finite_number())
+      ->needs(dem);
+  sub->add_option("--min-height", options->min_height, "With --dem: flowers only where the ground is at least this (m)")
+      ->check(finite_number())
+      ->needs(dem);
+  sub->add_option("--max-slope", options->max_slope, "With --dem: flowers only where the slope is at most this (deg)")
+      ->check(CLI::Range(0.0, 90.0))
+      ->needs(dem);
+  sub->add_option("--mask", options->mask, "With --dem: painted mask image over the DEM's extent, white = flowers")
+      ->needs(dem);
+  sub->add_flag("--fair-edges", options->fair_edges,
+                "With --dem: keep partial tiles, drop only flowers whose own ground fails (border follows the contour)")
+      ->needs(dem);
+  sub->add_option("--origin", options->origin,
+                  "With --dem: scene origin LAT,LON in WGS 84 degrees (default: DEM center)")
+      ->check(lat_lon_validator())
+      ->needs(dem);
   sub->callback([options, &global] { run(*options, global); });
 }
 

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.h"
-#include "cli/terrain_ground.h"
+#include "scene/ground.h"
 #include "terrain/terrain.h"
 
 namespace wangscape::cli {
@@ -22,7 +22,7 @@ struct TerrainInfoOptions {
 
 nlohmann::ordered_json to_json(const Terrain& terrain) {
   const DemRaster& dem = terrain.dem();
-  const EnuRect extent = terrain.extent();
+  const Extent extent = terrain.extent();
   nlohmann::ordered_json out;
   out["file"] = dem.path.string();
   out["driver"] = dem.driver;
@@ -49,7 +49,7 @@ nlohmann::ordered_json to_json(const Terrain& terrain) {
 void print_text(const Terrain& terrain) {
   const DemRaster& dem = terrain.dem();
   const TerrainGeoreference& g = terrain.georeference();
-  const EnuRect e = terrain.extent();
+  const Extent e = terrain.extent();
   const char* unit = dem.geographic ? "deg" : "m";
   fmt::print("file:             {}\n", dem.path.string());
   fmt::print("driver:           {}\n", dem.driver);
@@ -85,7 +85,10 @@ void register_terrain_command(CLI::App& app, const GlobalOptions&) {
       ->check(lat_lon_validator());
   info->callback([options] {
     TerrainOptions terrain_options;
-    if (!options->origin.empty()) terrain_options.origin = parse_lat_lon(options->origin);
+    if (!options->origin.empty()) {
+      const auto origin = parse_lat_lon(options->origin);
+      terrain_options.origin = LatLon{origin[0], origin[1]};
+    }
     const Terrain terrain = Terrain::load(options->file, terrain_options);
     if (options->json)
       fmt::print("{}\n", to_json(terrain).dump(2));

@@ -4,10 +4,10 @@
 #include <memory>
 
 #include "cli/command.h"
-#include "exporters/filled_tileset_json.h"
 #include "exporters/image_io.h"
-#include "exporters/tileset_json.h"
 #include "generator/tiling_preview.h"
+#include "scene/filled_tileset_file.h"
+#include "scene/tileset_file.h"
 
 namespace wangscape::cli {
 
@@ -59,7 +59,7 @@ void run(const TilesetOptions& options) {
   if (!options.out.empty()) throw std::runtime_error("--out needs --per-tile N (the points to write)");
   // Tile contents (Poisson points per tile, --per-tile N --relax R --out tiles.json) plug in
   // here: fill the set, then write it with write_tileset_json's format plus per-tile keys
-  // (points, radius_packing, radius_tight, seed; see exporters/tileset_json.h).
+  // (points, radius_packing, radius_tight, seed; see scene/tileset_file.h).
   if (!options.sheet.empty()) write_image(options.sheet, draw_tileset_sheet(set, options.tile_pixels));
   if (options.json) {
     fmt::print("{}", format_tileset_json(tileset_to_json(set)));

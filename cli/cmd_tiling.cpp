@@ -8,11 +8,11 @@
 
 #include "cli/command.h"
 #include "cli/progress.h"
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 #include "exporters/image_io.h"
-#include "exporters/tileset_json.h"
 #include "generator/tiling_preview.h"
 #include "generator/tiling_stats.h"
+#include "scene/tileset_file.h"
 
 namespace wangscape::cli {
 

@@ -4,8 +4,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdint>
+#include <exception>
 #include <string>
+
+#include "scene/ground.h"
 
 namespace wangscape::cli {
 
@@ -15,8 +19,37 @@ struct GlobalOptions {
   bool quiet = false;  // no progress, no chatter on stderr
 };
 
-// Sets the pipeline's Blender and glTF exporter hooks (cli/blender_exports.cpp).
-void register_blender_gltf_exporters();
+// True when progress and messages go to stderr: it is a terminal and --quiet is off.
+bool chatty(const GlobalOptions& global);
+
+// A CLI11 check that a number is finite (CLI11 itself reads "nan" and "inf").
+inline CLI::Validator finite_number() {
+  return CLI::Validator(
+      [](std::string& text) {
+        try {
+          std::size_t used = 0;
+          const double value = std::stod(text, &used);
+          if (used == text.size() && std::isfinite(value)) return std::string();
+        } catch (const std::exception&) {
+        }
+        return "'" + text + "' is not a finite number";
+      },
+      "NUMBER");
+}
+
+// A CLI11 check for --origin LAT,LON (a usage error, exit 2, when the text is not that).
+inline CLI::Validator lat_lon_validator() {
+  return CLI::Validator(
+      [](std::string& text) {
+        try {
+          parse_lat_lon(text);
+          return std::string();
+        } catch (const std::exception& e) {
+          return std::string(e.what());
+        }
+      },
+      "LAT,LON");
+}
 
 // Registration: each subcommand file adds its CLI11 subcommand and sets a callback that
 // does the work. Errors are thrown (std::exception); main() turns them into exit code 1.

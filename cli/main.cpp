@@ -18,7 +18,6 @@ int main(int argc, char** argv) {
   wangscape::cli::GlobalOptions global;
   app.add_flag("-q,--quiet", global.quiet, "No progress bar or messages on stderr");
 
-  wangscape::cli::register_blender_gltf_exporters();  // [exports] blender / gltf
   wangscape::cli::register_tileset_command(app, global);
   wangscape::cli::register_tiling_command(app, global);
   wangscape::cli::register_build_command(app, global);

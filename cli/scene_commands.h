@@ -1,12 +1,12 @@
-// What `build`, `render` and `demo` share: the pipeline and the render run with the CLI's
-// progress and messages (stderr, only when it is a terminal and --quiet is off).
+// What `build`, `render` and `demo` share: a build or a render with the CLI's progress and
+// messages (stderr, only when it is a terminal and --quiet is off).
 #pragma once
 
 #include <filesystem>
 #include <string>
 
 #include "cli/command.h"
-#include "cli/scene_config.h"
+#include "scene/scene_file.h"
 
 namespace wangscape::cli {
 
@@ -19,8 +19,5 @@ struct RenderRequest {
 };
 // Renders a built folder into DIR/render.png (cmd_render.cpp).
 void run_render(const std::filesystem::path& dir, const RenderRequest& request, const GlobalOptions& global);
-
-// True when progress and messages go to stderr.
-bool chatty(const GlobalOptions& global);
 
 }  // namespace wangscape::cli

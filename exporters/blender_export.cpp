@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 #include "exporters/export_support.h"
 #include "exporters/zip_writer.h"
 #include "templates/blender_addon.h"
@@ -142,39 +142,56 @@ int blender_cycles_samples(const RenderSettings& render, const BlenderExportOpti
   return 16 * std::max(1, render.antialias_samples);
 }
 
-BlenderExportSummary export_blender(const Scene& scene, const std::filesystem::path& folder,
-                                    const BlenderExportOptions& options) {
+struct BlenderWriter::Impl {
+  const Scene& scene;
+  std::filesystem::path folder;
+  BlenderExportOptions options;
+  std::uint64_t bytes = 0;
+  Json files = Json::array();
+  Json terrain = nullptr;
+  Json models = Json::array();
+  std::unique_ptr<InstanceArrays> arrays;
+  BlenderExportSummary summary;
+
+  void list_files(const Json& mesh_entry) {
+    for (const char* key : {"positions", "normals", "indices", "material_indices"})
+      files.push_back(mesh_entry[key]["file"]);
+  }
+};
+
+BlenderWriter::BlenderWriter(const Scene& scene, const std::filesystem::path& folder,
+                             const BlenderExportOptions& options)
+    : impl_(std::make_unique<Impl>(Impl{scene, folder, options})) {
   std::error_code error;
   std::filesystem::create_directories(folder, error);
-  if (error) throw ExportError("cannot create Blender export folder '" + folder.string() + "': " + error.message());
-
-  std::uint64_t bytes = 0;
+  if (error) throw Error("cannot create Blender export folder '" + folder.string() + "': " + error.message());
+  Impl& impl = *impl_;
   const MaterialTable table = build_material_table(scene);
-  Json files = Json::array();
-  const auto list_files = [&files](const Json& mesh_entry) {
-    for (const char* key : {"positions", "normals", "indices", "material_indices"}) {
-      files.push_back(mesh_entry[key]["file"]);
-    }
-  };
-
-  Json terrain = nullptr;
   if (scene.terrain.vertex_count() > 0) {
-    terrain = write_mesh(scene.terrain, "terrain", table.terrain_slots, folder, bytes);
-    list_files(terrain);
+    impl.terrain = write_mesh(scene.terrain, "terrain", table.terrain_slots, folder, impl.bytes);
+    impl.list_files(impl.terrain);
   }
-  Json models = Json::array();
   for (std::size_t i = 0; i < scene.models.size(); ++i) {
     char prefix[32];
     std::snprintf(prefix, sizeof prefix, "model_%04zu", i);
-    models.push_back(write_mesh(scene.models[i], prefix, table.model_slots[i], folder, bytes));
-    list_files(models.back());
+    impl.models.push_back(write_mesh(scene.models[i], prefix, table.model_slots[i], folder, impl.bytes));
+    impl.list_files(impl.models.back());
   }
+  impl.arrays = std::make_unique<InstanceArrays>(folder);
+}
 
-  InstanceArrays arrays(folder);
-  const std::uint64_t count =
-      stream_checked_instances(scene, [&](const InstanceBatch& batch) { arrays.append(batch); });
-  Json instances = arrays.commit(count, scene.models.size(), bytes);
-  for (const char* key : {"x", "y", "z", "yaw", "scale", "variant"}) files.push_back(instances[key]["file"]);
+BlenderWriter::~BlenderWriter() = default;
+
+void BlenderWriter::append(const InstanceBatch& batch) { impl_->arrays->append(batch); }
+
+void BlenderWriter::finish(const StreamTotals& totals) {
+  Impl& impl = *impl_;
+  const Scene& scene = impl.scene;
+  const auto& options = impl.options;
+  const MaterialTable table = build_material_table(scene);
+  const std::uint64_t count = totals.instances;
+  Json instances = impl.arrays->commit(count, scene.models.size(), impl.bytes);
+  for (const char* key : {"x", "y", "z", "yaw", "scale", "variant"}) impl.files.push_back(instances[key]["file"]);
 
   Json manifest;
   manifest["format"] = Json{{"name", kBlenderFormatName}, {"version", kBlenderFormatVersion}};
@@ -186,11 +203,11 @@ BlenderExportSummary export_blender(const Scene& scene, const std::filesystem::p
                             {"models", scene.models.size()},
                             {"materials", table.materials.size()},
                             {"instances", count}};
-  manifest["files"] = files;
+  manifest["files"] = impl.files;
   manifest["materials"] = Json::array();
   for (const Material& material : table.materials) manifest["materials"].push_back(material_json(material));
-  manifest["terrain"] = terrain;
-  manifest["models"] = models;
+  manifest["terrain"] = impl.terrain;
+  manifest["models"] = impl.models;
   manifest["instances"] = instances;
   manifest["camera"] = Json{
       {"position", scene.camera.position}, {"target", scene.camera.target}, {"fov_degrees", scene.camera.fov_degrees}};
@@ -217,20 +234,25 @@ BlenderExportSummary export_blender(const Scene& scene, const std::filesystem::p
   manifest["addon"] = options.write_addon_zip ? Json("wangscape_import.zip") : Json(nullptr);
 
   if (options.write_addon_zip) {
-    std::vector<ZipEntry> entries;
-    for (const EmbeddedFile& file : blender_addon_files()) entries.push_back({file.path, file.contents});
-    const std::string zip = make_zip(entries);
-    write_file_atomically(folder / "wangscape_import.zip", zip);
-    bytes += zip.size();
+    const std::string zip = blender_addon_zip();
+    write_file_atomically(impl.folder / "wangscape_import.zip", zip);
+    impl.bytes += zip.size();
   }
 
   const std::string text = manifest.dump(2) + "\n";
-  BlenderExportSummary summary;
-  summary.manifest = folder / "manifest.json";
-  write_file_atomically(summary.manifest, text);
-  summary.instance_count = count;
-  summary.bytes_written = bytes + text.size();
-  return summary;
+  impl.summary.manifest = impl.folder / "manifest.json";
+  write_file_atomically(impl.summary.manifest, text);
+  impl.summary.instance_count = count;
+  impl.summary.bytes_written = impl.bytes + text.size();
+}
+
+const BlenderExportSummary& BlenderWriter::summary() const { return impl_->summary; }
+
+BlenderExportSummary export_blender(const Scene& scene, const std::filesystem::path& folder,
+                                    const BlenderExportOptions& options) {
+  BlenderWriter writer(scene, folder, options);
+  run_scene_stream(scene, writer);
+  return writer.summary();
 }
 
 }  // namespace wangscape

@@ -5,9 +5,11 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string_view>
 
-#include "exporters/scene.h"
+#include "exporters/scene_writer.h"
+#include "scene/scene.h"
 
 namespace wangscape {
 
@@ -25,10 +27,24 @@ struct BlenderExportSummary {
   std::uint64_t bytes_written = 0;  // arrays + manifest
 };
 
-// Writes the scene into `folder` (created if missing). Instances are streamed batch by
-// batch from scene.instances, never held at once. Every file is written atomically and the
-// manifest last, so a manifest present means a complete export. Throws ExportError naming
-// the file or value at fault (e.g. the stream's count differs from scene.instance_count).
+// The Blender export as a streaming writer into `folder` (created if missing): meshes when it is
+// made, instance arrays batch by batch (never held at once), the manifest at finish(). Every file
+// is written atomically and the manifest last, so a manifest present means a complete export.
+// Throws Error naming the file or value at fault.
+class BlenderWriter final : public SceneWriter {
+ public:
+  BlenderWriter(const Scene& scene, const std::filesystem::path& folder, const BlenderExportOptions& options = {});
+  ~BlenderWriter() override;
+  void append(const InstanceBatch& batch) override;
+  void finish(const StreamTotals& totals) override;
+  const BlenderExportSummary& summary() const;  // complete after finish()
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// A BlenderWriter over the scene's own stream.
 BlenderExportSummary export_blender(const Scene& scene, const std::filesystem::path& folder,
                                     const BlenderExportOptions& options = {});
 

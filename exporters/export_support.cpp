@@ -6,7 +6,7 @@
 
 #include <GeographicLib/UTMUPS.hpp>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 
 namespace wangscape {
 
@@ -112,55 +112,29 @@ MaterialTable build_material_table(const Scene& scene) {
 
 void check_mesh(const Mesh& mesh, const std::string& what) {
   if (mesh.normals.size() != mesh.positions.size()) {
-    throw ExportError(what + ": " + std::to_string(mesh.normals.size()) + " normals for " +
-                      std::to_string(mesh.positions.size()) + " positions (expected one per position)");
+    throw Error(what + ": " + std::to_string(mesh.normals.size()) + " normals for " +
+                std::to_string(mesh.positions.size()) + " positions (expected one per position)");
   }
   if (!mesh.triangle_material.empty() && mesh.triangle_material.size() != mesh.triangles.size()) {
-    throw ExportError(what + ": " + std::to_string(mesh.triangle_material.size()) + " triangle materials for " +
-                      std::to_string(mesh.triangles.size()) + " triangles");
+    throw Error(what + ": " + std::to_string(mesh.triangle_material.size()) + " triangle materials for " +
+                std::to_string(mesh.triangles.size()) + " triangles");
   }
   const auto vertex_count = mesh.positions.size();
   for (const auto& triangle : mesh.triangles) {
     for (const std::uint32_t index : triangle) {
       if (index >= vertex_count) {
-        throw ExportError(what + ": triangle index " + std::to_string(index) + " outside its " +
-                          std::to_string(vertex_count) + " vertices");
+        throw Error(what + ": triangle index " + std::to_string(index) + " outside its " +
+                    std::to_string(vertex_count) + " vertices");
       }
     }
   }
   const std::size_t material_count = std::max<std::size_t>(1, mesh.materials.size());
   for (const std::uint16_t slot : mesh.triangle_material) {
     if (slot >= material_count) {
-      throw ExportError(what + ": triangle material " + std::to_string(slot) + " but only " +
-                        std::to_string(material_count) + " materials");
+      throw Error(what + ": triangle material " + std::to_string(slot) + " but only " + std::to_string(material_count) +
+                  " materials");
     }
   }
-}
-
-std::uint64_t stream_checked_instances(const Scene& scene, const std::function<void(const InstanceBatch&)>& sink) {
-  std::uint64_t streamed = 0;
-  if (scene.instances) {
-    scene.instances([&](const InstanceBatch& batch) {
-      const std::size_t n = batch.size();
-      if (batch.y.size() != n || batch.z.size() != n || batch.yaw.size() != n || batch.scale.size() != n ||
-          batch.variant.size() != n) {
-        throw ExportError("scene '" + scene.name + "': an instance batch has arrays of different lengths");
-      }
-      for (const std::uint16_t variant : batch.variant) {
-        if (variant >= scene.models.size()) {
-          throw ExportError("scene '" + scene.name + "': instance variant " + std::to_string(variant) +
-                            " but the scene has " + std::to_string(scene.models.size()) + " models");
-        }
-      }
-      streamed += n;
-      sink(batch);
-    });
-  }
-  if (streamed != scene.instance_count) {
-    throw ExportError("scene '" + scene.name + "': the instance stream produced " + std::to_string(streamed) +
-                      " instances, the scene announced " + std::to_string(scene.instance_count));
-  }
-  return streamed;
 }
 
 std::vector<std::pair<std::string, std::string>> blendergis_properties(const Georeference& georeference) {

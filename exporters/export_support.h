@@ -1,5 +1,5 @@
 // Helpers the Blender-array and glTF exporters share: float32 bounds, one material list for
-// the whole scene, the instance stream checked against the scene, BlenderGIS georeference keys.
+// the whole scene, BlenderGIS georeference keys.
 #pragma once
 
 #include <array>
@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "exporters/scene.h"
+#include "scene/scene.h"
 
 namespace wangscape {
 
@@ -44,14 +44,9 @@ struct MaterialTable {
 };
 MaterialTable build_material_table(const Scene& scene);
 
-// Throws ExportError naming `what` when the mesh's arrays disagree in size or its vertex or
+// Throws Error naming `what` when the mesh's arrays disagree in size or its vertex or
 // material indices point outside. (Absent triangle_material means material 0 everywhere.)
 void check_mesh(const Mesh& mesh, const std::string& what);
-
-// Runs the scene's instance stream, checking each batch (consistent array sizes, variants
-// below the model count) and the total against scene.instance_count. Throws ExportError.
-// Returns the number of instances streamed.
-std::uint64_t stream_checked_instances(const Scene& scene, const std::function<void(const InstanceBatch&)>& sink);
 
 // BlenderGIS scene properties ("SRID", "crs x", "crs y", "latitude", "longitude") found in
 // the georeference under the names docs/blender-format.md lists; absent keys are left out.

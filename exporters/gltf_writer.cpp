@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 #include "exporters/export_support.h"
 
 namespace wangscape {
@@ -109,7 +109,7 @@ class GltfBuilder {
                                 {"material", material_slots[slot]},
                                 {"mode", 4}});
     }
-    if (primitives.empty()) throw ExportError("mesh '" + mesh.name + "' has no triangles: glTF meshes cannot be empty");
+    if (primitives.empty()) throw Error("mesh '" + mesh.name + "' has no triangles: glTF meshes cannot be empty");
     return Json{{"name", mesh.name}, {"primitives", primitives}};
   }
 };
@@ -125,8 +125,7 @@ class InstanceSpill {
         files.paths[a] = std::make_unique<AtomicPath>(
             output.parent_path() / (output.filename().string() + ".v" + std::to_string(v) + "." + names[a]));
         files.streams[a].open(files.paths[a]->temp_path(), std::ios::binary | std::ios::trunc);
-        if (!files.streams[a])
-          throw ExportError("cannot write '" + output.string() + "': cannot create a temporary file");
+        if (!files.streams[a]) throw Error("cannot write '" + output.string() + "': cannot create a temporary file");
       }
     }
   }
@@ -149,7 +148,7 @@ class InstanceSpill {
     for (auto& v : variants_) {
       for (auto& stream : v.streams) {
         stream.close();
-        if (stream.fail()) throw ExportError("cannot write '" + output.string() + "': temporary file write failed");
+        if (stream.fail()) throw Error("cannot write '" + output.string() + "': temporary file write failed");
       }
     }
   }
@@ -170,7 +169,7 @@ void copy_file_into(std::ostream& out, const std::filesystem::path& path, const 
     in.read(buffer.data(), std::streamsize(buffer.size()));
     out.write(buffer.data(), in.gcount());
   }
-  if (!in.eof()) throw ExportError("cannot write '" + output.string() + "': cannot read back a temporary file");
+  if (!in.eof()) throw Error("cannot write '" + output.string() + "': cannot read back a temporary file");
 }
 
 void put_u32(std::ostream& out, std::uint32_t value) { out.write(reinterpret_cast<const char*>(&value), 4); }
@@ -224,38 +223,78 @@ Json camera_node(const Camera& camera, const RenderSettings& render, Json& camer
 
 }  // namespace
 
-GltfSummary write_gltf(const Scene& scene, const std::filesystem::path& path, const GltfOptions& options) {
+struct GltfWriter::Impl {
+  const Scene& scene;
+  std::filesystem::path path;
+  GltfOptions options;
+  MaterialTable table;
+  GltfBuilder builder;
+  Json meshes = Json::array();
+  Json nodes = Json::array();
+  Json root_children = Json::array();
+  std::size_t first_model_mesh = 0;
+  std::unique_ptr<InstanceSpill> spill;
+  std::vector<std::uint64_t> per_variant;
+  GltfSummary summary;
+};
+
+GltfWriter::GltfWriter(const Scene& scene, const std::filesystem::path& path, const GltfOptions& options)
+    : impl_(std::make_unique<Impl>(Impl{scene, path, options, build_material_table(scene)})) {
   if (!path.parent_path().empty()) {
     std::error_code error;
     std::filesystem::create_directories(path.parent_path(), error);
   }
   if (scene.terrain.vertex_count() > 0) check_mesh(scene.terrain, "terrain mesh '" + scene.terrain.name + "'");
   for (const Mesh& model : scene.models) check_mesh(model, "model mesh '" + model.name + "'");
-
-  const MaterialTable table = build_material_table(scene);
-  GltfBuilder builder;
-  Json meshes = Json::array();
-  Json nodes = Json::array();
-  Json root_children = Json::array();
-  nodes.push_back(Json{{"name", scene.name}});  // root, children filled below
-
+  Impl& impl = *impl_;
+  impl.nodes.push_back(Json{{"name", scene.name}});  // root, children filled at finish()
   if (scene.terrain.vertex_count() > 0) {
-    meshes.push_back(builder.add_mesh(scene.terrain, table.terrain_slots));
-    nodes.push_back(Json{{"name", "terrain"}, {"mesh", meshes.size() - 1}});
-    root_children.push_back(nodes.size() - 1);
+    impl.meshes.push_back(impl.builder.add_mesh(scene.terrain, impl.table.terrain_slots));
+    impl.nodes.push_back(Json{{"name", "terrain"}, {"mesh", impl.meshes.size() - 1}});
+    impl.root_children.push_back(impl.nodes.size() - 1);
   }
-  const std::size_t first_model_mesh = meshes.size();
-  for (std::size_t m = 0; m < scene.models.size(); ++m) {
-    meshes.push_back(builder.add_mesh(scene.models[m], table.model_slots[m]));
-  }
+  impl.first_model_mesh = impl.meshes.size();
+  for (std::size_t m = 0; m < scene.models.size(); ++m)
+    impl.meshes.push_back(impl.builder.add_mesh(scene.models[m], impl.table.model_slots[m]));
+  impl.per_variant.assign(scene.models.size(), 0);
+  if (options.instancing == GltfInstancing::gpu_instancing)
+    impl.spill = std::make_unique<InstanceSpill>(path, scene.models.size());
+}
 
-  // Instances: one streaming pass.
-  std::uint64_t count = 0;
-  std::unique_ptr<InstanceSpill> spill;
-  std::vector<std::uint64_t> per_variant(scene.models.size(), 0);
-  if (options.instancing == GltfInstancing::gpu_instancing) {
-    spill = std::make_unique<InstanceSpill>(path, scene.models.size());
-    count = stream_checked_instances(scene, [&](const InstanceBatch& batch) { spill->append(batch); });
+GltfWriter::~GltfWriter() = default;
+
+void GltfWriter::append(const InstanceBatch& batch) {
+  Impl& impl = *impl_;
+  if (impl.spill) {
+    impl.spill->append(batch);
+    return;
+  }
+  for (std::size_t i = 0; i < batch.size(); ++i) {
+    const float s = batch.scale[i];
+    impl.nodes.push_back(Json{{"mesh", impl.first_model_mesh + batch.variant[i]},
+                              {"translation", to_gltf(std::array<float, 3>{batch.x[i], batch.y[i], batch.z[i]})},
+                              {"rotation", yaw_quaternion(batch.yaw[i])},
+                              {"scale", {s, s, s}}});
+    impl.root_children.push_back(impl.nodes.size() - 1);
+    ++impl.per_variant[batch.variant[i]];
+  }
+}
+
+void GltfWriter::finish(const StreamTotals& totals) {
+  Impl& impl = *impl_;
+  const Scene& scene = impl.scene;
+  const auto& path = impl.path;
+  const auto& options = impl.options;
+  const MaterialTable& table = impl.table;
+  GltfBuilder& builder = impl.builder;
+  Json& meshes = impl.meshes;
+  Json& nodes = impl.nodes;
+  Json& root_children = impl.root_children;
+  auto& spill = impl.spill;
+  auto& per_variant = impl.per_variant;
+  const std::size_t first_model_mesh = impl.first_model_mesh;
+  const std::uint64_t count = totals.instances;
+  if (spill) {
     spill->close(path);
     std::uint64_t offset = builder.bin.size();
     for (std::size_t v = 0; v < scene.models.size(); ++v) {
@@ -276,18 +315,6 @@ GltfSummary write_gltf(const Scene& scene, const std::filesystem::path& path, co
                   {{"attributes", {{"TRANSLATION", translation}, {"ROTATION", rotation}, {"SCALE", scale}}}}}}}});
       root_children.push_back(nodes.size() - 1);
     }
-  } else {
-    count = stream_checked_instances(scene, [&](const InstanceBatch& batch) {
-      for (std::size_t i = 0; i < batch.size(); ++i) {
-        const float s = batch.scale[i];
-        nodes.push_back(Json{{"mesh", first_model_mesh + batch.variant[i]},
-                             {"translation", to_gltf(std::array<float, 3>{batch.x[i], batch.y[i], batch.z[i]})},
-                             {"rotation", yaw_quaternion(batch.yaw[i])},
-                             {"scale", {s, s, s}}});
-        root_children.push_back(nodes.size() - 1);
-        ++per_variant[batch.variant[i]];
-      }
-    });
   }
 
   Json cameras = Json::array();
@@ -345,8 +372,8 @@ GltfSummary write_gltf(const Scene& scene, const std::filesystem::path& path, co
   json.resize((json.size() + 3) & ~std::size_t(3), ' ');
   const std::uint64_t total = 12 + 8 + json.size() + (bin_size > 0 ? 8 + bin_size : 0);
   if (total > 0xffffffffull) {
-    throw ExportError("cannot write '" + path.string() + "': " + std::to_string(total) +
-                      " bytes exceed glTF's 4 GiB limit; export fewer instances");
+    throw Error("cannot write '" + path.string() + "': " + std::to_string(total) +
+                " bytes exceed glTF's 4 GiB limit; export fewer instances");
   }
 
   AtomicFile out(path);
@@ -368,7 +395,16 @@ GltfSummary write_gltf(const Scene& scene, const std::filesystem::path& path, co
     }
   }
   out.commit();
-  return GltfSummary{path, count, total};
+  spill.reset();  // its temporary files go now, before the folder they are in is published
+  impl.summary = GltfSummary{path, count, total};
+}
+
+const GltfSummary& GltfWriter::summary() const { return impl_->summary; }
+
+GltfSummary write_gltf(const Scene& scene, const std::filesystem::path& path, const GltfOptions& options) {
+  GltfWriter writer(scene, path, options);
+  run_scene_stream(scene, writer);
+  return writer.summary();
 }
 
 }  // namespace wangscape

@@ -7,8 +7,10 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 
-#include "exporters/scene.h"
+#include "exporters/scene_writer.h"
+#include "scene/scene.h"
 
 namespace wangscape {
 
@@ -27,9 +29,24 @@ struct GltfSummary {
   std::uint64_t bytes = 0;  // size of the .glb
 };
 
-// Writes `path` (.glb) atomically. With gpu_instancing the instances are streamed once into
-// per-variant temporary files beside `path` (never all in memory) and copied into the
-// binary chunk. Throws ExportError naming the file or value at fault (e.g. more than 4 GiB).
+// The .glb as a streaming writer: with gpu_instancing the instances go into per-variant
+// temporary files beside `path` (never all in memory) and are copied into the binary chunk at
+// finish(), which writes `path` atomically. Throws Error naming the file or value at fault
+// (e.g. more than 4 GiB).
+class GltfWriter final : public SceneWriter {
+ public:
+  GltfWriter(const Scene& scene, const std::filesystem::path& path, const GltfOptions& options = {});
+  ~GltfWriter() override;
+  void append(const InstanceBatch& batch) override;
+  void finish(const StreamTotals& totals) override;
+  const GltfSummary& summary() const;  // complete after finish()
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// A GltfWriter over the scene's own stream.
 GltfSummary write_gltf(const Scene& scene, const std::filesystem::path& path, const GltfOptions& options = {});
 
 }  // namespace wangscape

@@ -7,12 +7,12 @@
 
 namespace wangscape {
 
-// Writes `image` in the format its extension names (.png, .tif, .jpg, ...). Throws ExportError
+// Writes `image` in the format its extension names (.png, .tif, .jpg, ...). Throws Error
 // naming the file when the format is unknown or the write fails.
 void write_image(const std::filesystem::path& path, const ImageRgb8& image);
 
 // Reads any image OpenImageIO understands as 8-bit RGB (gray is replicated, alpha dropped).
-// Throws ExportError naming the file.
+// Throws Error naming the file.
 ImageRgb8 read_image(const std::filesystem::path& path);
 
 }  // namespace wangscape

@@ -48,7 +48,7 @@ PointWriter::PointWriter(const std::filesystem::path& path) : file_(path), forma
         << "property float x\nproperty float y\nproperty float z\nproperty ushort variant\n"
            "property float yaw\nproperty float scale\nproperty uint tile\nend_header\n";
   }
-  if (!out) throw ExportError("point file '" + path.string() + "': cannot write the header");
+  if (!out) throw Error("point file '" + path.string() + "': cannot write the header");
 }
 
 void PointWriter::write(const InstanceBatch& b) {
@@ -84,7 +84,7 @@ void PointWriter::write(const InstanceBatch& b) {
     }
   }
   file_.stream().write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-  if (!file_.stream()) throw ExportError("point file '" + file_.path().string() + "': write failed");
+  if (!file_.stream()) throw Error("point file '" + file_.path().string() + "': write failed");
   count_ += b.size();
 }
 

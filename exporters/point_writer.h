@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 #include "generator/instances.h"
 
 namespace wangscape {
@@ -25,7 +25,7 @@ class PointWriter {
   PointWriter(const PointWriter&) = delete;
   PointWriter& operator=(const PointWriter&) = delete;
 
-  // Appends the batch. Throws ExportError naming the file when writing fails.
+  // Appends the batch. Throws Error naming the file when writing fails.
   void write(const InstanceBatch& batch);
   // Completes the file (the PLY vertex count) and renames it into place.
   void commit();

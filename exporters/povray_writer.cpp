@@ -8,7 +8,7 @@
 #include <numbers>
 #include <vector>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 
 namespace wangscape {
 
@@ -175,12 +175,12 @@ void append_mesh2(std::string& out, const Mesh& mesh, int position_decimals, con
 }
 
 void check_mesh(const Mesh& mesh, const std::string& what) {
-  if (mesh.triangles.empty()) throw ExportError("POV-Ray export: " + what + " has no triangles");
+  if (mesh.triangles.empty()) throw Error("POV-Ray export: " + what + " has no triangles");
   for (const auto& tri : mesh.triangles)
     for (auto index : tri)
       if (index >= mesh.positions.size())
-        throw ExportError("POV-Ray export: " + what + " has a triangle index " + std::to_string(index) + " past its " +
-                          std::to_string(mesh.positions.size()) + " vertices");
+        throw Error("POV-Ray export: " + what + " has a triangle index " + std::to_string(index) + " past its " +
+                    std::to_string(mesh.positions.size()) + " vertices");
 }
 
 // ---- the scene file ---------------------------------------------------------------------------
@@ -215,7 +215,7 @@ HeightRange terrain_heights(const Mesh& terrain) {
   return range;
 }
 
-std::string scene_pov(const Scene& scene, bool has_terrain, bool has_instances) {
+std::string scene_pov(const Scene& scene, bool has_terrain, bool has_instances, std::uint64_t instance_count) {
   std::string s;
   s += "// " + comment_safe(scene.name) + ": written by wangscape for POV-Ray 3.7.\n";
   s += "// Render from this folder: povray scene.ini (or: wangscape render <this folder>)\n";
@@ -223,7 +223,7 @@ std::string scene_pov(const Scene& scene, bool has_terrain, bool has_instances) 
   s += "// Georeference:\n";
   for (const auto& [key, value] : scene.georeference)
     s += "//   " + comment_safe(key) + ": " + comment_safe(value) + "\n";
-  s += "//   instances: " + std::to_string(scene.instance_count) + "\n";
+  s += "//   instances: " + std::to_string(instance_count) + "\n";
   s += "#version 3.7;\n\n";
   s += "// Switches (override with Declare=Use_Radiosity=1 in the ini or on the command line).\n";
   s += "#ifndef (Use_Radiosity) #declare Use_Radiosity = " + std::string(scene.render.radiosity ? "1" : "0") +
@@ -350,30 +350,37 @@ void PovrayInstanceWriter::flush() {
 
 // ---- the folder -----------------------------------------------------------------------------
 
-PovrayExportStats write_povray_scene(const Scene& scene, const std::filesystem::path& dir,
-                                     const PovrayExportOptions& options) {
-  if (!std::filesystem::is_directory(dir))
-    throw ExportError("POV-Ray export: output folder '" + dir.string() + "' does not exist");
-  if (scene.models.empty() && scene.instances)
-    throw ExportError("POV-Ray export: the scene has instances but no models");
-  for (std::size_t v = 0; v < scene.models.size(); ++v) check_mesh(scene.models[v], "model " + povray_model_name(v));
-  const bool has_terrain = !scene.terrain.triangles.empty();
-  if (has_terrain) check_mesh(scene.terrain, "the terrain");
-  const bool has_instances = static_cast<bool>(scene.instances);
-
+struct PovrayWriter::Impl {
+  const Scene& scene;
+  std::filesystem::path dir;
+  PovrayExportOptions options;
+  bool has_terrain = false, has_instances = false;
   PovrayExportStats stats;
   // All files stay temporary until every one is complete.
   std::vector<std::unique_ptr<AtomicFile>> files;
-  auto write_whole = [&](const char* name, const std::string& contents) {
+  std::unique_ptr<AtomicFile> instances_file;
+  std::unique_ptr<PovrayInstanceWriter> instances;
+
+  void write_whole(const char* name, const std::string& contents) {
     files.push_back(std::make_unique<AtomicFile>(dir / name));
     files.back()->stream().write(contents.data(), static_cast<std::streamsize>(contents.size()));
     stats.total_bytes += contents.size();
-  };
+  }
+};
+
+PovrayWriter::PovrayWriter(const Scene& scene, const std::filesystem::path& dir, const PovrayExportOptions& options)
+    : impl_(std::make_unique<Impl>(Impl{scene, dir, options})) {
+  if (!std::filesystem::is_directory(dir))
+    throw Error("POV-Ray export: output folder '" + dir.string() + "' does not exist");
+  if (scene.models.empty() && scene.instances) throw Error("POV-Ray export: the scene has instances but no models");
+  for (std::size_t v = 0; v < scene.models.size(); ++v) check_mesh(scene.models[v], "model " + povray_model_name(v));
+  Impl& impl = *impl_;
+  impl.has_terrain = !scene.terrain.triangles.empty();
+  if (impl.has_terrain) check_mesh(scene.terrain, "the terrain");
+  impl.has_instances = static_cast<bool>(scene.instances);
 
   const auto library_dir = std::filesystem::absolute(options.final_dir.empty() ? dir : options.final_dir);
-  write_whole("scene.pov", scene_pov(scene, has_terrain, has_instances));
-  write_whole("scene.ini", scene_ini(scene, library_dir));
-
+  impl.write_whole("scene.ini", scene_ini(scene, library_dir));
   {
     std::string models = "// Model variants, each declared once: copies of a mesh2 share its data.\n";
     models += "#declare Wangscape_Model_Count = " + std::to_string(scene.models.size()) + ";\n";
@@ -383,45 +390,56 @@ PovrayExportStats write_povray_scene(const Scene& scene, const std::filesystem::
       models += "#declare " + povray_model_name(v) + " = ";
       append_mesh2(models, mesh, 5, "");
     }
-    write_whole("models.inc", models);
+    impl.write_whole("models.inc", models);
   }
-
-  if (has_terrain) {
+  if (impl.has_terrain) {
     const auto heights = terrain_heights(scene.terrain);
     std::string terrain = "// Terrain, ENU meters as POV axes (x east, y up, z north).\n";
     terrain += "#declare Terrain_Min_Height = " + fixed(heights.min, 3) + ";\n";
     terrain += "#declare Terrain_Max_Height = " + fixed(heights.max, 3) + ";\n";
     terrain += "#declare Terrain = ";
     append_mesh2(terrain, scene.terrain, 3, "pigment { rgb 0.5 }");
-    write_whole("terrain.inc", terrain);
+    impl.write_whole("terrain.inc", terrain);
   }
-
-  if (has_instances) {
-    files.push_back(std::make_unique<AtomicFile>(dir / "instances.inc"));
-    auto& out = files.back()->stream();
-    const std::string header =
-        "// " + std::to_string(scene.instance_count) + " instances of the models in models.inc\n";
-    out << header;
-    PovrayInstanceWriter writer(out);
-    scene.instances([&](const InstanceBatch& batch) {
-      for (std::size_t i = 0; i < batch.size(); ++i)
-        if (batch.variant[i] >= scene.models.size())
-          throw ExportError("POV-Ray export: instance uses model variant " + std::to_string(batch.variant[i]) +
-                            " but the scene has " + std::to_string(scene.models.size()) + " models");
-      writer.write(batch);
-      if (options.on_instances) options.on_instances(writer.instances());
-    });
-    writer.flush();
-    if (writer.instances() != scene.instance_count)
-      throw ExportError("POV-Ray export: the instance stream produced " + std::to_string(writer.instances()) +
-                        " instances, the scene announced " + std::to_string(scene.instance_count));
-    stats.instances = writer.instances();
-    stats.instance_bytes = writer.bytes() + header.size();
-    stats.total_bytes += stats.instance_bytes;
+  if (impl.has_instances) {
+    impl.instances_file = std::make_unique<AtomicFile>(dir / "instances.inc");
+    impl.instances = std::make_unique<PovrayInstanceWriter>(impl.instances_file->stream());
   }
+}
 
-  for (auto& file : files) file->commit();
-  return stats;
+PovrayWriter::~PovrayWriter() = default;
+
+void PovrayWriter::append(const InstanceBatch& batch) {
+  Impl& impl = *impl_;
+  if (!impl.instances) throw Error("POV-Ray export: instances for a scene without an instance stream");
+  impl.instances->write(batch);
+  if (impl.options.on_instances) impl.options.on_instances(impl.instances->instances());
+}
+
+void PovrayWriter::finish(const StreamTotals& totals) {
+  Impl& impl = *impl_;
+  if (impl.instances) {
+    impl.instances->flush();
+    // The count is known only now: it closes the file.
+    const std::string trailer =
+        "// " + std::to_string(impl.instances->instances()) + " instances of the models in models.inc\n";
+    impl.instances_file->stream() << trailer;
+    impl.stats.instances = impl.instances->instances();
+    impl.stats.instance_bytes = impl.instances->bytes() + trailer.size();
+    impl.stats.total_bytes += impl.stats.instance_bytes;
+  }
+  impl.write_whole("scene.pov", scene_pov(impl.scene, impl.has_terrain, impl.has_instances, totals.instances));
+  for (auto& file : impl.files) file->commit();
+  if (impl.instances_file) impl.instances_file->commit();
+}
+
+const PovrayExportStats& PovrayWriter::stats() const { return impl_->stats; }
+
+PovrayExportStats write_povray_scene(const Scene& scene, const std::filesystem::path& dir,
+                                     const PovrayExportOptions& options) {
+  PovrayWriter writer(scene, dir, options);
+  run_scene_stream(scene, writer);
+  return writer.stats();
 }
 
 }  // namespace wangscape

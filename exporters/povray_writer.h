@@ -9,7 +9,8 @@
 //                   materials are one uv-mapped palette texture (a texture_list would be
 //                   copied with every instance)
 //   terrain.inc     the terrain as one mesh2 (Terrain), absent when the scene has no terrain
-//   instances.inc   one `object { Sunflower_v rotate ... scale ... translate ... }` per instance
+//   instances.inc   one `object { Sunflower_v rotate ... scale ... translate ... }` per instance,
+//                   closed by a comment with the count
 // Axes: ENU (x east, y north, z up) becomes POV (x east, y up, z north). Swapping y and z is a
 // reflection, which is exactly what POV's left-handed axes need: the picture is not mirrored.
 // Numbers are written with std::to_chars (locale-independent).
@@ -18,10 +19,12 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <ostream>
 #include <string>
 
-#include "exporters/scene.h"
+#include "exporters/scene_writer.h"
+#include "scene/scene.h"
 
 namespace wangscape {
 
@@ -39,10 +42,25 @@ struct PovrayExportStats {
   std::uint64_t total_bytes = 0;     // all files
 };
 
-// Writes the files above into `dir` (which must exist). Every file is written to a temporary
-// name and renamed only after all files are complete, so a failure leaves none of them.
-// Throws ExportError naming the file at fault, or when Scene::instance_count does not match
-// the number of instances the stream produced.
+// The POV-Ray files above as a streaming writer into `dir` (which must exist): the files that
+// do not depend on the instances are written when it is made, instances.inc as batches come,
+// scene.pov (which records the count) at finish(). Every file stays under a temporary name
+// until finish() renames them all, so a failure leaves none of them. Throws Error naming the
+// file at fault.
+class PovrayWriter final : public SceneWriter {
+ public:
+  PovrayWriter(const Scene& scene, const std::filesystem::path& dir, const PovrayExportOptions& options = {});
+  ~PovrayWriter() override;
+  void append(const InstanceBatch& batch) override;
+  void finish(const StreamTotals& totals) override;
+  const PovrayExportStats& stats() const;  // complete after finish()
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// A PovrayWriter over the scene's own stream: writes the whole POV-Ray scene into `dir`.
 PovrayExportStats write_povray_scene(const Scene& scene, const std::filesystem::path& dir,
                                      const PovrayExportOptions& options = {});
 

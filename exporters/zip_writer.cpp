@@ -4,7 +4,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
+#include "templates/blender_addon.h"
 
 namespace wangscape {
 
@@ -51,7 +52,7 @@ std::string make_zip(std::span<const ZipEntry> entries) {
   std::string directory;
   for (const ZipEntry& entry : entries) {
     if (entry.contents.size() >= 0xffffffffu || entry.path.size() >= 0xffffu) {
-      throw ExportError("zip entry '" + std::string(entry.path) + "' is too large for a zip without zip64");
+      throw Error("zip entry '" + std::string(entry.path) + "' is too large for a zip without zip64");
     }
     const auto offset = static_cast<std::uint32_t>(archive.size());
     const std::uint32_t crc = crc32(entry.contents);
@@ -102,6 +103,12 @@ std::string make_zip(std::span<const ZipEntry> entries) {
   put32(archive, directory_offset);
   put16(archive, 0);  // comment
   return archive;
+}
+
+std::string blender_addon_zip() {
+  std::vector<ZipEntry> entries;
+  for (const EmbeddedFile& file : blender_addon_files()) entries.push_back({file.path, file.contents});
+  return make_zip(entries);
 }
 
 }  // namespace wangscape

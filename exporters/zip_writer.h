@@ -17,6 +17,9 @@ struct ZipEntry {
 // The bytes of a zip archive holding `entries` (each below 4 GiB; no zip64).
 std::string make_zip(std::span<const ZipEntry> entries);
 
+// The Blender add-on (templates/blender_addon) as the installable wangscape_import.zip.
+std::string blender_addon_zip();
+
 // CRC-32 (IEEE 802.3, as zip and PNG use it) of `bytes`.
 std::uint32_t crc32(std::string_view bytes);
 

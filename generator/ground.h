@@ -7,15 +7,9 @@
 #include <concepts>
 #include <optional>
 
-namespace wangscape {
+#include "core/extent.h"
 
-// An axis-aligned rectangle in ENU meters.
-struct Extent {
-  double min_x = 0, min_y = 0, max_x = 0, max_y = 0;
-  double width() const { return max_x - min_x; }
-  double height() const { return max_y - min_y; }
-  bool contains(double x, double y) const { return x >= min_x && x <= max_x && y >= min_y && y <= max_y; }
-};
+namespace wangscape {
 
 // What placement asks of a ground. All calls must be thread-safe (const, no caches).
 //  extent():          the area that has ground, ENU meters

@@ -40,8 +40,8 @@ TileRange tile_range(const Extent& area, double tile_size) {
   r.j1 = static_cast<std::int64_t>(std::ceil(area.max_y / tile_size));
   constexpr std::int64_t kMaxSide = 1 << 30;
   if (r.i1 - r.i0 > kMaxSide || r.j1 - r.j0 > kMaxSide)
-    throw GeneratorError("placement: area of " + std::to_string(area.width()) + " x " + std::to_string(area.height()) +
-                         " m needs more than 2^30 tiles of " + std::to_string(tile_size) + " m per side");
+    throw Error("placement: area of " + std::to_string(area.width()) + " x " + std::to_string(area.height()) +
+                " m needs more than 2^30 tiles of " + std::to_string(tile_size) + " m per side");
   return r;
 }
 

@@ -95,7 +95,7 @@ template <Ground G, class Sink, class TileFilter = KeepAllTiles, class PointFilt
 PlacementStats place_instances(const FilledTileSet& filled, const G& ground, const PlacementOptions& options,
                                Sink&& sink, TileFilter tile_filter = {}, PointFilter point_filter = {}) {
   if (!(options.tile_size > 0))
-    throw GeneratorError("placement: tile size " + std::to_string(options.tile_size) + " m; expected > 0");
+    throw Error("placement: tile size " + std::to_string(options.tile_size) + " m; expected > 0");
   const Extent area = options.area ? *options.area : Extent(ground.extent());
   const TileRange range = tile_range(area, options.tile_size);
   PlacementStats stats;

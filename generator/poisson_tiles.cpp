@@ -623,7 +623,7 @@ SampleTiling sample_tiling(const TileSet& set, std::uint64_t seed) {
       sample.tiling = make_tiling(set, 16, 16, options);
       sample.usable = true;
       return sample;
-    } catch (const GeneratorError&) {
+    } catch (const Error&) {
     }
   }
   return sample;
@@ -668,7 +668,7 @@ FilledTileSet export_points(const TileSet& set, const PoissonFillOptions& option
 }
 
 void check_options(const PoissonFillOptions& o) {
-  auto fail = [](const std::string& what) { throw GeneratorError("Poisson fill: " + what); };
+  auto fail = [](const std::string& what) { throw Error("Poisson fill: " + what); };
   if (o.points_per_tile < 1 || o.points_per_tile > 100000)
     fail("points per tile " + std::to_string(o.points_per_tile) + "; expected 1..100000");
   if (o.darts_per_visit < 1) fail("darts per visit " + std::to_string(o.darts_per_visit) + "; expected >= 1");
@@ -759,9 +759,9 @@ double min_distance_over_configurations(const FilledTileSet& filled) {
 
 FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& options, PoissonFillReport* report) {
   check_options(options);
-  if (set.tiles.empty()) throw GeneratorError(set.describe() + ": no tiles to fill");
+  if (set.tiles.empty()) throw Error(set.describe() + ": no tiles to fill");
   if (set.tiles.size() > std::numeric_limits<std::uint16_t>::max())
-    throw GeneratorError(set.describe() + ": " + std::to_string(set.tiles.size()) + " tiles; expected at most 65535");
+    throw Error(set.describe() + ": " + std::to_string(set.tiles.size()) + " tiles; expected at most 65535");
   const double spacing = hexagonal_spacing(1.0, options.points_per_tile);
   const double dart_d = options.dart_rho * spacing;
   const double cap_d = options.max_rho * spacing;
@@ -778,8 +778,8 @@ FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& o
   const double w = std::min((set.has_corners ? 0.5 : 0.82) * cap_d, 0.45);
   const double tight = options.tight_fraction * 0.5 * dart_d;
   if (cap_d >= 1.0)
-    throw GeneratorError("Poisson fill: " + std::to_string(options.points_per_tile) +
-                         " points per tile are too few for a packing diameter below the tile side");
+    throw Error("Poisson fill: " + std::to_string(options.points_per_tile) +
+                " points per tile are too few for a packing diameter below the tile side");
 
   const TileAdjacency adjacency(set);
   // Sets with corner colors: the vertex squares (consistent by construction) reach past the

@@ -84,7 +84,7 @@ struct PoissonFillReport {
 };
 
 // Fills every tile of `set`. Deterministic from options.seed, same result on any thread count.
-// Throws GeneratorError when the options are out of range.
+// Throws Error when the options are out of range.
 FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& options,
                                  PoissonFillReport* report = nullptr);
 

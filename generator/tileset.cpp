@@ -112,7 +112,7 @@ TileSet cohen_tileset(std::string name, int horizontal, int vertical) {
 
 TileSet make_tileset(std::string name, std::vector<Tile> tiles, std::string_view source) {
   const std::string where = "tile set '" + std::string(source) + "'";
-  if (tiles.empty()) throw GeneratorError(where + ": no tiles");
+  if (tiles.empty()) throw Error(where + ": no tiles");
   TileSet set;
   set.name = std::move(name);
   set.source = std::string(source);
@@ -120,7 +120,7 @@ TileSet make_tileset(std::string name, std::vector<Tile> tiles, std::string_view
   set.has_edges = first.n() != kNoColor;
   set.has_corners = first.ne() != kNoColor;
   if (!set.has_edges && !set.has_corners)
-    throw GeneratorError(where + ": " + tile_label(0) + " has neither edge nor corner colors");
+    throw Error(where + ": " + tile_label(0) + " has neither edge nor corner colors");
   set.kind = set.has_edges ? TileKind::edge : TileKind::corner;
 
   std::set<std::array<std::int8_t, kSlotCount>> seen;
@@ -130,14 +130,14 @@ TileSet make_tileset(std::string name, std::vector<Tile> tiles, std::string_view
       const bool wanted = slot < kNE ? set.has_edges : set.has_corners;
       const int c = t.colors[static_cast<std::size_t>(slot)];
       if (wanted && (c < 0 || c >= kMaxColors))
-        throw GeneratorError(where + ": " + tile_label(i) + " has color " + std::to_string(c) + " at " +
-                             std::array{"n", "e", "s", "w", "ne", "se", "sw", "nw"}[static_cast<std::size_t>(slot)] +
-                             "; expected 0.." + std::to_string(kMaxColors - 1));
+        throw Error(where + ": " + tile_label(i) + " has color " + std::to_string(c) + " at " +
+                    std::array{"n", "e", "s", "w", "ne", "se", "sw", "nw"}[static_cast<std::size_t>(slot)] +
+                    "; expected 0.." + std::to_string(kMaxColors - 1));
       if (!wanted && c != kNoColor)
-        throw GeneratorError(where + ": " + tile_label(i) + " colors " + (slot < kNE ? "edges" : "corners") +
-                             " but the first tile does not; every tile must color the same parts");
+        throw Error(where + ": " + tile_label(i) + " colors " + (slot < kNE ? "edges" : "corners") +
+                    " but the first tile does not; every tile must color the same parts");
     }
-    if (!seen.insert(t.colors).second) throw GeneratorError(where + ": " + tile_label(i) + " repeats an earlier tile");
+    if (!seen.insert(t.colors).second) throw Error(where + ": " + tile_label(i) + " repeats an earlier tile");
     if (set.has_edges) {
       set.horizontal_colors = std::max({set.horizontal_colors, t.n() + 1, t.s() + 1});
       set.vertical_colors = std::max({set.vertical_colors, t.e() + 1, t.w() + 1});
@@ -168,9 +168,9 @@ TileSet builtin_tileset(std::string_view name) {
   // K up to 8: K^4 tiles (4096 at K = 8) is already far more than anyone fills with content.
   if (const int k = parse_suffix_count(name, "complete-edge-"); k >= 2 && k <= 8) return complete_edge_tileset(k);
   if (const int k = parse_suffix_count(name, "corner-"); k >= 2 && k <= 8) return complete_corner_tileset(k);
-  throw GeneratorError("unknown tile set '" + std::string(name) +
-                       "'; expected a JSON file or one of cohen8, cohen12, cohen18, owen12, "
-                       "complete-edge-K, corner-K (K = 2..8), cohen8-corners, cohen8-corners-full");
+  throw Error("unknown tile set '" + std::string(name) +
+              "'; expected a JSON file or one of cohen8, cohen12, cohen18, owen12, "
+              "complete-edge-K, corner-K (K = 2..8), cohen8-corners, cohen8-corners-full");
 }
 
 std::string TileSet::describe() const { return "tile set '" + (source.empty() ? name : source) + "'"; }

@@ -2,6 +2,8 @@
 // (NE, SE, SW, NW), never rotated. Tiling coordinates: i grows east, j grows north.
 #pragma once
 
+#include "core/error.h"
+
 #include <array>
 #include <cstdint>
 #include <stdexcept>
@@ -10,12 +12,6 @@
 #include <vector>
 
 namespace wangscape {
-
-// The one error type of generator/: the message names the input (file, set, value) at fault.
-class GeneratorError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 inline constexpr int kNoColor = -1;
 
@@ -69,7 +65,7 @@ TileSet make_tileset(std::string name, std::vector<Tile> tiles, std::string_view
 
 // The built-in sets by name: cohen8, cohen12, cohen18, owen12, complete-edge-K,
 // corner-K, cohen8-corners (64 tiles), cohen8-corners-full (128 tiles).
-// Throws GeneratorError naming the unknown set.
+// Throws Error naming the unknown set.
 TileSet builtin_tileset(std::string_view name);
 bool is_builtin_tileset(std::string_view name);
 std::vector<std::string> builtin_tileset_names();

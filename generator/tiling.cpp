@@ -84,7 +84,7 @@ class CandidateTable {
       weight_[static_cast<std::size_t>(slot)] = static_cast<std::uint32_t>(key_count);
       key_count *= slot_radix(set, slot);
       if (key_count > (1u << 24))
-        throw GeneratorError(set.describe() + ": too many color combinations to tile (more than 2^24)");
+        throw Error(set.describe() + ": too many color combinations to tile (more than 2^24)");
     }
     begin_.assign(key_count + 1, 0);
     std::vector<std::uint32_t> keys(set.size());
@@ -172,7 +172,7 @@ class SweepTiler {
         interior_(set, targets_of(vertical_, west_)),
         first_row_(set, targets_of(west_only_)),
         first_column_(set, targets_of(vertical_)) {
-    if (set.size() > 65535) throw GeneratorError(set.describe() + ": more than 65535 tiles");
+    if (set.size() > 65535) throw Error(set.describe() + ": more than 65535 tiles");
     const std::string algorithm(to_string(options.algorithm));
     vertical_key_.resize(set.size());
     west_key_.resize(set.size());
@@ -318,7 +318,7 @@ class SweepTiler {
       viable_[i] = viable;
     }
     if (viable_[0] == 0)
-      throw GeneratorError(
+      throw Error(
           set_.describe() + ": " + std::string(to_string(options_.algorithm)) +
           " tiling cannot forbid identical neighbours: no row of " + std::to_string(width) + " tiles " +
           (previous.empty() ? std::string("to start with") : "can follow sweep row " + std::to_string(rows_done_ - 1)));
@@ -379,16 +379,15 @@ class SweepTiler {
 
   void require(const CandidateTable& table, std::uint32_t key, const std::string& algorithm) const {
     if (!table.candidates(key).empty()) return;
-    throw GeneratorError(set_.describe() + ": " + algorithm + " tiling needs a tile with " +
-                         describe_colors(table.slots(), table.decode(key, set_)) + "; none found");
+    throw Error(set_.describe() + ": " + algorithm + " tiling needs a tile with " +
+                describe_colors(table.slots(), table.decode(key, set_)) + "; none found");
   }
 
   void check_can_forbid_identical(const std::string& algorithm) const {
     const auto fail = [&](const CandidateTable& table, std::uint32_t key, std::size_t a, std::size_t b) {
-      throw GeneratorError(set_.describe() + ": " + algorithm +
-                           " tiling cannot forbid identical neighbours: every tile with " +
-                           describe_colors(table.slots(), table.decode(key, set_)) + " equals a neighbour (tile " +
-                           std::to_string(a) + (a == b ? "" : " or tile " + std::to_string(b)) + ")");
+      throw Error(set_.describe() + ": " + algorithm + " tiling cannot forbid identical neighbours: every tile with " +
+                  describe_colors(table.slots(), table.decode(key, set_)) + " equals a neighbour (tile " +
+                  std::to_string(a) + (a == b ? "" : " or tile " + std::to_string(b)) + ")");
     };
     const auto has_other = [](std::span<const std::uint16_t> candidates, std::size_t a, std::size_t b) {
       return std::any_of(candidates.begin(), candidates.end(), [&](std::uint16_t t) { return t != a && t != b; });
@@ -427,8 +426,8 @@ class SweepTiler {
 
 void check_size(const TileSet& set, int width, int height) {
   if (width <= 0 || height <= 0)
-    throw GeneratorError(set.describe() + ": tiling size " + std::to_string(width) + "x" + std::to_string(height) +
-                         " is empty; expected at least 1x1");
+    throw Error(set.describe() + ": tiling size " + std::to_string(width) + "x" + std::to_string(height) +
+                " is empty; expected at least 1x1");
 }
 
 // Rows of hashed tiles computed in parallel this many at a time when streaming.
@@ -451,7 +450,7 @@ std::string_view to_string(TilingAlgorithm algorithm) {
 TilingAlgorithm parse_tiling_algorithm(std::string_view text) {
   for (const TilingAlgorithm a : {TilingAlgorithm::scanline, TilingAlgorithm::bottom_left, TilingAlgorithm::hash})
     if (text == to_string(a)) return a;
-  throw GeneratorError("unknown tiling algorithm '" + std::string(text) + "'; expected scanline, bottom-left or hash");
+  throw Error("unknown tiling algorithm '" + std::string(text) + "'; expected scanline, bottom-left or hash");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -465,8 +464,8 @@ HashedTiling::HashedTiling(const TileSet& set, std::uint64_t seed, bool forbid_i
   std::uint64_t combinations = 1;
   for (const std::uint32_t r : radix_) combinations *= r;
   if (combinations > 65535 || set.size() > 65535)
-    throw GeneratorError(set.describe() + ": hash tiling needs a complete set of at most 65535 tiles; this one needs " +
-                         std::to_string(combinations));
+    throw Error(set.describe() + ": hash tiling needs a complete set of at most 65535 tiles; this one needs " +
+                std::to_string(combinations));
   constexpr std::uint16_t kMissing = 0xFFFF;
   lookup_.assign(combinations, kMissing);
   for (std::size_t t = 0; t < set.size(); ++t) {
@@ -491,14 +490,13 @@ HashedTiling::HashedTiling(const TileSet& set, std::uint64_t seed, bool forbid_i
       names += std::string(names.empty() ? "" : ",") + kSlotNames[static_cast<std::size_t>(slot)];
       values += std::string(values.empty() ? "" : ",") + std::to_string(colors[static_cast<std::size_t>(slot)]);
     }
-    throw GeneratorError(set.describe() + ": hash tiling needs a complete set; missing (" + names + ")=(" + values +
-                         ")");
+    throw Error(set.describe() + ": hash tiling needs a complete set; missing (" + names + ")=(" + values + ")");
   }
   if (forbid_)
     for (const int slot : slots)
       if (radix_[static_cast<std::size_t>(slot)] < 2)
-        throw GeneratorError(set.describe() + ": hash tiling cannot forbid identical neighbours with a single " +
-                             kSlotNames[static_cast<std::size_t>(slot)] + " color");
+        throw Error(set.describe() + ": hash tiling cannot forbid identical neighbours with a single " +
+                    kSlotNames[static_cast<std::size_t>(slot)] + " color");
 }
 
 std::uint32_t HashedTiling::code(const std::array<std::uint32_t, kSlotCount>& colors) const {
@@ -695,16 +693,16 @@ void check_tiling(const TileSet& set, const Tiling& tiling) {
   const std::string where = "tiling with " + set.describe();
   if (tiling.width <= 0 || tiling.height <= 0 ||
       tiling.tiles.size() != static_cast<std::size_t>(tiling.width) * static_cast<std::size_t>(tiling.height))
-    throw GeneratorError(where + ": " + std::to_string(tiling.tiles.size()) + " tiles do not fill a " +
-                         std::to_string(tiling.width) + "x" + std::to_string(tiling.height) + " window");
+    throw Error(where + ": " + std::to_string(tiling.tiles.size()) + " tiles do not fill a " +
+                std::to_string(tiling.width) + "x" + std::to_string(tiling.height) + " window");
   const auto position = [&](int li, int lj) {
     return "tile (" + std::to_string(tiling.origin_i + li) + ", " + std::to_string(tiling.origin_j + lj) + ")";
   };
   for (int lj = 0; lj < tiling.height; ++lj)
     for (int li = 0; li < tiling.width; ++li)
       if (tiling.at(li, lj) >= set.size())
-        throw GeneratorError(where + ": " + position(li, lj) + " is tile " + std::to_string(tiling.at(li, lj)) +
-                             "; the set has " + std::to_string(set.size()) + " tiles");
+        throw Error(where + ": " + position(li, lj) + " is tile " + std::to_string(tiling.at(li, lj)) +
+                    "; the set has " + std::to_string(set.size()) + " tiles");
   // Pairs of slots that must agree between a tile and its eastern / northern neighbour.
   struct Match {
     int own, other;
@@ -723,10 +721,10 @@ void check_tiling(const TileSet& set, const Tiling& tiling) {
     const Tile& b = set.tiles[tiling.at(oi, oj)];
     for (const Match& m : matches)
       if (a.colors[static_cast<std::size_t>(m.own)] != b.colors[static_cast<std::size_t>(m.other)])
-        throw GeneratorError(where + ": " + position(li, lj) + " has " + kSlotNames[static_cast<std::size_t>(m.own)] +
-                             "=" + std::to_string(a.colors[static_cast<std::size_t>(m.own)]) + " but " +
-                             position(oi, oj) + " has " + kSlotNames[static_cast<std::size_t>(m.other)] + "=" +
-                             std::to_string(b.colors[static_cast<std::size_t>(m.other)]));
+        throw Error(where + ": " + position(li, lj) + " has " + kSlotNames[static_cast<std::size_t>(m.own)] + "=" +
+                    std::to_string(a.colors[static_cast<std::size_t>(m.own)]) + " but " + position(oi, oj) + " has " +
+                    kSlotNames[static_cast<std::size_t>(m.other)] + "=" +
+                    std::to_string(b.colors[static_cast<std::size_t>(m.other)]));
   };
   for (int lj = 0; lj < tiling.height; ++lj)
     for (int li = 0; li < tiling.width; ++li) {

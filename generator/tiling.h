@@ -22,7 +22,7 @@ namespace wangscape {
 
 enum class TilingAlgorithm { scanline, bottom_left, hash };
 
-// "scanline", "bottom-left", "hash"; parse throws GeneratorError naming the value.
+// "scanline", "bottom-left", "hash"; parse throws Error naming the value.
 std::string_view to_string(TilingAlgorithm algorithm);
 TilingAlgorithm parse_tiling_algorithm(std::string_view text);
 
@@ -50,7 +50,7 @@ struct Tiling {
   }
 };
 
-// Tiles a width x height window. Throws GeneratorError when the size is not positive, the set
+// Tiles a width x height window. Throws Error when the size is not positive, the set
 // cannot be tiled by the algorithm (naming the missing constraint), or the set cannot satisfy
 // forbid_identical_neighbours. Deterministic from options.seed on any thread count.
 Tiling make_tiling(const TileSet& set, int width, int height, const TilingOptions& options);
@@ -68,7 +68,7 @@ void stream_tiling(const TileSet& set, int width, int height, const TilingOption
 // H^2 V^2 for edge sets with separate horizontal/vertical alphabets), in any order.
 class HashedTiling {
  public:
-  // Throws GeneratorError "tile set '<name>': hash tiling needs a complete set; missing
+  // Throws Error "tile set '<name>': hash tiling needs a complete set; missing
   // (N,E,S,W)=(1,0,0,1)" (or (NE,SE,SW,NW)=...) when the set is not complete.
   // forbid_identical_neighbours: odd-indexed edge (corner) colors are drawn different from the
   // even one before them along their line, so no two neighbouring tiles are identical; still
@@ -96,7 +96,7 @@ class HashedTiling {
   std::vector<std::uint16_t> lookup_;
 };
 
-// Throws GeneratorError naming the first mismatching edge/corner, e.g. "tiling with 'cohen8':
+// Throws Error naming the first mismatching edge/corner, e.g. "tiling with 'cohen8':
 // tile (3, 5) has N=1 but tile (3, 6) has S=0", or an out-of-range tile index.
 void check_tiling(const TileSet& set, const Tiling& tiling);
 

@@ -59,8 +59,8 @@ Rgb8 corner_color(int c) {
 
 void check_pixels(std::int64_t width, std::int64_t height, const std::string& what) {
   if (width < 1 || height < 1 || width * height > (std::int64_t{1} << 28))
-    throw GeneratorError(what + ": image of " + std::to_string(width) + "x" + std::to_string(height) +
-                         " pixels; expected 1 to 2^28 pixels");
+    throw Error(what + ": image of " + std::to_string(width) + "x" + std::to_string(height) +
+                " pixels; expected 1 to 2^28 pixels");
 }
 
 }  // namespace
@@ -73,7 +73,7 @@ Rgb8 tile_pseudo_color(std::size_t tile) {
 
 ImageRgb8 draw_tile_map(const Tiling& tiling, int pixels_per_tile) {
   if (pixels_per_tile < 1)
-    throw GeneratorError("tile map: " + std::to_string(pixels_per_tile) + " pixels per tile; expected at least 1");
+    throw Error("tile map: " + std::to_string(pixels_per_tile) + " pixels per tile; expected at least 1");
   check_pixels(std::int64_t{tiling.width} * pixels_per_tile, std::int64_t{tiling.height} * pixels_per_tile, "tile map");
   ImageRgb8 image(tiling.width * pixels_per_tile, tiling.height * pixels_per_tile);
   for (int lj = 0; lj < tiling.height; ++lj)
@@ -85,7 +85,7 @@ ImageRgb8 draw_tile_map(const Tiling& tiling, int pixels_per_tile) {
 
 ImageRgb8 draw_tileset_sheet(const TileSet& set, int tile_pixels) {
   if (tile_pixels < 8)
-    throw GeneratorError("tile set sheet: " + std::to_string(tile_pixels) + " pixels per tile; expected at least 8");
+    throw Error("tile set sheet: " + std::to_string(tile_pixels) + " pixels per tile; expected at least 8");
   const int count = static_cast<int>(set.size());
   const int columns = std::clamp(static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count)))), 1, 16);
   const int rows = (count + columns - 1) / columns;

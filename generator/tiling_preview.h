@@ -10,7 +10,7 @@ namespace wangscape {
 // A distinct, stable color per tile index (golden-ratio hues, varied lightness).
 Rgb8 tile_pseudo_color(std::size_t tile);
 
-// One pixels_per_tile x pixels_per_tile block per tile, north at the top. Throws GeneratorError
+// One pixels_per_tile x pixels_per_tile block per tile, north at the top. Throws Error
 // when pixels_per_tile < 1 or the image would exceed 2^28 pixels.
 ImageRgb8 draw_tile_map(const Tiling& tiling, int pixels_per_tile = 4);
 

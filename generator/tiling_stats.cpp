@@ -48,7 +48,7 @@ TilingStats compute_tiling_stats(const TileSet& set, const Tiling& tiling) {
   try {
     check_tiling(set, tiling);
     stats.valid = true;
-  } catch (const GeneratorError& e) {
+  } catch (const Error& e) {
     stats.invalid_reason = e.what();
   }
   stats.frequencies.assign(set.size(), 0);

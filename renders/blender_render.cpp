@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 #include "exporters/zip_writer.h"
 #include "renders/child_process.h"
 #include "templates/blender_addon.h"
@@ -74,21 +74,19 @@ BlenderRenderResult render_blender(const std::filesystem::path& dir_in, const Bl
   BlenderRenderResult result;
   result.manifest = find_blender_manifest(dir);
   if (result.manifest.empty()) {
-    throw RenderError("render: '" + dir_in.string() +
-                      "' has no blender/manifest.json (write one with `wangscape build` and [export] blender = true)");
+    throw Error("render: '" + dir_in.string() +
+                "' has no blender/manifest.json (write one with `wangscape build` and [export] blender = true)");
   }
   const auto blender = find_blender(options.executable);
   if (blender.empty()) {
-    throw RenderError("render: Blender ('" + program_wanted(options.executable) +
-                      "') is not installed or not in PATH; install it (apt install blender) or set WANGSCAPE_BLENDER");
+    throw Error("render: Blender ('" + program_wanted(options.executable) +
+                "') is not installed or not in PATH; install it (apt install blender) or set WANGSCAPE_BLENDER");
   }
 
   // The export normally carries the add-on zip; write the embedded one if it does not.
   const auto addon_zip = result.manifest.parent_path() / "wangscape_import.zip";
   if (!std::filesystem::is_regular_file(addon_zip)) {
-    std::vector<ZipEntry> entries;
-    for (const EmbeddedFile& file : blender_addon_files()) entries.push_back({file.path, file.contents});
-    write_file_atomically(addon_zip, make_zip(entries));
+    write_file_atomically(addon_zip, blender_addon_zip());
   }
 
   result.image = dir / options.image_name;
@@ -121,7 +119,7 @@ BlenderRenderResult render_blender(const std::filesystem::path& dir_in, const Bl
   try {
     exit = run_logged(argv, log.temp_path());
   } catch (const std::exception& e) {
-    throw RenderError(std::string("render: ") + e.what());
+    throw Error(std::string("render: ") + e.what());
   }
   result.seconds = exit.seconds;
   const bool log_written = std::filesystem::exists(log.temp_path());
@@ -129,9 +127,9 @@ BlenderRenderResult render_blender(const std::filesystem::path& dir_in, const Bl
   const bool exited_ok = exit.exited && exit.status == 0;
   if (!exited_ok || !std::filesystem::exists(image.temp_path()) ||
       (options.save_blend && !std::filesystem::exists(blend.temp_path()))) {
-    throw RenderError("render: Blender " + exit.describe() + " importing and rendering '" + result.manifest.string() +
-                      "'" + (exited_ok ? " without writing the image or .blend" : "") + "; log " + result.log.string() +
-                      (log_written ? ", last lines:" + last_log_lines(result.log, 8) : ""));
+    throw Error("render: Blender " + exit.describe() + " importing and rendering '" + result.manifest.string() + "'" +
+                (exited_ok ? " without writing the image or .blend" : "") + "; log " + result.log.string() +
+                (log_written ? ", last lines:" + last_log_lines(result.log, 8) : ""));
   }
   if (options.save_blend) {
     blend.commit();

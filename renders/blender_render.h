@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "renders/render_error.h"
+#include "core/error.h"
 
 namespace wangscape {
 
@@ -34,7 +34,7 @@ struct BlenderRenderResult {
 // DIR/manifest.json; empty when neither exists.
 std::filesystem::path find_blender_manifest(const std::filesystem::path& dir);
 
-// Renders the Blender export found in DIR. Throws RenderError when there is no manifest,
+// Renders the Blender export found in DIR. Throws Error when there is no manifest,
 // when Blender is not installed (naming the program looked for), or when it fails (quoting
 // the last lines of DIR/blender.log). No partial image or .blend is left behind.
 BlenderRenderResult render_blender(const std::filesystem::path& dir, const BlenderRenderOptions& options = {});

@@ -18,7 +18,7 @@
 #include <string>
 #include <utility>
 
-#include "renders/render_error.h"
+#include "core/error.h"
 
 namespace wangscape {
 
@@ -46,8 +46,7 @@ class Device {
   Device() {
     device_ = rtcNewDevice(nullptr);
     if (!device_)
-      throw RenderError("Embree: cannot create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) +
-                        ")");
+      throw Error("Embree: cannot create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
     rtcSetDeviceErrorFunction(device_, &Device::on_error, this);
   }
   ~Device() { rtcReleaseDevice(device_); }
@@ -57,7 +56,7 @@ class Device {
   // Throws the first error Embree reported, naming what we were doing.
   void check(const std::string& doing) {
     std::lock_guard lock(mutex_);
-    if (!error_.empty()) throw RenderError("Embree error while " + doing + ": " + error_);
+    if (!error_.empty()) throw Error("Embree error while " + doing + ": " + error_);
   }
 
  private:
@@ -165,7 +164,7 @@ bool fits_north(const Tile& a, const Tile& b) {  // b north of a
 }
 
 void check_inputs(const FilledTileSet& filled, std::span<const Mesh> models, const LdiBuildOptions& o) {
-  auto fail = [](const std::string& what) { throw RenderError("LDI build: " + what); };
+  auto fail = [](const std::string& what) { throw Error("LDI build: " + what); };
   if (!(o.tile_size > 0)) fail("tile size " + std::to_string(o.tile_size) + " m; expected > 0");
   if (o.view.levels < 1 || o.view.levels > 64) fail("levels " + std::to_string(o.view.levels) + "; expected 1..64");
   if (o.view.directions < 1 || o.view.directions > 64)
@@ -675,8 +674,8 @@ void build_tile(Device& device, std::span<const Scene> prototypes, const FilledT
                 const std::function<void()>& ldi_done) {
   const auto contexts = consistent_contexts(filled.set, tile, std::size_t(std::max(0, options.context_choice)) + 1);
   if (contexts.empty())
-    throw RenderError("LDI build: tile " + std::to_string(tile) + " of " + filled.set.describe() +
-                      " has no 3 x 3 neighbourhood whose edges all match");
+    throw Error("LDI build: tile " + std::to_string(tile) + " of " + filled.set.describe() +
+                " has no 3 x 3 neighbourhood whose edges all match");
   const auto& context = contexts[std::size_t(std::max(0, options.context_choice)) % contexts.size()];
   Instances instances;
   const Scene scene = context_scene(device, filled, models, prototypes, context, options, instances);
@@ -734,7 +733,7 @@ LdiLevels ldi_levels(const LdiViewSettings& view, double tile_size, double prism
     for (int c = 0; c < 4; ++c) {
       const V3 q = V3{(c & 1) ? tile_size / 2 : -tile_size / 2, (c & 2) ? near + tile_size : near, prism_top} - eye;
       const double z = dot(q, f);
-      if (!(z > 1e-9)) throw RenderError("LDI build: a tile corner is behind the viewer at level " + std::to_string(k));
+      if (!(z > 1e-9)) throw Error("LDI build: a tile corner is behind the viewer at level " + std::to_string(k));
       const double x = focal * dot(q, r) / z, y = focal * dot(q, u) / z;
       x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
     }
@@ -820,7 +819,7 @@ std::vector<LdiImage> build_tile_ldis(const FilledTileSet& filled, std::span<con
   const auto start = std::chrono::steady_clock::now();
   check_inputs(filled, models, options);
   if (tile >= filled.tiles.size())
-    throw RenderError("LDI build: no tile " + std::to_string(tile) + " in " + filled.set.describe());
+    throw Error("LDI build: no tile " + std::to_string(tile) + " in " + filled.set.describe());
   const LdiLevels levels = ldi_levels(options.view, options.tile_size, ldi_prism_top(filled, models));
   Device device;
   const std::vector<Scene> prototypes = prototype_scenes(device, models);

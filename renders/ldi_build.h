@@ -104,7 +104,7 @@ double ldi_prism_top(const FilledTileSet& filled, std::span<const Mesh> models);
 
 // Builds the levels x directions LDIs of tile `tile` (frame.level is 0-based). `models` are indexed
 // by the points' variant (any meshes: tests use quads and boxes). Deterministic from the inputs:
-// the same bits on any thread count. Throws RenderError for bad inputs or an Embree error.
+// the same bits on any thread count. Throws Error for bad inputs or an Embree error.
 std::vector<LdiImage> build_tile_ldis(const FilledTileSet& filled, std::span<const Mesh> models,
                                       const LdiBuildOptions& options, std::size_t tile,
                                       LdiBuildReport* report = nullptr);

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 
 namespace wangscape {
 
@@ -144,14 +144,11 @@ LdiPackWriter::LdiPackWriter(std::filesystem::path path, LdiPackInfo info)
       info_.levels > kMaxLevels || info_.directions > kMaxDirections || info_.resolutions.size() != info_.levels ||
       info_.level_distances.size() != info_.levels || info_.elevations.size() != info_.levels ||
       info_.azimuths.size() != info_.directions)
-    throw LdiPackError(path_.string() + ": cannot write a pack of " + std::to_string(info_.tiles) + " tiles x " +
-                       std::to_string(info_.levels) + " levels x " + std::to_string(info_.directions) +
-                       " directions (or with per-level arrays of the wrong length)");
-  try {
-    file_ = std::make_unique<AtomicFile>(path_);
-  } catch (const ExportError& e) {
-    throw LdiPackError(e.what());
-  }
+    throw Error(path_, "",
+                "cannot write a pack of " + std::to_string(info_.tiles) + " tiles x " + std::to_string(info_.levels) +
+                    " levels x " + std::to_string(info_.directions) +
+                    " directions (or with per-level arrays of the wrong length)");
+  file_ = std::make_unique<AtomicFile>(path_);
   const std::size_t n = std::size_t{info_.tiles} * info_.levels * info_.directions;
   offsets_.assign(n, 0);
   sizes_.assign(n, 0);
@@ -170,11 +167,11 @@ void LdiPackWriter::add(const LdiImage& ldi) {
   frame.depth_pixel_count = std::uint32_t(ldi.depth_pixels.size());
   if (frame.tile >= info_.tiles || frame.level >= info_.levels || frame.direction >= info_.directions ||
       ldi.row_spans.size() != std::size_t{frame.height} + 1)
-    throw LdiPackError(path_.string() + ": LDI (tile " + std::to_string(frame.tile) + ", level " +
-                       std::to_string(frame.level) + ", direction " + std::to_string(frame.direction) +
-                       ") does not fit the pack");
+    throw Error(path_, "",
+                "LDI (tile " + std::to_string(frame.tile) + ", level " + std::to_string(frame.level) + ", direction " +
+                    std::to_string(frame.direction) + ") does not fit the pack");
   const std::size_t e = entry_index(info_, frame.tile, frame.level, frame.direction);
-  if (sizes_[e] != 0) throw LdiPackError(path_.string() + ": an LDI was added twice");
+  if (sizes_[e] != 0) throw Error(path_, "", "an LDI was added twice");
   const BlockLayout layout(frame);
   std::ostream& out = file_->stream();
   offsets_[e] = end_;
@@ -199,7 +196,7 @@ void LdiPackWriter::add(const LdiImage& ldi) {
 
 void LdiPackWriter::commit() {
   for (std::uint64_t s : sizes_)
-    if (s == 0) throw LdiPackError(path_.string() + ": not every (tile, level, direction) LDI was added");
+    if (s == 0) throw Error(path_, "", "not every (tile, level, direction) LDI was added");
   PackHeader h{};
   std::memcpy(h.magic, kLdiPackMagic, sizeof(h.magic));
   h.version = kLdiPackVersion;
@@ -224,11 +221,7 @@ void LdiPackWriter::commit() {
   std::uint64_t at = sizeof(PackHeader) + arrays_bytes(info_.levels, info_.directions);
   pad_to(out, at, h.index_offset);
   for (std::size_t e = 0; e < sizes_.size(); ++e) put(out, IndexEntry{offsets_[e], sizes_[e]});
-  try {
-    file_->commit();
-  } catch (const ExportError& e) {
-    throw LdiPackError(e.what());
-  }
+  file_->commit();
 }
 
 void write_ldi_pack(const std::filesystem::path& path, const LdiPackInfo& info, std::span<const LdiImage> ldis) {
@@ -295,7 +288,7 @@ LdiView validate_block(const std::uint8_t* block, std::uint64_t bytes, std::uint
 }  // namespace
 
 LdiPack::LdiPack(const std::filesystem::path& path) : path_(path) {
-  auto fail = [&](const std::string& what) -> void { throw LdiPackError(path_.string() + ": " + what); };
+  auto fail = [&](const std::string& what) -> void { throw Error(path_, "", what); };
   const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) fail(std::string("cannot open: ") + std::strerror(errno));
   struct stat st {};
@@ -360,7 +353,7 @@ LdiPack::LdiPack(const std::filesystem::path& path) : path_(path) {
           const IndexEntry entry = index[e];
           const std::string which = "LDI (tile " + std::to_string(t) + ", level " + std::to_string(l) + ", direction " +
                                     std::to_string(d) + ")";
-          auto block_fail = [&](const std::string& what) { fail(which + ": " + what); };
+          auto block_fail = [&](const std::string& what) { throw Error(path_, which, what); };
           if (entry.offset % 8 != 0 || entry.offset < data_start || entry.offset > size_ ||
               entry.bytes > size_ - entry.offset)
             block_fail("offset " + std::to_string(entry.offset) + " + " + std::to_string(entry.bytes) +
@@ -379,8 +372,9 @@ LdiPack::~LdiPack() { ::munmap(const_cast<std::uint8_t*>(data_), size_); }
 
 LdiView LdiPack::ldi(std::uint32_t tile, std::uint32_t level, std::uint32_t direction) const {
   if (tile >= info_.tiles || level >= info_.levels || direction >= info_.directions)
-    throw LdiPackError(path_.string() + ": no LDI (tile " + std::to_string(tile) + ", level " + std::to_string(level) +
-                       ", direction " + std::to_string(direction) + ")");
+    throw Error(path_, "",
+                "no LDI (tile " + std::to_string(tile) + ", level " + std::to_string(level) + ", direction " +
+                    std::to_string(direction) + ")");
   return views_[entry_index(info_, tile, level, direction)];
 }
 

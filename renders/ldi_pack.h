@@ -1,7 +1,8 @@
 // The LDI pack: every LDI of a tile set (tiles x levels x directions) in one versioned binary
 // file the real-time view memory-maps (docs/ldi-pack-format.md). Written through a temporary
 // file and a rename; opened by mmap with every offset and count checked against the file size
-// first, so a truncated or corrupt pack is refused with an LdiPackError naming the file.
+// first, so a truncated or corrupt pack is refused with an Error naming the file, the LDI at
+// fault and what is wrong.
 #pragma once
 
 #include <cstdint>
@@ -13,17 +14,12 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "renders/ldi.h"
 
 namespace wangscape {
 
 class AtomicFile;
-
-// A pack that cannot be read or written: the message names the file and what is wrong.
-class LdiPackError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 inline constexpr char kLdiPackMagic[8] = {'W', 'S', 'C', 'L', 'D', 'I', '\r', '\n'};
 inline constexpr std::uint32_t kLdiPackVersion = 1;
@@ -53,7 +49,7 @@ class LdiPackWriter {
   LdiPackWriter& operator=(const LdiPackWriter&) = delete;
 
   void add(const LdiImage& ldi);  // where it goes: ldi.frame.tile / level / direction
-  // Writes the index and the header, renames into place. Throws LdiPackError when an LDI is
+  // Writes the index and the header, renames into place. Throws Error when an LDI is
   // missing or a write failed.
   void commit();
 
@@ -69,7 +65,7 @@ class LdiPackWriter {
 // counts and depth-pixel ranges) before anything is handed out. Thread-safe after construction.
 class LdiPack {
  public:
-  explicit LdiPack(const std::filesystem::path& path);  // throws LdiPackError
+  explicit LdiPack(const std::filesystem::path& path);  // throws Error
   ~LdiPack();
   LdiPack(const LdiPack&) = delete;
   LdiPack& operator=(const LdiPack&) = delete;

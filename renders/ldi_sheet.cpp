@@ -23,8 +23,8 @@ Rgb8 layer_count_color(int layers) {
 ImageRgb8 draw_ldi_sheet(const LdiPack& pack, std::uint32_t tile, int cell) {
   const LdiPackInfo& info = pack.info();
   if (tile >= info.tiles)
-    throw LdiPackError(pack.path().string() + ": no tile " + std::to_string(tile) + " (the pack has " +
-                       std::to_string(info.tiles) + ")");
+    throw Error(pack.path(), "",
+                "no tile " + std::to_string(tile) + " (the pack has " + std::to_string(info.tiles) + ")");
   cell = std::max(cell, 8);
   const int columns = int(info.directions);
   ImageRgb8 sheet(2 * columns * cell, int(info.levels) * cell, Rgb8{24, 24, 24});

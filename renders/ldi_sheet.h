@@ -12,7 +12,7 @@ namespace wangscape {
 
 // Each LDI is scaled (nearest pixel) to fit a cell of cell_pixels x cell_pixels, so low levels
 // look blocky. The image is 2 * directions * cell_pixels wide and levels * cell_pixels high.
-// Throws LdiPackError when the pack has no tile `tile`.
+// Throws Error when the pack has no tile `tile`.
 ImageRgb8 draw_ldi_sheet(const LdiPack& pack, std::uint32_t tile, int cell_pixels = 160);
 
 // The heat map's color for a pixel with `layers` layers (0: empty).

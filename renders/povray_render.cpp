@@ -7,7 +7,7 @@
 #include <sstream>
 #include <vector>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 #include "renders/child_process.h"
 
 namespace wangscape {
@@ -40,13 +40,13 @@ PovrayRenderResult render_povray(const std::filesystem::path& dir_in, const Povr
   std::error_code ec;
   const auto dir = std::filesystem::absolute(dir_in, ec);
   if (!std::filesystem::is_regular_file(dir / "scene.ini"))
-    throw RenderError("render: '" + dir_in.string() + "' has no scene.ini (write one with `wangscape build`)");
+    throw Error("render: '" + dir_in.string() + "' has no scene.ini (write one with `wangscape build`)");
   const auto povray = find_povray(options.executable);
   if (povray.empty()) {
     const char* env = std::getenv("WANGSCAPE_POVRAY");
     const std::string wanted = !options.executable.empty() ? options.executable : (env && *env) ? env : "povray";
-    throw RenderError("render: POV-Ray ('" + wanted +
-                      "') is not installed or not in PATH; install it (apt install povray) or set WANGSCAPE_POVRAY");
+    throw Error("render: POV-Ray ('" + wanted +
+                "') is not installed or not in PATH; install it (apt install povray) or set WANGSCAPE_POVRAY");
   }
 
   PovrayRenderResult result{dir / options.image_name, dir / "povray.log", 0};
@@ -69,7 +69,7 @@ PovrayRenderResult render_povray(const std::filesystem::path& dir_in, const Povr
     exit =
         run_logged(args, log.temp_path(), dir, options.on_progress ? std::function<void()>(report_progress) : nullptr);
   } catch (const std::runtime_error& e) {
-    throw RenderError("render: POV-Ray: " + std::string(e.what()));
+    throw Error("render: POV-Ray: " + std::string(e.what()));
   }
   result.seconds = exit.seconds;
 
@@ -79,9 +79,9 @@ PovrayRenderResult render_povray(const std::filesystem::path& dir_in, const Povr
   if (!exited_ok || !std::filesystem::exists(image.temp_path())) {
     const std::string how = exit.describe();
     const std::string tail = log_written ? last_log_lines(result.log, 8) : std::string();
-    throw RenderError("render: POV-Ray " + how + " rendering '" + (dir / "scene.pov").string() + "'" +
-                      (exited_ok ? " without writing an image" : "") + "; log " + result.log.string() +
-                      (tail.empty() ? std::string() : ", last lines:" + tail));
+    throw Error("render: POV-Ray " + how + " rendering '" + (dir / "scene.pov").string() + "'" +
+                (exited_ok ? " without writing an image" : "") + "; log " + result.log.string() +
+                (tail.empty() ? std::string() : ", last lines:" + tail));
   }
   image.commit();
   return result;

@@ -8,7 +8,7 @@
 #include <functional>
 #include <string>
 
-#include "renders/render_error.h"
+#include "core/error.h"
 
 namespace wangscape {
 
@@ -31,7 +31,7 @@ struct PovrayRenderResult {
   double seconds = 0;           // wall-clock time of the POV-Ray run
 };
 
-// Renders DIR/scene.ini. Throws RenderError when the folder has no scene.ini, when POV-Ray
+// Renders DIR/scene.ini. Throws Error when the folder has no scene.ini, when POV-Ray
 // is not installed (naming the program looked for), or when it fails (quoting the last lines
 // of its log). The log is kept as DIR/povray.log in every case; no partial image is left.
 PovrayRenderResult render_povray(const std::filesystem::path& dir, const PovrayRenderOptions& options = {});

@@ -3,6 +3,8 @@
 // ground contact point at the origin, +x the direction it faces before yaw.
 #pragma once
 
+#include "core/error.h"
+
 #include <array>
 #include <cstdint>
 #include <stdexcept>
@@ -10,13 +12,6 @@
 #include <vector>
 
 namespace wangscape {
-
-// Thrown by templates/ (model generation, mesh loading); the message names the file or value at
-// fault and what was expected.
-class MeshError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 struct Material {
   std::string name;                   // e.g. "petal", "disk", "stem", "leaf"

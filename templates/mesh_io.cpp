@@ -99,7 +99,7 @@ void append_number(std::string& out, std::uint64_t value) {
 }
 
 void require_writable(const std::ostream& out, const char* format) {
-  if (!out) throw MeshError(std::string("writing ") + format + " failed (stream error)");
+  if (!out) throw Error(std::string("writing ") + format + " failed (stream error)");
 }
 
 // ---- OBJ ----
@@ -121,7 +121,7 @@ Mesh read_obj(std::istream& in, const std::string& source_name) {
   std::string line;
   std::size_t line_number = 0;
   const auto fail = [&](const std::string& message) {
-    throw MeshError(source_name + ":" + std::to_string(line_number) + ": " + message);
+    throw Error(source_name + ":" + std::to_string(line_number) + ": " + message);
   };
   const auto read_vector = [&](const std::vector<std::string_view>& tokens, const char* what) {
     if (tokens.size() < 4) fail(std::string("expected 3 numbers after '") + what + "'");
@@ -184,8 +184,8 @@ Mesh read_obj(std::istream& in, const std::string& source_name) {
     }
     // Everything else (vt, o, g, s, mtllib, l, ...) does not change the geometry we keep.
   }
-  if (in.bad()) throw MeshError(source_name + ": read error after line " + std::to_string(line_number));
-  if (corners.empty()) throw MeshError(source_name + ": no faces (expected 'f' lines)");
+  if (in.bad()) throw Error(source_name + ": read error after line " + std::to_string(line_number));
+  if (corners.empty()) throw Error(source_name + ": no faces (expected 'f' lines)");
 
   // One output vertex per distinct (position, normal) pair, or per position without normals.
   const bool file_has_normals =
@@ -329,8 +329,8 @@ class PlyAsciiReader {
     return type == PlyScalar::float32 ? double(single) : value;
   }
   [[noreturn]] void fail(const std::string& message) const {
-    throw MeshError(source_ + ":" + std::to_string(line_number_) + ": " + *element_ + " " + std::to_string(index_) +
-                    ": " + message);
+    throw Error(source_ + ":" + std::to_string(line_number_) + ": " + *element_ + " " + std::to_string(index_) + ": " +
+                message);
   }
 
  private:
@@ -379,7 +379,7 @@ class PlyBinaryReader {
     return 0;
   }
   [[noreturn]] void fail(const std::string& message) const {
-    throw MeshError(source_ + ": " + *element_ + " " + std::to_string(index_) + ": " + message);
+    throw Error(source_ + ": " + *element_ + " " + std::to_string(index_) + ": " + message);
   }
 
  private:
@@ -411,7 +411,7 @@ PlyHeader read_ply_header(std::istream& in, const std::string& source) {
   PlyHeader header;
   std::string line;
   const auto fail = [&](const std::string& message) {
-    throw MeshError(source + ":" + std::to_string(header.line_count) + ": " + message);
+    throw Error(source + ":" + std::to_string(header.line_count) + ": " + message);
   };
   const auto next_line = [&] {
     if (!std::getline(in, line)) fail("unexpected end of file in the PLY header (expected 'end_header')");
@@ -508,7 +508,7 @@ Mesh read_ply_body(Reader& reader, const PlyHeader& header, const std::string& s
         xyz[axis] = property_index(element, kAxes[axis]);
         nxyz[axis] = property_index(element, kNormalAxes[axis]);
         if (xyz[axis] < 0 || element.properties[xyz[axis]].is_list) {
-          throw MeshError(source + ": element vertex has no scalar property '" + kAxes[axis] + "'");
+          throw Error(source + ": element vertex has no scalar property '" + kAxes[axis] + "'");
         }
       }
       has_vertices = true;
@@ -520,7 +520,7 @@ Mesh read_ply_body(Reader& reader, const PlyHeader& header, const std::string& s
       list = property_index(element, "vertex_indices");
       if (list < 0) list = property_index(element, "vertex_index");
       if (list < 0 || !element.properties[list].is_list) {
-        throw MeshError(source + ": element face has no list property 'vertex_indices'");
+        throw Error(source + ": element face has no list property 'vertex_indices'");
       }
       material = property_index(element, "material");
       has_material = material >= 0 && !element.properties[material].is_list;
@@ -571,8 +571,8 @@ Mesh read_ply_body(Reader& reader, const PlyHeader& header, const std::string& s
       }
     }
   }
-  if (!has_vertices) throw MeshError(source + ": no 'element vertex' in the PLY header");
-  if (!has_faces || mesh.triangles.empty()) throw MeshError(source + ": no faces (expected 'element face')");
+  if (!has_vertices) throw Error(source + ": no 'element vertex' in the PLY header");
+  if (!has_faces || mesh.triangles.empty()) throw Error(source + ": no faces (expected 'element face')");
   mesh.materials = header.comment_materials;
   if (mesh.materials.empty()) mesh.materials.push_back(material_named("default"));
   finish_normals(mesh, has_normals);
@@ -670,16 +670,16 @@ Mesh load_mesh(const std::filesystem::path& path) {
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
   if (extension != ".obj" && extension != ".ply") {
-    throw MeshError(path.string() + ": unknown mesh format '" + extension + "' (expected .obj or .ply)");
+    throw Error(path.string() + ": unknown mesh format '" + extension + "' (expected .obj or .ply)");
   }
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw MeshError(path.string() + ": cannot open the file for reading");
+  if (!in) throw Error(path.string() + ": cannot open the file for reading");
   return extension == ".obj" ? read_obj(in, path.string()) : read_ply(in, path.string());
 }
 
 Mesh load_user_model(const std::filesystem::path& path, const UserModelOptions& options) {
   if (!(options.scale > 0) || !std::isfinite(options.scale)) {
-    throw MeshError(path.string() + ": model scale " + std::to_string(options.scale) + " is invalid: expected > 0");
+    throw Error(path.string() + ": model scale " + std::to_string(options.scale) + " is invalid: expected > 0");
   }
   Mesh mesh = load_mesh(path);
   // y-up to z-up is a quarter turn about +x: (x, y, z) -> (x, -z, y); it keeps handedness.

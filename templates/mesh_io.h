@@ -1,5 +1,5 @@
 // Reading and writing meshes as Wavefront OBJ and PLY, so a user model can replace the built-in
-// sunflower. Readers throw MeshError whose message names the file and the line (OBJ, ASCII PLY)
+// sunflower. Readers throw Error whose message names the file and the line (OBJ, ASCII PLY)
 // or element (binary PLY) at fault. Loaded meshes keep the file's coordinates: the caller decides
 // units and axes (Wangscape models are meters, z up, ground contact at the origin).
 #pragma once

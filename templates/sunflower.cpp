@@ -519,9 +519,9 @@ std::vector<Material> sunflower_materials() {
 
 SunflowerModel make_sunflower(std::uint64_t seed, int variant, std::size_t triangle_budget) {
   if (triangle_budget < kSunflowerMinimumTriangleBudget || triangle_budget > kSunflowerMaximumTriangleBudget) {
-    throw MeshError("sunflower triangle budget " + std::to_string(triangle_budget) + " is out of range: expected " +
-                    std::to_string(kSunflowerMinimumTriangleBudget) + " to " +
-                    std::to_string(kSunflowerMaximumTriangleBudget));
+    throw Error("sunflower triangle budget " + std::to_string(triangle_budget) + " is out of range: expected " +
+                std::to_string(kSunflowerMinimumTriangleBudget) + " to " +
+                std::to_string(kSunflowerMaximumTriangleBudget));
   }
   const SunflowerShape shape = draw_shape(seed, variant);
   const Tessellation tess = plan_tessellation(shape, triangle_budget);
@@ -563,7 +563,7 @@ SunflowerModel make_sunflower(std::uint64_t seed, int variant, std::size_t trian
 
 std::vector<SunflowerModel> make_sunflower_variants(const SunflowerOptions& options) {
   if (options.variant_count < 1) {
-    throw MeshError("sunflower variant count " + std::to_string(options.variant_count) + " is invalid: expected >= 1");
+    throw Error("sunflower variant count " + std::to_string(options.variant_count) + " is invalid: expected >= 1");
   }
   std::vector<SunflowerModel> models;
   models.reserve(options.variant_count);

@@ -48,11 +48,11 @@ struct SunflowerModel {
 };
 
 // One sunflower: variant `variant` (0-based) of the family drawn from `seed`, with at most
-// `triangle_budget` triangles (and at least ~99% of it). Throws MeshError for a budget outside
+// `triangle_budget` triangles (and at least ~99% of it). Throws Error for a budget outside
 // [kSunflowerMinimumTriangleBudget, kSunflowerMaximumTriangleBudget]. Thread-safe (pure function).
 SunflowerModel make_sunflower(std::uint64_t seed, int variant, std::size_t triangle_budget);
 
-// options.variant_count sunflowers, variants 0 .. count-1 of make_sunflower. Throws MeshError for a
+// options.variant_count sunflowers, variants 0 .. count-1 of make_sunflower. Throws Error for a
 // variant count below 1 or a budget make_sunflower rejects.
 std::vector<SunflowerModel> make_sunflower_variants(const SunflowerOptions& options);
 

@@ -29,17 +29,17 @@ std::string quoted(const std::filesystem::path& path) {
 
 DatasetPtr open_raster(const std::filesystem::path& path, gdal_support::ErrorCapture& capture) {
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw TerrainError("DEM file " + quoted(path) + " does not exist");
+  if (!std::filesystem::exists(path, ec)) throw Error("DEM file " + quoted(path) + " does not exist");
   if (std::filesystem::is_directory(path, ec))
-    throw TerrainError("DEM file " + quoted(path) + " is a directory, expected a DEM file");
+    throw Error("DEM file " + quoted(path) + " is a directory, expected a DEM file");
   DatasetPtr dataset(
       GDALDataset::FromHandle(GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!dataset)
-    throw TerrainError("cannot read DEM " + quoted(path) +
-                       ": not a raster format GDAL recognizes (expected USGS ASCII DEM, GeoTIFF, SRTM .hgt or "
-                       "ESRI ASCII grid)" +
-                       capture.suffix());
-  if (dataset->GetRasterCount() < 1) throw TerrainError("DEM " + quoted(path) + " has no raster band");
+    throw Error("cannot read DEM " + quoted(path) +
+                ": not a raster format GDAL recognizes (expected USGS ASCII DEM, GeoTIFF, SRTM .hgt or "
+                "ESRI ASCII grid)" +
+                capture.suffix());
+  if (dataset->GetRasterCount() < 1) throw Error("DEM " + quoted(path) + " has no raster band");
   return dataset;
 }
 
@@ -72,7 +72,7 @@ DemRaster read_dem(const std::filesystem::path& path) {
   dem.driver = dataset->GetDriver() != nullptr ? dataset->GetDriver()->GetDescription() : "";
   dem.width = dataset->GetRasterXSize();
   dem.height = dataset->GetRasterYSize();
-  if (dem.width <= 0 || dem.height <= 0) throw TerrainError("DEM " + quoted(path) + " has an empty raster");
+  if (dem.width <= 0 || dem.height <= 0) throw Error("DEM " + quoted(path) + " has an empty raster");
 
   const OGRSpatialReference* crs = dataset->GetSpatialRef();
   if (crs == nullptr || crs->IsEmpty()) {
@@ -83,10 +83,10 @@ DemRaster read_dem(const std::filesystem::path& path) {
       hint = ": an ESRI ASCII grid carries no CRS itself; expected its .prj file " + quoted(prj) +
              " (no CRS is assumed, to avoid placing the scene in the wrong place)";
     }
-    throw TerrainError("DEM " + quoted(path) + " has no coordinate reference system" + hint);
+    throw Error("DEM " + quoted(path) + " has no coordinate reference system" + hint);
   }
   if (!crs->IsGeographic() && !crs->IsProjected())
-    throw TerrainError("DEM " + quoted(path) + " has a CRS that is neither geographic nor projected");
+    throw Error("DEM " + quoted(path) + " has a CRS that is neither geographic nor projected");
   {
     char* wkt = nullptr;
     const char* options[] = {"FORMAT=WKT2_2019", "MULTILINE=NO", nullptr};
@@ -112,17 +112,17 @@ DemRaster read_dem(const std::filesystem::path& path) {
   dem.linear_unit_m = dem.geographic ? 1.0 : crs->GetLinearUnits();
 
   if (dataset->GetGeoTransform(dem.transform.data()) != CE_None)
-    throw TerrainError("DEM " + quoted(path) + " has no georeferencing (no geotransform)");
+    throw Error("DEM " + quoted(path) + " has no georeferencing (no geotransform)");
   if (dem.transform[1] * dem.transform[5] - dem.transform[2] * dem.transform[4] == 0)
-    throw TerrainError("DEM " + quoted(path) + " has a degenerate geotransform (zero pixel size)");
+    throw Error("DEM " + quoted(path) + " has a degenerate geotransform (zero pixel size)");
 
   GDALRasterBand* band = dataset->GetRasterBand(1);
   const char* unit = band->GetUnitType();
   dem.height_unit_in_file = (unit != nullptr && *unit != '\0') ? std::string(unit) : std::string(1, 'm');
   const auto unit_m = meters_per_height_unit(dem.height_unit_in_file);
   if (!unit_m)
-    throw TerrainError("DEM " + quoted(path) + " stores heights in unit '" + dem.height_unit_in_file +
-                       "', expected meters or feet");
+    throw Error("DEM " + quoted(path) + " stores heights in unit '" + dem.height_unit_in_file +
+                "', expected meters or feet");
 
   dem.heights.resize(std::size_t(dem.width) * std::size_t(dem.height));
   if (band->RasterIO(GF_Read, 0, 0, dem.width, dem.height, dem.heights.data(), dem.width, dem.height, GDT_Float32, 0, 0,
@@ -132,7 +132,7 @@ DemRaster read_dem(const std::filesystem::path& path) {
       why = "the header declares " + std::to_string(dem.width) + " x " + std::to_string(dem.height) +
             " cells but its elevation profiles cannot be read (the file is truncated, or is a header with no "
             "profiles)";
-    throw TerrainError("DEM " + quoted(path) + ": " + why + capture.suffix());
+    throw Error("DEM " + quoted(path) + ": " + why + capture.suffix());
   }
 
   int has_nodata = 0;
@@ -152,8 +152,8 @@ DemRaster read_dem(const std::filesystem::path& path) {
     hi = std::max(hi, double(h));
   }
   if (dem.nodata_count == dem.heights.size())
-    throw TerrainError("DEM " + quoted(path) + " has no valid heights: every one of its " +
-                       std::to_string(dem.heights.size()) + " cells is no-data");
+    throw Error("DEM " + quoted(path) + " has no valid heights: every one of its " +
+                std::to_string(dem.heights.size()) + " cells is no-data");
   dem.min_height = lo;
   dem.max_height = hi;
   return dem;
@@ -165,7 +165,7 @@ int gdal_checksum(const std::filesystem::path& path) {
   GDALRasterBand* band = dataset->GetRasterBand(1);
   const int sum = GDALChecksumImage(GDALRasterBand::ToHandle(band), 0, 0, band->GetXSize(), band->GetYSize());
   if (sum < 0 || !capture.messages().empty())
-    throw TerrainError("cannot compute the checksum of DEM " + quoted(path) + capture.suffix());
+    throw Error("cannot compute the checksum of DEM " + quoted(path) + capture.suffix());
   return sum;
 }
 

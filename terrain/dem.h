@@ -3,6 +3,8 @@
 // the file's own CRS and grid; terrain/terrain.h maps it into the scene's ENU frame.
 #pragma once
 
+#include "core/error.h"
+
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -13,12 +15,6 @@
 #include <vector>
 
 namespace wangscape {
-
-// The one error type of terrain/: the message names the file (or value) at fault and why.
-class TerrainError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 // A DEM as stored in its file: a raster of heights in the file's horizontal CRS.
 // Sample (col, row) stands at the center of GDAL pixel (col, row), whatever the file's
@@ -59,14 +55,14 @@ struct DemRaster {
 
 // Reads the first band of a DEM. No-data cells (the band's no-data value, and any NaN)
 // become NaN in `heights`, never a height. Vertical units in feet are converted to meters.
-// Throws TerrainError naming the file when GDAL cannot open or read it, when it has no
+// Throws Error naming the file when GDAL cannot open or read it, when it has no
 // CRS (an ESRI .asc grid needs its .prj beside it), no georeferencing, a rotated grid,
 // or no valid heights at all. GDAL's own messages never reach stderr; they end up in the
 // error's text.
 DemRaster read_dem(const std::filesystem::path& path);
 
 // GDAL's checksum of band 1 (GDALChecksumImage over the whole band), as `gdalinfo
-// -checksum` prints it. Throws TerrainError if GDAL cannot read the pixels.
+// -checksum` prints it. Throws Error if GDAL cannot read the pixels.
 int gdal_checksum(const std::filesystem::path& path);
 
 }  // namespace wangscape

@@ -1,5 +1,5 @@
 // GDAL plumbing shared by terrain/ sources (not part of the terrain API): one-time driver
-// registration, and capture of GDAL's error messages so they become TerrainError text
+// registration, and capture of GDAL's error messages so they become Error text
 // instead of chatter on stderr.
 #pragma once
 

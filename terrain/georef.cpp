@@ -63,8 +63,8 @@ bool nad27_grid_installed() {
 
 EnuFrame::EnuFrame(LatLon origin) : origin_(origin) {
   if (!(std::abs(origin.lat) <= 90.0) || !(std::abs(origin.lon) <= 180.0))
-    throw TerrainError("origin latitude/longitude " + fixed(origin.lat, 6) + ", " + fixed(origin.lon, 6) +
-                       " is out of range (expected latitude in [-90, 90], longitude in [-180, 180] degrees)");
+    throw Error("origin latitude/longitude " + fixed(origin.lat, 6) + ", " + fixed(origin.lon, 6) +
+                " is out of range (expected latitude in [-90, 90], longitude in [-180, 180] degrees)");
   local_.Reset(origin.lat, origin.lon, 0.0);
   double x = 0, y = 0;
   GeographicLib::UTMUPS::Forward(origin.lat, origin.lon, utm_zone_, utm_north_, x, y, gamma_, utm_scale_);
@@ -118,7 +118,7 @@ CrsToWgs84::CrsToWgs84(const DemRaster& dem) : impl_(std::make_unique<Impl>()) {
   impl_->center_crs = dem.crs_of((dem.width - 1) / 2.0, (dem.height - 1) / 2.0);
   OGRSpatialReference source;
   if (source.importFromWkt(dem.crs_wkt.c_str()) != OGRERR_NONE)
-    throw TerrainError("DEM '" + impl_->path + "': cannot parse its CRS" + capture.suffix());
+    throw Error("DEM '" + impl_->path + "': cannot parse its CRS" + capture.suffix());
   source.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   const OGRSpatialReference wgs84 = wgs84_geographic();
   const char* geogcs = source.GetAttrValue("GEOGCS");
@@ -149,7 +149,7 @@ CrsToWgs84::CrsToWgs84(const DemRaster& dem) : impl_(std::make_unique<Impl>()) {
   impl_->forward = make_transform(source, wgs84, OGRCoordinateTransformationOptions());
   if (impl_->forward) impl_->inverse.reset(impl_->forward->GetInverse());
   if (!impl_->forward || !impl_->inverse)
-    throw TerrainError("DEM '" + impl_->path + "': GDAL cannot transform its CRS to WGS 84" + capture.suffix());
+    throw Error("DEM '" + impl_->path + "': GDAL cannot transform its CRS to WGS 84" + capture.suffix());
   std::array<double, 5> lons, lats;
   for (int k = 0; k < 5; ++k) {
     const double col = k == 4 ? (dem.width - 1) / 2.0 : (k & 1 ? dem.width - 1 : 0);
@@ -159,7 +159,7 @@ CrsToWgs84::CrsToWgs84(const DemRaster& dem) : impl_(std::make_unique<Impl>()) {
     lats[k] = p[1];
   }
   if (!impl_->forward->Transform(5, lons.data(), lats.data()))
-    throw TerrainError("DEM '" + impl_->path + "': its corners do not transform to WGS 84" + capture.suffix());
+    throw Error("DEM '" + impl_->path + "': its corners do not transform to WGS 84" + capture.suffix());
   impl_->area = {180, 90, -180, -90};
   for (int k = 0; k < 5; ++k) {
     impl_->area[0] = std::min(impl_->area[0], lons[k]);
@@ -241,7 +241,7 @@ void CrsToWgs84::to_wgs84(std::span<double> x_to_lon, std::span<double> y_to_lat
       std::lock_guard lock(impl_->mutex);
       gdal_support::ErrorCapture capture;
       if (!impl_->forward->Transform(int(x_to_lon.size()), x_to_lon.data(), y_to_lat.data()))
-        throw TerrainError("DEM '" + impl_->path + "': coordinates do not transform to WGS 84" + capture.suffix());
+        throw Error("DEM '" + impl_->path + "': coordinates do not transform to WGS 84" + capture.suffix());
       return;
     }
   }

@@ -29,7 +29,7 @@ struct LatLon {
 // The local east-north-up frame around an origin. Thread-safe (const, no caches).
 class EnuFrame {
  public:
-  explicit EnuFrame(LatLon origin);  // WGS 84 degrees; throws TerrainError if out of range
+  explicit EnuFrame(LatLon origin);  // WGS 84 degrees; throws Error if out of range
 
   LatLon origin() const { return origin_; }
   // ENU x, y (meters) of a WGS 84 point on the ellipsoid.
@@ -65,7 +65,7 @@ class CrsToWgs84 {
   CrsToWgs84(CrsToWgs84&&) noexcept;
   CrsToWgs84& operator=(CrsToWgs84&&) noexcept;
 
-  // In place: CRS x, y -> WGS 84 lon, lat (degrees). Throws TerrainError on failure.
+  // In place: CRS x, y -> WGS 84 lon, lat (degrees). Throws Error on failure.
   void to_wgs84(std::span<double> x_to_lon, std::span<double> y_to_lat) const;
   // In place: WGS 84 lon, lat (degrees) -> CRS x, y.
   void from_wgs84(std::span<double> lon_to_x, std::span<double> lat_to_y) const;

@@ -25,7 +25,7 @@ std::vector<float> read_unit_band(GDALDataset& dataset, int index, const std::st
   const int w = dataset.GetRasterXSize(), h = dataset.GetRasterYSize();
   std::vector<float> values(std::size_t(w) * std::size_t(h));
   if (band->RasterIO(GF_Read, 0, 0, w, h, values.data(), w, h, GDT_Float32, 0, 0, nullptr) != CE_None)
-    throw TerrainError("cannot read the pixels of mask image '" + path + "'");
+    throw Error("cannot read the pixels of mask image '" + path + "'");
   const GDALDataType type = band->GetRasterDataType();
   const float full = type == GDT_Byte ? 255.0f : type == GDT_UInt16 ? 65535.0f : 1.0f;
   for (float& v : values) v /= full;
@@ -37,19 +37,19 @@ std::vector<float> read_unit_band(GDALDataset& dataset, int index, const std::st
 // ---------------------------------------------------------------------------------------
 // PaintedMask
 
-PaintedMask PaintedMask::load(const std::filesystem::path& image, const EnuRect& over) {
+PaintedMask PaintedMask::load(const std::filesystem::path& image, const Extent& over) {
   gdal_support::ErrorCapture capture;
   const std::string path = image.string();
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(image, ec)) throw TerrainError("mask image '" + path + "' does not exist");
+  if (!std::filesystem::is_regular_file(image, ec)) throw Error("mask image '" + path + "' does not exist");
   struct Closer {
     void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
   };
   std::unique_ptr<GDALDataset, Closer> dataset(
       GDALDataset::FromHandle(GDALOpenEx(image.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!dataset || dataset->GetRasterCount() < 1)
-    throw TerrainError("cannot read mask image '" + path + "': not an image GDAL recognizes (expected PNG)" +
-                       capture.suffix());
+    throw Error("cannot read mask image '" + path + "': not an image GDAL recognizes (expected PNG)" +
+                capture.suffix());
 
   PaintedMask mask;
   mask.width_ = dataset->GetRasterXSize();
@@ -80,7 +80,7 @@ bool PaintedMask::allows(double x, double y) const {
   return allowed_[std::size_t(py) * std::size_t(width_) + std::size_t(px)] != 0;
 }
 
-bool PaintedMask::pixel_range(const EnuRect& r, int& x0, int& y0, int& x1, int& y1, bool& clamped) const {
+bool PaintedMask::pixel_range(const Extent& r, int& x0, int& y0, int& x1, int& y1, bool& clamped) const {
   const double fx0 = (r.min_x - area_.min_x) / area_.width() * width_;
   const double fx1 = (r.max_x - area_.min_x) / area_.width() * width_;
   const double fy0 = (area_.max_y - r.max_y) / area_.height() * height_;
@@ -94,7 +94,7 @@ bool PaintedMask::pixel_range(const EnuRect& r, int& x0, int& y0, int& x1, int& 
   return true;
 }
 
-bool PaintedMask::allows_all(const EnuRect& r) const {
+bool PaintedMask::allows_all(const Extent& r) const {
   int x0, y0, x1, y1;
   bool clamped = false;
   if (!pixel_range(r, x0, y0, x1, y1, clamped) || clamped) return false;
@@ -104,7 +104,7 @@ bool PaintedMask::allows_all(const EnuRect& r) const {
   return true;
 }
 
-bool PaintedMask::allows_any(const EnuRect& r) const {
+bool PaintedMask::allows_any(const Extent& r) const {
   int x0, y0, x1, y1;
   bool clamped = false;
   if (!pixel_range(r, x0, y0, x1, y1, clamped)) return false;
@@ -122,9 +122,14 @@ std::size_t PaintedMask::allowed_count() const { return std::size_t(std::count(a
 TerrainFilter::TerrainFilter(const Terrain& terrain, TerrainFilterOptions options)
     : terrain_(&terrain), options_(std::move(options)) {
   if (options_.max_slope_deg && !(*options_.max_slope_deg >= 0 && *options_.max_slope_deg <= 90))
-    throw TerrainError("maximum slope " + number(*options_.max_slope_deg) + " is not an angle in [0, 90] degrees");
+    throw Error("maximum slope " + number(*options_.max_slope_deg) + " is not an angle in [0, 90] degrees");
   if (options_.max_height_m && !std::isfinite(*options_.max_height_m))
-    throw TerrainError("maximum height is not a finite number of meters");
+    throw Error("maximum height is not a finite number of meters");
+  if (options_.min_height_m && !std::isfinite(*options_.min_height_m))
+    throw Error("minimum height is not a finite number of meters");
+  if (options_.min_height_m && options_.max_height_m && *options_.min_height_m > *options_.max_height_m)
+    throw Error("minimum height " + number(*options_.min_height_m) + " m is above the maximum height " +
+                number(*options_.max_height_m) + " m");
   if (options_.mask_image) mask_ = PaintedMask::load(*options_.mask_image, terrain.extent());
 
   const DemRaster& dem = terrain.dem();
@@ -140,6 +145,7 @@ TerrainFilter::TerrainFilter(const Terrain& terrain, TerrainFilterOptions option
   const double col_x = y_row / det, col_y = -x_row / det, row_x = -y_col / det, row_y = x_col / det;
 
   const double max_height = options_.max_height_m.value_or(std::numeric_limits<double>::infinity());
+  const double min_height = options_.min_height_m.value_or(-std::numeric_limits<double>::infinity());
   const double max_tan2 = options_.max_slope_deg
                               ? std::pow(std::tan(*options_.max_slope_deg * std::numbers::pi / 180), 2)
                               : std::numeric_limits<double>::infinity();
@@ -150,24 +156,26 @@ TerrainFilter::TerrainFilter(const Terrain& terrain, TerrainFilterOptions option
       const float* p = &dem.heights[dem.index(col, row)];
       const float* q = p + dem.width;
       const float corners[4] = {p[0], p[1], q[0], q[1]};
-      bool all_data = true, some_low = false;
-      double highest = -std::numeric_limits<double>::infinity();
+      bool all_data = true;
+      double highest = -std::numeric_limits<double>::infinity(), lowest = -highest;
       for (float h : corners) {
         if (std::isnan(h)) {
           all_data = false;
           continue;
         }
         highest = std::max(highest, double(h));
-        some_low = some_low || h <= max_height;
+        lowest = std::min(lowest, double(h));
       }
+      // The bilinear ground of a cell takes every height between its lowest and highest corner.
+      const bool some_in_range = lowest <= max_height && highest >= min_height;
       std::uint8_t& flags = cell_flags_[std::size_t(row) * std::size_t(cells_x_) + std::size_t(col)];
-      if (some_low) {
-        flags |= kSomeLow;
+      if (some_in_range) {
+        flags |= kSomeInRange;
         ++maybe_cells_;
       }
       if (!all_data) continue;
       flags |= kData;
-      if (highest <= max_height) flags |= kLow;
+      if (highest <= max_height && lowest >= min_height) flags |= kInRange;
       // The gradient at each corner, from the cell's edges that meet there.
       const double along_top = p[1] - p[0], along_bottom = q[1] - q[0];
       const double down_left = q[0] - p[0], down_right = q[1] - p[1];
@@ -178,18 +186,18 @@ TerrainFilter::TerrainFilter(const Terrain& terrain, TerrainFilterOptions option
         const double dz_dx = g[0] * col_x + g[1] * row_x, dz_dy = g[0] * col_y + g[1] * row_y;
         steepest = std::max(steepest, dz_dx * dz_dx + dz_dy * dz_dy);
       }
-      if (some_low) min_tan2 = std::min(min_tan2, steepest);
+      if (some_in_range) min_tan2 = std::min(min_tan2, steepest);
       if (steepest > max_tan2) continue;
       flags |= kFlat;
-      if (flags & kLow) ++passing_cells_;
+      if (flags & kInRange) ++passing_cells_;
     }
   min_cell_slope_deg_ = std::atan(std::sqrt(min_tan2)) * 180 / std::numbers::pi;
 }
 
-bool TerrainFilter::touched_cells(const EnuRect& tile, bool clamp, SampleBox& box) const {
-  EnuRect rect = tile;
+bool TerrainFilter::touched_cells(const Extent& tile, bool clamp, SampleBox& box) const {
+  Extent rect = tile;
   if (clamp) {
-    const EnuRect e = terrain_->extent();
+    const Extent e = terrain_->extent();
     rect = {std::max(rect.min_x, e.min_x), std::max(rect.min_y, e.min_y), std::min(rect.max_x, e.max_x),
             std::min(rect.max_y, e.max_y)};
     if (!(rect.min_x <= rect.max_x && rect.min_y <= rect.max_y)) return false;
@@ -215,9 +223,9 @@ bool TerrainFilter::touched_cells(const EnuRect& tile, bool clamp, SampleBox& bo
   return true;
 }
 
-bool TerrainFilter::box_below(const SampleBox& box, double max_height) const {
+bool TerrainFilter::box_within(const SampleBox& box, double min_height, double max_height) const {
   // Along any row or column line the bilinear surface is linear between grid lines, so its
-  // maximum over an axis-aligned box is reached where the box's edges or corners meet the
+  // extremes over an axis-aligned box is reached where the box's edges or corners meet the
   // grid lines (or at grid nodes inside). The box is padded by a hair: the tile's image
   // in sample coordinates is a slightly bent quadrilateral inside it.
   constexpr double kPad = 1e-6;
@@ -236,51 +244,54 @@ bool TerrainFilter::box_below(const SampleBox& box, double max_height) const {
   for (double row : rows)
     for (double col : cols) {
       const auto h = terrain_->height_at_sample(col, row);
-      if (!h || *h > max_height) return false;
+      if (!h || *h > max_height || *h < min_height) return false;
     }
   return true;
 }
 
-bool TerrainFilter::tile_passes(const EnuRect& tile) const {
+bool TerrainFilter::tile_passes(const Extent& tile) const {
   SampleBox box;
   if (!touched_cells(tile, false, box)) return false;
-  bool all_low = true;
+  bool all_in_range = true;
   for (int row = box.r0; row <= box.r1; ++row)
     for (int col = box.c0; col <= box.c1; ++col) {
       const std::uint8_t flags = cell_flags_[std::size_t(row) * std::size_t(cells_x_) + std::size_t(col)];
       if ((flags & (kData | kFlat)) != (kData | kFlat)) return false;
-      all_low = all_low && (flags & kLow);
+      all_in_range = all_in_range && (flags & kInRange);
     }
-  // Cells whose corners are all low need nothing more; otherwise the tile's own ground decides.
-  if (!all_low && !box_below(box, options_.max_height_m.value_or(std::numeric_limits<double>::infinity())))
+  // Cells whose corners are all within the limits need nothing more; otherwise the tile's own
+  // ground decides.
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  if (!all_in_range &&
+      !box_within(box, options_.min_height_m.value_or(-kInfinity), options_.max_height_m.value_or(kInfinity)))
     return false;
   return !mask_ || mask_->allows_all(tile);
 }
 
-bool TerrainFilter::tile_may_pass(const EnuRect& tile) const {
+bool TerrainFilter::tile_may_pass(const Extent& tile) const {
   SampleBox box;
   if (!touched_cells(tile, true, box)) return false;
   bool some = false;
   for (int row = box.r0; row <= box.r1 && !some; ++row)
     for (int col = box.c0; col <= box.c1 && !some; ++col)
-      some = (cell_flags_[std::size_t(row) * std::size_t(cells_x_) + std::size_t(col)] & kSomeLow) != 0;
+      some = (cell_flags_[std::size_t(row) * std::size_t(cells_x_) + std::size_t(col)] & kSomeInRange) != 0;
   return some && (!mask_ || mask_->allows_any(tile));
 }
 
 bool TerrainFilter::point_passes(double x, double y) const {
   if (!options_.max_slope_deg) {  // the common case needs no gradient
     const auto h = terrain_->height(x, y);
-    if (!h || (options_.max_height_m && *h > *options_.max_height_m)) return false;
+    if (!h || !height_in_range(*h)) return false;
   } else {
     const auto s = terrain_->sample(x, y);
-    if (!s || (options_.max_height_m && s->height > *options_.max_height_m)) return false;
+    if (!s || !height_in_range(s->height)) return false;
     if (s->slope_degrees() > *options_.max_slope_deg) return false;
   }
   return !mask_ || mask_->allows(x, y);
 }
 
 bool TerrainFilter::point_passes(double x, double y, double z) const {
-  if (options_.max_height_m && z > *options_.max_height_m) return false;
+  if (!height_in_range(z)) return false;
   if (options_.max_slope_deg) {
     const auto slope = terrain_->slope_degrees(x, y);
     if (!slope || *slope > *options_.max_slope_deg) return false;
@@ -296,18 +307,19 @@ void TerrainFilter::check_satisfiable() const {
   range += number(dem.max_height);
   range += " m)";
   if (options_.max_height_m && *options_.max_height_m < dem.min_height)
-    throw TerrainError("maximum height " + number(*options_.max_height_m) + " m is below every height of DEM '" +
-                       dem.path.string() + "' " + range + ": no tile would be instantiated");
+    throw Error("maximum height " + number(*options_.max_height_m) + " m is below every height of DEM '" +
+                dem.path.string() + "' " + range + ": no tile would be instantiated");
+  if (options_.min_height_m && *options_.min_height_m > dem.max_height)
+    throw Error("minimum height " + number(*options_.min_height_m) + " m is above every height of DEM '" +
+                dem.path.string() + "' " + range + ": no tile would be instantiated");
   if (mask_ && mask_->allowed_count() == 0)
-    throw TerrainError("mask image '" + options_.mask_image->string() +
-                       "' allows flowers nowhere (no pixel is white): no tile would be instantiated");
-  if (maybe_cells_ == 0)
-    throw TerrainError("no ground of DEM '" + dem.path.string() + "' passes the height test " + range);
+    throw Error("mask image '" + options_.mask_image->string() +
+                "' allows flowers nowhere (no pixel is white): no tile would be instantiated");
+  if (maybe_cells_ == 0) throw Error("no ground of DEM '" + dem.path.string() + "' passes the height test " + range);
   if (options_.max_slope_deg && passing_cells_ == 0 && *options_.max_slope_deg < min_cell_slope_deg_)
-    throw TerrainError("maximum slope " + number(*options_.max_slope_deg) +
-                       " deg is below the slope of every cell of DEM '" + dem.path.string() +
-                       "' (the flattest cell reaches " + number(min_cell_slope_deg_) +
-                       " deg): no tile would be instantiated");
+    throw Error("maximum slope " + number(*options_.max_slope_deg) + " deg is below the slope of every cell of DEM '" +
+                dem.path.string() + "' (the flattest cell reaches " + number(min_cell_slope_deg_) +
+                " deg): no tile would be instantiated");
 }
 
 }  // namespace wangscape

@@ -19,30 +19,31 @@ namespace wangscape {
 // it is light (luminance >= 50%) and opaque (alpha >= 50%, when there is alpha).
 class PaintedMask {
  public:
-  // Throws TerrainError naming the file if GDAL cannot read it.
-  static PaintedMask load(const std::filesystem::path& image, const EnuRect& over);
+  // Throws Error naming the file if GDAL cannot read it.
+  static PaintedMask load(const std::filesystem::path& image, const Extent& over);
 
   int width() const { return width_; }
   int height() const { return height_; }
   // The pixel under ENU (x, y) allows flowers; false outside the rectangle.
   bool allows(double x, double y) const;
   // Every pixel the rectangle touches allows flowers (false if it reaches outside).
-  bool allows_all(const EnuRect& r) const;
+  bool allows_all(const Extent& r) const;
   // Some pixel the rectangle touches allows flowers.
-  bool allows_any(const EnuRect& r) const;
+  bool allows_any(const Extent& r) const;
   std::size_t allowed_count() const;
 
  private:
   // Pixel ranges the rectangle touches, clamped; false if it misses the image.
-  bool pixel_range(const EnuRect& r, int& x0, int& y0, int& x1, int& y1, bool& clamped) const;
+  bool pixel_range(const Extent& r, int& x0, int& y0, int& x1, int& y1, bool& clamped) const;
 
   std::vector<std::uint8_t> allowed_;  // row-major, row 0 = north
   int width_ = 0, height_ = 0;
-  EnuRect area_;
+  Extent area_;
 };
 
 struct TerrainFilterOptions {
-  std::optional<double> max_height_m;               // orthometric meters
+  std::optional<double> max_height_m;               // orthometric meters; no flowers above
+  std::optional<double> min_height_m;               // orthometric meters; no flowers below
   std::optional<double> max_slope_deg;              // degrees from horizontal
   std::optional<std::filesystem::path> mask_image;  // painted mask over the terrain's extent
 };
@@ -53,8 +54,8 @@ struct TerrainFilterOptions {
 //
 // A tile passes when every DEM cell it touches has data at its four corners and a slope
 // of at most max_slope at each corner (the bilinear slope is largest at a corner), and
-// the ground over the tile is nowhere above max_height: exactly, with the bilinear
-// surface's maximum over the tile's box in sample coordinates. The slope table converts
+// the ground over the tile is nowhere above max_height nor below min_height: exactly, with the
+// bilinear surface's extremes over the tile's box in sample coordinates. The slope table converts
 // DEM gradients to ENU with the Jacobian at the DEM center: exact for 7.5' quadrangles,
 // within ~1% of the slope's tangent over a 1-degree DEM.
 class TerrainFilter {
@@ -63,16 +64,16 @@ class TerrainFilter {
 
   // All of the tile's ground passes: every DEM cell the rectangle touches passes, and
   // every mask pixel it touches allows flowers. (Seed 003: instantiate only these tiles.)
-  bool tile_passes(const EnuRect& tile) const;
+  bool tile_passes(const Extent& tile) const;
   // Some of the tile's ground may pass (a cheap superset, for fair edges, where each
   // point is then tested with point_passes).
-  bool tile_may_pass(const EnuRect& tile) const;
+  bool tile_may_pass(const Extent& tile) const;
   // The ground at ENU (x, y) has data, is low enough, flat enough and painted white.
   bool point_passes(double x, double y) const;
   // The same, for a point whose ground height z (meters) is already known.
   bool point_passes(double x, double y, double z) const;
 
-  // Throws TerrainError explaining why no ground can pass (a height threshold below every
+  // Throws Error explaining why no ground can pass (a height threshold below every
   // height of the DEM, a slope limit below every slope, an all-black mask), so a scatter
   // reports that instead of writing an empty result.
   void check_satisfiable() const;
@@ -89,17 +90,21 @@ class TerrainFilter {
   };
   // False if a corner of the rectangle is off the lattice or the DEM (clamp false), or the
   // rectangle misses the DEM (clamp true: it is first cut to the terrain's extent).
-  bool touched_cells(const EnuRect& tile, bool clamp, SampleBox& box) const;
-  // The bilinear ground over the box has data and is nowhere above max_height (exact).
-  bool box_below(const SampleBox& box, double max_height) const;
+  bool touched_cells(const Extent& tile, bool clamp, SampleBox& box) const;
+  bool height_in_range(double z) const {
+    return (!options_.max_height_m || z <= *options_.max_height_m) &&
+           (!options_.min_height_m || z >= *options_.min_height_m);
+  }
+  // The bilinear ground over the box has data and stays within [min_height, max_height] (exact).
+  bool box_within(const SampleBox& box, double min_height, double max_height) const;
 
   const Terrain* terrain_;
   TerrainFilterOptions options_;
   std::optional<PaintedMask> mask_;
   int cells_x_ = 0, cells_y_ = 0;
   // Per DEM cell: all four corners have data, its slope is within the limit, all corners
-  // are low enough, some corner (with data) is low enough.
-  enum CellFlag : std::uint8_t { kData = 1, kFlat = 2, kLow = 4, kSomeLow = 8 };
+  // are within the height limits, some of its ground (between its corners) may be.
+  enum CellFlag : std::uint8_t { kData = 1, kFlat = 2, kInRange = 4, kSomeInRange = 8 };
   std::vector<std::uint8_t> cell_flags_;
   std::size_t passing_cells_ = 0, maybe_cells_ = 0;
   double min_cell_slope_deg_ = 0;

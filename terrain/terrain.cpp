@@ -14,8 +14,8 @@ constexpr double kLatticeStepInSamples = 8.0;
 
 const DemRaster& checked(const DemRaster& dem) {
   if (dem.width < 2 || dem.height < 2)
-    throw TerrainError("DEM '" + dem.path.string() + "' has " + std::to_string(dem.width) + " x " +
-                       std::to_string(dem.height) + " samples; at least 2 x 2 are needed to interpolate heights");
+    throw Error("DEM '" + dem.path.string() + "' has " + std::to_string(dem.width) + " x " +
+                std::to_string(dem.height) + " samples; at least 2 x 2 are needed to interpolate heights");
   return dem;
 }
 
@@ -147,8 +147,7 @@ void Terrain::build_lattice() {
   lattice_.resize(count);
   for (std::size_t k = 0; k < count; ++k) {
     if (!std::isfinite(xs[k]) || !std::isfinite(ys[k]))
-      throw TerrainError("DEM '" + dem_.path.string() +
-                         "': part of its area does not transform between its CRS and WGS 84");
+      throw Error("DEM '" + dem_.path.string() + "': part of its area does not transform between its CRS and WGS 84");
     lattice_[k] = {xs[k], ys[k]};
   }
 }

@@ -16,19 +16,11 @@
 #include <span>
 #include <vector>
 
+#include "core/extent.h"
 #include "terrain/dem.h"
 #include "terrain/georef.h"
 
 namespace wangscape {
-
-// An axis-aligned rectangle in ENU meters (terrain/ cannot use generator's Extent; cli/
-// converts).
-struct EnuRect {
-  double min_x = 0, min_y = 0, max_x = 0, max_y = 0;
-  double width() const { return max_x - min_x; }
-  double height() const { return max_y - min_y; }
-  bool contains(double x, double y) const { return x >= min_x && x <= max_x && y >= min_y && y <= max_y; }
-};
 
 struct TerrainOptions {
   std::optional<LatLon> origin;  // WGS 84 degrees; default: the DEM's center
@@ -44,7 +36,7 @@ struct GroundSample {
 
 class Terrain {
  public:
-  // Reads the DEM (see read_dem) and sets up the ENU frame. Throws TerrainError.
+  // Reads the DEM (see read_dem) and sets up the ENU frame. Throws Error.
   static Terrain load(const std::filesystem::path& path, const TerrainOptions& options = {});
   Terrain(DemRaster dem, const TerrainOptions& options);
 
@@ -55,7 +47,7 @@ class Terrain {
   TerrainGeoreference georeference() const;
 
   // ENU bounding box of the DEM samples that have data, meters.
-  EnuRect extent() const { return extent_; }
+  Extent extent() const { return extent_; }
   // DEM sample spacing in meters along its columns and rows (at the DEM center).
   std::array<double, 2> spacing_m() const { return spacing_m_; }
 
@@ -149,7 +141,7 @@ class Terrain {
   DemRaster dem_;
   CrsToWgs84 crs_;
   EnuFrame frame_;
-  EnuRect extent_;
+  Extent extent_;
   std::array<double, 2> spacing_m_{0, 0};
   double max_col_ = 0, max_row_ = 0;
 

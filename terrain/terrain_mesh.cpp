@@ -26,12 +26,11 @@ constexpr std::uint32_t kNone = ~0u;
 TerrainMesh make_terrain_mesh(const Terrain& terrain, const TerrainMeshOptions& options) {
   const DemRaster& dem = terrain.dem();
   if (options.max_vertices != 0 && options.max_vertices < 3)
-    throw TerrainError("terrain mesh vertex budget " + std::to_string(options.max_vertices) +
-                       " is too small (at least 3)");
+    throw Error("terrain mesh vertex budget " + std::to_string(options.max_vertices) + " is too small (at least 3)");
   const std::size_t valid = dem.cell_count() - dem.nodata_count;
   double fraction = 1.0;  // of the samples inside the crop, a first guess
   if (options.crop) {
-    const EnuRect e = terrain.extent(), c = *options.crop;
+    const Extent e = terrain.extent(), c = *options.crop;
     const double w = std::min(e.max_x, c.max_x) - std::max(e.min_x, c.min_x);
     const double h = std::min(e.max_y, c.max_y) - std::max(e.min_y, c.min_y);
     fraction = (w > 0 && h > 0) ? w * h / (e.width() * e.height()) : 0.0;
@@ -97,8 +96,8 @@ TerrainMesh make_terrain_mesh(const Terrain& terrain, const TerrainMeshOptions& 
         }
       }
     if (mesh.triangles.empty())
-      throw TerrainError("terrain mesh of DEM '" + dem.path.string() + "' has no triangle" +
-                         (options.crop ? std::string(" inside the crop rectangle") : std::string()));
+      throw Error("terrain mesh of DEM '" + dem.path.string() + "' has no triangle" +
+                  (options.crop ? std::string(" inside the crop rectangle") : std::string()));
 
     // Normals: central differences over the neighbouring vertices (one-sided at borders).
     mesh.normals.assign(mesh.positions.size(), {0, 0, 1});

@@ -21,13 +21,13 @@ struct TerrainMesh {
 
 struct TerrainMeshOptions {
   std::size_t max_vertices = 0;  // 0 = no limit (every DEM sample)
-  std::optional<EnuRect> crop;   // keep only samples inside, ENU meters
+  std::optional<Extent> crop;    // keep only samples inside, ENU meters
 };
 
 // Vertices stand on DEM samples (every `stride`-th column and row, plus the last ones),
 // at their exact ENU positions; normals come from the neighbouring vertices. A grid quad
 // becomes two triangles when its four corners have data, one when three do. Throws
-// TerrainError if the crop leaves no triangle or the budget is below 3 vertices.
+// Error if the crop leaves no triangle or the budget is below 3 vertices.
 TerrainMesh make_terrain_mesh(const Terrain& terrain, const TerrainMeshOptions& options = {});
 
 }  // namespace wangscape

@@ -1,6 +1,6 @@
 # The Blender add-on (templates/blender_addon/wangscape_import): embedded into
-# wangscape_templates (blender_addon_files()) and packed as <build>/wangscape_import.zip,
-# installable through Edit > Preferences > Add-ons > Install.
+# wangscape_templates (blender_addon_files()); exporters/zip_writer.h packs it as the
+# wangscape_import.zip every Blender export carries (Edit > Preferences > Add-ons > Install).
 set(addon_dir "${CMAKE_CURRENT_SOURCE_DIR}/blender_addon")
 set(addon_files wangscape_import/__init__.py wangscape_import/scene_builder.py)
 list(TRANSFORM addon_files PREPEND "${addon_dir}/" OUTPUT_VARIABLE addon_paths)
@@ -13,10 +13,3 @@ add_custom_command(OUTPUT "${addon_cpp}"
   COMMENT "Embedding the Blender add-on" VERBATIM)
 target_sources(wangscape_templates PRIVATE "${addon_cpp}")
 
-set(addon_zip "${PROJECT_BINARY_DIR}/wangscape_import.zip")
-add_custom_command(OUTPUT "${addon_zip}"
-  COMMAND ${CMAKE_COMMAND} -E tar cf "${addon_zip}" --format=zip ${addon_files}
-  WORKING_DIRECTORY "${addon_dir}"
-  DEPENDS ${addon_paths}
-  COMMENT "Packing wangscape_import.zip (Blender add-on)" VERBATIM)
-add_custom_target(blender_addon_zip ALL DEPENDS "${addon_zip}")

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "exporters/scene.h"
+#include "scene/scene.h"
 
 namespace wangscape::testing {
 
@@ -137,7 +137,6 @@ inline Scene make_test_scene(std::uint64_t instance_count, int cells = 32, float
   scene.name = "blender_test";
   scene.terrain = test_terrain(cells, size);
   scene.models = test_models();
-  scene.instance_count = instance_count;
   const auto variants = static_cast<std::uint64_t>(scene.models.size());
   scene.instances = [=](const std::function<void(const InstanceBatch&)>& sink) {
     InstanceBatch batch;

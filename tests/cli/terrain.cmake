@@ -1,5 +1,5 @@
-# wangscape terrain info, run for real on the shared DEMs and their edge cases.
-set(_terrain_dem "${PROJECT_SOURCE_DIR}/../shared/data/dem")
+# wangscape terrain info, run for real on the test DEMs (tests/data/dem) and their edge cases.
+set(_terrain_dem "${PROJECT_SOURCE_DIR}/tests/data/dem")
 
 # terrain_cli_test(NAME CODE ARGS [OUT regex] [ERR regex]): ARGS separated by '|'.
 function(terrain_cli_test name code args)
@@ -18,16 +18,16 @@ function(terrain_cli_test name code args)
   set_tests_properties(cli_terrain_${name} PROPERTIES LABELS "cli;terrain" TIMEOUT 120)
 endfunction()
 
-terrain_cli_test(info_sainte_helens 0 "terrain|info|${_terrain_dem}/SainteHelens.dem"
+terrain_cli_test(info_sainte_helens 0 "terrain|info|${PROJECT_SOURCE_DIR}/data/SainteHelens.dem"
   OUT "crs: [^\n]*projected.*datum: +NAD27.*size: +327 x 468 samples.*spacing: +30 x 30 m.*heights: +682\\.00 \\.\\. 2543\\.00 m.*no-data cells: +4151 of 153036.*origin: +lat 46\\.18[0-9]+, lon -122\\.18[0-9]+.*utm zone: +10N.*convergence: +0\\.58[0-9]+ deg.*datum note: +NAD27 -> WGS 84[^\n]*accurate to about"
   ERR "^$")
 terrain_cli_test(info_embedded_default 0 "terrain|info|${PROJECT_SOURCE_DIR}/data/SainteHelens.dem"
   OUT "size: +327 x 468 samples.*heights: +682\\.00 \\.\\. 2543\\.00 m")
-terrain_cli_test(info_json 0 "terrain|info|--json|${_terrain_dem}/SainteHelens.dem"
+terrain_cli_test(info_json 0 "terrain|info|--json|${PROJECT_SOURCE_DIR}/data/SainteHelens.dem"
   OUT "\"width\": 327,.*\"height\": 468,.*\"min_height_m\": 682\\.0,.*\"max_height_m\": 2543\\.0,.*\"nodata_count\": 4151,.*\"utm_zone\": 10,.*\"source_crs_wkt\": \"PROJCRS")
 terrain_cli_test(info_boulder 0 "terrain|info|${_terrain_dem}/SRTMGL3_boulder_CO_240x144.asc"
   OUT "crs: [^\n]*geographic.*size: +240 x 144 samples.*heights: +1943\\.00 \\.\\. 3286\\.00 m.*no-data cells: +0 of 34560.*utm zone: +13N.*datum note: +WGS 84 geographic already")
-terrain_cli_test(info_origin 0 "terrain|info|--origin|46.2,-122.2|${_terrain_dem}/SainteHelens.dem"
+terrain_cli_test(info_origin 0 "terrain|info|--origin|46.2,-122.2|${PROJECT_SOURCE_DIR}/data/SainteHelens.dem"
   OUT "origin: +lat 46\\.20000000, lon -122\\.20000000")
 terrain_cli_test(info_edge_39109h1 0 "terrain|info|${_terrain_dem}/edge-cases/39109h1_truncated.dem"
   OUT "size: +2 x 1411 samples.*heights: +1687\\.4[0-9] \\.\\. 1716\\.9[0-9] m.*utm zone: +12N")
@@ -42,8 +42,8 @@ terrain_cli_test(info_missing_file 1 "terrain|info|${CLI_SCRATCH}/no_such.dem"
 terrain_cli_test(info_not_a_dem 1 "terrain|info|${PROJECT_SOURCE_DIR}/data/README.md"
   ERR "README\\.md': not a raster format GDAL recognizes")
 terrain_cli_test(info_no_file 2 "terrain|info")
-terrain_cli_test(info_bad_origin 2 "terrain|info|--origin|95,0|${_terrain_dem}/SainteHelens.dem" ERR "LAT,LON")
-terrain_cli_test(info_unknown_option 2 "terrain|info|--bogus|${_terrain_dem}/SainteHelens.dem")
+terrain_cli_test(info_bad_origin 2 "terrain|info|--origin|95,0|${PROJECT_SOURCE_DIR}/data/SainteHelens.dem" ERR "LAT,LON")
+terrain_cli_test(info_unknown_option 2 "terrain|info|--bogus|${PROJECT_SOURCE_DIR}/data/SainteHelens.dem")
 terrain_cli_test(no_subcommand 2 "terrain")
 
 # wangscape scatter --dem (tests/cli/terrain/scatter_check.cmake, one MODE per test).

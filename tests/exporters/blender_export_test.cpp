@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 #include "exporters/export_support.h"
 #include "tests/blender/test_scene.h"
 
@@ -113,15 +113,22 @@ TEST(BlenderExport, SameSceneSameBytes) {
   std::filesystem::remove_all(b);
 }
 
-TEST(BlenderExport, CountMismatchIsRefusedWithoutManifest) {
-  const auto folder = scratch("mismatch");
-  Scene scene = testing::make_test_scene(100, 4, 10.0f);
-  scene.instance_count = 101;
+TEST(BlenderExport, StreamFailingMidwayLeavesNoManifestNorArrays) {
+  const auto folder = scratch("midway");
+  Scene scene = testing::make_test_scene(10000, 4, 10.0f, 1000);
+  const InstanceStream whole = scene.instances;
+  scene.instances = [whole](const InstanceSink& sink) {
+    int batches = 0;
+    whole([&](const InstanceBatch& batch) {
+      if (++batches == 3) throw Error("placement failed on purpose");
+      sink(batch);
+    });
+  };
   try {
     export_blender(scene, folder);
-    FAIL() << "expected ExportError";
-  } catch (const ExportError& error) {
-    EXPECT_NE(std::string(error.what()).find("announced 101"), std::string::npos) << error.what();
+    FAIL() << "expected Error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("on purpose"), std::string::npos) << error.what();
   }
   EXPECT_FALSE(std::filesystem::exists(folder / "manifest.json"));
   EXPECT_FALSE(std::filesystem::exists(folder / "instances_x.f32"));  // no partial outputs
@@ -131,7 +138,7 @@ TEST(BlenderExport, CountMismatchIsRefusedWithoutManifest) {
 TEST(BlenderExport, VariantOutsideModelsIsRefused) {
   Scene scene = testing::make_test_scene(10, 4, 10.0f);
   scene.models.resize(2);  // instances use variants 0..2
-  EXPECT_THROW(export_blender(scene, scratch("variant")), ExportError);
+  EXPECT_THROW(export_blender(scene, scratch("variant")), Error);
 }
 
 TEST(BlenderExport, BlenderGisKeysFromGeoreference) {

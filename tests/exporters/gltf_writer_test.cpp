@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 #include "tests/blender/test_scene.h"
 
 namespace wangscape {
@@ -197,7 +197,7 @@ TEST(GltfWriter, MalformedMeshIsRefusedWithoutOutput) {
   scene.models[1].triangles.push_back({0, 1, 100000});
   const auto path = scratch("broken.glb");
   std::filesystem::remove(path);
-  EXPECT_THROW(write_gltf(scene, path), ExportError);
+  EXPECT_THROW(write_gltf(scene, path), Error);
   EXPECT_FALSE(std::filesystem::exists(path));
 }
 

@@ -6,8 +6,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "exporters/filled_tileset_json.h"
 #include "exporters/point_writer.h"
+#include "scene/filled_tileset_file.h"
 
 namespace wangscape {
 namespace {
@@ -54,11 +54,11 @@ TEST(FilledTilesetJson, NamesTheTileAndPointAtFault) {
   try {
     filled_tileset_from_json(doc, "bad.json");
     FAIL() << "accepted x = 1.5";
-  } catch (const ExportError& e) {
+  } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("'bad.json': tile 2 point 0: \"x\""), std::string::npos) << e.what();
   }
   Json plain = tileset_to_json(builtin_tileset("cohen8"));
-  EXPECT_THROW(filled_tileset_from_json(plain, "plain.json"), ExportError);
+  EXPECT_THROW(filled_tileset_from_json(plain, "plain.json"), Error);
 }
 
 InstanceBatch sample_batch() {

@@ -1,11 +1,11 @@
-#include "exporters/tileset_json.h"
+#include "scene/tileset_file.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <fstream>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 #include "exporters/image_io.h"
 #include "generator/tiling_preview.h"
 
@@ -134,7 +134,7 @@ TEST(ImageIo, PngRoundTripsAndFailuresLeaveNoFile) {
   EXPECT_NE(error_of([&] { write_image(unknown, image); }).find("cannot write '" + unknown.string() + "'"),
             std::string::npos);
   EXPECT_FALSE(std::filesystem::exists(unknown));
-  EXPECT_THROW(write_image("/nonexistent/dir/map.png", image), ExportError);
+  EXPECT_THROW(write_image("/nonexistent/dir/map.png", image), Error);
   for (const auto& entry : std::filesystem::directory_iterator(path.parent_path()))
     EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
 }

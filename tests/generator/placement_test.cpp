@@ -147,7 +147,7 @@ TEST(Placement, RejectsANonPositiveTileSize) {
   PlacementOptions options;
   options.tile_size = 0;
   EXPECT_THROW(place_instances(filled_set("cohen8"), FlatGround{{0, 0, 1, 1}, 0}, options, [](const InstanceBatch&) {}),
-               GeneratorError);
+               Error);
 }
 
 }  // namespace

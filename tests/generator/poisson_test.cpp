@@ -51,7 +51,7 @@ bool is_complete(const TileSet& set) {
   try {
     HashedTiling probe(set, 1);
     return true;
-  } catch (const GeneratorError&) {
+  } catch (const Error&) {
     return false;
   }
 }
@@ -251,10 +251,10 @@ TEST(PoissonTiles, EdgeAndCornerDensitiesMatchTheInteriorInPlainEdgeSets) {
 TEST(PoissonTiles, RejectsBadOptions) {
   PoissonFillOptions options;
   options.points_per_tile = 0;
-  EXPECT_THROW(fill_poisson_tiles(builtin_tileset("cohen8"), options), GeneratorError);
+  EXPECT_THROW(fill_poisson_tiles(builtin_tileset("cohen8"), options), Error);
   options.points_per_tile = 20;
   options.dart_rho = 1.5;
-  EXPECT_THROW(fill_poisson_tiles(builtin_tileset("cohen8"), options), GeneratorError);
+  EXPECT_THROW(fill_poisson_tiles(builtin_tileset("cohen8"), options), Error);
 }
 
 TEST(TileAdjacency, EdgeNeighboursShareTheEdgeAndDiagonalsCompleteABlock) {

@@ -7,12 +7,12 @@
 
 namespace wangscape::testing {
 
-// Runs `body` and returns the GeneratorError message it throws ("" when it does not throw).
+// Runs `body` and returns the Error message it throws ("" when it does not throw).
 template <typename Body>
 std::string error_of(Body&& body) {
   try {
     body();
-  } catch (const GeneratorError& e) {
+  } catch (const Error& e) {
     return e.what();
   }
   return "";

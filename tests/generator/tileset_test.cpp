@@ -99,7 +99,7 @@ TEST(TilingPreview, TileMapHasOneBlockPerTileWithNorthUp) {
   EXPECT_EQ(image.at(7, 7), tile_pseudo_color(1));
   for (std::size_t a = 0; a < 16; ++a)
     for (std::size_t b = a + 1; b < 16; ++b) EXPECT_NE(tile_pseudo_color(a), tile_pseudo_color(b)) << a << " " << b;
-  EXPECT_THROW(draw_tile_map(tiling, 0), GeneratorError);
+  EXPECT_THROW(draw_tile_map(tiling, 0), Error);
 }
 
 TEST(TilingPreview, SheetDrawsEdgeTrianglesAndCornerQuadrants) {

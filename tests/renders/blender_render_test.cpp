@@ -9,7 +9,7 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 #include "exporters/blender_export.h"
 #include "renders/child_process.h"
 #include "tests/blender/test_scene.h"
@@ -94,8 +94,8 @@ TEST(BlenderRender, MissingManifestIsNamed) {
   const auto dir = scratch("empty");
   try {
     render_blender(dir);
-    FAIL() << "expected RenderError";
-  } catch (const RenderError& error) {
+    FAIL() << "expected Error";
+  } catch (const Error& error) {
     EXPECT_NE(std::string(error.what()).find("manifest.json"), std::string::npos) << error.what();
   }
   std::filesystem::remove_all(dir);
@@ -108,8 +108,8 @@ TEST(BlenderRender, MissingBlenderIsNamed) {
   options.executable = "/nonexistent/blender-9";
   try {
     render_blender(dir, options);
-    FAIL() << "expected RenderError";
-  } catch (const RenderError& error) {
+    FAIL() << "expected Error";
+  } catch (const Error& error) {
     EXPECT_NE(std::string(error.what()).find("/nonexistent/blender-9"), std::string::npos) << error.what();
     EXPECT_NE(std::string(error.what()).find("not installed"), std::string::npos) << error.what();
   }
@@ -123,8 +123,8 @@ TEST(BlenderRender, BlenderFailureQuotesItsLog) {
   write_file_atomically(dir / "manifest.json", R"({"format": {"name": "wangscape-blender", "version": 99}})");
   try {
     render_blender(dir);
-    FAIL() << "expected RenderError";
-  } catch (const RenderError& error) {
+    FAIL() << "expected Error";
+  } catch (const Error& error) {
     const std::string message = error.what();
     EXPECT_NE(message.find("exited with status"), std::string::npos) << message;
     EXPECT_NE(message.find("version 99"), std::string::npos) << message;

@@ -418,7 +418,7 @@ class ldi_pack_damage : public ::testing::Test {
     try {
       const LdiPack pack(path);
       ADD_FAILURE() << name << " was accepted";
-    } catch (const LdiPackError& e) {
+    } catch (const Error& e) {
       const std::string message = e.what();
       EXPECT_NE(message.find(path.string()), std::string::npos) << message;
       EXPECT_NE(message.find(what), std::string::npos) << message;
@@ -502,7 +502,7 @@ TEST(ldi_sheet, DrawsLevelsAsRowsAndDirectionsAsColumns) {
   int lit = 0;
   for (std::size_t i = 0; i < sheet.pixels.size(); ++i) lit += sheet.pixels[i] > 40;
   EXPECT_GT(lit, int(sheet.pixels.size() / 10));
-  EXPECT_THROW(draw_ldi_sheet(pack, 8, 32), LdiPackError);
+  EXPECT_THROW(draw_ldi_sheet(pack, 8, 32), Error);
 }
 
 }  // namespace

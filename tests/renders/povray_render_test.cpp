@@ -74,7 +74,6 @@ Scene tiny_scene(bool with_instances = true) {
   scene.terrain = flat_terrain(400, 8);
   scene.models = {test_flower(0.25f), test_flower(0.3f)};
   if (with_instances) {
-    scene.instance_count = 100;
     scene.instances = [](const std::function<void(const InstanceBatch&)>& sink) {
       InstanceBatch batch;
       for (int j = 0; j < 10; ++j)
@@ -210,7 +209,7 @@ TEST(PovrayRender, FailureQuotesPovrayAndLeavesNoImage) {
   try {
     render_povray(dir);
     FAIL() << "a broken scene rendered";
-  } catch (const RenderError& e) {
+  } catch (const Error& e) {
     const std::string message = e.what();
     EXPECT_NE(message.find("POV-Ray exited"), std::string::npos) << message;
     EXPECT_NE(message.find("models.inc"), std::string::npos) << message;
@@ -229,14 +228,14 @@ TEST(PovrayRender, MissingPovrayIsNamed) {
   try {
     render_povray(dir, options);
     FAIL();
-  } catch (const RenderError& e) {
+  } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("povray-that-does-not-exist"), std::string::npos) << e.what();
   }
 }
 
 TEST(PovrayRender, FolderWithoutSceneIsAnError) {
   const auto dir = scratch("nothing");
-  EXPECT_THROW(render_povray(dir), RenderError);
+  EXPECT_THROW(render_povray(dir), Error);
 }
 
 }  // namespace

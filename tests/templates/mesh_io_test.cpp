@@ -36,11 +36,11 @@ class MeshIo : public ::testing::Test {
     return path;
   }
 
-  // The message of the MeshError that loading `path` throws ("" if none).
+  // The message of the Error that loading `path` throws ("" if none).
   static std::string load_error(const fs::path& path) {
     try {
       load_mesh(path);
-    } catch (const MeshError& error) {
+    } catch (const Error& error) {
       return error.what();
     }
     return "";
@@ -266,7 +266,7 @@ TEST_F(MeshIo, UserModelsAreScaledTurnedAndGrounded) {
       [&] {
         try {
           load_user_model(path, {0.0f, false, true});
-        } catch (const MeshError& error) {
+        } catch (const Error& error) {
           return std::string(error.what());
         }
         return std::string();

@@ -222,13 +222,13 @@ TEST(Sunflower, MaterialsAreNamedAndColored) {
 TEST(Sunflower, RejectsBadOptions) {
   try {
     make_sunflower(1, 0, 399);
-    FAIL() << "expected MeshError";
-  } catch (const MeshError& error) {
+    FAIL() << "expected Error";
+  } catch (const Error& error) {
     EXPECT_NE(std::string(error.what()).find("399"), std::string::npos) << error.what();
     EXPECT_NE(std::string(error.what()).find("400"), std::string::npos) << error.what();
   }
-  EXPECT_THROW(make_sunflower(1, 0, kSunflowerMaximumTriangleBudget + 1), MeshError);
-  EXPECT_THROW(make_sunflower_variants({0, 1, 5000}), MeshError);
+  EXPECT_THROW(make_sunflower(1, 0, kSunflowerMaximumTriangleBudget + 1), Error);
+  EXPECT_THROW(make_sunflower_variants({0, 1, 5000}), Error);
 }
 
 }  // namespace

@@ -15,15 +15,15 @@ namespace {
 
 using test::boulder;
 using test::saint_helens;
-using test::shared_dem;
+using test::test_dem;
 
-// Loading must fail with a TerrainError whose message names the file and says why.
+// Loading must fail with a Error whose message names the file and says why.
 void expect_failure(const std::filesystem::path& path, const std::string& reason) {
   testing::internal::CaptureStderr();
   try {
     (void)Terrain::load(path);
     ADD_FAILURE() << "loading " << path << " should fail";
-  } catch (const TerrainError& e) {
+  } catch (const Error& e) {
     const std::string message = e.what();
     EXPECT_NE(message.find(path.string()), std::string::npos) << message;
     EXPECT_NE(message.find(reason), std::string::npos) << message;
@@ -87,20 +87,20 @@ TEST(Dem, BoulderNodataZeroIsAMaskNotAHeight) {
 }
 
 TEST(Dem, EdgeCaseChecksumsMatchGdalsOwnTests) {
-  EXPECT_EQ(gdal_checksum(shared_dem("edge-cases/39109h1_truncated.dem")), 39443);
-  EXPECT_EQ(gdal_checksum(shared_dem("edge-cases/39079G6_truncated.dem")), 61424);
-  EXPECT_EQ(gdal_checksum(shared_dem("edge-cases/114p01_0100_deme_truncated.dem")), 53864);
-  EXPECT_THROW(gdal_checksum(shared_dem("edge-cases/fema06-140cm_2995441b_truncated.dem")), TerrainError);
+  EXPECT_EQ(gdal_checksum(test_dem("edge-cases/39109h1_truncated.dem")), 39443);
+  EXPECT_EQ(gdal_checksum(test_dem("edge-cases/39079G6_truncated.dem")), 61424);
+  EXPECT_EQ(gdal_checksum(test_dem("edge-cases/114p01_0100_deme_truncated.dem")), 53864);
+  EXPECT_THROW(gdal_checksum(test_dem("edge-cases/fema06-140cm_2995441b_truncated.dem")), Error);
 }
 
 TEST(Dem, EdgeCaseTruncatedUtmDemsLoad) {
-  const DemRaster a = read_dem(shared_dem("edge-cases/39109h1_truncated.dem"));
+  const DemRaster a = read_dem(test_dem("edge-cases/39109h1_truncated.dem"));
   EXPECT_EQ(a.width, 2);
   EXPECT_EQ(a.height, 1411);
   EXPECT_DOUBLE_EQ(a.spacing_x(), 10.0);
   EXPECT_NEAR(a.min_height, 1687.4, 0.01);
   EXPECT_NEAR(a.max_height, 1716.99, 0.01);
-  const DemRaster b = read_dem(shared_dem("edge-cases/39079G6_truncated.dem"));
+  const DemRaster b = read_dem(test_dem("edge-cases/39079G6_truncated.dem"));
   EXPECT_EQ(b.width, 2);
   EXPECT_EQ(b.height, 470);
   EXPECT_NE(b.crs_wkt.find("WGS 72"), std::string::npos);
@@ -108,8 +108,8 @@ TEST(Dem, EdgeCaseTruncatedUtmDemsLoad) {
   EXPECT_DOUBLE_EQ(b.max_height, 385.0);
   // Both become terrains with heights where they have data.
   for (const char* name : {"edge-cases/39109h1_truncated.dem", "edge-cases/39079G6_truncated.dem"}) {
-    const Terrain terrain = Terrain::load(shared_dem(name));
-    const EnuRect e = terrain.extent();
+    const Terrain terrain = Terrain::load(test_dem(name));
+    const Extent e = terrain.extent();
     int found = 0;
     for (int k = 0; k <= 200; ++k) {
       const auto h = terrain.height((e.min_x + e.max_x) / 2, e.min_y + e.height() * k / 200);
@@ -124,11 +124,11 @@ TEST(Dem, EdgeCaseTruncatedUtmDemsLoad) {
 }
 
 TEST(Dem, EdgeCaseCdedAllNodataFailsCleanly) {
-  expect_failure(shared_dem("edge-cases/114p01_0100_deme_truncated.dem"), "no valid heights");
+  expect_failure(test_dem("edge-cases/114p01_0100_deme_truncated.dem"), "no valid heights");
 }
 
 TEST(Dem, EdgeCaseFemaHeaderWithoutProfilesFailsCleanly) {
-  expect_failure(shared_dem("edge-cases/fema06-140cm_2995441b_truncated.dem"), "elevation profiles cannot be read");
+  expect_failure(test_dem("edge-cases/fema06-140cm_2995441b_truncated.dem"), "elevation profiles cannot be read");
 }
 
 TEST(Dem, TruncatedAndGarbageFilesFailCleanly) {
@@ -141,7 +141,7 @@ TEST(Dem, TruncatedAndGarbageFilesFailCleanly) {
     try {
       const Terrain terrain = Terrain::load(path);
       ADD_FAILURE() << path << " loaded although truncated";
-    } catch (const TerrainError& e) {
+    } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
     }
     EXPECT_EQ(testing::internal::GetCapturedStderr(), "");

@@ -15,7 +15,7 @@ const Terrain& helens() {
   return terrain;
 }
 
-EnuRect random_tile(const EnuRect& e, double size, std::mt19937& rng) {
+Extent random_tile(const Extent& e, double size, std::mt19937& rng) {
   const double x = std::uniform_real_distribution<double>(e.min_x - size, e.max_x)(rng);
   const double y = std::uniform_real_distribution<double>(e.min_y - size, e.max_y)(rng);
   return {x, y, x + size, y + size};
@@ -28,7 +28,7 @@ TEST(Mask, PassingTilesLieWhollyBelowTheThresholdAndFlatEnough) {
   int passing = 0, maybe = 0;
   for (int k = 0; k < 4000; ++k) {
     const double size = k % 2 ? 4.0 : 60.0;
-    const EnuRect tile = random_tile(terrain.extent(), size, rng);
+    const Extent tile = random_tile(terrain.extent(), size, rng);
     const bool passes = filter.tile_passes(tile);
     if (passes) {
       EXPECT_TRUE(filter.tile_may_pass(tile));
@@ -58,7 +58,7 @@ TEST(Mask, TileTestIsExactNotAStaircaseOfCells) {
   std::mt19937 rng(8);
   int near_contour = 0;
   for (int k = 0; k < 20000 && near_contour < 300; ++k) {
-    const EnuRect tile = random_tile(terrain.extent(), 4.0, rng);
+    const Extent tile = random_tile(terrain.extent(), 4.0, rng);
     double highest = -1e9;
     bool data = true;
     for (int a = 0; a <= 8 && data; ++a)
@@ -83,7 +83,7 @@ TEST(Mask, PointTestFollowsTheGround) {
   const Terrain& terrain = helens();
   const TerrainFilter filter(terrain, {.max_height_m = 1200.0, .max_slope_deg = {}, .mask_image = {}});
   std::mt19937 rng(2);
-  const EnuRect e = terrain.extent();
+  const Extent e = terrain.extent();
   int yes = 0, no = 0;
   for (int k = 0; k < 20000; ++k) {
     const double x = std::uniform_real_distribution<double>(e.min_x, e.max_x)(rng);
@@ -101,13 +101,13 @@ TEST(Mask, ThresholdBelowEveryHeightIsExplained) {
   try {
     filter.check_satisfiable();
     ADD_FAILURE() << "a 500 m threshold is below Mount St. Helens' lowest point (682 m)";
-  } catch (const TerrainError& e) {
+  } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("below every height"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("682"), std::string::npos) << e.what();
   }
   EXPECT_NO_THROW(
       TerrainFilter(helens(), {.max_height_m = 700.0, .max_slope_deg = {}, .mask_image = {}}).check_satisfiable());
-  EXPECT_THROW(TerrainFilter(helens(), {.max_height_m = {}, .max_slope_deg = 120.0, .mask_image = {}}), TerrainError);
+  EXPECT_THROW(TerrainFilter(helens(), {.max_height_m = {}, .max_slope_deg = 120.0, .mask_image = {}}), Error);
 }
 
 TEST(Mask, PaintedMaskWhiteWestBlackEast) {
@@ -116,7 +116,7 @@ TEST(Mask, PaintedMaskWhiteWestBlackEast) {
   test::write_raster(dir / "west.png", "PNG", GDT_Byte, 64, 32, {}, nullptr,
                      [](int col, int) { return col < 32 ? 255.0 : 0.0; });
   const Terrain& terrain = helens();
-  const EnuRect e = terrain.extent();
+  const Extent e = terrain.extent();
   const double middle = (e.min_x + e.max_x) / 2;
   const TerrainFilter filter(terrain, {.max_height_m = {}, .max_slope_deg = {}, .mask_image = dir / "west.png"});
   ASSERT_NE(filter.mask(), nullptr);
@@ -130,7 +130,7 @@ TEST(Mask, PaintedMaskWhiteWestBlackEast) {
     if (x > middle) {
       EXPECT_FALSE(filter.point_passes(x, y));
     }
-    const EnuRect tile{x - 2, y - 2, x + 2, y + 2};
+    const Extent tile{x - 2, y - 2, x + 2, y + 2};
     if (x > middle + 2) {
       EXPECT_FALSE(filter.tile_passes(tile));
     }
@@ -139,11 +139,11 @@ TEST(Mask, PaintedMaskWhiteWestBlackEast) {
   test::write_raster(dir / "black.png", "PNG", GDT_Byte, 8, 8, {}, nullptr, [](int, int) { return 0.0; });
   EXPECT_THROW(TerrainFilter(terrain, {.max_height_m = {}, .max_slope_deg = {}, .mask_image = dir / "black.png"})
                    .check_satisfiable(),
-               TerrainError);
+               Error);
   try {
     TerrainFilter(terrain, {.max_height_m = {}, .max_slope_deg = {}, .mask_image = dir / "nothing.png"});
     ADD_FAILURE();
-  } catch (const TerrainError& error) {
+  } catch (const Error& error) {
     EXPECT_NE(std::string(error.what()).find("nothing.png"), std::string::npos);
   }
 }
@@ -179,12 +179,11 @@ TEST(TerrainMesh, BudgetAndCrop) {
   EXPECT_LE(small.positions.size(), 5000u);
   EXPECT_GT(small.positions.size(), 2000u);
   EXPECT_GT(small.stride, 1);
-  const EnuRect crop{-1000, -500, 1500, 2000};
+  const Extent crop{-1000, -500, 1500, 2000};
   const TerrainMesh cropped = make_terrain_mesh(terrain, {.max_vertices = 0, .crop = crop});
   for (const auto& p : cropped.positions) ASSERT_TRUE(crop.contains(p[0], p[1]));
   EXPECT_NEAR(double(cropped.positions.size()), 2500.0 * 2500.0 / (30.0 * 30.0), 200.0);
-  EXPECT_THROW(make_terrain_mesh(terrain, {.max_vertices = 0, .crop = EnuRect{1e6, 1e6, 1e6 + 10, 1e6 + 10}}),
-               TerrainError);
+  EXPECT_THROW(make_terrain_mesh(terrain, {.max_vertices = 0, .crop = Extent{1e6, 1e6, 1e6 + 10, 1e6 + 10}}), Error);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// Placement over a real DEM (generator's place_instances with cli's terrain bridge):
+// Placement over a real DEM (generator's place_instances over a Terrain, which is a Ground):
 // every instance stands on the ground, below the threshold; fair edges follow the contour;
 // a hashed tiling of a sub-area equals the same part of the whole.
 #include <gtest/gtest.h>
@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <tuple>
 
-#include "cli/terrain_ground.h"
 #include "generator/placement.h"
 #include "generator/poisson_tiles.h"
+#include "terrain/mask.h"
 #include "terrain_test_support.h"
 
 namespace wangscape {
@@ -40,11 +40,12 @@ std::vector<Instance> scatter(const Extent& area, double tile_size, const Terrai
   options.batch_points = 5000;  // several batches
   std::vector<Instance> out;
   place_instances(
-      tiles(), cli::TerrainGround{&helens()}, options,
+      tiles(), helens(), options,
       [&](const InstanceBatch& b) {
         for (std::size_t k = 0; k < b.size(); ++k) out.emplace_back(b.x[k], b.y[k], b.z[k], b.variant[k], b.tile[k]);
       },
-      cli::TerrainTileFilter{&filter, fair}, cli::TerrainPointFilter{&filter, fair});
+      [&](const TileCell& cell) { return fair ? filter.tile_may_pass(cell.bounds) : filter.tile_passes(cell.bounds); },
+      [&](double x, double y, double z) { return !fair || filter.point_passes(x, y, z); });
   return out;
 }
 
@@ -113,7 +114,7 @@ TEST(PlacementOnDem, HashedSubAreaEqualsThatPartOfTheWhole) {
 TEST(PlacementOnDem, NodataIsNeverPlanted) {
   // The quadrangle's no-data corners: a window over the north-west corner of the raster.
   const TerrainFilter filter(helens(), {.max_height_m = {}, .max_slope_deg = {}, .mask_image = {}});
-  const EnuRect e = helens().extent();
+  const Extent e = helens().extent();
   const Extent corner{e.min_x, e.max_y - 600, e.min_x + 600, e.max_y};
   for (const bool fair : {false, true})
     for (const auto& [x, y, z, variant, tile] : scatter(corner, 4.0, filter, fair))

@@ -58,7 +58,7 @@ TEST(Sampling, BoulderHeightsAreTheFileValuesAtSamples) {
 TEST(Sampling, NodataAndOutsideGiveNoHeight) {
   const Terrain& terrain = helens();
   const DemRaster& dem = terrain.dem();
-  const EnuRect e = terrain.extent();
+  const Extent e = terrain.extent();
   EXPECT_FALSE(terrain.height(e.max_x + 1, 0).has_value());
   EXPECT_FALSE(terrain.height(0, e.min_y - 1).has_value());
   EXPECT_FALSE(terrain.height(std::nan(""), 0).has_value());
@@ -88,7 +88,7 @@ TEST(Sampling, NodataAndOutsideGiveNoHeight) {
 
 TEST(Sampling, GradientNormalAndSlopeAgreeWithFiniteDifferences) {
   const Terrain& terrain = helens();
-  const EnuRect e = terrain.extent();
+  const Extent e = terrain.extent();
   std::mt19937 rng(3);
   int checked = 0;
   const double d = 1e-3;  // meters: a difference this small rarely straddles a cell edge
@@ -113,7 +113,7 @@ TEST(Sampling, GradientNormalAndSlopeAgreeWithFiniteDifferences) {
 
 TEST(Sampling, ThreadSafeAndDeterministic) {
   const Terrain& terrain = helens();
-  const EnuRect e = terrain.extent();
+  const Extent e = terrain.extent();
   std::vector<double> xs(100000), ys(100000);
   std::mt19937 rng(9);
   for (std::size_t k = 0; k < xs.size(); ++k) {

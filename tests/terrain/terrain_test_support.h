@@ -1,4 +1,4 @@
-// Shared by the terrain tests: paths of the shared DEMs, scratch directories, and small
+// Shared by the terrain tests: paths of the test DEMs (tests/data/dem, see its README), scratch directories, and small
 // rasters written with GDAL itself (GeoTIFF, SRTM .hgt, PNG masks).
 #pragma once
 
@@ -13,11 +13,14 @@
 
 namespace wangscape::test {
 
-inline std::filesystem::path shared_dem(const std::string& name) {
-  return std::filesystem::path(WANGSCAPE_SHARED_DIR) / "data" / "dem" / name;
+inline std::filesystem::path test_dem(const std::string& name) {
+  return std::filesystem::path(WANGSCAPE_SOURCE_DIR) / "tests" / "data" / "dem" / name;
 }
-inline std::filesystem::path saint_helens() { return shared_dem("SainteHelens.dem"); }
-inline std::filesystem::path boulder() { return shared_dem("SRTMGL3_boulder_CO_240x144.asc"); }
+// The default scene's DEM, shipped in data/.
+inline std::filesystem::path saint_helens() {
+  return std::filesystem::path(WANGSCAPE_SOURCE_DIR) / "data" / "SainteHelens.dem";
+}
+inline std::filesystem::path boulder() { return test_dem("SRTMGL3_boulder_CO_240x144.asc"); }
 
 // A fresh, empty directory for one test.
 inline std::filesystem::path scratch_dir(const std::string& name) {

@@ -7,14 +7,14 @@
 #include <string>
 #include <string_view>
 
-#include "exporters/tileset_json.h"
 #include "generator/poisson_tiles.h"
+#include "scene/tileset_file.h"
 
 namespace wangscape {
 
 Json filled_tileset_to_json(const FilledTileSet& filled);
 
-// Throws ExportError "filled tile set '<source>': tile 3 point 5: ..." naming what is wrong.
+// Throws Error "filled tile set '<source>': tile 3 point 5: ..." naming what is wrong.
 FilledTileSet filled_tileset_from_json(const Json& document, std::string_view source);
 
 // Top-level keys one per line, each tile's colors on one line, then one point per line.

@@ -1,10 +1,10 @@
-#include "exporters/filled_tileset_json.h"
+#include "scene/filled_tileset_file.h"
 
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 
 namespace wangscape {
 
@@ -17,24 +17,23 @@ std::string where(std::string_view source) { return "filled tile set '" + std::s
 
 const Json& required(const Json& object, const char* key, const std::string& at, const char* expected) {
   const auto it = object.find(key);
-  if (it == object.end()) throw ExportError(at + ": missing key \"" + key + "\"; expected " + expected);
+  if (it == object.end()) throw Error(at + ": missing key \"" + key + "\"; expected " + expected);
   return *it;
 }
 
 double number_in(const Json& value, const std::string& at, const char* key, double lo, double hi, bool hi_open) {
   if (!value.is_number() || !(value.get<double>() >= lo) ||
       !(hi_open ? value.get<double>() < hi : value.get<double>() <= hi))
-    throw ExportError(at + ": \"" + key + "\" is " + value.dump() + "; expected a number in [" + std::to_string(lo) +
-                      ", " + std::to_string(hi) + (hi_open ? ")" : "]"));
+    throw Error(at + ": \"" + key + "\" is " + value.dump() + "; expected a number in [" + std::to_string(lo) + ", " +
+                std::to_string(hi) + (hi_open ? ")" : "]"));
   return value.get<double>();
 }
 
 std::uint64_t integer_in(const Json& value, const std::string& at, const char* key, std::uint64_t hi) {
   if (!value.is_number_unsigned() && !(value.is_number_integer() && value.get<std::int64_t>() >= 0))
-    throw ExportError(at + ": \"" + key + "\" is " + value.dump() + "; expected a non-negative integer");
+    throw Error(at + ": \"" + key + "\" is " + value.dump() + "; expected a non-negative integer");
   const auto v = value.get<std::uint64_t>();
-  if (v > hi)
-    throw ExportError(at + ": \"" + key + "\" is " + value.dump() + "; expected at most " + std::to_string(hi));
+  if (v > hi) throw Error(at + ": \"" + key + "\" is " + value.dump() + "; expected at most " + std::to_string(hi));
   return v;
 }
 
@@ -76,11 +75,10 @@ FilledTileSet filled_tileset_from_json(const Json& document, std::string_view so
   const std::string at = where(source);
   const Json& format = required(document, "format", at, "\"wangscape-filled-tileset\"");
   if (format != kFormat)
-    throw ExportError(at + ": \"format\" is " + format.dump() + "; expected \"" + kFormat +
-                      "\" (write one with `wangscape tileset --per-tile N --out FILE`)");
+    throw Error(at + ": \"format\" is " + format.dump() + "; expected \"" + kFormat +
+                "\" (write one with `wangscape tileset --per-tile N --out FILE`)");
   if (const auto v = integer_in(required(document, "version", at, "1"), at, "version", 1000); v != kVersion)
-    throw ExportError(at + ": version " + std::to_string(v) + "; this wangscape reads version " +
-                      std::to_string(kVersion));
+    throw Error(at + ": version " + std::to_string(v) + "; this wangscape reads version " + std::to_string(kVersion));
   filled.seed = integer_in(required(document, "seed", at, "an integer"), at, "seed", UINT64_MAX);
   filled.radius_packing =
       number_in(required(document, "radius_packing", at, "a number"), at, "radius_packing", 1e-9, 0.5, false);
@@ -90,18 +88,18 @@ FilledTileSet filled_tileset_from_json(const Json& document, std::string_view so
       number_in(required(document, "shared_width", at, "a number"), at, "shared_width", 0.0, 0.5, false);
   filled.variants =
       static_cast<int>(integer_in(required(document, "variants", at, "an integer"), at, "variants", 65535));
-  if (filled.variants < 1) throw ExportError(at + ": \"variants\" is 0; expected at least 1");
+  if (filled.variants < 1) throw Error(at + ": \"variants\" is 0; expected at least 1");
 
   const Json& tiles = document["tiles"];
   filled.tiles.resize(tiles.size());
   for (std::size_t t = 0; t < tiles.size(); ++t) {
     const std::string tile_at = at + ": tile " + std::to_string(t);
     const Json& points = required(tiles[t], "points", tile_at, "an array of points");
-    if (!points.is_array()) throw ExportError(tile_at + ": \"points\" is " + points.dump() + "; expected an array");
+    if (!points.is_array()) throw Error(tile_at + ": \"points\" is " + points.dump() + "; expected an array");
     for (std::size_t k = 0; k < points.size(); ++k) {
       const std::string point_at = tile_at + " point " + std::to_string(k);
       const Json& p = points[k];
-      if (!p.is_object()) throw ExportError(point_at + " is " + p.dump() + "; expected an object");
+      if (!p.is_object()) throw Error(point_at + " is " + p.dump() + "; expected an object");
       TilePoint tp;
       tp.id =
           static_cast<std::uint32_t>(integer_in(required(p, "id", point_at, "an integer"), point_at, "id", UINT32_MAX));

@@ -1,10 +1,10 @@
-#include "exporters/tileset_json.h"
+#include "scene/tileset_file.h"
 
 #include <algorithm>
 #include <fstream>
 #include <sstream>
 
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 
 namespace wangscape {
 
@@ -41,18 +41,18 @@ void add_tile_colors(Json& object, const TileSet& set, const Tile& tile) {
 
 Tile tile_colors_from_json(const Json& object, std::string_view source, std::size_t index, bool edges, bool corners) {
   const std::string at = where(source) + ": tile " + std::to_string(index);
-  if (!object.is_object()) throw ExportError(at + " is " + std::string(object.type_name()) + "; expected an object");
+  if (!object.is_object()) throw Error(at + " is " + std::string(object.type_name()) + "; expected an object");
   for (const auto& [key, value] : object.items())
     if (!is_known_tile_key(key))
-      throw ExportError(
+      throw Error(
           at + ": unknown key '" + key +
           "'; expected n, e, s, w (edges), ne, se, sw, nw (corners), points, radius_packing, radius_tight, seed");
   const auto color = [&](const char* key, const char* kind) {
     const auto it = object.find(key);
-    if (it == object.end()) throw ExportError(at + ": missing key '" + key + "'; every tile of " + kind);
+    if (it == object.end()) throw Error(at + ": missing key '" + key + "'; every tile of " + kind);
     if (!it->is_number_integer() || it->get<std::int64_t>() < 0 || it->get<std::int64_t>() > kMaxColor)
-      throw ExportError(at + ": key '" + key + "' is " + it->dump() + "; expected an integer 0.." +
-                        std::to_string(kMaxColor));
+      throw Error(at + ": key '" + key + "' is " + it->dump() + "; expected an integer 0.." +
+                  std::to_string(kMaxColor));
     return static_cast<int>(it->get<std::int64_t>());
   };
   Tile tile;
@@ -70,12 +70,11 @@ Tile tile_colors_from_json(const Json& object, std::string_view source, std::siz
   if (!edges)
     for (const char* key : kEdgeKeys)
       if (object.contains(key))
-        throw ExportError(at + ": key '" + key + "' in a corner set; corner tiles use ne, se, sw, nw");
+        throw Error(at + ": key '" + key + "' in a corner set; corner tiles use ne, se, sw, nw");
   if (!corners)
     for (const char* key : kCornerKeys)
       if (object.contains(key))
-        throw ExportError(at + ": key '" + key +
-                          "' but tile 0 has no corner colors; every tile must color the same parts");
+        throw Error(at + ": key '" + key + "' but tile 0 has no corner colors; every tile must color the same parts");
   return tile;
 }
 
@@ -95,18 +94,18 @@ Json tileset_to_json(const TileSet& set) {
 
 TileSet tileset_from_json(const Json& document, std::string_view source) {
   if (!document.is_object())
-    throw ExportError(where(source) + ": the document is " + std::string(document.type_name()) +
-                      "; expected an object with \"tiles\"");
+    throw Error(where(source) + ": the document is " + std::string(document.type_name()) +
+                "; expected an object with \"tiles\"");
   std::string name = std::filesystem::path(std::string(source)).stem().string();
   if (const auto it = document.find("name"); it != document.end()) {
-    if (!it->is_string()) throw ExportError(where(source) + ": \"name\" is " + it->dump() + "; expected a string");
+    if (!it->is_string()) throw Error(where(source) + ": \"name\" is " + it->dump() + "; expected a string");
     name = it->get<std::string>();
   }
   const auto tiles = document.find("tiles");
-  if (tiles == document.end()) throw ExportError(where(source) + ": missing key \"tiles\"; expected an array of tiles");
+  if (tiles == document.end()) throw Error(where(source) + ": missing key \"tiles\"; expected an array of tiles");
   if (!tiles->is_array() || tiles->empty())
-    throw ExportError(where(source) + ": \"tiles\" is " + (tiles->is_array() ? std::string("empty") : tiles->dump()) +
-                      "; expected a non-empty array of tiles");
+    throw Error(where(source) + ": \"tiles\" is " + (tiles->is_array() ? std::string("empty") : tiles->dump()) +
+                "; expected a non-empty array of tiles");
   const Json& first = tiles->front();
   bool edges = first.is_object() && first.contains("n");
   bool corners = first.is_object() && first.contains("ne");
@@ -114,11 +113,10 @@ TileSet tileset_from_json(const Json& document, std::string_view source) {
     if (*kind == "edge") {
       edges = true;
     } else if (*kind == "corner") {
-      if (edges)
-        throw ExportError(where(source) + ": tile 0: key 'n' in a corner set; corner tiles use ne, se, sw, nw");
+      if (edges) throw Error(where(source) + ": tile 0: key 'n' in a corner set; corner tiles use ne, se, sw, nw");
       corners = true;
     } else {
-      throw ExportError(where(source) + ": \"kind\" is " + kind->dump() + "; expected \"edge\" or \"corner\"");
+      throw Error(where(source) + ": \"kind\" is " + kind->dump() + "; expected \"edge\" or \"corner\"");
     }
   } else if (!edges && !corners) {
     edges = true;  // reports the missing edge keys of tile 0
@@ -155,13 +153,13 @@ std::string format_tileset_json(const Json& document, const std::function<std::s
 Json read_json_file(const std::filesystem::path& path, std::string_view what) {
   const std::string at = std::string(what) + " '" + path.string() + "'";
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw ExportError(at + ": cannot open the file");
+  if (!in) throw Error(at + ": cannot open the file");
   std::stringstream buffer;
   buffer << in.rdbuf();
   try {
     return Json::parse(buffer.str());
   } catch (const Json::parse_error& e) {
-    throw ExportError(at + ": not valid JSON (" + e.what() + ")");
+    throw Error(at + ": not valid JSON (" + e.what() + ")");
   }
 }
 

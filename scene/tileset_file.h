@@ -27,7 +27,7 @@ inline constexpr std::array<std::string_view, 4> kTileContentKeys = {"points", "
 void add_tile_colors(Json& object, const TileSet& set, const Tile& tile);
 
 // Reads the color keys of tile `index` of the document `source`: edge keys when `edges`,
-// corner keys when `corners`. Throws ExportError "tile set '<source>': tile 3: ..." naming the
+// corner keys when `corners`. Throws Error "tile set '<source>': tile 3: ..." naming the
 // key and what was expected; other keys must be color keys or kTileContentKeys.
 Tile tile_colors_from_json(const Json& object, std::string_view source, std::size_t index, bool edges, bool corners);
 
@@ -46,7 +46,7 @@ std::string format_tileset_json(const Json& document);
 std::string format_tileset_json(const Json& document, const std::function<std::string(const Json& tile)>& format_tile);
 
 // Reads and parses a JSON file; `what` names the kind of document in errors ("tile set").
-// Throws ExportError "<what> '<path>': cannot open the file" or "...: not valid JSON (...)".
+// Throws Error "<what> '<path>': cannot open the file" or "...: not valid JSON (...)".
 Json read_json_file(const std::filesystem::path& path, std::string_view what);
 
 TileSet read_tileset_json(const std::filesystem::path& path);

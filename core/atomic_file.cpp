@@ -1,4 +1,4 @@
-#include "exporters/atomic_file.h"
+#include "core/atomic_file.h"
 
 #include <unistd.h>
 
@@ -19,14 +19,14 @@ void rename_into_place(const std::filesystem::path& from, const std::filesystem:
   std::filesystem::rename(from, to, ec);
   if (ec) {
     std::filesystem::remove(from, ec);
-    throw ExportError("cannot write '" + to.string() + "': rename failed");
+    throw Error("cannot write '" + to.string() + "': rename failed");
   }
 }
 }  // namespace
 
 AtomicFile::AtomicFile(std::filesystem::path path) : path_(std::move(path)), temp_path_(temporary_beside(path_)) {
   stream_.open(temp_path_, std::ios::binary | std::ios::trunc);
-  if (!stream_) throw ExportError("cannot write '" + path_.string() + "': cannot create a file in its folder");
+  if (!stream_) throw Error("cannot write '" + path_.string() + "': cannot create a file in its folder");
 }
 
 AtomicFile::~AtomicFile() {
@@ -40,7 +40,7 @@ void AtomicFile::commit() {
   stream_.flush();
   const bool ok = static_cast<bool>(stream_);
   stream_.close();
-  if (!ok || stream_.fail()) throw ExportError("cannot write '" + path_.string() + "': write failed (disk full?)");
+  if (!ok || stream_.fail()) throw Error("cannot write '" + path_.string() + "': write failed (disk full?)");
   rename_into_place(temp_path_, path_);
   committed_ = true;
 }
@@ -60,8 +60,7 @@ AtomicPath::~AtomicPath() {
 }
 
 void AtomicPath::commit() {
-  if (!std::filesystem::exists(temp_path_))
-    throw ExportError("cannot write '" + path_.string() + "': nothing was written");
+  if (!std::filesystem::exists(temp_path_)) throw Error("cannot write '" + path_.string() + "': nothing was written");
   rename_into_place(temp_path_, path_);
   committed_ = true;
 }

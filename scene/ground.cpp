@@ -1,6 +1,7 @@
-#include "cli/scene_ground.h"
+#include "scene/ground.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <sstream>
 #include <variant>
@@ -9,7 +10,7 @@
 #include "terrain/terrain.h"
 #include "terrain/terrain_mesh.h"
 
-namespace wangscape::cli {
+namespace wangscape {
 
 struct SceneGround::Impl {
   std::optional<Terrain> terrain;  // empty: flat ground
@@ -22,12 +23,6 @@ struct SceneGround::Impl {
 };
 
 namespace {
-Extent intersect(Extent a, const std::optional<std::array<double, 4>>& crop) {
-  if (!crop) return a;
-  return {std::max(a.min_x, (*crop)[0]), std::max(a.min_y, (*crop)[1]), std::min(a.max_x, (*crop)[2]),
-          std::min(a.max_y, (*crop)[3])};
-}
-
 std::string number(double value) {
   std::ostringstream out;
   out.imbue(std::locale::classic());
@@ -35,17 +30,36 @@ std::string number(double value) {
   out << value;
   return out.str();
 }
+
+std::optional<double> parse_number(std::string_view text) {
+  while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
+  while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
+  double value = 0;
+  const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (result.ec != std::errc() || result.ptr != text.data() + text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
 }  // namespace
+
+std::array<double, 2> parse_lat_lon(const std::string& text) {
+  const auto comma = text.find(',');
+  const auto lat = comma == std::string::npos ? std::nullopt : parse_number(std::string_view(text).substr(0, comma));
+  const auto lon = comma == std::string::npos ? std::nullopt : parse_number(std::string_view(text).substr(comma + 1));
+  if (!lat || !lon || std::abs(*lat) > 90 || std::abs(*lon) > 180)
+    throw Error("origin '" + text + "' is not LAT,LON in WGS 84 degrees (latitude -90..90, longitude -180..180)");
+  return {*lat, *lon};
+}
 
 SceneGround SceneGround::load(const TerrainConfig& config, const MasksConfig& masks) {
   auto impl = std::make_shared<Impl>();
   impl->masks = masks;
+  const Extent crop = config.crop ? Extent{(*config.crop)[0], (*config.crop)[1], (*config.crop)[2], (*config.crop)[3]}
+                                  : Extent{-INFINITY, -INFINITY, INFINITY, INFINITY};
   if (!config.dem.empty()) {
     TerrainOptions options;
     if (config.origin_latitude) options.origin = LatLon{*config.origin_latitude, *config.origin_longitude};
     impl->terrain.emplace(Terrain::load(config.dem, options));
-    const auto r = impl->terrain->extent();
-    impl->area = intersect({r.min_x, r.min_y, r.max_x, r.max_y}, config.crop);
+    impl->area = impl->terrain->extent().intersected(crop);
     const auto& dem = impl->terrain->dem();
     const auto spacing = impl->terrain->spacing_m();
     std::ostringstream d;
@@ -54,24 +68,28 @@ SceneGround SceneGround::load(const TerrainConfig& config, const MasksConfig& ma
     impl->description = d.str();
   } else {
     const double half = config.flat_size / 2;
-    impl->flat = FlatGround{{-half, -half, half, half}, 0.0};
-    impl->area = intersect(impl->flat.area, config.crop);
-    impl->flat.area = impl->area;
+    impl->area = Extent{-half, -half, half, half}.intersected(crop);
+    impl->flat = FlatGround{impl->area, 0.0};
     impl->frame.emplace(LatLon{config.origin_latitude.value_or(0.0), config.origin_longitude.value_or(0.0)});
     impl->description = "flat ground " + number(impl->area.width()) + " x " + number(impl->area.height()) + " m";
   }
-  if (!(impl->area.width() > 0 && impl->area.height() > 0))
-    throw SceneConfigError("terrain.crop [" + number((*config.crop)[0]) + ", " + number((*config.crop)[1]) + ", " +
-                           number((*config.crop)[2]) + ", " + number((*config.crop)[3]) +
-                           "] does not overlap the ground (" + impl->description + ")");
+  if (impl->area.empty())
+    throw Error("terrain.crop [" + number((*config.crop)[0]) + ", " + number((*config.crop)[1]) + ", " +
+                number((*config.crop)[2]) + ", " + number((*config.crop)[3]) + "] does not overlap the ground (" +
+                impl->description + ")");
   if (impl->terrain) {
     TerrainFilterOptions filter;
     filter.max_height_m = masks.max_height;
+    filter.min_height_m = masks.min_height;
     filter.max_slope_deg = masks.max_slope;
+    if (!masks.mask.empty()) filter.mask_image = masks.mask;
     impl->filter.emplace(*impl->terrain, filter);
     impl->filter->check_satisfiable();
-  } else if ((masks.max_height && *masks.max_height < 0) || (masks.min_height && *masks.min_height > 0)) {
-    throw SceneConfigError("masks: the flat ground (height 0 m) is outside the height limits");
+  } else {
+    if ((masks.max_height && *masks.max_height < 0) || (masks.min_height && *masks.min_height > 0))
+      throw Error("masks: the flat ground (height 0 m) is outside the height limits");
+    if (!masks.mask.empty())
+      throw Error(masks.mask, "", "a painted mask needs a DEM (terrain.dem) to be stretched over");
   }
   SceneGround ground;
   ground.impl_ = std::move(impl);
@@ -100,6 +118,8 @@ std::array<double, 2> SceneGround::origin() const {
   return {frame.origin().lat, frame.origin().lon};
 }
 
+const Terrain* SceneGround::terrain() const { return impl_->terrain ? &*impl_->terrain : nullptr; }
+
 Mesh SceneGround::mesh(std::size_t max_vertices) const {
   const Extent area = impl_->area;
   Mesh mesh;
@@ -108,7 +128,7 @@ Mesh SceneGround::mesh(std::size_t max_vertices) const {
   if (impl_->terrain) {
     TerrainMeshOptions options;
     options.max_vertices = max_vertices;
-    options.crop = EnuRect{area.min_x, area.min_y, area.max_x, area.max_y};
+    options.crop = area;
     auto terrain_mesh = make_terrain_mesh(*impl_->terrain, options);
     mesh.positions = std::move(terrain_mesh.positions);
     mesh.normals = std::move(terrain_mesh.normals);
@@ -130,23 +150,32 @@ Mesh SceneGround::mesh(std::size_t max_vertices) const {
 PlacementStats SceneGround::place(const FilledTileSet& filled, const PlacementOptions& options,
                                   const std::function<void(const InstanceBatch&)>& sink) const {
   const Impl& impl = *impl_;
-  const auto min_height = impl.masks.min_height;
-  if (!impl.terrain) {
-    return place_instances(filled, impl.flat, options, sink);  // the flat ground passed the masks at load
-  }
+  if (!impl.terrain) return place_instances(filled, *this, options, sink);  // the plane passed the masks at load
   const TerrainFilter& filter = *impl.filter;
-  const auto point_filter = [&filter, min_height](double x, double y, double z) {
-    return (!min_height || z >= *min_height) && filter.point_passes(x, y, z);
-  };
-  const auto rect = [](const TileCell& cell) {
-    return EnuRect{cell.bounds.min_x, cell.bounds.min_y, cell.bounds.max_x, cell.bounds.max_y};
-  };
   if (impl.masks.fair_edges)
     return place_instances(
-        filled, *this, options, sink, [&](const TileCell& cell) { return filter.tile_may_pass(rect(cell)); },
-        point_filter);
+        filled, *this, options, sink, [&](const TileCell& cell) { return filter.tile_may_pass(cell.bounds); },
+        [&](double x, double y, double z) { return filter.point_passes(x, y, z); });
+  // tile_passes holds for all of a tile's ground, so its points need no test of their own.
   return place_instances(
-      filled, *this, options, sink, [&](const TileCell& cell) { return filter.tile_passes(rect(cell)); }, point_filter);
+      filled, *this, options, sink, [&](const TileCell& cell) { return filter.tile_passes(cell.bounds); },
+      KeepAllPoints{});
+}
+
+void SceneGround::check_tile_size(double tile_size, const std::string& what) const {
+  const Extent& e = impl_->area;
+  if (!(tile_size > 0) || !std::isfinite(tile_size) || tile_size > std::min(e.width(), e.height()))
+    throw Error(what + " " + number(tile_size) + " m does not fit " + impl_->description + " (" +
+                number(std::round(e.width())) + " x " + number(std::round(e.height())) +
+                " m): expected more than 0 and at most the ground's smaller side");
+}
+
+std::string SceneGround::explain_empty(double tile_size) const {
+  if (impl_->masks.fair_edges)
+    return "no flower of the tiling stands on ground that passes the masks (height, slope, painted mask) of " +
+           impl_->description;
+  return "no " + number(tile_size) + " m tile lies wholly on ground that passes the masks of " + impl_->description +
+         "; smaller tiles or fair edges keep the partial ones";
 }
 
 std::vector<std::pair<std::string, std::string>> SceneGround::georeference() const {
@@ -182,4 +211,4 @@ std::vector<std::pair<std::string, std::string>> SceneGround::georeference() con
 
 std::string SceneGround::description() const { return impl_->description; }
 
-}  // namespace wangscape::cli
+}  // namespace wangscape

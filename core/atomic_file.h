@@ -2,6 +2,8 @@
 // place only when complete, so a failed run never leaves a partial file.
 #pragma once
 
+#include "core/error.h"
+
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -9,15 +11,9 @@
 
 namespace wangscape {
 
-// The error type of exporters/: the message names the file at fault.
-class ExportError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
 class AtomicFile {
  public:
-  // Opens "<path>.tmp-<pid>" for writing (binary). Throws ExportError naming `path`.
+  // Opens "<path>.tmp-<pid>" for writing (binary). Throws Error naming `path`.
   explicit AtomicFile(std::filesystem::path path);
   // Removes the temporary file unless commit() succeeded.
   ~AtomicFile();
@@ -28,7 +24,7 @@ class AtomicFile {
   const std::filesystem::path& temp_path() const { return temp_path_; }
   const std::filesystem::path& path() const { return path_; }
 
-  // Flushes, closes and renames into place. Throws ExportError if any write failed.
+  // Flushes, closes and renames into place. Throws Error if any write failed.
   void commit();
 
  private:

@@ -1,23 +1,20 @@
-// The scene file (TOML): everything `wangscape build` needs to run the pipeline. Every key,
+// The scene file (TOML): everything a scene is made from (`wangscape build`, and later the LDI
+// build, the viewer and batch renders). Every key,
 // its meaning and its default are documented in docs/scene-file.md; unknown keys are errors
 // naming the key and its line.
 #pragma once
 
+#include "core/error.h"
+
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 
-namespace wangscape::cli {
-
-// A bad scene file: the message starts with "<file>:<line>: " and names the key at fault.
-class SceneConfigError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace wangscape {
 
 // [terrain]
 struct TerrainConfig {
@@ -44,6 +41,7 @@ struct MasksConfig {
   std::optional<double> max_height;  // meters; no flowers above
   std::optional<double> min_height;  // meters; no flowers below
   std::optional<double> max_slope;   // degrees; no flowers on steeper ground
+  std::filesystem::path mask;        // painted mask image over the ground (white = flowers); empty = none
   bool fair_edges = true;            // thin the field out towards mask borders instead of a hard cut
 };
 
@@ -53,6 +51,7 @@ struct ModelsConfig {
   std::size_t triangle_budget = 6000;  // per sunflower
   std::uint64_t seed = 1;
   std::filesystem::path mesh;    // user OBJ/PLY replacing the sunflowers; empty = sunflowers
+  bool mesh_y_up = false;        // up_axis = "y": the mesh file is y-up and is turned z-up
   double scale = 1.0;            // uniform scale of every model
   double scale_jitter = 0.1;     // each flower scaled by 1 +- this (uniform)
   std::optional<double> facing;  // compass degrees the flower heads face; default: random
@@ -113,10 +112,16 @@ struct SceneConfig {
   ImageConfig image;
   ExportsConfig exports;
   std::string text;  // the TOML as read (copied into the output folder)
+  // The line of every key the file gave ("camera.position" -> 31), so errors found after
+  // parsing (a camera off the DEM) still name the file and the line.
+  std::map<std::string, int> key_lines;
+
+  // An Error "<source>:<line>: '<key>' <what>" (no line when the key came from a default).
+  Error error_at(std::string_view key, const std::string& what) const;
 };
 
 // Parses TOML text. `source` names it in messages; `base_dir` resolves relative paths.
-// Throws SceneConfigError "<source>:<line>: <what>" for syntax errors, unknown keys, wrong
+// Throws Error "<source>:<line>: <what>" for syntax errors, unknown keys, wrong
 // types and values out of range.
 SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem::path& source,
                                const std::filesystem::path& base_dir);
@@ -130,12 +135,4 @@ SceneConfig default_scene_config();
 std::string default_scene_text_for_saving();
 std::string_view default_scene_text();
 
-// The sun's position seen from (latitude, longitude) at a moment (NOAA solar position
-// algorithm, about 0.01 degree for years 1901-2099; refraction included near the horizon).
-struct SolarPosition {
-  double azimuth_degrees = 0;    // compass, clockwise from north
-  double elevation_degrees = 0;  // above the horizon, refraction included
-};
-SolarPosition solar_position(double latitude_degrees, double longitude_degrees, std::int64_t unix_seconds);
-
-}  // namespace wangscape::cli
+}  // namespace wangscape

@@ -1,0 +1,139 @@
+#include "exporters/scene_folder.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+
+#include "core/atomic_file.h"
+#include "exporters/blender_export.h"
+#include "exporters/gltf_writer.h"
+#include "exporters/povray_writer.h"
+#include "exporters/scene_writer.h"
+
+namespace wangscape {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void say(const SceneFolderObserver& observer, const std::string& message) {
+  if (observer.stage) observer.stage(message);
+}
+
+// The folder a build stages into and the one an old build is moved to during the swap.
+fs::path sibling(const fs::path& out_dir, const char* role) {
+  return out_dir.parent_path() / ("." + out_dir.filename().string() + "." + role + "-" + std::to_string(::getpid()));
+}
+
+// Replaces out_dir by staging: with one rename when out_dir does not exist, else out_dir is
+// first renamed aside (so a reader sees the old folder or the new one, never a mix) and
+// removed once the new one is in place.
+void publish(const fs::path& staging, const fs::path& out_dir) {
+  std::error_code ec;
+  if (fs::exists(out_dir, ec)) {
+    const fs::path old = sibling(out_dir, "old");
+    fs::remove_all(old, ec);
+    fs::rename(out_dir, old, ec);
+    if (ec) throw Error(out_dir, "", "cannot move the earlier build aside: " + ec.message());
+    fs::rename(staging, out_dir, ec);
+    if (ec) {
+      std::error_code restore;
+      fs::rename(old, out_dir, restore);
+      throw Error(out_dir, "", "cannot move the new build into place: " + ec.message());
+    }
+    fs::remove_all(old, ec);
+    return;
+  }
+  fs::rename(staging, out_dir, ec);
+  if (ec) throw Error(out_dir, "", "cannot create the scene folder: " + ec.message());
+}
+
+// A folder `build` may replace: none yet, an empty one, or an earlier scene folder.
+void check_replaceable(const fs::path& out_dir) {
+  std::error_code ec;
+  if (!fs::exists(out_dir, ec)) return;
+  if (!fs::is_directory(out_dir, ec)) throw Error(out_dir, "", "exists and is not a folder");
+  if (fs::is_empty(out_dir, ec) || fs::is_regular_file(out_dir / "scene.toml", ec)) return;
+  throw Error(out_dir, "",
+              "exists and is not a scene folder (it has no scene.toml); give a new or empty folder, or an earlier "
+              "build's");
+}
+
+}  // namespace
+
+SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& exports, const std::string& scene_text,
+                                      const fs::path& out_dir_in, const SceneFolderObserver& observer) {
+  const auto start = std::chrono::steady_clock::now();
+  if (out_dir_in.empty()) throw Error("the output folder is empty: give a folder name");
+  auto out_dir = fs::absolute(out_dir_in).lexically_normal();
+  if (out_dir.filename().empty()) out_dir = out_dir.parent_path();
+  check_replaceable(out_dir);
+
+  std::error_code ec;
+  fs::create_directories(out_dir.parent_path(), ec);
+  const fs::path staging = sibling(out_dir, "partial");
+  fs::remove_all(staging, ec);
+  if (!fs::create_directory(staging, ec) || ec)
+    throw Error(staging, "", "cannot create the staging folder beside the output folder: " + ec.message());
+
+  SceneFolderSummary summary;
+  try {
+    std::unique_ptr<PovrayWriter> povray;
+    std::unique_ptr<BlenderWriter> blender;
+    std::unique_ptr<GltfWriter> gltf;
+    std::vector<SceneWriter*> writers;
+    std::vector<std::string> names;
+    if (exports.povray) {
+      PovrayExportOptions options;
+      options.final_dir = out_dir;
+      povray = std::make_unique<PovrayWriter>(scene, staging, options);
+      writers.push_back(povray.get());
+      names.emplace_back("POV-Ray");
+    }
+    if (exports.blender) {
+      blender = std::make_unique<BlenderWriter>(scene, staging / "blender");
+      writers.push_back(blender.get());
+      names.emplace_back("Blender");
+    }
+    if (exports.gltf) {
+      gltf = std::make_unique<GltfWriter>(scene, staging / "scene.glb");
+      writers.push_back(gltf.get());
+      names.emplace_back("glTF");
+    }
+    if (!writers.empty()) {
+      std::string list;
+      for (const auto& name : names) list += (list.empty() ? "" : ", ") + name;
+      say(observer, "placing flowers and writing " + list);
+      const Extent& area = scene.field_area;
+      const auto on_batch = [&](const InstanceBatch& batch) {
+        if (!observer.placing || batch.empty() || !(area.height() > 0)) return;
+        observer.placing(std::clamp((batch.y.back() - area.min_y) / area.height(), 0.0, 1.0));
+      };
+      const StreamTotals totals = run_scene_stream(scene, writers, on_batch);
+      summary.instances = totals.instances;
+      summary.per_variant = totals.per_variant;
+      summary.placement_passes = scene.instances ? 1 : 0;
+      if (observer.placing) observer.placing(1.0);
+    }
+    if (povray) summary.povray_bytes = povray->stats().total_bytes;
+    write_file_atomically(staging / "scene.toml", scene_text);
+    publish(staging, out_dir);
+  } catch (...) {
+    fs::remove_all(staging, ec);
+    throw;
+  }
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+SceneFolderSummary build_scene_folder(const SceneConfig& config, const fs::path& out_dir,
+                                      const SceneFolderObserver& observer) {
+  // Refuse an unusable folder before the (long) scene assembly.
+  if (!out_dir.empty()) check_replaceable(fs::absolute(out_dir).lexically_normal());
+  const Scene scene = make_scene(config, observer.stage);
+  return write_scene_folder(scene, config.exports, config.text, out_dir, observer);
+}
+
+}  // namespace wangscape

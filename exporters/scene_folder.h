@@ -1,0 +1,42 @@
+// Writing a scene folder: the scene's instance stream is run once and every batch is fanned
+// out to each enabled writer (POV-Ray, Blender arrays, glTF); the folder is built beside the
+// target and swapped in with renames, so a reader sees the old folder or the new one.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+#include "scene/scene_file.h"
+
+namespace wangscape {
+
+struct SceneFolderObserver {
+  StageObserver stage;                           // "writing POV-Ray scene ..."
+  std::function<void(double fraction)> placing;  // 0..1 of the field's rows placed and written
+};
+
+struct SceneFolderSummary {
+  std::uint64_t instances = 0;
+  std::vector<std::uint64_t> per_variant;
+  std::uint64_t povray_bytes = 0;  // POV-Ray files
+  int placement_passes = 0;        // times the instance stream ran (1 with any export)
+  double seconds = 0;
+};
+
+// Writes the exports `exports` enables plus `scene_text` as DIR/scene.toml into `out_dir`.
+// The folder is staged as ".<name>.partial-<pid>" beside it; an existing `out_dir` must be a
+// scene folder (it holds scene.toml) or empty, and is replaced whole, so no file of an earlier
+// build stays behind. Throws Error naming the folder or file at fault; on failure `out_dir`
+// is as it was.
+SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& exports, const std::string& scene_text,
+                                      const std::filesystem::path& out_dir, const SceneFolderObserver& observer = {});
+
+// make_scene(config), then write_scene_folder: the whole of `wangscape build`.
+SceneFolderSummary build_scene_folder(const SceneConfig& config, const std::filesystem::path& out_dir,
+                                      const SceneFolderObserver& observer = {});
+
+}  // namespace wangscape

@@ -1,0 +1,77 @@
+// The one ground a scene stands on, a DEM (terrain/) or a flat plane, with every mask of the
+// scene file (min/max height, max slope, painted mask, fair edges). `wangscape build` and
+// `wangscape scatter --dem` both place through it, so both accept every mask. It models
+// generator's Ground concept (ENU meters, thread-safe).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/extent.h"
+#include "generator/ground.h"
+#include "generator/placement.h"
+#include "scene/scene_file.h"
+#include "templates/mesh.h"
+
+namespace wangscape {
+
+class Terrain;
+
+class SceneGround {
+ public:
+  // Loads the DEM of `terrain` (or makes a flat plane without one), crops it and builds the
+  // masks, which are checked once here: a limit no ground can meet (a max_height below every
+  // height of the DEM, a min_height above all of them, an all-black mask) is an Error naming it.
+  static SceneGround load(const TerrainConfig& terrain, const MasksConfig& masks = {});
+
+  // --- Ground concept (ENU meters; thread-safe).
+  Extent extent() const;
+  std::optional<double> height(double x, double y) const;
+  std::optional<double> slope_degrees(double x, double y) const;
+
+  // ENU x, y (meters) of a WGS 84 latitude/longitude (degrees).
+  std::array<double, 2> to_enu(double latitude, double longitude) const;
+  // WGS 84 latitude, longitude (degrees) of the ENU origin.
+  std::array<double, 2> origin() const;
+  // The DEM, or nullptr for flat ground.
+  const Terrain* terrain() const;
+
+  // The ground as a mesh in ENU meters over extent(), a vertex per DEM sample (or every k-th,
+  // to stay within `max_vertices`), with smooth normals.
+  Mesh mesh(std::size_t max_vertices = 1'000'000) const;
+
+  // Lays the filled tiles over the ground (placement.h) and streams the instances that pass
+  // the masks: with fair edges, every tile that may pass is laid and each flower is kept only
+  // if its own ground passes (the border follows the contour); without, only tiles whose whole
+  // ground passes (seed 003, a staircase along the contour). Thread-safe.
+  PlacementStats place(const FilledTileSet& filled, const PlacementOptions& options,
+                       const std::function<void(const InstanceBatch&)>& sink) const;
+
+  // Throws Error when tiles of `tile_size` meters cannot fit the ground; `what` names the value
+  // in the message (a flag, a key).
+  void check_tile_size(double tile_size, const std::string& what) const;
+  // Why a placement produced no instance, in one sentence (for an explained empty result).
+  std::string explain_empty(double tile_size) const;
+
+  // Ordered key/value strings for scene headers and manifests.
+  std::vector<std::pair<std::string, std::string>> georeference() const;
+  // Short description for messages, e.g. "SainteHelens.dem (327 x 468 samples, 30 m)".
+  std::string description() const;
+
+ private:
+  struct Impl;
+  std::shared_ptr<const Impl> impl_;
+};
+static_assert(Ground<SceneGround>);
+
+// "LAT,LON" in WGS 84 degrees (e.g. "46.2,-122.19"). Throws Error naming the text when it is
+// not two finite numbers in range.
+std::array<double, 2> parse_lat_lon(const std::string& text);
+
+}  // namespace wangscape

@@ -1,0 +1,82 @@
+// The Scene value every consumer reads (exporters, renders, the viewer and batch renders to
+// come): the terrain mesh, the model variants, camera, sun, render settings, georeference, and
+// the field of flowers with its instance stream. make_scene assembles it from a scene file.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/extent.h"
+#include "generator/instances.h"
+#include "generator/placement.h"
+#include "generator/poisson_tiles.h"
+#include "scene/ground.h"
+#include "scene/scene_file.h"
+#include "scene/sun.h"
+#include "templates/mesh.h"
+
+namespace wangscape {
+
+struct Camera {
+  std::array<double, 3> position{0, 0, 2};  // ENU meters
+  std::array<double, 3> target{10, 0, 0};   // ENU meters
+  double fov_degrees = 50.0;                // horizontal field of view
+};
+
+struct RenderSettings {
+  int width = 640;
+  int height = 360;
+  int antialias_samples = 1;  // POV-Ray +A depth / Cycles samples scale
+  bool radiosity = false;     // POV-Ray radiosity switch
+  int threads = 0;            // 0 = all cores
+};
+
+// Georeference carried into every manifest and header: ordered (key, value) strings, e.g.
+// ("crs_wkt", ...), ("origin_latitude", "46.2"), ("units", "meters"), ("vertical_datum", ...).
+using Georeference = std::vector<std::pair<std::string, std::string>>;
+
+using InstanceSink = std::function<void(const InstanceBatch&)>;
+// Places the scene's instances and hands them to the sink batch by batch, tile rows from
+// south to north. Each call places the whole field again: run it once and fan the batches out.
+using InstanceStream = std::function<void(const InstanceSink& sink)>;
+
+// The field: a filled tile set laid over the ground, flowers where the masks allow.
+struct SceneField {
+  SceneGround ground;
+  FilledTileSet filled;
+  PlacementOptions placement;        // placement.area is set: the area the field covers
+  std::optional<double> facing_yaw;  // radians, counter-clockwise from east; empty = the tile's yaw
+  double facing_jitter = 0;          // radians
+
+  // Places every instance (thread-safe, deterministic).
+  PlacementStats place(const InstanceSink& sink) const;
+};
+
+struct Scene {
+  std::string name = "wangscape";
+  Mesh terrain;                             // ENU meters; may be empty (no terrain)
+  std::vector<Mesh> models;                 // one per variant; InstanceBatch::variant indexes this
+  InstanceStream instances;                 // may be empty (no instances)
+  Extent field_area;                        // where instances may stand (ENU m); rows of the stream go south to north
+  std::shared_ptr<const SceneField> field;  // what the stream places (empty for hand-made scenes)
+  Camera camera;
+  Sun sun;
+  RenderSettings render;
+  Georeference georeference;
+};
+
+// Stage messages while a scene is assembled (a program shows them, e.g. on a terminal).
+using StageObserver = std::function<void(const std::string& message)>;
+
+// Assembles the Scene a scene file describes: ground and masks, terrain mesh, models, the
+// filled tile set, camera above the ground, sun. Places nothing: the stream does that when run.
+// Throws Error naming the file and the line of the key at fault.
+Scene make_scene(const SceneConfig& config, const StageObserver& stage = {});
+
+}  // namespace wangscape
