@@ -4,6 +4,8 @@
 #include <array>
 #include <string>
 
+#include "exporters/image_io.h"
+
 namespace wangscape {
 
 Rgb8 layer_count_color(int layers) {
@@ -44,6 +46,12 @@ ImageRgb8 draw_ldi_sheet(const LdiPack& pack, std::uint32_t tile, int cell) {
         }
     }
   return sheet;
+}
+
+void write_ldi_sheet(const std::filesystem::path& pack_path, std::uint32_t tile, const std::filesystem::path& out,
+                     int cell_pixels) {
+  const LdiPack pack(pack_path);
+  write_image(out, draw_ldi_sheet(pack, tile, cell_pixels));
 }
 
 }  // namespace wangscape
