@@ -60,5 +60,6 @@ void register_render_command(CLI::App& app, const GlobalOptions& global);
 void register_demo_command(CLI::App& app, const GlobalOptions& global);
 void register_terrain_command(CLI::App& app, const GlobalOptions& global);
 void register_scatter_command(CLI::App& app, const GlobalOptions& global);
+void register_ldi_command(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace wangscape::cli

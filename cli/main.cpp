@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   wangscape::cli::register_demo_command(app, global);
   wangscape::cli::register_terrain_command(app, global);
   wangscape::cli::register_scatter_command(app, global);
+  wangscape::cli::register_ldi_command(app, global);
 
   try {
     app.parse(argc, argv);
