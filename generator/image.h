@@ -1,4 +1,5 @@
-// A small 8-bit RGB image: what previews are drawn into before exporters/ writes them.
+// Small 8-bit RGB and 16-bit grey images: what previews and tiles are drawn into before
+// exporters/ writes them.
 #pragma once
 
 #include <cstdint>
@@ -41,6 +42,21 @@ struct ImageRgb8 {
   }
   // Fills the rectangle [x0, x0 + w) x [y0, y0 + h), clipped to the image.
   void fill_rect(int x0, int y0, int w, int h, Rgb8 c);
+};
+
+// Row-major, top row first, one 16-bit value per pixel (noise tiles: 0 = -1, 65535 = +1).
+struct ImageGray16 {
+  int width = 0, height = 0;
+  std::vector<std::uint16_t> pixels;
+
+  ImageGray16() = default;
+  ImageGray16(int w, int h) : width(w), height(h), pixels(static_cast<std::size_t>(w) * static_cast<std::size_t>(h)) {}
+
+  std::size_t offset(int x, int y) const {
+    return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+  }
+  std::uint16_t at(int x, int y) const { return pixels[offset(x, y)]; }
+  void set(int x, int y, std::uint16_t v) { pixels[offset(x, y)] = v; }
 };
 
 }  // namespace wangscape

@@ -72,7 +72,7 @@ SolarPosition solar_position(double latitude, double longitude, std::int64_t uni
   } else {
     azimuth = latitude > 0 ? 180.0 : 0.0;
   }
-  return {azimuth, elevation + refraction_arcsec / 3600.0};
+  return {azimuth, elevation + refraction_arcsec / 3600.0, elevation};
 }
 
 }  // namespace wangscape

@@ -21,6 +21,7 @@ struct Sun {
 struct SolarPosition {
   double azimuth_degrees = 0;    // compass, clockwise from north
   double elevation_degrees = 0;  // above the horizon, refraction included
+  double true_elevation_degrees = 0;  // the geometric elevation, without refraction
 };
 SolarPosition solar_position(double latitude_degrees, double longitude_degrees, std::int64_t unix_seconds);
 
