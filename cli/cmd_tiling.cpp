@@ -61,18 +61,20 @@ std::string validate_origin(const std::string& text) {
 
 void write_csv(const std::filesystem::path& path, const Tiling& tiling) {
   AtomicFile file(path);
-  std::string line;
   file.stream() << "i,j,tile\n";
-  char buffer[64];
+  std::string line;
+  const auto append = [&line](std::int64_t value, char end) {
+    char digits[24];  // any 64-bit integer
+    line.append(digits, std::to_chars(digits, digits + sizeof digits, value).ptr);
+    line.push_back(end);
+  };
   for (int lj = 0; lj < tiling.height; ++lj)
     for (int li = 0; li < tiling.width; ++li) {
-      char* p = std::to_chars(buffer, buffer + sizeof buffer, tiling.origin_i + li).ptr;
-      *p++ = ',';
-      p = std::to_chars(p, buffer + sizeof buffer, tiling.origin_j + lj).ptr;
-      *p++ = ',';
-      p = std::to_chars(p, buffer + sizeof buffer, tiling.at(li, lj)).ptr;
-      *p++ = '\n';
-      file.stream().write(buffer, p - buffer);
+      line.clear();
+      append(tiling.origin_i + li, ',');
+      append(tiling.origin_j + lj, ',');
+      append(tiling.at(li, lj), '\n');
+      file.stream() << line;
     }
   file.commit();
 }

@@ -1,19 +1,20 @@
 // Outputs are written atomically: to a temporary file beside the target, renamed into
-// place only when complete, so a failed run never leaves a partial file.
+// place only when complete, so a failed run never leaves a partial file. Errors are
+// wangscape::Error naming the file.
 #pragma once
-
-#include "core/error.h"
 
 #include <filesystem>
 #include <fstream>
-#include <stdexcept>
 #include <string>
+
+#include "core/error.h"
 
 namespace wangscape {
 
 class AtomicFile {
  public:
-  // Opens "<path>.tmp-<pid>" for writing (binary). Throws Error naming `path`.
+  // Opens ".tmp-<pid>-<name>" beside `path` for writing (binary); the pid lets a later run tell
+  // a dead process's leftovers. Throws Error naming `path`.
   explicit AtomicFile(std::filesystem::path path);
   // Removes the temporary file unless commit() succeeded.
   ~AtomicFile();

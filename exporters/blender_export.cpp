@@ -143,6 +143,8 @@ int blender_cycles_samples(const RenderSettings& render, const BlenderExportOpti
 }
 
 struct BlenderWriter::Impl {
+  Impl(const Scene& s, const std::filesystem::path& f, const BlenderExportOptions& o)
+      : scene(s), folder(f), options(o) {}
   const Scene& scene;
   std::filesystem::path folder;
   BlenderExportOptions options;
@@ -161,7 +163,7 @@ struct BlenderWriter::Impl {
 
 BlenderWriter::BlenderWriter(const Scene& scene, const std::filesystem::path& folder,
                              const BlenderExportOptions& options)
-    : impl_(std::make_unique<Impl>(Impl{scene, folder, options})) {
+    : impl_(std::make_unique<Impl>(scene, folder, options)) {
   std::error_code error;
   std::filesystem::create_directories(folder, error);
   if (error) throw Error("cannot create Blender export folder '" + folder.string() + "': " + error.message());

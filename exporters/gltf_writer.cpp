@@ -224,6 +224,8 @@ Json camera_node(const Camera& camera, const RenderSettings& render, Json& camer
 }  // namespace
 
 struct GltfWriter::Impl {
+  Impl(const Scene& s, const std::filesystem::path& p, const GltfOptions& o)
+      : scene(s), path(p), options(o), table(build_material_table(s)) {}
   const Scene& scene;
   std::filesystem::path path;
   GltfOptions options;
@@ -239,7 +241,7 @@ struct GltfWriter::Impl {
 };
 
 GltfWriter::GltfWriter(const Scene& scene, const std::filesystem::path& path, const GltfOptions& options)
-    : impl_(std::make_unique<Impl>(Impl{scene, path, options, build_material_table(scene)})) {
+    : impl_(std::make_unique<Impl>(scene, path, options)) {
   if (!path.parent_path().empty()) {
     std::error_code error;
     std::filesystem::create_directories(path.parent_path(), error);

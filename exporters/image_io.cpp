@@ -8,19 +8,42 @@
 
 namespace wangscape {
 
-void write_image(const std::filesystem::path& path, const ImageRgb8& image) {
+namespace {
+// Writes `channels` x width x height pixels of `type` through a temporary file and a rename.
+void write_pixels(const std::filesystem::path& path, int width, int height, int channels, OIIO::TypeDesc type,
+                  const void* pixels) {
   const std::string name = path.string();
-  if (image.width < 1 || image.height < 1) throw Error("cannot write '" + name + "': the image is empty");
+  if (width < 1 || height < 1) throw Error("cannot write '" + name + "': the image is empty");
   AtomicPath atomic(path);
   auto output = OIIO::ImageOutput::create(name);  // chooses the format from the target's extension
   if (!output)
     throw Error("cannot write '" + name + "': no image format for extension '" + path.extension().string() + "' (" +
                 OIIO::geterror() + ")");
-  const OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
+  const OIIO::ImageSpec spec(width, height, channels, type);
   const std::string temp = atomic.temp_path().string();
-  if (!output->open(temp, spec) || !output->write_image(OIIO::TypeDesc::UINT8, image.pixels.data()) || !output->close())
+  if (!output->open(temp, spec) || !output->write_image(type, pixels) || !output->close())
     throw Error("cannot write '" + name + "': " + output->geterror());
   atomic.commit();
+}
+}  // namespace
+
+void write_image(const std::filesystem::path& path, const ImageRgb8& image) {
+  write_pixels(path, image.width, image.height, 3, OIIO::TypeDesc::UINT8, image.pixels.data());
+}
+
+void write_image_gray16(const std::filesystem::path& path, const ImageGray16& image) {
+  write_pixels(path, image.width, image.height, 1, OIIO::TypeDesc::UINT16, image.pixels.data());
+}
+
+ImageGray16 read_image_gray16(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  auto input = OIIO::ImageInput::open(name);
+  if (!input) throw Error("cannot read image '" + name + "': " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = input->spec();
+  ImageGray16 image(spec.width, spec.height);
+  if (!input->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT16, image.pixels.data()))
+    throw Error("cannot read image '" + name + "': " + input->geterror());
+  return image;
 }
 
 ImageRgb8 read_image(const std::filesystem::path& path) {

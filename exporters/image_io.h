@@ -15,4 +15,9 @@ void write_image(const std::filesystem::path& path, const ImageRgb8& image);
 // Throws Error naming the file.
 ImageRgb8 read_image(const std::filesystem::path& path);
 
+// 16-bit grey images (noise tiles), written atomically like write_image.
+void write_image_gray16(const std::filesystem::path& path, const ImageGray16& image);
+// Reads any image as 16-bit grey (the first channel). Throws Error naming the file.
+ImageGray16 read_image_gray16(const std::filesystem::path& path);
+
 }  // namespace wangscape

@@ -351,6 +351,7 @@ void PovrayInstanceWriter::flush() {
 // ---- the folder -----------------------------------------------------------------------------
 
 struct PovrayWriter::Impl {
+  Impl(const Scene& s, const std::filesystem::path& d, const PovrayExportOptions& o) : scene(s), dir(d), options(o) {}
   const Scene& scene;
   std::filesystem::path dir;
   PovrayExportOptions options;
@@ -369,7 +370,7 @@ struct PovrayWriter::Impl {
 };
 
 PovrayWriter::PovrayWriter(const Scene& scene, const std::filesystem::path& dir, const PovrayExportOptions& options)
-    : impl_(std::make_unique<Impl>(Impl{scene, dir, options})) {
+    : impl_(std::make_unique<Impl>(scene, dir, options)) {
   if (!std::filesystem::is_directory(dir))
     throw Error("POV-Ray export: output folder '" + dir.string() + "' does not exist");
   if (scene.models.empty() && scene.instances) throw Error("POV-Ray export: the scene has instances but no models");

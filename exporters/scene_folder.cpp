@@ -24,7 +24,13 @@ void say(const SceneFolderObserver& observer, const std::string& message) {
 
 // The folder a build stages into and the one an old build is moved to during the swap.
 fs::path sibling(const fs::path& out_dir, const char* role) {
-  return out_dir.parent_path() / ("." + out_dir.filename().string() + "." + role + "-" + std::to_string(::getpid()));
+  std::string name(1, '.');  // appended piecewise: GCC 12 warns falsely on "." + ...
+  name += out_dir.filename().string();
+  name += '.';
+  name += role;
+  name += '-';
+  name += std::to_string(::getpid());
+  return out_dir.parent_path() / name;
 }
 
 // Replaces out_dir by staging: with one rename when out_dir does not exist, else out_dir is

@@ -1,7 +1,5 @@
 #include "exporters/texture_tile_files.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <string>
 #include <system_error>
 
@@ -32,33 +30,6 @@ Json tile_entries(const TileSet& set, const std::string& prefix) {
 }
 
 }  // namespace
-
-void write_image_gray16(const std::filesystem::path& path, const ImageGray16& image) {
-  const std::string name = path.string();
-  if (image.width < 1 || image.height < 1) throw Error("cannot write '" + name + "': the image is empty");
-  AtomicPath atomic(path);
-  auto output = OIIO::ImageOutput::create(name);
-  if (!output)
-    throw Error("cannot write '" + name + "': no image format for extension '" + path.extension().string() + "' (" +
-                OIIO::geterror() + ")");
-  const OIIO::ImageSpec spec(image.width, image.height, 1, OIIO::TypeDesc::UINT16);
-  const std::string temp = atomic.temp_path().string();
-  if (!output->open(temp, spec) || !output->write_image(OIIO::TypeDesc::UINT16, image.pixels.data()) ||
-      !output->close())
-    throw Error("cannot write '" + name + "': " + output->geterror());
-  atomic.commit();
-}
-
-ImageGray16 read_image_gray16(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  auto input = OIIO::ImageInput::open(name);
-  if (!input) throw Error("cannot read image '" + name + "': " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = input->spec();
-  ImageGray16 image(spec.width, spec.height);
-  if (!input->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT16, image.pixels.data()))
-    throw Error("cannot read image '" + name + "': " + input->geterror());
-  return image;
-}
 
 void write_noise_tile_files(const std::filesystem::path& dir, const NoiseTileSet& tiles, int pixels,
                             NoisePattern pattern) {

@@ -5,16 +5,12 @@
 
 #include <filesystem>
 
+#include "exporters/image_io.h"
 #include "generator/image.h"
 #include "generator/noise_tiles.h"
 #include "generator/texture_tiles.h"
 
 namespace wangscape {
-
-// 16-bit grey images through OpenImageIO (the format from the extension: .png, .tif, ...).
-void write_image_gray16(const std::filesystem::path& path, const ImageGray16& image);
-// Reads any image as 16-bit grey (the first channel). Throws Error naming the file.
-ImageGray16 read_image_gray16(const std::filesystem::path& path);
 
 // DIR/noise_tile_<k>.png (pixels x pixels, `pattern`: noise, fbm or turbulence) for every tile
 // and DIR/noise_tiles.json:

@@ -19,8 +19,8 @@ struct Sun {
 // algorithm after Meeus, about 0.01 degree for years 1901-2099; refraction included near the
 // horizon). Degrees: latitude/longitude WGS 84, azimuth clockwise from north.
 struct SolarPosition {
-  double azimuth_degrees = 0;    // compass, clockwise from north
-  double elevation_degrees = 0;  // above the horizon, refraction included
+  double azimuth_degrees = 0;         // compass, clockwise from north
+  double elevation_degrees = 0;       // above the horizon, refraction included
   double true_elevation_degrees = 0;  // the geometric elevation, without refraction
 };
 SolarPosition solar_position(double latitude_degrees, double longitude_degrees, std::int64_t unix_seconds);

@@ -170,4 +170,16 @@ inline Scene make_test_scene(std::uint64_t instance_count, int cells = 32, float
   return scene;
 }
 
+// `whole`, failing with an Error when it would hand over batch number `failing_batch` (1-based):
+// placement breaking off midway.
+inline InstanceStream failing_at_batch(InstanceStream whole, int failing_batch) {
+  return [whole, failing_batch](const InstanceSink& sink) {
+    int batches = 0;
+    whole([&](const InstanceBatch& batch) {
+      if (++batches == failing_batch) throw Error("placement failed on purpose");
+      sink(batch);
+    });
+  };
+}
+
 }  // namespace wangscape::testing

@@ -116,14 +116,7 @@ TEST(BlenderExport, SameSceneSameBytes) {
 TEST(BlenderExport, StreamFailingMidwayLeavesNoManifestNorArrays) {
   const auto folder = scratch("midway");
   Scene scene = testing::make_test_scene(10000, 4, 10.0f, 1000);
-  const InstanceStream whole = scene.instances;
-  scene.instances = [whole](const InstanceSink& sink) {
-    int batches = 0;
-    whole([&](const InstanceBatch& batch) {
-      if (++batches == 3) throw Error("placement failed on purpose");
-      sink(batch);
-    });
-  };
+  scene.instances = testing::failing_at_batch(scene.instances, 3);
   try {
     export_blender(scene, folder);
     FAIL() << "expected Error";

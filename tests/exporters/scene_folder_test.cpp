@@ -102,14 +102,7 @@ TEST(SceneFolder, FailureLeavesTheEarlierBuildAsItWas) {
   write_scene_folder(counted_scene(100, runs), kAllExports, "first", out);
   const auto before = names_in(out);
   Scene failing = counted_scene(3000, runs);
-  const InstanceStream whole = failing.instances;
-  failing.instances = [whole](const InstanceSink& sink) {
-    int batches = 0;
-    whole([&](const InstanceBatch& batch) {
-      if (++batches == 2) throw Error("placement failed on purpose");
-      sink(batch);
-    });
-  };
+  failing.instances = testing::failing_at_batch(failing.instances, 2);
   EXPECT_THROW(write_scene_folder(failing, kAllExports, "second", out), Error);
   EXPECT_EQ(names_in(out), before);
   std::ifstream toml(out / "scene.toml");

@@ -83,7 +83,7 @@ TEST(PoissonTiles, NoPairCloserThanPackingDiameterInAnyTilingOfEveryBuiltinSet) 
 }
 
 TEST(PoissonTiles, ReplicatedPointsAreIdenticalEverywhere) {
-  for (const std::string& name : {"cohen8", "owen12", "corner-2", "cohen8-corners"}) {
+  for (const std::string name : {"cohen8", "owen12", "corner-2", "cohen8-corners"}) {
     SCOPED_TRACE(name);
     const PoissonFillOptions options = small_options(5, 6);
     const FilledTileSet filled = fill_poisson_tiles(builtin_tileset(name), options);
@@ -142,7 +142,7 @@ std::string fill_bytes(const TileSet& set, const PoissonFillOptions& options) {
 }
 
 TEST(PoissonTiles, SameSeedSameBytesOnOneAndTwoThreads) {
-  for (const std::string& name : {"cohen8", "corner-2"}) {
+  for (const std::string name : {"cohen8", "corner-2"}) {
     PoissonFillOptions options;
     options.points_per_tile = 12;
     options.relax_rounds = 10;
@@ -163,7 +163,7 @@ TEST(PoissonTiles, SameSeedSameBytesOnOneAndTwoThreads) {
 }
 
 TEST(PoissonTiles, RelaxationRaisesRhoAndStopsBeforeALattice) {
-  for (const std::string& name : {"cohen8", "corner-2", "cohen12"}) {
+  for (const std::string name : {"cohen8", "corner-2", "cohen12"}) {
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
       SCOPED_TRACE(name + " seed " + std::to_string(seed));
       PoissonFillOptions options;
