@@ -34,7 +34,8 @@ struct LdiViewSettings {
   // The view the resolutions are derived for (seed 003: "a splat of one pixel"). With 512 pixels
   // and 60 degrees, the default scene's set (4 m tiles, prism top 2.92 m) gets 427, 220, 148, 111,
   // 89, 74, 64 against seed 003's 468, 232, 151, 111, 88, 73, 62 (its view size is not given):
-  // levels 3-7 within 3 %, level 1 9 % lower (the near edge is 4 m away and 1.2 m below the eye).
+  // levels 3-7 within 3 %, level 1 9 % lower (seed 003's flowers and box height are not given;
+  // here the box top is 1.2 m above the eye and the near edge 4 m away).
   int image_width = 512;    // pixels
   double fov_degrees = 60;  // horizontal
 };
@@ -55,7 +56,9 @@ struct LdiBuildOptions {
   double merge_pixels = 1.0;  // hits closer than this many pixel sizes along a ray merge into the front one
   int max_hits = 64;          // per ray, before de-duplication and merging; further hits are dropped (counted)
   // Which 3 x 3 context of matching neighbours each tile is sampled in: the k-th consistent one
-  // in index order (modulo how many exist). The geometry does not depend on it.
+  // in index order (modulo how many exist). Which samples exist, their depths and normals do not
+  // depend on it (tested); their shading does where shadows and sky light come from flowers that
+  // stand wholly inside a neighbour.
   int context_choice = 0;
   // 1: rtcIntersect1; 4, 8 or 16: rtcIntersectN over runs of a row (same LDIs; 16 measured
   // fastest, bench/ldi_bench BM_LdiSamplerRays).
