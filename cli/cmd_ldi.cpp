@@ -1,0 +1,107 @@
+// wangscape ldi build SCENE.toml --out PACK: every tile of the scene's set sampled into
+// pre-shaded LDIs (renders/ldi_build.h); ldi info PACK [--json]; ldi sheet PACK --tile K --out PNG.
+#include <fmt/core.h>
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include "cli/command.h"
+#include "cli/progress.h"
+#include "renders/ldi_info.h"
+#include "renders/ldi_scene.h"
+#include "renders/ldi_sheet.h"
+
+namespace wangscape::cli {
+
+namespace {
+
+struct LdiBuildArgs {
+  std::string scene, out;
+  double head_height = 1.7;
+  int levels = 7, directions = 8, sky_rays = 8;
+  std::string ground = "visible";
+};
+
+void run_ldi_build(const LdiBuildArgs& args, const GlobalOptions& global) {
+  LdiBuildOptions options;
+  options.view.head_height = args.head_height;
+  options.view.levels = args.levels;
+  options.view.directions = args.directions;
+  options.shading.ao_rays = args.sky_rays;
+  options.ground = args.ground == "none"     ? LdiGround::none
+                   : args.ground == "always" ? LdiGround::always
+                                             : LdiGround::visible;
+  LdiSceneObserver observer;
+  std::unique_ptr<Progress> progress;
+  const auto start = std::chrono::steady_clock::now();
+  if (chatty(global)) {
+    observer.stage = [&](const std::string& message) { std::fprintf(stderr, "wangscape: %s\n", message.c_str()); };
+    observer.progress = [&](std::uint64_t done, std::uint64_t total, std::uint64_t rays) {
+      if (!progress) progress = std::make_unique<Progress>("LDIs", total, global.quiet);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      progress->update(done, fmt::format("{} / {} LDIs, {:.1f} M rays/s", done, total, double(rays) / 1e6 / seconds));
+    };
+  }
+  const LdiBuildReport report = build_scene_ldi_pack(load_scene_config(args.scene), args.out, options, observer);
+  progress.reset();
+  if (chatty(global))
+    std::fprintf(stderr, "wangscape: wrote %s (%llu LDIs, %.1f M depth pixels, %.1f M rays, %.1f s)\n",
+                 args.out.c_str(), static_cast<unsigned long long>(report.ldis), double(report.depth_pixels) / 1e6,
+                 double(report.primary_rays + report.secondary_rays) / 1e6, report.seconds);
+}
+
+}  // namespace
+
+void register_ldi_command(CLI::App& app, const GlobalOptions& global) {
+  auto* ldi = app.add_subcommand("ldi", "Pre-shaded Layered Depth Images of a scene's tiles (docs/ldi-pack-format.md)");
+  ldi->require_subcommand(1);
+
+  auto* build = ldi->add_subcommand("build", "Sample every tile of a scene into an LDI pack with Embree");
+  auto args = std::make_shared<LdiBuildArgs>();
+  build->add_option("scene", args->scene, "Scene file (TOML, see docs/scene-file.md)")->required();
+  build->add_option("--out,-o", args->out, "The pack to write")->required();
+  build->add_option("--head-height", args->head_height, "Viewer's eye above the ground (m)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 100.0));
+  build->add_option("--levels", args->levels, "Levels of detail (1 .. 64 tiles away)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
+  build->add_option("--directions", args->directions, "View directions around a tile")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
+  build->add_option("--sky-rays", args->sky_rays, "Ambient-occlusion rays per sample")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1024));
+  build->add_option("--ground", args->ground, "The ground in the LDIs: none, visible (where it shows through), always")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"none", "visible", "always"}));
+  build->callback([args, &global] { run_ldi_build(*args, global); });
+
+  auto* info = ldi->add_subcommand("info", "Print what a pack holds: sizes, resolutions, layers, bytes");
+  auto info_args = std::make_shared<std::pair<std::string, bool>>();
+  info->add_option("pack", info_args->first, "LDI pack")->required();
+  info->add_flag("--json", info_args->second, "One JSON object instead of text");
+  info->callback([info_args] {
+    const LdiPack pack(info_args->first);
+    std::fputs((info_args->second ? ldi_info_json(pack) : ldi_info_text(pack)).c_str(), stdout);
+  });
+
+  auto* sheet = ldi->add_subcommand("sheet", "Draw one tile's LDIs: levels as rows, directions as columns");
+  struct SheetArgs {
+    std::string pack, out;
+    std::uint32_t tile = 0;
+    int cell = 160;
+  };
+  auto sheet_args = std::make_shared<SheetArgs>();
+  sheet->add_option("pack", sheet_args->pack, "LDI pack")->required();
+  sheet->add_option("--tile", sheet_args->tile, "Tile index")->required();
+  sheet->add_option("--out,-o", sheet_args->out, "Image to write (PNG)")->required();
+  sheet->add_option("--cell", sheet_args->cell, "Pixels per LDI in the sheet")
+      ->capture_default_str()
+      ->check(CLI::Range(8, 2048));
+  sheet->callback(
+      [sheet_args] { write_ldi_sheet(sheet_args->pack, sheet_args->tile, sheet_args->out, sheet_args->cell); });
+}
+
+}  // namespace wangscape::cli

@@ -1,0 +1,122 @@
+#include "renders/shading.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace wangscape {
+
+namespace {
+
+float dot(const Vec3f& a, const Vec3f& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// Whether the segment from p along unit d up to `far` meters hits anything.
+bool occluded(RTCScene scene, const Vec3f& p, const Vec3f& d, float far) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray{};
+  ray.org_x = p[0];
+  ray.org_y = p[1];
+  ray.org_z = p[2];
+  ray.dir_x = d[0];
+  ray.dir_y = d[1];
+  ray.dir_z = d[2];
+  ray.tnear = 0.0f;
+  ray.tfar = far;
+  ray.mask = 0xffffffffu;
+  rtcOccluded1(scene, &context, &ray);
+  return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+Vec3f offset_along(const Vec3f& p, const Vec3f& n, float distance) {
+  return {p[0] + n[0] * distance, p[1] + n[1] * distance, p[2] + n[2] * distance};
+}
+
+}  // namespace
+
+Vec3f sun_direction_from_degrees(double azimuth_degrees, double elevation_degrees) {
+  const double az = azimuth_degrees * std::numbers::pi / 180, el = elevation_degrees * std::numbers::pi / 180;
+  return {static_cast<float>(std::sin(az) * std::cos(el)), static_cast<float>(std::cos(az) * std::cos(el)),
+          static_cast<float>(std::sin(el))};
+}
+
+Vec3f shade(RTCSceneTy* scene, const ShadingSettings& s, const SurfaceSample& sample, std::uint64_t random,
+            int* rays_cast) {
+  int rays = 0;
+  const Vec3f& n = sample.normal;
+  const Vec3f& p = sample.position;
+
+  // Sun: the front is lit by cos; a translucent part passes that share of the light on its back.
+  const float cos_sun = dot(n, s.sun_direction);
+  float sun = cos_sun > 0 ? cos_sun : -cos_sun * sample.translucency;
+  if (sun > 0 && s.shadows) {
+    const Vec3f from = offset_along(p, n, cos_sun > 0 ? s.ray_offset : -s.ray_offset);
+    ++rays;
+    if (occluded(scene, from, s.sun_direction, std::numeric_limits<float>::infinity())) sun = 0;
+  }
+
+  // Sky: cosine-weighted directions over the hemisphere of n, so the unoccluded fraction is the
+  // irradiance share of a uniform sky. Frame from Duff et al. 2017 (no branch on n's axis).
+  float sky = 1.0f;
+  if (s.ao_rays > 0) {
+    const float sign = std::copysign(1.0f, n[2]);
+    const float a = -1.0f / (sign + n[2]), b = n[0] * n[1] * a;
+    const Vec3f t{1.0f + sign * n[0] * n[0] * a, sign * b, -sign * n[0]};
+    const Vec3f bt{b, sign + n[1] * n[1] * a, -n[1]};
+    const Vec3f from = offset_along(p, n, s.ray_offset);
+    // Eight rays from one point at a time: one rtcOccluded8 packet (measured faster than singles).
+    int open = 0;
+    for (int k0 = 0; k0 < s.ao_rays; k0 += 8) {
+      alignas(32) RTCRay8 packet{};
+      alignas(32) int valid[8];
+      for (int l = 0; l < 8; ++l) {
+        const int k = k0 + l;
+        valid[l] = k < s.ao_rays ? -1 : 0;
+        if (k >= s.ao_rays) continue;
+        const std::uint64_t h = mix64(random + static_cast<std::uint64_t>(k) * 0x632be59bd9b4e019ull);
+        // Stratified in the first coordinate so few rays still cover the hemisphere.
+        const float u1 = (static_cast<float>(k) + unit_float(h)) / static_cast<float>(s.ao_rays);
+        const float u2 = unit_float(mix64(h));
+        const float r = std::sqrt(u1), phi = 2.0f * std::numbers::pi_v<float> * u2;
+        const float x = r * std::cos(phi), y = r * std::sin(phi), z = std::sqrt(std::max(0.0f, 1.0f - u1));
+        packet.org_x[l] = from[0];
+        packet.org_y[l] = from[1];
+        packet.org_z[l] = from[2];
+        packet.dir_x[l] = x * t[0] + y * bt[0] + z * n[0];
+        packet.dir_y[l] = x * t[1] + y * bt[1] + z * n[1];
+        packet.dir_z[l] = x * t[2] + y * bt[2] + z * n[2];
+        packet.tnear[l] = 0.0f;
+        packet.tfar[l] = s.ao_distance;
+        packet.mask[l] = 0xffffffffu;
+      }
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      rtcOccluded8(valid, scene, &context, &packet);
+      for (int l = 0; l < 8; ++l)
+        if (valid[l] != 0 && packet.tfar[l] >= 0.0f) ++open;  // tfar becomes -inf on a hit
+    }
+    sky = static_cast<float>(open) / static_cast<float>(s.ao_rays);
+    rays += s.ao_rays;
+  }
+
+  Vec3f out;
+  for (int c = 0; c < 3; ++c) out[c] = sample.base_color[c] * (s.sun_color[c] * sun + s.sky_color[c] * sky);
+  for (float& c : out) c *= s.exposure;
+  if (rays_cast) *rays_cast = rays;
+  return out;
+}
+
+std::array<std::uint8_t, 3> to_srgb8(const Vec3f& linear) {
+  std::array<std::uint8_t, 3> out{};
+  for (int c = 0; c < 3; ++c) {
+    const float v = std::clamp(linear[c], 0.0f, 1.0f);
+    const float e = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+    out[c] = static_cast<std::uint8_t>(std::lround(e * 255.0f));
+  }
+  return out;
+}
+
+}  // namespace wangscape

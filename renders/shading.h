@@ -1,0 +1,66 @@
+// The one shading model of renders/: the LDI build pre-shades its samples with it and the Embree
+// reference renderer shades its pixels with it, so both show the same light. Diffuse surfaces lit
+// by the sun (with Embree shadow rays) and by the sky (ambient occlusion from N hemisphere rays);
+// thin translucent parts (petals, leaves) also pass the sun that falls on their back.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "templates/mesh.h"
+
+// Embree's scene handle (embree3/rtcore_scene.h: typedef struct RTCSceneTy* RTCScene), declared
+// here so that users of this header need not include Embree.
+struct RTCSceneTy;
+
+namespace wangscape {
+
+using Vec3f = std::array<float, 3>;
+
+// Unit vector from the ground towards a sun at compass azimuth (degrees clockwise from north)
+// and elevation (degrees above the horizon), ENU (x east, y north, z up).
+Vec3f sun_direction_from_degrees(double azimuth_degrees, double elevation_degrees);
+
+struct ShadingSettings {
+  Vec3f sun_direction = sun_direction_from_degrees(135.0, 35.0);  // unit, towards the sun
+  Vec3f sun_color{2.2f, 2.0f, 1.75f};                             // linear irradiance the sun brings
+  Vec3f sky_color{0.38f, 0.45f, 0.60f};                           // linear, from an open hemisphere
+  bool shadows = true;                                            // sun shadow rays (else every point is lit)
+  int ao_rays = 8;                          // sky-light rays per sample; 0 = every point sees the open sky
+  float ao_distance = 1.5f;                 // meters: occluders further than this do not darken the sky light
+  float ray_offset = 1e-3f;                 // meters: shadow and sky rays start this far off the surface
+  float exposure = 1.0f;                    // linear scale before the sRGB encoding
+  Vec3f ground_color{0.30f, 0.24f, 0.15f};  // linear base color of the ground plane
+};
+
+// A point to shade, in the scene space of the Embree scene given to shade().
+struct SurfaceSample {
+  Vec3f position{};                    // meters
+  Vec3f normal{0, 0, 1};               // unit, turned towards the viewer (surfaces are two-sided)
+  Vec3f base_color{0.5f, 0.5f, 0.5f};  // linear RGB
+  float translucency = 0;              // 0..1 of the sun on the back that comes through
+};
+
+// Outgoing linear RGB at `sample`. Shadow and sky rays are rtcOccluded1 queries of `scene`
+// (which must hold every occluder: in the LDI build, the 3 x 3 context); `random` seeds the sky
+// directions, so the same inputs give the same bits. `rays_cast`, when given, is set to the number
+// of Embree rays shade() traced. Thread-safe: reads the scene only.
+Vec3f shade(RTCSceneTy* scene, const ShadingSettings& settings, const SurfaceSample& sample, std::uint64_t random,
+            int* rays_cast = nullptr);
+
+// Linear RGB (times exposure) to 8-bit sRGB, clamped.
+std::array<std::uint8_t, 3> to_srgb8(const Vec3f& linear);
+
+// ---- deterministic random numbers shared by the samplers ----
+
+// SplitMix64's finaliser: a well-mixed 64-bit hash of x.
+constexpr std::uint64_t mix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+// A uniform float in [0, 1) from the top 24 bits of h.
+constexpr float unit_float(std::uint64_t h) { return static_cast<float>(h >> 40) * (1.0f / 16777216.0f); }
+
+}  // namespace wangscape
