@@ -7,43 +7,22 @@
 #include "cli/command.h"
 #include "cli/progress.h"
 #include "cli/scene_commands.h"
-#include "renders/blender_render.h"
-#include "renders/povray_render.h"
+#include "renders/render_folder.h"
 
 namespace wangscape::cli {
 
-namespace {
-// Blender: the add-on imports DIR/blender/manifest.json, Cycles renders on the CPU.
-void run_blender_render(const std::filesystem::path& dir, const RenderRequest& request, const GlobalOptions& global) {
-  BlenderRenderOptions options;
-  options.width = request.width;
-  options.height = request.height;
-  if (chatty(global))
-    std::fprintf(stderr, "wangscape: rendering %s with Blender (Cycles, CPU)\n", dir.string().c_str());
-  const auto result = render_blender(dir, options);
-  if (chatty(global))
-    std::fprintf(stderr, "wangscape: wrote %s and %s in %.1f s (log: %s)\n", result.image.string().c_str(),
-                 result.blend.string().c_str(), result.seconds, result.log.string().c_str());
-}
-}  // namespace
-
 void run_render(const std::filesystem::path& dir, const RenderRequest& request, const GlobalOptions& global) {
-  if (request.engine == "blender") return run_blender_render(dir, request, global);
-  if (request.engine != "povray")
-    throw Error("render: engine '" + request.engine + "' is not available in this wangscape (known: povray, blender)");
-  PovrayRenderOptions options;
-  options.width = request.width;
-  options.height = request.height;
+  FolderRenderRequest folder{request.engine, request.width, request.height, {}};
   std::unique_ptr<Progress> progress;
   if (chatty(global)) {
-    std::fprintf(stderr, "wangscape: rendering %s with POV-Ray\n", dir.string().c_str());
-    options.on_progress = [&](std::uint64_t done, std::uint64_t total) {
+    std::fprintf(stderr, "wangscape: rendering %s with %s\n", dir.string().c_str(), request.engine.c_str());
+    folder.on_progress = [&](std::uint64_t done, std::uint64_t total) {
       if (total == 0) return;
       if (!progress) progress = std::make_unique<Progress>("pixels", total, global.quiet);
       progress->update(done);
     };
   }
-  const auto result = render_povray(dir, options);
+  const auto result = render_scene_folder(dir, folder);
   progress.reset();
   if (chatty(global))
     std::fprintf(stderr, "wangscape: wrote %s in %.1f s (log: %s)\n", result.image.string().c_str(), result.seconds,

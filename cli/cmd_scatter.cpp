@@ -14,6 +14,7 @@
 #include "cli/progress.h"
 #include "exporters/image_io.h"
 #include "exporters/point_writer.h"
+#include "exporters/reports.h"
 #include "generator/placement.h"
 #include "generator/point_metrics.h"
 #include "scene/filled_tileset_file.h"
@@ -55,63 +56,6 @@ SceneGround load_dem_ground(const ScatterOptions& options) {
   masks.mask = options.mask;
   masks.fair_edges = options.fair_edges;
   return SceneGround::load(terrain, masks);
-}
-
-Extent parse_plane(const std::string& text) {
-  const auto x = text.find('x');
-  double w = 0, h = 0;
-  std::size_t used_w = 0, used_h = 0;
-  try {
-    if (x != std::string::npos) {
-      w = std::stod(text.substr(0, x), &used_w);
-      h = std::stod(text.substr(x + 1), &used_h);
-    }
-  } catch (const std::exception&) {
-    used_w = 0;
-  }
-  if (x == std::string::npos || used_w != x || used_h != text.size() - x - 1 || !(w > 0) || !(h > 0) ||
-      !std::isfinite(w) || !std::isfinite(h))
-    throw std::runtime_error("--plane '" + text + "': expected WIDTHxHEIGHT in meters, e.g. 64x64");
-  return {0, 0, w, h};
-}
-
-Json metrics_json(const PointMetrics& m, double seconds) {
-  Json j;
-  j["count"] = m.count;
-  j["area_m2"] = m.area;
-  j["spacing_m"] = m.spacing;
-  j["min_distance_m"] = m.min_distance;
-  j["rho"] = m.rho;
-  j["mean_nn"] = m.mean_nn;
-  j["nn_spread"] = m.nn_spread;
-  j["close_pairs"] = m.close_pairs;
-  j["edge_density_ratio"] = m.edge_density_ratio;
-  j["corner_density_ratio"] = m.corner_density_ratio;
-  j["anisotropy_db"] = m.spectrum.mean_anisotropy_db;
-  j["anisotropy_off_grid_db"] = m.spectrum.mean_anisotropy_off_grid_db;
-  j["anisotropy_noise_floor_db"] = m.spectrum.noise_floor_db;
-  j["scatter_seconds"] = seconds;
-  Json spectrum;
-  spectrum["window_m"] = m.spectrum.window;
-  spectrum["windows"] = m.spectrum.windows;
-  spectrum["frequency_per_m"] = m.spectrum.frequency;
-  spectrum["power"] = m.spectrum.power;
-  spectrum["anisotropy_db"] = m.spectrum.anisotropy_db;
-  j["spectrum"] = std::move(spectrum);
-  return j;
-}
-
-void print_metrics(const PointMetrics& m, double packing_diameter) {
-  fmt::print("points:                {}\n", m.count);
-  fmt::print("rho (d_min / spacing): {:.4f}  (d_min {:.4f} m, spacing {:.4f} m)\n", m.rho, m.min_distance, m.spacing);
-  fmt::print("mean NN / spacing:     {:.4f}\n", m.mean_nn);
-  fmt::print("NN std / mean:         {:.4f}\n", m.nn_spread);
-  fmt::print("pairs < {:.4f} m:      {}\n", packing_diameter, m.close_pairs);
-  fmt::print("edge density ratio:    {:.3f}\n", m.edge_density_ratio);
-  fmt::print("corner density ratio:  {:.3f}\n", m.corner_density_ratio);
-  fmt::print("anisotropy:            {:.2f} dB, {:.2f} dB off the tile grid (noise floor {:.2f} dB, {} windows)\n",
-             m.spectrum.mean_anisotropy_db, m.spectrum.mean_anisotropy_off_grid_db, m.spectrum.noise_floor_db,
-             m.spectrum.windows);
 }
 
 void run(const ScatterOptions& options, const GlobalOptions& global) {
@@ -172,9 +116,9 @@ void run(const ScatterOptions& options, const GlobalOptions& global) {
     const PointMetrics m = measure_points(xs, ys, metric_options);
     if (!options.spectrum_png.empty()) write_image(options.spectrum_png, draw_spectrum_plot(m.spectrum));
     if (options.json)
-      fmt::print("{}\n", metrics_json(m, seconds).dump(2));
+      fmt::print("{}\n", point_metrics_json(m, seconds).dump(2));
     else
-      print_metrics(m, metric_options.packing_diameter);
+      fmt::print("{}", point_metrics_text(m, metric_options.packing_diameter));
   } else if (!global.quiet) {
     fmt::print(stderr, "wangscape: {} instances from {} tiles -> {}\n", stats.points, stats.tiles, options.out);
   }

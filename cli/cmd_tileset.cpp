@@ -5,6 +5,7 @@
 
 #include "cli/command.h"
 #include "exporters/image_io.h"
+#include "exporters/reports.h"
 #include "generator/tiling_preview.h"
 #include "scene/filled_tileset_file.h"
 #include "scene/tileset_file.h"
@@ -35,36 +36,18 @@ void fill(const TileSet& set, const TilesetOptions& options) {
   if (!options.out.empty()) write_filled_tileset_json(options.out, filled);
   if (!options.sheet.empty())
     write_image(options.sheet, draw_filled_tileset_sheet(filled, std::max(options.tile_pixels, 96)));
-  const double spacing = hexagonal_spacing(1.0, options.per_tile);
-  fmt::print(
-      "{}: {} distinct points; rho over every configuration {:.4f} after darts, {:.4f} after {} relaxation "
-      "rounds{}; radius_packing {:.5f}, radius_tight {:.5f} (tile sides)\n",
-      set.name, report.class_points, report.dart_min_distance / spacing, report.final_min_distance / spacing,
-      report.relax_rounds_run, report.stopped_before_lattice ? " (stopped before a lattice)" : "",
-      filled.radius_packing, filled.radius_tight);
-}
-
-void print_summary(const TileSet& set) {
-  fmt::print("name:    {}\n", set.name);
-  fmt::print("kind:    {}{}\n", set.kind == TileKind::edge ? "edge" : "corner",
-             set.kind == TileKind::edge && set.has_corners ? " (corners coded too)" : "");
-  fmt::print("tiles:   {}\n", set.size());
-  if (set.has_edges) fmt::print("colors:  {} N/S, {} E/W\n", set.horizontal_colors, set.vertical_colors);
-  if (set.has_corners) fmt::print("corners: {} colors\n", set.corner_colors);
+  fmt::print("{}", poisson_fill_text(filled, report, options.per_tile));
 }
 
 void run(const TilesetOptions& options) {
   const TileSet set = load_tileset(options.set);
   if (options.per_tile > 0) return fill(set, options);
   if (!options.out.empty()) throw std::runtime_error("--out needs --per-tile N (the points to write)");
-  // Tile contents (Poisson points per tile, --per-tile N --relax R --out tiles.json) plug in
-  // here: fill the set, then write it with write_tileset_json's format plus per-tile keys
-  // (points, radius_packing, radius_tight, seed; see scene/tileset_file.h).
   if (!options.sheet.empty()) write_image(options.sheet, draw_tileset_sheet(set, options.tile_pixels));
   if (options.json) {
     fmt::print("{}", format_tileset_json(tileset_to_json(set)));
   } else if (options.sheet.empty()) {
-    print_summary(set);
+    fmt::print("{}", tileset_summary_text(set));
   }
 }
 

@@ -8,8 +8,8 @@
 
 #include "cli/command.h"
 #include "cli/progress.h"
-#include "core/atomic_file.h"
 #include "exporters/image_io.h"
+#include "exporters/reports.h"
 #include "generator/tiling_preview.h"
 #include "generator/tiling_stats.h"
 #include "scene/tileset_file.h"
@@ -59,62 +59,6 @@ std::string validate_origin(const std::string& text) {
   return parse_pair(text, ',', i, j) ? "" : "origin '" + text + "' is not I,J (two integers, e.g. -10,5)";
 }
 
-void write_csv(const std::filesystem::path& path, const Tiling& tiling) {
-  AtomicFile file(path);
-  file.stream() << "i,j,tile\n";
-  std::string line;
-  const auto append = [&line](std::int64_t value, char end) {
-    char digits[24];  // any 64-bit integer
-    line.append(digits, std::to_chars(digits, digits + sizeof digits, value).ptr);
-    line.push_back(end);
-  };
-  for (int lj = 0; lj < tiling.height; ++lj)
-    for (int li = 0; li < tiling.width; ++li) {
-      line.clear();
-      append(tiling.origin_i + li, ',');
-      append(tiling.origin_j + lj, ',');
-      append(tiling.at(li, lj), '\n');
-      file.stream() << line;
-    }
-  file.commit();
-}
-
-nlohmann::ordered_json stats_json(const TileSet& set, const Tiling& tiling, const TilingCommandOptions& options,
-                                  const TilingStats& stats) {
-  nlohmann::ordered_json out;
-  out["set"] = set.name;
-  out["tiles_in_set"] = set.size();
-  out["width"] = tiling.width;
-  out["height"] = tiling.height;
-  out["origin"] = {tiling.origin_i, tiling.origin_j};
-  out["algorithm"] = options.algorithm;
-  out["seed"] = options.seed;
-  out["no_identical_neighbours"] = options.no_identical_neighbours;
-  out["valid"] = stats.valid;
-  if (!stats.valid) out["invalid_reason"] = stats.invalid_reason;
-  out["frequencies"] = stats.frequencies;
-  out["identical_neighbour_rate"] = stats.identical_neighbour_rate;
-  out["periodicity"] = stats.periodicity;
-  out["periodicity_offset"] = {stats.period_di, stats.period_dj};
-  return out;
-}
-
-void print_stats(const TileSet& set, const Tiling& tiling, const TilingCommandOptions& options,
-                 const TilingStats& stats) {
-  fmt::print("set:                  {} ({} tiles)\n", set.name, set.size());
-  fmt::print("window:               {} x {} tiles from ({}, {})\n", tiling.width, tiling.height, tiling.origin_i,
-             tiling.origin_j);
-  fmt::print("algorithm:            {}, seed {}{}\n", options.algorithm, options.seed,
-             options.no_identical_neighbours ? ", no identical neighbours" : "");
-  fmt::print("valid:                {}\n", stats.valid ? "yes" : "no: " + stats.invalid_reason);
-  fmt::print("identical neighbours: {:.4f}\n", stats.identical_neighbour_rate);
-  fmt::print("periodicity:          {:.4f} (at offset {}, {}; ~1 periodic, ~0 stochastic)\n", stats.periodicity,
-             stats.period_di, stats.period_dj);
-  fmt::print("frequencies:         ");
-  for (std::size_t t = 0; t < stats.frequencies.size(); ++t) fmt::print(" {}:{}", t, stats.frequencies[t]);
-  fmt::print("\n");
-}
-
 void run(const TilingCommandOptions& options, const GlobalOptions& global) {
   const std::filesystem::path out(options.out);
   const std::string extension = out.extension().string();
@@ -150,13 +94,14 @@ void run(const TilingCommandOptions& options, const GlobalOptions& global) {
     progress.finish();
   }
   if (extension == ".png") write_image(out, draw_tile_map(tiling, options.pixels_per_tile));
-  if (extension == ".csv") write_csv(out, tiling);
+  if (extension == ".csv") write_tiling_csv(out, tiling);
   if (options.stats || options.json) {
     const TilingStats stats = compute_tiling_stats(set, tiling);
+    const TilingRun run{options.algorithm, options.seed, options.no_identical_neighbours};
     if (options.json)
-      fmt::print("{}\n", stats_json(set, tiling, options, stats).dump(2));
+      fmt::print("{}\n", tiling_stats_json(set, tiling, run, stats).dump(2));
     else
-      print_stats(set, tiling, options, stats);
+      fmt::print("{}", tiling_stats_text(set, tiling, run, stats));
   }
   if (!options.out.empty() && !global.quiet) fmt::print(stderr, "wrote {}\n", options.out);
 }

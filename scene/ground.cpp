@@ -50,6 +50,25 @@ std::array<double, 2> parse_lat_lon(const std::string& text) {
   return {*lat, *lon};
 }
 
+// "WIDTHxHEIGHT" in meters, both finite and > 0.
+Extent parse_plane(const std::string& text) {
+  const auto x = text.find('x');
+  double w = 0, h = 0;
+  std::size_t used_w = 0, used_h = 0;
+  try {
+    if (x != std::string::npos) {
+      w = std::stod(text.substr(0, x), &used_w);
+      h = std::stod(text.substr(x + 1), &used_h);
+    }
+  } catch (const std::exception&) {
+    used_w = 0;
+  }
+  if (x == std::string::npos || used_w != x || used_h != text.size() - x - 1 || !(w > 0) || !(h > 0) ||
+      !std::isfinite(w) || !std::isfinite(h))
+    throw Error("--plane '" + text + "': expected WIDTHxHEIGHT in meters, e.g. 64x64");
+  return {0, 0, w, h};
+}
+
 SceneGround SceneGround::load(const TerrainConfig& config, const MasksConfig& masks) {
   auto impl = std::make_shared<Impl>();
   impl->masks = masks;

@@ -74,4 +74,8 @@ static_assert(Ground<SceneGround>);
 // not two finite numbers in range.
 std::array<double, 2> parse_lat_lon(const std::string& text);
 
+// "WIDTHxHEIGHT" (meters, east x north) as the plane [0, W] x [0, H]. Throws Error naming the
+// text (as the --plane flag) when it is not two finite sizes > 0.
+Extent parse_plane(const std::string& text);
+
 }  // namespace wangscape
