@@ -8,6 +8,7 @@
 #include "cli/progress.h"
 #include "cli/scene_commands.h"
 #include "exporters/scene_folder.h"
+#include "renders/ldi_scene.h"
 
 namespace wangscape::cli {
 
@@ -29,6 +30,8 @@ void run_build(const SceneConfig& config, const std::filesystem::path& out_dir, 
   }
   const auto summary = build_scene_folder(config, out_dir, observer);
   progress.reset();
+  // The LDIs are sampled from the tile set, not from the placed field: a pass of their own.
+  if (config.exports.ldi) build_scene_ldi_pack(config, out_dir / "tiles.ldi", ldi_options(config));
   if (chatty(global))
     std::fprintf(stderr, "wangscape: wrote %s (%llu flowers, %.1f MB of POV-Ray files, %.1f s)\n",
                  out_dir.string().c_str(), static_cast<unsigned long long>(summary.instances),

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "cli/command.h"
 #include "cli/progress.h"
@@ -16,19 +17,21 @@ namespace wangscape::cli {
 
 namespace {
 
+// The view flags override the scene file's [ldi] section.
 struct LdiBuildArgs {
   std::string scene, out;
-  double head_height = 1.7;
-  int levels = 7, directions = 8, sky_rays = 8;
+  std::optional<double> head_height;
+  std::optional<int> levels, directions, sky_rays;
   std::string ground = "visible";
 };
 
 void run_ldi_build(const LdiBuildArgs& args, const GlobalOptions& global) {
-  LdiBuildOptions options;
-  options.view.head_height = args.head_height;
-  options.view.levels = args.levels;
-  options.view.directions = args.directions;
-  options.shading.ao_rays = args.sky_rays;
+  const SceneConfig config = load_scene_config(args.scene);
+  LdiBuildOptions options = ldi_options(config);
+  options.view.head_height = args.head_height.value_or(options.view.head_height);
+  options.view.levels = args.levels.value_or(options.view.levels);
+  options.view.directions = args.directions.value_or(options.view.directions);
+  options.shading.ao_rays = args.sky_rays.value_or(options.shading.ao_rays);
   options.ground = args.ground == "none"     ? LdiGround::none
                    : args.ground == "always" ? LdiGround::always
                                              : LdiGround::visible;
@@ -43,7 +46,7 @@ void run_ldi_build(const LdiBuildArgs& args, const GlobalOptions& global) {
       progress->update(done, fmt::format("{} / {} LDIs, {:.1f} M rays/s", done, total, double(rays) / 1e6 / seconds));
     };
   }
-  const LdiBuildReport report = build_scene_ldi_pack(load_scene_config(args.scene), args.out, options, observer);
+  const LdiBuildReport report = build_scene_ldi_pack(config, args.out, options, observer);
   progress.reset();
   if (chatty(global))
     std::fprintf(stderr, "wangscape: wrote %s (%llu LDIs, %.1f M depth pixels, %.1f M rays, %.1f s)\n",
@@ -61,18 +64,11 @@ void register_ldi_command(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<LdiBuildArgs>();
   build->add_option("scene", args->scene, "Scene file (TOML, see docs/scene-file.md)")->required();
   build->add_option("--out,-o", args->out, "The pack to write")->required();
-  build->add_option("--head-height", args->head_height, "Viewer's eye above the ground (m)")
-      ->capture_default_str()
+  build->add_option("--head-height", args->head_height, "Viewer's eye above the ground (m; default: [ldi])")
       ->check(CLI::Range(0.1, 100.0));
-  build->add_option("--levels", args->levels, "Levels of detail (1 .. 64 tiles away)")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 64));
-  build->add_option("--directions", args->directions, "View directions around a tile")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 64));
-  build->add_option("--sky-rays", args->sky_rays, "Ambient-occlusion rays per sample")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 1024));
+  build->add_option("--levels", args->levels, "Levels of detail (1 .. 64 tiles away)")->check(CLI::Range(1, 64));
+  build->add_option("--directions", args->directions, "View directions around a tile")->check(CLI::Range(1, 64));
+  build->add_option("--sky-rays", args->sky_rays, "Ambient-occlusion rays per sample")->check(CLI::Range(0, 1024));
   build->add_option("--ground", args->ground, "The ground in the LDIs: none, visible (where it shows through), always")
       ->capture_default_str()
       ->check(CLI::IsMember({"none", "visible", "always"}));

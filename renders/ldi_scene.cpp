@@ -32,4 +32,13 @@ LdiBuildReport build_scene_ldi_pack(const SceneConfig& config, const std::filesy
   return build_ldi_pack(filled, scene.models, options, out);
 }
 
+LdiBuildOptions ldi_options(const SceneConfig& config) {
+  LdiBuildOptions options;
+  options.view.head_height = config.ldi.head_height;
+  options.view.levels = config.ldi.levels;
+  options.view.directions = config.ldi.directions;
+  options.shading.ao_rays = config.ldi.sky_rays;
+  return options;
+}
+
 }  // namespace wangscape

@@ -19,6 +19,9 @@ struct LdiSceneObserver {
   std::function<void(std::uint64_t done, std::uint64_t total, std::uint64_t rays)> progress;
 };
 
+// The options the scene file's [ldi] section gives (head height, levels, directions, sky rays).
+LdiBuildOptions ldi_options(const SceneConfig& config);
+
 // Builds the pack of `config` to `out` (atomically). options.tile_size, the sun's direction and
 // its strength (a scale of shading.sun_color) are taken from the scene. Throws Error naming the
 // scene file when it has no field of flowers.

@@ -383,6 +383,15 @@ SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem
     s.read("povray", config.exports.povray);
     s.read("blender", config.exports.blender);
     s.read("gltf", config.exports.gltf);
+    s.read("ldi", config.exports.ldi);
+    s.reject_unknown();
+  }
+  {
+    Section s(top.table("ldi"), "ldi", source, config.key_lines);
+    if (s.read("head_height", config.ldi.head_height)) s.check_range("head_height", config.ldi.head_height, 0.1, 100);
+    s.read_int("levels", config.ldi.levels, 1, 64);
+    s.read_int("directions", config.ldi.directions, 1, 64);
+    s.read_int("sky_rays", config.ldi.sky_rays, 0, 1024);
     s.reject_unknown();
   }
   top.reject_unknown();

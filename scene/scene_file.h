@@ -117,6 +117,15 @@ struct ExportsConfig {
   bool povray = true;
   bool blender = false;
   bool gltf = false;
+  bool ldi = false;  // DIR/tiles.ldi: the tiles as pre-shaded LDIs (renders/, docs/ldi-pack-format.md)
+};
+
+// [ldi]: the view the tiles' LDIs are sampled for.
+struct LdiConfig {
+  double head_height = 1.7;  // meters: the viewer's eye above the ground
+  int levels = 7;            // levels of detail, 1 .. 7 tiles away by default
+  int directions = 8;        // view directions around a tile
+  int sky_rays = 8;          // ambient-occlusion rays per sample
 };
 
 struct SceneConfig {
@@ -132,6 +141,7 @@ struct SceneConfig {
   ImageConfig image;
   std::optional<GroundConfig> ground;  // [ground], when the file has it
   ExportsConfig exports;
+  LdiConfig ldi;
   std::string text;  // the TOML as read (copied into the output folder)
   // The line of every key the file gave ("camera.position" -> 31), so errors found after
   // parsing (a camera off the DEM) still name the file and the line.

@@ -65,3 +65,12 @@ ldi_cli_test(build_missing_scene 1 "--quiet|ldi|build|${ldi_dir}/no_such.toml|--
   ERR "^wangscape: error: [^\n]*no_such\\.toml" NO_FILE "${ldi_dir}/none.ldi")
 ldi_cli_test(build_needs_out 2 "ldi|build|${ldi_dir}/tiny.toml" ERR "--out")
 ldi_cli_test(build_bad_ground 2 "ldi|build|${ldi_dir}/tiny.toml|--out|${ldi_dir}/x.ldi|--ground|sky" ERR "ground")
+
+# [exports] ldi = true: `wangscape build` writes DIR/tiles.ldi with the view of the [ldi] section.
+file(READ "${ldi_dir}/tiny.toml" ldi_export_text)
+file(WRITE "${ldi_dir}/export.toml" "${ldi_export_text}[exports]\nldi = true\n[ldi]\nlevels = 2\ndirections = 2\nsky_rays = 0\n")
+add_test(NAME cli_ldi_build_export
+  COMMAND ${cli_expect} 0 "\"levels\": *2, *\"directions\": *2"
+          sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$1.toml\" --out \"$1\" && test -s \"$1/scene.pov\" && \"$0\" ldi info --json \"$1/tiles.ldi\""
+          "${WANGSCAPE_BIN}" "${ldi_dir}/export")
+set_tests_properties(cli_ldi_build_export PROPERTIES LABELS "cli;ldi" TIMEOUT 300)

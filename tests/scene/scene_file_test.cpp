@@ -70,6 +70,11 @@ TEST(SceneFile, EmptyFileGivesTheDocumentedDefaults) {
   EXPECT_TRUE(c.exports.povray);
   EXPECT_FALSE(c.exports.blender);
   EXPECT_FALSE(c.exports.gltf);
+  EXPECT_FALSE(c.exports.ldi);
+  EXPECT_EQ(c.ldi.head_height, 1.7);
+  EXPECT_EQ(c.ldi.levels, 7);
+  EXPECT_EQ(c.ldi.directions, 8);
+  EXPECT_EQ(c.ldi.sky_rays, 8);
 }
 
 // One value outside the documented range per key: the error names the file, the line (2: the
@@ -107,6 +112,10 @@ TEST(SceneFile, EveryRangeIsRefusedNamingFileLineAndKey) {
       {"image", "height = 40000"},
       {"image", "antialias = 10"},
       {"image", "threads = -1"},
+      {"ldi", "head_height = 0.0"},
+      {"ldi", "levels = 65"},
+      {"ldi", "directions = 0"},
+      {"ldi", "sky_rays = 2000"},
   };
   for (const auto& [section, line] : cases) {
     const std::string text = std::string("[") + section + "]\n" + line + "\n";
