@@ -1,7 +1,5 @@
 #include "renders/ldi_scene.h"
 
-#include <numbers>
-
 #include "scene/scene.h"
 
 namespace wangscape {
@@ -13,13 +11,8 @@ LdiBuildReport build_scene_ldi_pack(const SceneConfig& config, const std::filesy
     throw Error(config.source, "", "the scene has no field of flowers to sample into LDIs");
   const SceneField& field = *scene.field;
   FilledTileSet filled = field.filled;
-  if (field.facing_yaw) {
-    // The yaw SceneField::place gives an instance (scene/scene.cpp): the facing, spread over
-    // +- jitter by the point's own uniform yaw.
-    for (auto& points : filled.tiles)
-      for (TilePoint& p : points)
-        p.yaw = float(*field.facing_yaw + (2 * p.yaw / (2 * std::numbers::pi) - 1) * field.facing_jitter);
-  }
+  for (auto& points : filled.tiles)  // the yaw placement gives each instance
+    for (TilePoint& p : points) p.yaw = field.yaw_of(p.yaw);
   options.tile_size = field.placement.tile_size;
   const auto sun = scene.sun.direction();
   options.shading.sun_direction = {float(sun[0]), float(sun[1]), float(sun[2])};

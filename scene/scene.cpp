@@ -163,21 +163,21 @@ Sun make_sun(const SceneConfig& config, const SceneGround& ground) {
   return sun;
 }
 
-// The configured facing, spread over +- jitter by the point's own uniform yaw (so it stays a
-// function of the point's identity).
-float facing_yaw_of(const SceneField& field, float point_yaw) {
-  const double u = point_yaw / (2 * std::numbers::pi);
-  return float(*field.facing_yaw + (2 * u - 1) * field.facing_jitter);
-}
-
 }  // namespace
+
+float SceneField::yaw_of(float point_yaw) const {
+  if (!facing_yaw) return point_yaw;
+  // A function of the point's identity only, so replicated points agree across tiles.
+  const double u = point_yaw / (2 * std::numbers::pi);
+  return float(*facing_yaw + (2 * u - 1) * facing_jitter);
+}
 
 PlacementStats SceneField::place(const InstanceSink& sink) const {
   if (!facing_yaw) return ground.place(filled, placement, sink);
   InstanceBatch turned;
   return ground.place(filled, placement, [&](const InstanceBatch& batch) {
     turned = batch;
-    for (auto& yaw : turned.yaw) yaw = facing_yaw_of(*this, yaw);
+    for (auto& yaw : turned.yaw) yaw = yaw_of(yaw);
     sink(turned);
   });
 }

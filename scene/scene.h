@@ -57,6 +57,9 @@ struct SceneField {
 
   // Places every instance (thread-safe, deterministic).
   PlacementStats place(const InstanceSink& sink) const;
+  // The yaw (radians) an instance of a point with tile yaw `point_yaw` gets: the configured
+  // facing spread over +- jitter by the point's own uniform yaw, or the point's yaw.
+  float yaw_of(float point_yaw) const;
 };
 
 struct Scene {
