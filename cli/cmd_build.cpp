@@ -28,10 +28,12 @@ void run_build(const SceneConfig& config, const std::filesystem::path& out_dir, 
       progress->update(static_cast<std::uint64_t>(fraction * kSteps));
     };
   }
-  const auto summary = build_scene_folder(config, out_dir, observer);
+  check_scene_folder_target(out_dir);  // before the scene is assembled
+  const Scene scene = make_scene(config, observer.stage);
+  const auto summary = write_scene_folder(scene, config.exports, config.text, out_dir, observer);
   progress.reset();
   // The LDIs are sampled from the tile set, not from the placed field: a pass of their own.
-  if (config.exports.ldi) build_scene_ldi_pack(config, out_dir / "tiles.ldi", ldi_options(config));
+  if (config.exports.ldi) build_scene_ldi_pack(scene, out_dir / "tiles.ldi", ldi_options(config));
   if (chatty(global))
     std::fprintf(stderr, "wangscape: wrote %s (%llu flowers, %.1f MB of POV-Ray files, %.1f s)\n",
                  out_dir.string().c_str(), static_cast<unsigned long long>(summary.instances),

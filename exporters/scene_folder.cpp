@@ -56,8 +56,11 @@ void publish(const fs::path& staging, const fs::path& out_dir) {
   if (ec) throw Error(out_dir, "", "cannot create the scene folder: " + ec.message());
 }
 
-// A folder `build` may replace: none yet, an empty one, or an earlier scene folder.
-void check_replaceable(const fs::path& out_dir) {
+}  // namespace
+
+void check_scene_folder_target(const fs::path& out_dir_in) {
+  if (out_dir_in.empty()) throw Error("the output folder is empty: give a folder name");
+  const auto out_dir = fs::absolute(out_dir_in).lexically_normal();
   std::error_code ec;
   if (!fs::exists(out_dir, ec)) return;
   if (!fs::is_directory(out_dir, ec)) throw Error(out_dir, "", "exists and is not a folder");
@@ -67,15 +70,12 @@ void check_replaceable(const fs::path& out_dir) {
               "build's");
 }
 
-}  // namespace
-
 SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& exports, const std::string& scene_text,
                                       const fs::path& out_dir_in, const SceneFolderObserver& observer) {
   const auto start = std::chrono::steady_clock::now();
-  if (out_dir_in.empty()) throw Error("the output folder is empty: give a folder name");
+  check_scene_folder_target(out_dir_in);
   auto out_dir = fs::absolute(out_dir_in).lexically_normal();
   if (out_dir.filename().empty()) out_dir = out_dir.parent_path();
-  check_replaceable(out_dir);
 
   std::error_code ec;
   fs::create_directories(out_dir.parent_path(), ec);
@@ -120,7 +120,6 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
       const StreamTotals totals = run_scene_stream(scene, writers, on_batch);
       summary.instances = totals.instances;
       summary.per_variant = totals.per_variant;
-      summary.placement_passes = scene.instances ? 1 : 0;
       if (observer.placing) observer.placing(1.0);
     }
     if (povray) summary.povray_bytes = povray->stats().total_bytes;
@@ -137,7 +136,7 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
 SceneFolderSummary build_scene_folder(const SceneConfig& config, const fs::path& out_dir,
                                       const SceneFolderObserver& observer) {
   // Refuse an unusable folder before the (long) scene assembly.
-  if (!out_dir.empty()) check_replaceable(fs::absolute(out_dir).lexically_normal());
+  check_scene_folder_target(out_dir);
   const Scene scene = make_scene(config, observer.stage);
   return write_scene_folder(scene, config.exports, config.text, out_dir, observer);
 }

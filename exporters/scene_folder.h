@@ -23,7 +23,6 @@ struct SceneFolderSummary {
   std::uint64_t instances = 0;
   std::vector<std::uint64_t> per_variant;
   std::uint64_t povray_bytes = 0;  // POV-Ray files
-  int placement_passes = 0;        // times the instance stream ran (1 with any export)
   double seconds = 0;
 };
 
@@ -35,7 +34,12 @@ struct SceneFolderSummary {
 SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& exports, const std::string& scene_text,
                                       const std::filesystem::path& out_dir, const SceneFolderObserver& observer = {});
 
-// make_scene(config), then write_scene_folder: the whole of `wangscape build`.
+// Throws Error when `out_dir` cannot be a scene folder: it exists and is not a folder, or is a
+// folder that is neither empty nor an earlier scene folder (no scene.toml). Cheap: call it
+// before assembling a scene, so a bad --out fails at once.
+void check_scene_folder_target(const std::filesystem::path& out_dir);
+
+// check_scene_folder_target, make_scene(config), then write_scene_folder.
 SceneFolderSummary build_scene_folder(const SceneConfig& config, const std::filesystem::path& out_dir,
                                       const SceneFolderObserver& observer = {});
 

@@ -1,5 +1,7 @@
 #include "renders/ldi_scene.h"
 
+#include <utility>
+
 #include "scene/scene.h"
 
 namespace wangscape {
@@ -9,6 +11,13 @@ LdiBuildReport build_scene_ldi_pack(const SceneConfig& config, const std::filesy
   const Scene scene = make_scene(config, observer.stage);
   if (!scene.field || scene.models.empty())
     throw Error(config.source, "", "the scene has no field of flowers to sample into LDIs");
+  return build_scene_ldi_pack(scene, out, std::move(options), observer);
+}
+
+LdiBuildReport build_scene_ldi_pack(const Scene& scene, const std::filesystem::path& out, LdiBuildOptions options,
+                                    const LdiSceneObserver& observer) {
+  if (!scene.field || scene.models.empty())
+    throw Error("scene '" + scene.name + "': no field of flowers to sample into LDIs");
   const SceneField& field = *scene.field;
   FilledTileSet filled = field.filled;
   for (auto& points : filled.tiles)  // the yaw placement gives each instance

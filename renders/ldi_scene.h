@@ -9,6 +9,7 @@
 #include <string>
 
 #include "renders/ldi_build.h"
+#include "scene/scene.h"
 #include "scene/scene_file.h"
 
 namespace wangscape {
@@ -27,5 +28,8 @@ LdiBuildOptions ldi_options(const SceneConfig& config);
 // scene file when it has no field of flowers.
 LdiBuildReport build_scene_ldi_pack(const SceneConfig& config, const std::filesystem::path& out,
                                     LdiBuildOptions options, const LdiSceneObserver& observer = {});
+// The same from a scene already assembled (`wangscape build` makes it once for every export).
+LdiBuildReport build_scene_ldi_pack(const Scene& scene, const std::filesystem::path& out, LdiBuildOptions options,
+                                    const LdiSceneObserver& observer = {});
 
 }  // namespace wangscape

@@ -26,7 +26,8 @@ struct Published {
 // Sources: (1) NOAA's solar calculator (gml.noaa.gov/grad/solcalc) for the default scene's
 // evening; (2) the worked example of NREL's Solar Position Algorithm (Reda & Andreas 2004,
 // topocentric zenith 50.11162 deg, azimuth 194.34024 deg); (3) the reference table of the
-// Toit solar-position package's tests (NOAA calculator values).
+// Toit solar-position package's tests (its source is not stated; its elevations include
+// refraction, as NOAA's do).
 const Published kPublished[] = {
     {"Mount St. Helens, July evening", 46.1914, -122.1956, unix_time(2024, 7, 20, 18, 30, 0, -7 * 60), 276.8, 22.3},
     {"Golden, Colorado (NREL SPA example)", 39.742476, -105.1786, unix_time(2003, 10, 17, 12, 30, 30, -7 * 60),
