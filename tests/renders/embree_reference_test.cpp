@@ -204,8 +204,8 @@ TEST(reference_render, TheBakedGroundShowsAndThePlainGroundDoesNot) {
   textured.ground_texture = striped_ground(60);
   const ReferenceImage p = render_reference(plain, fast()), t = render_reference(textured, fast());
   const int h = p.image.height;
-  // The ground fills the lower half: stripes give it a large variance (measured ~2,400), the
-  // plain ground almost none (measured ~1: the sky-light rays' noise).
+  // The ground fills the lower half: stripes give it a large variance (measured 7,080), the
+  // plain flat ground none (measured 0: one color, every sky ray open).
   const double textured_variance = row_variance(t.image, h / 2 + 2, h),
                plain_variance = row_variance(p.image, h / 2 + 2, h);
   EXPECT_GT(textured_variance, 500.0);
@@ -223,7 +223,7 @@ TEST(reference_render, MoreSamplesSoftenEdgesDeterministically) {
   for (float c : one.coverage) partial_one += c > 0 && c < 1;
   for (float c : many.coverage) partial_many += c > 0 && c < 1;
   EXPECT_EQ(partial_one, 0);
-  EXPECT_GT(partial_many, 10);  // the board's edges: coverage between 0 and 1
+  EXPECT_GT(partial_many, 10);  // the board's edges: coverage between 0 and 1 (measured 44)
   EXPECT_EQ(render_reference(scene, fast(16)).image.pixels, many.image.pixels);
   EXPECT_EQ(many.stats.samples_per_pixel, 16);
 }
