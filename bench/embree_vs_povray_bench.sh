@@ -31,7 +31,7 @@ embree=$(best embree)
 echo "load after Embree: $(cut -d' ' -f1-3 /proc/loadavg)"
 povray=$(best povray)
 echo "load after POV-Ray: $(cut -d' ' -f1-3 /proc/loadavg)"
-instances=$(head -1 "$scratch/default/instances.inc" | cut -d' ' -f2)
+instances=$(grep -c "^object" "$scratch/default/instances.inc")
 echo "default scene, $instances flowers, 640x360: Embree reference ${embree} s, POV-Ray ${povray} s" \
      "(POV-Ray / Embree = $(awk -v p="$povray" -v e="$embree" 'BEGIN { printf "%.1f", p / e }'))"
 echo "images: $scratch/default/render_embree.png $scratch/default/render.png"

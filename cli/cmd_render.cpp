@@ -27,8 +27,8 @@ void run_render(const std::filesystem::path& dir, const RenderRequest& request, 
   const auto result = render_scene_folder(dir, folder);
   progress.reset();
   if (chatty(global))
-    std::fprintf(stderr, "wangscape: wrote %s in %.1f s (log: %s)\n", result.image.string().c_str(), result.seconds,
-                 result.log.string().c_str());
+    std::fprintf(stderr, "wangscape: wrote %s in %.1f s (%s)\n", result.image.string().c_str(), result.seconds,
+                 result.log.empty() ? result.summary.c_str() : ("log: " + result.log.string()).c_str());
 }
 
 void register_render_command(CLI::App& app, const GlobalOptions& global) {

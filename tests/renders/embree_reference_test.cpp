@@ -54,14 +54,9 @@ Scene test_scene(std::vector<Flower> flowers, bool with_ground = true) {
     for (const Flower& f : flowers) batch.push_back(f.x, f.y, f.z, f.yaw, f.scale, 0, 0);
     if (!batch.empty()) sink(batch);
   };
-  scene.camera.position = {0, -10, 1};
-  scene.camera.target = {0, 0, 1};
-  scene.camera.fov_degrees = 60;
-  scene.sun.azimuth_degrees = 200;
-  scene.sun.elevation_degrees = 40;
-  scene.render.width = 64;
-  scene.render.height = 48;
-  scene.render.antialias_samples = 1;
+  scene.camera = Camera{{0, -10, 1}, {0, 0, 1}, 60};
+  scene.sun = Sun{200, 40, 1};
+  scene.render = RenderSettings{64, 48, 1, false, 0};
   return scene;
 }
 
