@@ -61,10 +61,12 @@ struct ReferenceImage {
 };
 
 // The pinhole camera of the reference (and of the LDI view, which must frame the same view):
-// `origin` the eye, pixel (px, py) (top-left origin, py down, centre at +0.5) looks along
-// forward + (2 (px) / W - 1) * right + (1 - 2 (py) / H) * up, with right and up scaled by the
-// tangent of half the horizontal field of view (up by H / W more). World up is ENU +z; the frame
-// is right-handed (x right, y up, forward into the image), as POV-Ray's `look_at` frames it.
+// from `origin` (the eye), the image point (sx, sy) in pixels (top-left corner of the image at
+// (0, 0), sy down; a pixel's centre at +0.5) looks along
+//   forward + (2 sx / W - 1) * right + (1 - 2 sy / H) * up,
+// where right and up already carry the tangent of half the horizontal field of view (up times
+// H / W more). World up is ENU +z; right = forward x up (east when looking north), as POV-Ray's
+// `look_at` camera frames it.
 struct CameraFrame {
   std::array<double, 3> origin{}, forward{}, right{}, up{};  // forward unit; right, up scaled
 };
@@ -72,9 +74,14 @@ struct CameraFrame {
 // or down, or its field of view is outside (0, 180) degrees.
 CameraFrame reference_camera_frame(const Camera& camera, int width, int height);
 
-// Renders `scene` as options say. Parallel over 16 x 16 pixel tiles (TBB); the bytes do not
-// depend on the thread count. Runs scene.instances once. The terrain's color: the scene's baked
-// ground (scene.ground_texture, bilinear over its extent) when it has one, else
+// Renders `scene` as options say. Samples: one through each pixel's centre, or N jittered ones,
+// one per cell of a ceil(sqrt N) x ceil(sqrt N) grid over the pixel (cells in row order, the last
+// row partly used), averaged in linear light before the sRGB encoding. Each sample that meets
+// geometry is shaded by shade() (sun with a shadow ray, options.shading.ao_rays sky rays); one
+// that meets nothing sees sky_radiance(). A folder render takes its shading from the scene file
+// (ldi_options(config).shading, the light of the folder's LDI pack): so should a comparison.
+// Parallel over 16 x 16 pixel tiles (TBB); the bytes do not depend on the thread count. Runs scene.instances once. The
+// terrain's color: the scene's baked ground (scene.ground_texture, bilinear over its extent) when it has one, else
 // options.shading.ground_color. Throws Error for sizes, samples or a camera out of range, and
 // for Embree's own errors.
 ReferenceImage render_reference(const Scene& scene, const ReferenceOptions& options = {});
