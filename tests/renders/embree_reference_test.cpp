@@ -7,8 +7,10 @@
 #include <cmath>
 #include <numbers>
 #include <set>
+#include <string>
 
 #include "core/error.h"
+#include "core/text_file.h"
 #include "renders/embree_reference.h"
 #include "renders/image_compare.h"
 
@@ -252,6 +254,43 @@ TEST(reference_render, TheSkyIsTheGradientTheViewCanDraw) {
   }
   // Bluer overhead than at the horizon.
   EXPECT_LT(r.image.at(20, 0).r, r.image.at(20, 23).r);
+}
+
+// The tiny scene of the CLI tests (tests/cli/tiny_scene.toml: flat ground, a field of real
+// sunflowers seen from its edge), assembled as `wangscape build` does.
+Scene tiny_scene() {
+  std::string text = read_text_file(std::string(WANGSCAPE_SOURCE_DIR) + "/tests/cli/tiny_scene.toml", 1 << 20, "test");
+  for (const char* key : {"@TERRAIN@", "@TILES@", "@MODELS@", "@IMAGE@", "@EXPORTS@", "@SUN@"}) {
+    const std::size_t at = text.find(key);
+    text.replace(at, std::string(key).size(), std::string(key) == "@SUN@" ? "azimuth = 200.0\nelevation = 40.0" : "");
+  }
+  return make_scene(parse_scene_config(text, "tiny_scene.toml", WANGSCAPE_SOURCE_DIR));
+}
+
+TEST(reference_render, TheTinySceneIsDeterministicAndItsFlowersShow) {
+  const Scene field = tiny_scene();
+  Scene bare = field;
+  bare.instances = {};
+  ReferenceOptions o = fast(2);
+  o.width = 64;
+  o.height = 48;
+  const ReferenceImage a = render_reference(field, o), again = render_reference(field, o);
+  const ReferenceImage b = render_reference(bare, o);
+  EXPECT_EQ(a.image.pixels, again.image.pixels);
+  EXPECT_GT(a.stats.instances, 100u);
+  // The camera (2.2 m up, looking down at 1.2 m 16 m ahead) sees sky over the top rows: the
+  // same with and without flowers; the field below differs in most pixels.
+  int sky_differs = 0, sky_covered = 0, field_differs = 0;
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const bool differs = a.image.at(x, y) != b.image.at(x, y);
+      if (y < 8) sky_differs += differs, sky_covered += a.coverage[std::size_t(y * 64 + x)] > 0;
+      if (y >= 30) field_differs += differs;
+    }
+  EXPECT_EQ(sky_differs, 0);
+  EXPECT_EQ(sky_covered, 0);
+  EXPECT_GT(field_differs, 18 * 64 / 2);
+  EXPECT_GT(row_variance(a.image, 30, 48), row_variance(b.image, 30, 48));
 }
 
 TEST(reference_render, RefusesOutOfRangeInput) {
