@@ -21,7 +21,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr float kGroundEpsilon = 0.004f;  // meters: LDI samples this low are the ground plane (drawn as terrain)
+// LDI samples of the ground plane are drawn by the terrain instead: the last layer of a pixel
+// this low (meters, plus 3/4 of a pixel: positions go through the pixel centre, rays did not).
+constexpr float kGroundEpsilon = 0.002f;
 constexpr float kNear = 0.05f;            // meters: the near plane
 constexpr float kSplatScale = 1.5f;       // splat side over the projected depth-pixel size (measured: no holes)
 constexpr int kMaxSplat = 24;             // pixels
@@ -162,6 +164,7 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path)
 
   // Light as the LDI build's: the scene's sun (scaled by its strength) and the open sky.
   const ShadingSettings shading;
+  plain_ground_ = shading.ground_color;
   const auto sun = scene_.sun.direction();
   sun_ = {float(sun[0]), float(sun[1]), float(sun[2])};
   const Mesh& mesh = scene_.terrain;
@@ -200,7 +203,7 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path)
             const std::uint8_t count = v.counts[span.first_pixel + k];
             if (count == 0) continue;
             const DepthPixel& front = v.depth_pixels[depth];
-            if (v.position(int(span.x + k), int(y), front)[2] < kGroundEpsilon) {
+            if (count == 1 && v.position(int(span.x + k), int(y), front)[2] < kGroundEpsilon + 0.75f * v.frame->pixel_size) {
               ++ground;
             } else {
               ++flowers;
@@ -224,10 +227,7 @@ double ViewWorld::ground_height(double x, double y, double fallback) const {
 
 std::array<float, 3> ViewWorld::ground_color(double x, double y) const {
   const GroundBake* bake = scene_.ground_texture.get();
-  if (!bake || bake->image.width <= 0 || bake->extent.width() <= 0 || bake->extent.height() <= 0) {
-    const ShadingSettings shading;
-    return shading.ground_color;
-  }
+  if (!bake || bake->image.width <= 0 || bake->extent.width() <= 0 || bake->extent.height() <= 0) return plain_ground_;
   const ImageRgb8& image = bake->image;
   // Pixel centres, north at the top.
   const double u = (x - bake->extent.min_x) / bake->extent.width() * image.width - 0.5;
@@ -318,6 +318,7 @@ struct Warp {
   float h00 = 0, h10 = 0, h01 = 0, h11 = 0, inverse_tile = 1;
   float depth_scale = 0, splat = 0;  // meters per depth step; splat side times depth (pixels x meters)
   float from = 0, to = 1;            // the dither thresholds this LDI owns
+  float ground_below = 0;            // meters: a last layer lower than this is the ground plane
   bool reverse_layers = false;
   int epipole_x = 0, epipole_y = 0;
 };
@@ -325,12 +326,12 @@ struct Warp {
 void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, int width, int height,
               std::uint64_t* zbuffer, std::uint64_t& depth_pixels) {
   const bool all = w.from <= 0 && w.to >= 1;
-  auto splat_pixel = [&](int x, int y, const DepthPixel& p) {
+  auto splat_pixel = [&](int x, int y, const DepthPixel& p, bool last) {
     const float d = float(p.depth()) * w.depth_scale;
     const float lx = w.local_base[0] + float(x) * w.local_x[0] + float(y) * w.local_y[0] + d * w.local_d[0];
     const float ly = w.local_base[1] + float(x) * w.local_x[1] + float(y) * w.local_y[1] + d * w.local_d[1];
     const float lz = w.local_base[2] + float(x) * w.local_x[2] + float(y) * w.local_y[2] + d * w.local_d[2];
-    if (lz < kGroundEpsilon) return;  // the ground plane: the terrain draws it
+    if (last && lz < w.ground_below) return;  // the ground plane: the terrain draws it
     // The shear onto the tile's two terrain triangles (split along the SW-NE diagonal).
     const float u = std::clamp(lx * w.inverse_tile, 0.0f, 1.0f), t = std::clamp(ly * w.inverse_tile, 0.0f, 1.0f);
     const float h = u >= t ? w.h00 + u * (w.h10 - w.h00) + t * (w.h11 - w.h10)
@@ -361,9 +362,9 @@ void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, 
   auto visit = [&](int x, int y, std::uint32_t first, std::uint32_t count) {
     depth_pixels += count;
     if (w.reverse_layers)
-      for (std::uint32_t k = count; k-- > 0;) splat_pixel(x, y, v.depth_pixels[first + k]);
+      for (std::uint32_t k = count; k-- > 0;) splat_pixel(x, y, v.depth_pixels[first + k], k + 1 == count);
     else
-      for (std::uint32_t k = 0; k < count; ++k) splat_pixel(x, y, v.depth_pixels[first + k]);
+      for (std::uint32_t k = 0; k < count; ++k) splat_pixel(x, y, v.depth_pixels[first + k], k + 1 == count);
   };
   // McMillan's occlusion-compatible order: rows and columns from the image's edges towards the
   // eye's epipole, so that a sample is drawn before every sample that can hide it.
@@ -566,6 +567,7 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
         w.h11 = tiles.h[3][t];
         w.inverse_tile = float(1 / s);
         w.depth_scale = f.depth_range / 65535.0f;
+        w.ground_below = kGroundEpsilon + 0.75f * f.pixel_size;
         w.splat = float(p) * m.focal * kSplatScale;
         w.from = part.from;
         w.to = part.to;

@@ -97,7 +97,7 @@ class ViewWorld {
   std::vector<std::int32_t> grid_;
   std::vector<std::array<float, 4>> far_;
   std::array<float, 3> sun_{0, 0, 1};
-  std::vector<float> ground_linear_;  // the ground texture, linear RGB
+  std::array<float, 3> plain_ground_{};  // linear, without a ground texture
 };
 
 // What one frame drew.

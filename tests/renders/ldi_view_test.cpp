@@ -33,7 +33,7 @@ fs::path scratch(const std::string& name) {
 std::shared_ptr<const ViewWorld> tiny_world(const std::string& area, const std::string& name) {
   const std::string text = "name = \"view test\"\n[terrain]\nflat_size = 60.0\n[tiles]\nset = \"cohen8\"\n"
                            "tile_size = 4.0\npoints_per_tile = 10\nseed = 5\narea = " +
-                           area + "\n[models]\nvariants = 2\ntriangle_budget = 300\n[sun]\nazimuth = 200.0\nelevation = 40.0\n";
+                           area + "\n[models]\nvariants = 2\ntriangle_budget = 400\n[sun]\nazimuth = 200.0\nelevation = 40.0\n";
   const SceneConfig config = parse_scene_config(text, name + ".toml", fs::temp_directory_path());
   Scene scene = make_scene(config);
   LdiBuildOptions options;
@@ -137,7 +137,7 @@ TEST(ldi_view, LevelsCoarsenWithDistance) {
     return sum / n;
   };
   const double near = mean_level(looking(0, -14, 1.7, 0, 0, 0.5));
-  const double middle = mean_level(looking(0, -40, 1.7, 0, 0, 0.5));
+  const double middle = mean_level(looking(0, -22, 1.7, 0, 0, 0.5));
   const double far = mean_level(looking(0, -120, 1.7, 0, 0, 0.5));
   EXPECT_LT(near, middle);
   EXPECT_LT(middle, far);
