@@ -12,6 +12,7 @@
 #include <numbers>
 
 #include "core/error.h"
+#include "exporters/scene_folder.h"
 #include "generator/placement.h"
 #include "renders/shading.h"
 
@@ -98,9 +99,9 @@ std::shared_ptr<const ViewWorld> ViewWorld::load(const fs::path& dir, const Stag
   if (!fs::is_regular_file(pack_file, ec))
     throw Error(pack_file, "", "missing: build the folder from a scene with [exports] ldi = true");
   { const LdiPack check(pack_file); }  // a corrupt pack is refused before the scene is assembled
-  SceneConfig config = load_scene_config(scene_file);
-  // The folder holds the scene file as written: its relative paths may name files beside the
-  // original (the default scene's data/...), not beside the copy.
+  SceneConfig config = load_scene_folder_config(dir);
+  // A folder from before scene_base.txt: its relative paths may name the data folder's files
+  // (the default scene's data/...).
   if (!files_resolve(config)) {
     SceneConfig from_data = parse_scene_config(config.text, scene_file, data_root());
     if (files_resolve(from_data)) config = std::move(from_data);

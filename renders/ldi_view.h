@@ -44,8 +44,9 @@ struct ViewCamera {
 // terrain corners, the terrain mesh with its lighting and the far-field colors. Immutable.
 class ViewWorld {
  public:
-  // Reads DIR/scene.toml (relative paths resolve against DIR, else against the data folder,
-  // data_root(), as for the default scene) and DIR/tiles.ldi. Throws Error naming the file
+  // Reads DIR/scene.toml (load_scene_folder_config; where its files are not found, relative
+  // paths resolve against the data folder, data_root(), as for the default scene) and
+  // DIR/tiles.ldi. Throws Error naming the file
   // at fault: a missing folder, scene or pack, a corrupt pack, a pack of another tile set.
   static std::shared_ptr<const ViewWorld> load(const std::filesystem::path& dir, const StageObserver& stage = {});
   // The same from a Scene already made and a pack file (tests).
