@@ -51,6 +51,9 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--frames", o->request.frames_dir, "Folder for the path's frames (and path.mp4 with ffmpeg)");
   sub->add_option("--fps", o->request.path_fps, "Frames per second of the path")->check(finite_number());
   sub->add_option("--script", o->request.script, "Window: scripted input, e.g. \"W*30,screenshot,Escape\"");
+  sub->add_flag("--compare", o->request.compare, "Also ray trace the frame (Embree) and print PSNR, SSIM, holes");
+  sub->add_option("--diff", o->request.diff, "With --compare: write the difference image");
+  sub->add_option("--spp", o->request.reference_samples, "With --compare: reference samples per pixel");
   sub->add_option("--threads", o->request.threads, "Threads (default: all cores)")->check(CLI::Range(0, 1024));
   sub->callback([o, &global] {
     ViewRequest& r = o->request;

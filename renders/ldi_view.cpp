@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "exporters/scene_folder.h"
 #include "generator/placement.h"
+#include "renders/ldi_scene.h"
 #include "renders/shading.h"
 
 namespace wangscape {
@@ -106,11 +107,11 @@ std::shared_ptr<const ViewWorld> ViewWorld::load(const fs::path& dir, const Stag
     SceneConfig from_data = parse_scene_config(config.text, scene_file, data_root());
     if (files_resolve(from_data)) config = std::move(from_data);
   }
-  return std::make_shared<const ViewWorld>(make_scene(config, stage), pack_file);
+  return std::make_shared<const ViewWorld>(make_scene(config, stage), pack_file, ldi_options(config).shading);
 }
 
-ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path)
-    : scene_(std::move(scene)), pack_(std::make_unique<LdiPack>(pack_path)) {
+ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettings& shading_settings)
+    : scene_(std::move(scene)), pack_(std::make_unique<LdiPack>(pack_path)), shading_(shading_settings) {
   if (!scene_.field) throw Error("scene '" + scene_.name + "': no field of flowers to view");
   const SceneField& field = *scene_.field;
   const LdiPackInfo& info = pack_->info();
@@ -118,8 +119,8 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path)
   if (info.tiles != field.filled.tiles.size() || std::abs(info.tile_size - tile_size_) > 1e-4)
     throw Error(pack_path, "",
                 "was built for another tile set (" + std::to_string(info.tiles) + " tiles of " +
-                    std::to_string(info.tile_size) + " m; the scene has " +
-                    std::to_string(field.filled.tiles.size()) + " of " + std::to_string(tile_size_) + " m)");
+                    std::to_string(info.tile_size) + " m; the scene has " + std::to_string(field.filled.tiles.size()) +
+                    " of " + std::to_string(tile_size_) + " m)");
 
   // The tiles placement keeps: the tiling's cells over the area that received a flower.
   const TileRange range = tile_range(*field.placement.area, tile_size_);
@@ -149,7 +150,8 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path)
       tiles_.y0.push_back(y0);
       tiles_.tile.push_back(row[std::size_t(c)]);
       tiles_.cell.push_back(std::int32_t(cell));
-      const double corners[4][2] = {{x0, y0}, {x0 + tile_size_, y0}, {x0, y0 + tile_size_}, {x0 + tile_size_, y0 + tile_size_}};
+      const double corners[4][2] = {
+          {x0, y0}, {x0 + tile_size_, y0}, {x0, y0 + tile_size_}, {x0 + tile_size_, y0 + tile_size_}};
       const double centre = field.ground.height(x0 + tile_size_ / 2, y0 + tile_size_ / 2).value_or(0.0);
       float lo = 1e30f, hi = -1e30f;
       for (int k = 0; k < 4; ++k) {
@@ -164,7 +166,7 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path)
   }
 
   // Light as the LDI build's: the scene's sun (scaled by its strength) and the open sky.
-  const ShadingSettings shading;
+  const ShadingSettings& shading = shading_;
   plain_ground_ = shading.ground_color;
   const auto sun = scene_.sun.direction();
   sun_ = {float(sun[0]), float(sun[1]), float(sun[2])};
@@ -204,7 +206,8 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path)
             const std::uint8_t count = v.counts[span.first_pixel + k];
             if (count == 0) continue;
             const DepthPixel& front = v.depth_pixels[depth];
-            if (count == 1 && v.position(int(span.x + k), int(y), front)[2] < kGroundEpsilon + 0.75f * v.frame->pixel_size) {
+            if (count == 1 &&
+                v.position(int(span.x + k), int(y), front)[2] < kGroundEpsilon + 0.75f * v.frame->pixel_size) {
               ++ground;
             } else {
               ++flowers;
@@ -233,7 +236,8 @@ std::array<float, 3> ViewWorld::ground_color(double x, double y) const {
   // Pixel centres, north at the top.
   const double u = (x - bake->extent.min_x) / bake->extent.width() * image.width - 0.5;
   const double v = (bake->extent.max_y - y) / bake->extent.height() * image.height - 0.5;
-  const int x0 = std::clamp(int(std::floor(u)), 0, image.width - 1), y0 = std::clamp(int(std::floor(v)), 0, image.height - 1);
+  const int x0 = std::clamp(int(std::floor(u)), 0, image.width - 1),
+            y0 = std::clamp(int(std::floor(v)), 0, image.height - 1);
   const int x1 = std::min(x0 + 1, image.width - 1), y1 = std::min(y0 + 1, image.height - 1);
   const float fx = float(std::clamp(u - std::floor(u), 0.0, 1.0)), fy = float(std::clamp(v - std::floor(v), 0.0, 1.0));
   const Luts& lut = luts();
@@ -286,7 +290,8 @@ LdiRenderer::LdiRenderer(std::shared_ptr<const ViewWorld> world, int width, int 
   m.zbuffer.assign(std::size_t(width) * std::size_t(height), kEmpty);
   image_ = ImageRgb8(width, height);
   const std::size_t n = world_->tiles().size();
-  for (auto* v : {&m.distance, &m.far_from, &m.far_r, &m.far_g, &m.far_b, &m.far_cover, &m.level_b_weight, &m.dir_b_weight})
+  for (auto* v :
+       {&m.distance, &m.far_from, &m.far_r, &m.far_g, &m.far_b, &m.far_cover, &m.level_b_weight, &m.dir_b_weight})
     v->assign(n, 0);
   for (auto* v : {&m.level_a, &m.level_b, &m.dir_a, &m.dir_b}) v->assign(n, 0);
   order_.reserve(n);
@@ -314,7 +319,8 @@ namespace {
 
 // One LDI of one tile warped into the z-buffer: what stays fixed over its depth pixels.
 struct Warp {
-  std::array<float, 3> base{}, step_x{}, step_y{}, step_d{}, lift{};  // camera space: pixel (0, 0), per x, per y, per meter of depth, per meter of shear
+  std::array<float, 3> base{}, step_x{}, step_y{}, step_d{},
+      lift{};  // camera space: pixel (0, 0), per x, per y, per meter of depth, per meter of shear
   std::array<float, 3> local_base{}, local_x{}, local_y{}, local_d{};  // tile-local position, likewise
   float h00 = 0, h10 = 0, h01 = 0, h11 = 0, inverse_tile = 1;
   float depth_scale = 0, splat = 0;  // meters per depth step; splat side times depth (pixels x meters)
@@ -335,12 +341,13 @@ void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, 
     if (last && lz < w.ground_below) return;  // the ground plane: the terrain draws it
     // The shear onto the tile's two terrain triangles (split along the SW-NE diagonal).
     const float u = std::clamp(lx * w.inverse_tile, 0.0f, 1.0f), t = std::clamp(ly * w.inverse_tile, 0.0f, 1.0f);
-    const float h = u >= t ? w.h00 + u * (w.h10 - w.h00) + t * (w.h11 - w.h10)
-                           : w.h00 + t * (w.h01 - w.h00) + u * (w.h11 - w.h01);
+    const float h =
+        u >= t ? w.h00 + u * (w.h10 - w.h00) + t * (w.h11 - w.h10) : w.h00 + t * (w.h01 - w.h00) + u * (w.h11 - w.h01);
     std::array<float, 3> c;
     for (int k = 0; k < 3; ++k)
       c[std::size_t(k)] = w.base[std::size_t(k)] + float(x) * w.step_x[std::size_t(k)] +
-                          float(y) * w.step_y[std::size_t(k)] + d * w.step_d[std::size_t(k)] + h * w.lift[std::size_t(k)];
+                          float(y) * w.step_y[std::size_t(k)] + d * w.step_d[std::size_t(k)] +
+                          h * w.lift[std::size_t(k)];
     if (c[2] < kNear) return;
     const float inv = 1.0f / c[2];
     const float sx = cx + focal * c[0] * inv, sy = cy - focal * c[1] * inv;
@@ -528,64 +535,65 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   });
 
   // ---- the LDIs: tiles in parallel into the one z-buffer ----
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order_.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
-    std::uint64_t counted = 0;
-    for (std::size_t o = r.begin(); o != r.end(); ++o) {
-      const std::uint32_t t = order_[o];
-      // Up to two levels x two directions, each owning a slice of the dither thresholds.
-      const float wl = m.level_b_weight[t], wd = m.dir_b_weight[t];
-      struct Part {
-        std::uint32_t level, direction;
-        float from, to;
-      };
-      const std::uint32_t la = m.level_a[t], lb = m.level_b[t];
-      const float split = 1 - wl;
-      const Part parts[4] = {{la, m.dir_a[t], 0, split * (1 - wd)},
-                             {la, m.dir_b[t], split * (1 - wd), split},
-                             {lb, m.dir_a[t], split, split + wl * (1 - wd)},
-                             {lb, m.dir_b[t], split + wl * (1 - wd), 1}};
-      for (const Part& part : parts) {
-        if (!(part.to > part.from) || part.level >= levels) continue;
-        const LdiView v = pack.ldi(tiles.tile[t], part.level, part.direction);
-        const LdiFrame& f = *v.frame;
-        Warp w;
-        const double p = f.pixel_size;
-        // Tile-local position of pixel (x, y) at depth d: origin + (x + .5) p right - (y + .5) p up + d forward.
-        for (std::size_t k = 0; k < 3; ++k) {
-          w.local_base[k] = float(f.origin[k] + 0.5 * p * f.right[k] - 0.5 * p * f.up[k]);
-          w.local_x[k] = float(p * f.right[k]);
-          w.local_y[k] = float(-p * f.up[k]);
-          w.local_d[k] = f.forward[k];
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, order_.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        std::uint64_t counted = 0;
+        for (std::size_t o = r.begin(); o != r.end(); ++o) {
+          const std::uint32_t t = order_[o];
+          // Up to two levels x two directions, each owning a slice of the dither thresholds.
+          const float wl = m.level_b_weight[t], wd = m.dir_b_weight[t];
+          struct Part {
+            std::uint32_t level, direction;
+            float from, to;
+          };
+          const std::uint32_t la = m.level_a[t], lb = m.level_b[t];
+          const float split = 1 - wl;
+          const Part parts[4] = {{la, m.dir_a[t], 0, split * (1 - wd)},
+                                 {la, m.dir_b[t], split * (1 - wd), split},
+                                 {lb, m.dir_a[t], split, split + wl * (1 - wd)},
+                                 {lb, m.dir_b[t], split + wl * (1 - wd), 1}};
+          for (const Part& part : parts) {
+            if (!(part.to > part.from) || part.level >= levels) continue;
+            const LdiView v = pack.ldi(tiles.tile[t], part.level, part.direction);
+            const LdiFrame& f = *v.frame;
+            Warp w;
+            const double p = f.pixel_size;
+            // Tile-local position of pixel (x, y) at depth d: origin + (x + .5) p right - (y + .5) p up + d forward.
+            for (std::size_t k = 0; k < 3; ++k) {
+              w.local_base[k] = float(f.origin[k] + 0.5 * p * f.right[k] - 0.5 * p * f.up[k]);
+              w.local_x[k] = float(p * f.right[k]);
+              w.local_y[k] = float(-p * f.up[k]);
+              w.local_d[k] = f.forward[k];
+            }
+            w.base = m.to_camera(tiles.x0[t] + w.local_base[0], tiles.y0[t] + w.local_base[1], w.local_base[2]);
+            w.step_x = m.direction_to_camera(w.local_x[0], w.local_x[1], w.local_x[2]);
+            w.step_y = m.direction_to_camera(w.local_y[0], w.local_y[1], w.local_y[2]);
+            w.step_d = m.direction_to_camera(w.local_d[0], w.local_d[1], w.local_d[2]);
+            w.lift = m.direction_to_camera(0, 0, 1);
+            w.h00 = tiles.h[0][t];
+            w.h10 = tiles.h[1][t];
+            w.h01 = tiles.h[2][t];
+            w.h11 = tiles.h[3][t];
+            w.inverse_tile = float(1 / s);
+            w.depth_scale = f.depth_range / 65535.0f;
+            w.ground_below = kGroundEpsilon + 0.75f * f.pixel_size;
+            w.splat = float(p) * m.focal * kSplatScale;
+            w.from = part.from;
+            w.to = part.to;
+            // The eye in the LDI's frame (unsheared: the shear moves samples, not the order).
+            const V3 eye_local{m.eye[0] - tiles.x0[t] - f.origin[0], m.eye[1] - tiles.y0[t] - f.origin[1],
+                               m.eye[2] - double(w.h00 + w.h10 + w.h01 + w.h11) / 4 - f.origin[2]};
+            const double ex = dot(eye_local, {f.right[0], f.right[1], f.right[2]}) / p - 0.5;
+            const double ey = -dot(eye_local, {f.up[0], f.up[1], f.up[2]}) / p - 0.5;
+            w.epipole_x = int(std::floor(std::clamp(ex, -2.0, double(f.width) + 1)));
+            w.epipole_y = int(std::floor(std::clamp(ey, -2.0, double(f.height) + 1)));
+            // The eye before the image plane: deeper layers are farther, so they go first.
+            w.reverse_layers = dot(eye_local, {f.forward[0], f.forward[1], f.forward[2]}) < f.depth_range * 0.5;
+            warp_ldi(v, w, m.focal, m.cx, m.cy, m.width, m.height, m.zbuffer.data(), counted);
+          }
         }
-        w.base = m.to_camera(tiles.x0[t] + w.local_base[0], tiles.y0[t] + w.local_base[1], w.local_base[2]);
-        w.step_x = m.direction_to_camera(w.local_x[0], w.local_x[1], w.local_x[2]);
-        w.step_y = m.direction_to_camera(w.local_y[0], w.local_y[1], w.local_y[2]);
-        w.step_d = m.direction_to_camera(w.local_d[0], w.local_d[1], w.local_d[2]);
-        w.lift = m.direction_to_camera(0, 0, 1);
-        w.h00 = tiles.h[0][t];
-        w.h10 = tiles.h[1][t];
-        w.h01 = tiles.h[2][t];
-        w.h11 = tiles.h[3][t];
-        w.inverse_tile = float(1 / s);
-        w.depth_scale = f.depth_range / 65535.0f;
-        w.ground_below = kGroundEpsilon + 0.75f * f.pixel_size;
-        w.splat = float(p) * m.focal * kSplatScale;
-        w.from = part.from;
-        w.to = part.to;
-        // The eye in the LDI's frame (unsheared: the shear moves samples, not the order).
-        const V3 eye_local{m.eye[0] - tiles.x0[t] - f.origin[0], m.eye[1] - tiles.y0[t] - f.origin[1],
-                           m.eye[2] - double(w.h00 + w.h10 + w.h01 + w.h11) / 4 - f.origin[2]};
-        const double ex = dot(eye_local, {f.right[0], f.right[1], f.right[2]}) / p - 0.5;
-        const double ey = -dot(eye_local, {f.up[0], f.up[1], f.up[2]}) / p - 0.5;
-        w.epipole_x = int(std::floor(std::clamp(ex, -2.0, double(f.width) + 1)));
-        w.epipole_y = int(std::floor(std::clamp(ey, -2.0, double(f.height) + 1)));
-        // The eye before the image plane: deeper layers are farther, so they go first.
-        w.reverse_layers = dot(eye_local, {f.forward[0], f.forward[1], f.forward[2]}) < f.depth_range * 0.5;
-        warp_ldi(v, w, m.focal, m.cx, m.cy, m.width, m.height, m.zbuffer.data(), counted);
-      }
-    }
-    m.depth_pixels += counted;
-  });
+        m.depth_pixels += counted;
+      });
 
   // ---- the terrain: vertices to camera space, triangles rasterized in parallel ----
   const ViewWorld::Terrain& terrain = world.terrain();
@@ -663,8 +671,14 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
       int behind = 0;
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t i = ids[std::size_t(k)];
-        v[k] = {m.vx[i], m.vy[i], m.vz[i], terrain.x[i] - ex, terrain.y[i] - ey,
-                terrain.light_r[i], terrain.light_g[i], terrain.light_b[i]};
+        v[k] = {m.vx[i],
+                m.vy[i],
+                m.vz[i],
+                terrain.x[i] - ex,
+                terrain.y[i] - ey,
+                terrain.light_r[i],
+                terrain.light_g[i],
+                terrain.light_b[i]};
         behind += v[k].z < kNear;
       }
       if (behind == 3) continue;
@@ -690,7 +704,7 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
         if (pin != qin) {
           const float f = (kNear - p.z) / (q.z - p.z);
           auto lerp = [f](float a, float b) { return a + (b - a) * f; };
-          poly[n++] = {lerp(p.x, q.x), lerp(p.y, q.y), kNear, lerp(p.wx, q.wx), lerp(p.wy, q.wy),
+          poly[n++] = {lerp(p.x, q.x),   lerp(p.y, q.y),   kNear,           lerp(p.wx, q.wx), lerp(p.wy, q.wy),
                        lerp(p.lr, q.lr), lerp(p.lg, q.lg), lerp(p.lb, q.lb)};
         }
       }
@@ -701,19 +715,20 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   // ---- resolve: the z-buffer's colors, the sky where nothing was drawn ----
   tbb::parallel_for(tbb::blocked_range<int>(0, m.height, 8), [&](const tbb::blocked_range<int>& r) {
     for (int py = r.begin(); py != r.end(); ++py) {
-      // The sky by the elevation of the row's central ray: pale at the horizon, deeper above.
       const float ray_up = -(float(py) + 0.5f - m.cy) / m.focal;
-      const float elevation = float(m.forward[2]) + float(m.up[2]) * ray_up;
-      const float k = std::clamp(elevation / std::sqrt(1 + ray_up * ray_up) * 2.5f, 0.0f, 1.0f);
-      const std::uint8_t sky[3] = {std::uint8_t(200 - 110 * k), std::uint8_t(214 - 84 * k), std::uint8_t(232 - 32 * k)};
       std::uint8_t* out = image_.pixels.data() + image_.offset(0, py);
       const std::uint64_t* row = m.zbuffer.data() + std::size_t(py) * std::size_t(m.width);
       for (int px = 0; px < m.width; ++px, out += 3) {
         const std::uint64_t e = row[px];
-        if (e == kEmpty) {
-          out[0] = sky[0];
-          out[1] = sky[1];
-          out[2] = sky[2];
+        if (e == kEmpty) {  // the sky of the shading model (as the Embree reference draws it)
+          const float ray_right = (float(px) + 0.5f - m.cx) / m.focal;
+          Vec3f d;
+          for (std::size_t c = 0; c < 3; ++c)
+            d[c] = float(m.forward[c]) + ray_right * float(m.right[c]) + ray_up * float(m.up[c]);
+          const Vec3f sky = sky_radiance(world.shading(), d);
+          out[0] = lut.encode(sky[0]);
+          out[1] = lut.encode(sky[1]);
+          out[2] = lut.encode(sky[2]);
         } else {
           out[0] = std::uint8_t(e >> 16);
           out[1] = std::uint8_t(e >> 8);

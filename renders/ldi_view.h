@@ -29,6 +29,7 @@
 
 #include "generator/image.h"
 #include "renders/ldi_pack.h"
+#include "renders/shading.h"
 #include "scene/scene.h"
 
 namespace wangscape {
@@ -50,18 +51,18 @@ class ViewWorld {
   // at fault: a missing folder, scene or pack, a corrupt pack, a pack of another tile set.
   static std::shared_ptr<const ViewWorld> load(const std::filesystem::path& dir, const StageObserver& stage = {});
   // The same from a Scene already made and a pack file (tests).
-  ViewWorld(Scene scene, const std::filesystem::path& pack_path);
+  ViewWorld(Scene scene, const std::filesystem::path& pack_path, const ShadingSettings& shading = {});
 
-  struct Tiles {  // structure of arrays, one entry per placed tile, rows south to north
-    std::vector<double> x0, y0;            // the tile's south-west corner, meters
-    std::vector<std::uint32_t> tile;       // index into the set (and the pack)
-    std::vector<std::int32_t> cell;        // index into the tile grid
-    std::array<std::vector<float>, 4> h;   // ground height at the corners: SW, SE, NW, NE
-    std::vector<float> z_min, z_max;       // of the corners
+  struct Tiles {                          // structure of arrays, one entry per placed tile, rows south to north
+    std::vector<double> x0, y0;           // the tile's south-west corner, meters
+    std::vector<std::uint32_t> tile;      // index into the set (and the pack)
+    std::vector<std::int32_t> cell;       // index into the tile grid
+    std::array<std::vector<float>, 4> h;  // ground height at the corners: SW, SE, NW, NE
+    std::vector<float> z_min, z_max;      // of the corners
     std::size_t size() const { return tile.size(); }
   };
-  struct Terrain {  // structure of arrays
-    std::vector<float> x, y, z;            // ENU meters
+  struct Terrain {                                 // structure of arrays
+    std::vector<float> x, y, z;                    // ENU meters
     std::vector<float> light_r, light_g, light_b;  // sun + sky irradiance (linear) at the vertex
     std::vector<std::array<std::uint32_t, 3>> triangles;
   };
@@ -86,6 +87,9 @@ class ViewWorld {
   // shading model's ground color without [ground].
   std::array<float, 3> ground_color(double x, double y) const;
   const std::array<float, 3>& sun_direction() const { return sun_; }
+  // The light the pack was shaded with (the scene's [ldi] sky rays; the Embree reference of
+  // --compare uses it too).
+  const ShadingSettings& shading() const { return shading_; }
 
  private:
   Scene scene_;
@@ -99,6 +103,7 @@ class ViewWorld {
   std::vector<std::array<float, 4>> far_;
   std::array<float, 3> sun_{0, 0, 1};
   std::array<float, 3> plain_ground_{};  // linear, without a ground texture
+  ShadingSettings shading_;
 };
 
 // What one frame drew.
@@ -158,12 +163,15 @@ struct ViewRequest {
   int width = 0, height = 0;  // 0 = the scene's image size
   std::filesystem::path out;  // one offline frame
   bool stats = false, json = false;
-  int repeat = 0;                     // frames timed for --stats (0: 200)
-  std::filesystem::path path;         // keyframes JSON
-  std::filesystem::path frames_dir;   // where the path's frames go
+  int repeat = 0;                    // frames timed for --stats (0: 200)
+  std::filesystem::path path;        // keyframes JSON
+  std::filesystem::path frames_dir;  // where the path's frames go
   double path_fps = 24;
-  std::string script;                 // window: scripted input (docs/viewer.md)
-  int threads = 0;                    // 0 = all cores
+  std::string script;          // window: scripted input (docs/viewer.md)
+  bool compare = false;        // also ray trace the frame with Embree and compare
+  std::filesystem::path diff;  // with compare: the difference image
+  int reference_samples = 0;   // with compare: samples per pixel (0: the scene's)
+  int threads = 0;             // 0 = all cores
   bool quiet = false;
 };
 

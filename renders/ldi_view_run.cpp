@@ -13,6 +13,8 @@
 #include "core/error.h"
 #include "exporters/image_io.h"
 #include "renders/child_process.h"
+#include "renders/embree_reference.h"
+#include "renders/image_compare.h"
 #include "renders/ldi_view.h"
 #include "renders/ldi_window.h"
 
@@ -116,10 +118,39 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest&
                                      (request.frames_dir / "frame-%05d.png").string(), "-pix_fmt", "yuv420p", "-vf",
                                      "pad=ceil(iw/2)*2:ceil(ih/2)*2", movie.string()},
                                     log);
-  if (!exit.exited || exit.status != 0)
-    throw Error(movie, "", "ffmpeg " + exit.describe() + last_log_lines(log, 3));
+  if (!exit.exited || exit.status != 0) throw Error(movie, "", "ffmpeg " + exit.describe() + last_log_lines(log, 3));
   fs::remove(log, ec);
   if (!request.quiet) std::printf("%s\n", movie.string().c_str());
+}
+
+// --compare: the same camera ray traced by the Embree reference, and the figures.
+void compare_with_reference(const ViewWorld& world, const LdiRenderer& renderer, const ViewCamera& camera,
+                            const ViewRequest& request) {
+  ReferenceOptions options;
+  options.camera = Camera{camera.position, camera.target, camera.fov_degrees};
+  options.width = renderer.width();
+  options.height = renderer.height();
+  options.samples_per_pixel = request.reference_samples;
+  options.shading = world.shading();
+  const ReferenceImage reference = render_reference(world.scene(), options);
+  const CoverageMask reference_mask = coverage_mask(reference.coverage, renderer.width(), renderer.height());
+  CoverageMask view_mask{renderer.width(), renderer.height(), {}};
+  view_mask.covered.resize(std::size_t(renderer.width()) * std::size_t(renderer.height()));
+  for (int y = 0; y < renderer.height(); ++y)
+    for (int x = 0; x < renderer.width(); ++x)
+      view_mask.covered[std::size_t(y) * std::size_t(renderer.width()) + std::size_t(x)] = !renderer.sky_at(x, y);
+  const ImageComparison c = compare_images(renderer.image(), reference.image, &view_mask, &reference_mask);
+  if (!request.diff.empty()) write_image(request.diff, c.difference);
+  if (request.json)
+    std::printf("{\"psnr_db\": %s, \"ssim\": %s, \"hole_share\": %s, \"holes\": %llu, \"reference_seconds\": %s}\n",
+                number(c.psnr_db).c_str(), number(c.ssim).c_str(), number(c.holes.share).c_str(),
+                static_cast<unsigned long long>(c.holes.holes), number(reference.stats.seconds).c_str());
+  else
+    std::printf(
+        "PSNR: %.2f dB\nSSIM: %.4f\nholes: %.4f %% of the pixels (%llu; %.4f %% of the reference's covered)\n"
+        "reference: %d samples per pixel, %.2f s\n",
+        c.psnr_db, c.ssim, 100 * c.holes.share, static_cast<unsigned long long>(c.holes.holes),
+        100 * c.holes.share_of_covered, reference.stats.samples_per_pixel, reference.stats.seconds);
 }
 
 }  // namespace
@@ -166,9 +197,9 @@ std::string view_stats_json(const ViewFrameStats& stats) {
   for (std::uint64_t n : stats.levels) levels += (levels.empty() ? "" : ", ") + std::to_string(n);
   const double fps = stats.frame_ms > 0 ? 1000.0 / stats.frame_ms : 0;
   return "{\"frame_ms\": " + number(stats.frame_ms) + ", \"fps\": " + number(fps) +
-         ", \"depth_pixels\": " + std::to_string(stats.depth_pixels) + ", \"tiles\": {\"drawn\": " +
-         std::to_string(stats.tiles_drawn) + ", \"culled\": " + std::to_string(stats.tiles_culled) +
-         "}, \"levels\": [" + levels + "]}";
+         ", \"depth_pixels\": " + std::to_string(stats.depth_pixels) +
+         ", \"tiles\": {\"drawn\": " + std::to_string(stats.tiles_drawn) +
+         ", \"culled\": " + std::to_string(stats.tiles_culled) + "}, \"levels\": [" + levels + "]}";
 }
 
 int run_view(const ViewRequest& request) {
@@ -181,7 +212,9 @@ int run_view(const ViewRequest& request) {
   if (!request.path.empty() && request.frames_dir.empty()) throw Error("--path: needs --frames OUTDIR");
   if (!(request.path_fps > 0 && request.path_fps <= 240)) throw Error("--fps: expected 0 .. 240 frames per second");
   if (request.repeat < 0 || request.repeat > 100000) throw Error("--repeat: expected 0 .. 100000 frames");
-  const bool window = request.out.empty() && request.path.empty() && !request.stats;
+  if (!request.diff.empty() && !request.compare) throw Error("--diff: needs --compare");
+  if (request.reference_samples < 0 || request.reference_samples > 1024) throw Error("--spp: expected 1 .. 1024");
+  const bool window = request.out.empty() && request.path.empty() && !request.stats && !request.compare;
   if (window) check_view_script(request.script);  // refused before the scene is assembled
   std::optional<tbb::global_control> threads;
   if (request.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(request.threads));
@@ -210,6 +243,10 @@ int run_view(const ViewRequest& request) {
   const ViewFrameStats stats =
       request.stats ? measure_view(renderer, camera, request.repeat ? request.repeat : 200) : renderer.render(camera);
   if (!request.out.empty()) write_image(request.out, renderer.image());
+  if (request.compare) {
+    compare_with_reference(*world, renderer, camera, request);
+    return 0;
+  }
   if (request.stats) {
     if (request.json) {
       std::printf("%s\n", view_stats_json(stats).c_str());

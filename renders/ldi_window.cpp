@@ -61,7 +61,8 @@ std::vector<ScriptStep> parse_script(const std::string& script) {
     if (name.rfind("mouse:", 0) == 0) {
       int dx = 0, dy = 0;
       char tail = 0;
-      if (std::sscanf(name.c_str() + 6, "%d:%d%c", &dx, &dy, &tail) != 2 || std::abs(dx) > 10000 || std::abs(dy) > 10000)
+      if (std::sscanf(name.c_str() + 6, "%d:%d%c", &dx, &dy, &tail) != 2 || std::abs(dx) > 10000 ||
+          std::abs(dy) > 10000)
         throw bad("is not mouse:DX:DY in pixels");
       step.kind = ScriptStep::mouse;
       step.dx = dx;
@@ -82,30 +83,54 @@ std::vector<ScriptStep> parse_script(const std::string& script) {
 std::uint16_t glyph(char c) {
   // Five rows of three bits, top row in the high bits.
   switch (c) {
-    case '0': return 0b111101101101111;
-    case '1': return 0b010110010010111;
-    case '2': return 0b111001111100111;
-    case '3': return 0b111001111001111;
-    case '4': return 0b101101111001001;
-    case '5': return 0b111100111001111;
-    case '6': return 0b111100111101111;
-    case '7': return 0b111001010010010;
-    case '8': return 0b111101111101111;
-    case '9': return 0b111101111001111;
-    case '.': return 0b000000000000010;
-    case '/': return 0b001001010100100;
-    case 'M': return 0b101111111101101;
-    case 'S': return 0b111100111001111;
-    case 'D': return 0b110101101101110;
-    case 'P': return 0b111101111100100;
-    case 'W': return 0b101101111111101;
-    case 'A': return 0b111101111101101;
-    case 'L': return 0b100100100100111;
-    case 'K': return 0b101110100110101;
-    case 'F': return 0b111100111100100;
-    case 'Y': return 0b101101010010010;
-    case 'X': return 0b101101010101101;
-    default: return 0;
+    case '0':
+      return 0b111101101101111;
+    case '1':
+      return 0b010110010010111;
+    case '2':
+      return 0b111001111100111;
+    case '3':
+      return 0b111001111001111;
+    case '4':
+      return 0b101101111001001;
+    case '5':
+      return 0b111100111001111;
+    case '6':
+      return 0b111100111101111;
+    case '7':
+      return 0b111001010010010;
+    case '8':
+      return 0b111101111101111;
+    case '9':
+      return 0b111101111001111;
+    case '.':
+      return 0b000000000000010;
+    case '/':
+      return 0b001001010100100;
+    case 'M':
+      return 0b101111111101101;
+    case 'S':
+      return 0b111100111001111;
+    case 'D':
+      return 0b110101101101110;
+    case 'P':
+      return 0b111101111100100;
+    case 'W':
+      return 0b101101111111101;
+    case 'A':
+      return 0b111101111101101;
+    case 'L':
+      return 0b100100100100111;
+    case 'K':
+      return 0b101110100110101;
+    case 'F':
+      return 0b111100111100100;
+    case 'Y':
+      return 0b101101010010010;
+    case 'X':
+      return 0b101101010101101;
+    default:
+      return 0;
   }
 }
 
@@ -159,8 +184,7 @@ struct Walker {
     const double ground = world.ground_height(p[0], p[1], p[2] - world.pack().info().head_height);
     const double eye = ground + world.pack().info().head_height;
     if (!fly || p[2] < eye) p[2] = eye;  // walking stays on the ground, flying stays above it
-    camera.target = {p[0] + 100 * c * std::cos(pitch), p[1] + 100 * s * std::cos(pitch),
-                     p[2] + 100 * std::sin(pitch)};
+    camera.target = {p[0] + 100 * c * std::cos(pitch), p[1] + 100 * s * std::cos(pitch), p[2] + 100 * std::sin(pitch)};
   }
 };
 

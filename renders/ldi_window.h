@@ -24,8 +24,7 @@ struct ViewWindowOptions {
 
 // Opens the window at `start` and runs until Escape, the window's close button or the end of
 // the script. Throws Error when SDL cannot open a window (no display) or the script is bad.
-void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& start,
-                     const ViewWindowOptions& options);
+void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& start, const ViewWindowOptions& options);
 
 // The moves a script asks for, checked without a display (tests, the CLI's early refusal).
 // Throws Error naming the token at fault.

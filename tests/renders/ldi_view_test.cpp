@@ -31,9 +31,10 @@ fs::path scratch(const std::string& name) {
 // A flat field over `area` (ENU m), its pack built with 3 levels x 4 directions at a coarse
 // resolution, and the view's world over both.
 std::shared_ptr<const ViewWorld> tiny_world(const std::string& area, const std::string& name) {
-  const std::string text = "name = \"view test\"\n[terrain]\nflat_size = 60.0\n[tiles]\nset = \"cohen8\"\n"
-                           "tile_size = 4.0\npoints_per_tile = 10\nseed = 5\narea = " +
-                           area + "\n[models]\nvariants = 2\ntriangle_budget = 400\n[sun]\nazimuth = 200.0\nelevation = 40.0\n";
+  const std::string text =
+      "name = \"view test\"\n[terrain]\nflat_size = 60.0\n[tiles]\nset = \"cohen8\"\n"
+      "tile_size = 4.0\npoints_per_tile = 10\nseed = 5\narea = " +
+      area + "\n[models]\nvariants = 2\ntriangle_budget = 400\n[sun]\nazimuth = 200.0\nelevation = 40.0\n";
   const SceneConfig config = parse_scene_config(text, name + ".toml", fs::temp_directory_path());
   Scene scene = make_scene(config);
   LdiBuildOptions options;
