@@ -333,29 +333,40 @@ struct Warp {
 void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, int width, int height,
               std::uint64_t* zbuffer, std::uint64_t& depth_pixels) {
   const bool all = w.from <= 0 && w.to >= 1;
-  auto splat_pixel = [&](int x, int y, const DepthPixel& p, bool last) {
+  // What one pixel of the LDI contributes before its layers' depths: tile-local and camera space.
+  struct PixelBase {
+    float lx, ly, lz, cx, cy, cz;
+  };
+  auto splat_pixel = [&](const PixelBase& b, const DepthPixel& p, bool last) {
     const float d = float(p.depth()) * w.depth_scale;
-    const float lx = w.local_base[0] + float(x) * w.local_x[0] + float(y) * w.local_y[0] + d * w.local_d[0];
-    const float ly = w.local_base[1] + float(x) * w.local_x[1] + float(y) * w.local_y[1] + d * w.local_d[1];
-    const float lz = w.local_base[2] + float(x) * w.local_x[2] + float(y) * w.local_y[2] + d * w.local_d[2];
+    const float lz = b.lz + d * w.local_d[2];
     if (last && lz < w.ground_below) return;  // the ground plane: the terrain draws it
+    const float lx = b.lx + d * w.local_d[0], ly = b.ly + d * w.local_d[1];
     // The shear onto the tile's two terrain triangles (split along the SW-NE diagonal).
     const float u = std::clamp(lx * w.inverse_tile, 0.0f, 1.0f), t = std::clamp(ly * w.inverse_tile, 0.0f, 1.0f);
     const float h =
         u >= t ? w.h00 + u * (w.h10 - w.h00) + t * (w.h11 - w.h10) : w.h00 + t * (w.h01 - w.h00) + u * (w.h11 - w.h01);
-    std::array<float, 3> c;
-    for (int k = 0; k < 3; ++k)
-      c[std::size_t(k)] = w.base[std::size_t(k)] + float(x) * w.step_x[std::size_t(k)] +
-                          float(y) * w.step_y[std::size_t(k)] + d * w.step_d[std::size_t(k)] +
-                          h * w.lift[std::size_t(k)];
-    if (c[2] < kNear) return;
-    const float inv = 1.0f / c[2];
-    const float sx = cx + focal * c[0] * inv, sy = cy - focal * c[1] * inv;
-    const int n = std::clamp(int(std::ceil(w.splat * inv)), 1, kMaxSplat);
+    const float camera_z = b.cz + d * w.step_d[2] + h * w.lift[2];
+    if (camera_z < kNear) return;
+    const float camera_x = b.cx + d * w.step_d[0] + h * w.lift[0];
+    const float camera_y = b.cy + d * w.step_d[1] + h * w.lift[1];
+    const float inv = 1.0f / camera_z;
+    const float sx = cx + focal * camera_x * inv, sy = cy - focal * camera_y * inv;
+    const std::uint64_t entry = pack_entry(camera_z, p.r, p.g, p.b);
+    const float size = w.splat * inv;
+    if (size <= 1.0f) {  // most splats: one pixel
+      const int px = int(std::floor(sx)), py = int(std::floor(sy));
+      if (px < 0 || py < 0 || px >= width || py >= height) return;
+      if (!all) {
+        const float th = threshold(px, py);
+        if (th < w.from || th >= w.to) return;
+      }
+      depth_write(zbuffer[std::size_t(py) * std::size_t(width) + std::size_t(px)], entry);
+      return;
+    }
+    const int n = std::min(int(std::ceil(size)), kMaxSplat);
     const int x0 = int(std::ceil(sx - 0.5f * float(n) - 0.5f)), y0 = int(std::ceil(sy - 0.5f * float(n) - 0.5f));
     const int xa = std::max(x0, 0), xb = std::min(x0 + n, width), ya = std::max(y0, 0), yb = std::min(y0 + n, height);
-    if (xa >= xb || ya >= yb) return;
-    const std::uint64_t entry = pack_entry(c[2], p.r, p.g, p.b);
     for (int py = ya; py < yb; ++py) {
       std::uint64_t* row = zbuffer + std::size_t(py) * std::size_t(width);
       for (int px = xa; px < xb; ++px) {
@@ -369,10 +380,17 @@ void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, 
   };
   auto visit = [&](int x, int y, std::uint32_t first, std::uint32_t count) {
     depth_pixels += count;
+    const float fx = float(x), fy = float(y);
+    const PixelBase b{w.local_base[0] + fx * w.local_x[0] + fy * w.local_y[0],
+                      w.local_base[1] + fx * w.local_x[1] + fy * w.local_y[1],
+                      w.local_base[2] + fx * w.local_x[2] + fy * w.local_y[2],
+                      w.base[0] + fx * w.step_x[0] + fy * w.step_y[0],
+                      w.base[1] + fx * w.step_x[1] + fy * w.step_y[1],
+                      w.base[2] + fx * w.step_x[2] + fy * w.step_y[2]};
     if (w.reverse_layers)
-      for (std::uint32_t k = count; k-- > 0;) splat_pixel(x, y, v.depth_pixels[first + k], k + 1 == count);
+      for (std::uint32_t k = count; k-- > 0;) splat_pixel(b, v.depth_pixels[first + k], k + 1 == count);
     else
-      for (std::uint32_t k = 0; k < count; ++k) splat_pixel(x, y, v.depth_pixels[first + k], k + 1 == count);
+      for (std::uint32_t k = 0; k < count; ++k) splat_pixel(b, v.depth_pixels[first + k], k + 1 == count);
   };
   // McMillan's occlusion-compatible order: rows and columns from the image's edges towards the
   // eye's epipole, so that a sample is drawn before every sample that can hide it.
