@@ -31,6 +31,7 @@ constexpr float kSplatScale = 1.5f;       // splat side over the projected depth
 constexpr int kMaxSplat = 24;             // pixels
 constexpr float kLevelBlendStart = 0.5f;  // of a level's range: where dithering into the next level starts
 constexpr float kDirectionBand = 0.15f;   // of the angle between two directions: dithered either side of the bisector
+constexpr float kCanopyShare = 0.55f;     // of the prism top: the far field's color comes from samples above it
 constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
 
 // The ordered 4 x 4 (Bayer) thresholds in (0, 1): which of two dithered LDIs owns a pixel.
@@ -189,15 +190,18 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
     terrain_.light_b.push_back(light(2));
   }
 
-  // The far field: per tile and direction, the coarsest LDI's front samples averaged.
+  // The far field: per tile and direction, the coarsest LDI's front flower samples averaged —
+  // those in the canopy's upper part: seen from afar at a grazing angle, the tiles in front hide
+  // the rest (stems and leaves low down); without any there, all of them.
   const std::uint32_t level = info.levels - 1;
+  const float canopy = kCanopyShare * info.prism_top;
   far_.assign(std::size_t(info.tiles) * info.directions, {0, 0, 0, 0});
   const Luts& lut = luts();
   for (std::uint32_t t = 0; t < info.tiles; ++t)
     for (std::uint32_t d = 0; d < info.directions; ++d) {
       const LdiView v = pack_->ldi(t, level, d);
-      double sum[3] = {0, 0, 0};
-      std::uint64_t flowers = 0, ground = 0;
+      double sum[3] = {0, 0, 0}, top_sum[3] = {0, 0, 0};
+      std::uint64_t flowers = 0, ground = 0, top = 0;
       for (std::uint32_t y = 0; y < v.frame->height; ++y)
         for (std::uint32_t s = v.row_spans[y]; s < v.row_spans[y + 1]; ++s) {
           const LdiSpan& span = v.spans[s];
@@ -206,21 +210,25 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
             const std::uint8_t count = v.counts[span.first_pixel + k];
             if (count == 0) continue;
             const DepthPixel& front = v.depth_pixels[depth];
-            if (count == 1 &&
-                v.position(int(span.x + k), int(y), front)[2] < kGroundEpsilon + 0.75f * v.frame->pixel_size) {
+            const float z = v.position(int(span.x + k), int(y), front)[2];
+            if (count == 1 && z < kGroundEpsilon + 0.75f * v.frame->pixel_size) {
               ++ground;
             } else {
               ++flowers;
-              sum[0] += lut.to_linear[front.r];
-              sum[1] += lut.to_linear[front.g];
-              sum[2] += lut.to_linear[front.b];
+              const double rgb[3] = {lut.to_linear[front.r], lut.to_linear[front.g], lut.to_linear[front.b]};
+              for (int c = 0; c < 3; ++c) sum[c] += rgb[c];
+              if (z >= canopy) {
+                ++top;
+                for (int c = 0; c < 3; ++c) top_sum[c] += rgb[c];
+              }
             }
             depth += count;
           }
         }
       if (flowers == 0) continue;
       auto& out = far_[std::size_t(t) * info.directions + d];
-      for (int c = 0; c < 3; ++c) out[std::size_t(c)] = float(sum[c] / double(flowers));
+      for (int c = 0; c < 3; ++c)
+        out[std::size_t(c)] = float(top ? top_sum[c] / double(top) : sum[c] / double(flowers));
       out[3] = float(double(flowers) / double(flowers + ground));
     }
 }
