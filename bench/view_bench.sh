@@ -18,7 +18,7 @@ fi
 "$bin" ldi info "$dir/tiles.ldi" | head -8
 for size in 640x360 1280x720; do
   for camera in "edge (the scene's camera)|" "in the field|--camera 0,6300 --look-at 0,1200,1500" \
-                "above the field|--camera 0,6660,1300 --look-at 0,6300,1150"; do
+                "above the field|--camera 0,6640,1150 --look-at 0,6450,1125"; do
     name=${camera%%|*}
     flags=${camera#*|}
     echo "== $name, $size; load: $(cut -d' ' -f1-3 /proc/loadavg)"
