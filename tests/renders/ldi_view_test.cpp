@@ -56,6 +56,18 @@ ViewCamera looking(double x, double y, double z, double tx, double ty, double tz
   return {{x, y, z}, {tx, ty, tz}, fov};
 }
 
+// A frame of only the tiles `mask` keeps: its depths (row-major) and its pixels.
+std::pair<std::vector<float>, std::vector<std::uint8_t>> masked_frame(LdiRenderer& renderer, const ViewCamera& camera,
+                                                                      std::vector<std::uint8_t> mask) {
+  renderer.set_tile_mask(std::move(mask));
+  renderer.render(camera);
+  const int w = renderer.width(), h = renderer.height();
+  std::vector<float> depth(std::size_t(w * h));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) depth[std::size_t(y * w + x)] = renderer.depth_at(x, y);
+  return {depth, renderer.image().pixels};
+}
+
 TEST(ldi_view, PlacesEveryTileOfTheArea) {
   // 24 m x 24 m of 4 m tiles on a flat plane without masks: 6 x 6 tiles, each with flowers.
   EXPECT_EQ(field()->tiles().size(), 36u);
@@ -113,16 +125,8 @@ TEST(ldi_view, NoHolesInACloseView) {
   const int w = 240, h = 160;
   LdiRenderer renderer(field(), w, h);
   const ViewCamera camera = looking(0, -6, 1.7, 0, 4, 0.6, 60);
-  auto depths = [&](std::vector<std::uint8_t> mask) {
-    renderer.set_tile_mask(std::move(mask));
-    renderer.render(camera);
-    std::vector<float> d(std::size_t(w * h));
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) d[std::size_t(y * w + x)] = renderer.depth_at(x, y);
-    return d;
-  };
-  const auto ground = depths(std::vector<std::uint8_t>(field()->tiles().size(), 0));
-  const auto all = depths({});
+  const auto ground = masked_frame(renderer, camera, std::vector<std::uint8_t>(field()->tiles().size(), 0)).first;
+  const auto all = masked_frame(renderer, camera, {}).first;
   int flowers = 0, holes = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 1; x + 1 < w; ++x) {
@@ -175,14 +179,7 @@ TEST(ldi_view, TheNearTileHidesTheFarOne) {
   const int w = 120, h = 80;
   LdiRenderer renderer(world, w, h);
   const ViewCamera camera = looking(-2.5, 2, 0.9, 8, 2, 0.9, 70);
-  auto frame = [&](std::vector<std::uint8_t> mask) {
-    renderer.set_tile_mask(std::move(mask));
-    renderer.render(camera);
-    std::vector<float> depth(std::size_t(w * h));
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) depth[std::size_t(y * w + x)] = renderer.depth_at(x, y);
-    return std::make_pair(depth, renderer.image().pixels);
-  };
+  auto frame = [&](std::vector<std::uint8_t> mask) { return masked_frame(renderer, camera, std::move(mask)); };
   std::vector<std::uint8_t> only_near(2, 0), only_far(2, 0);
   only_near[near_tile] = 1;
   only_far[1 - near_tile] = 1;
