@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   wangscape::cli::register_tiles_commands(app, global);
   wangscape::cli::register_batch_command(app, global);
   wangscape::cli::register_ldi_command(app, global);
+  wangscape::cli::register_view_command(app, global);
 
   try {
     app.parse(argc, argv);
