@@ -722,12 +722,18 @@ TileAdjacency::TileAdjacency(const TileSet& set) {
           from_vertical.push_back(dx > 0 ? east_key(set.tiles[v]) : west_key(set.tiles[v]));
         for (std::uint16_t h : list(t, dx, 0))
           from_horizontal.push_back(dy > 0 ? north_key(set.tiles[h]) : south_key(set.tiles[h]));
+        // Few distinct keys among many neighbours (complete-edge-8: 512 tiles, 8 keys): keeping
+        // each once makes this O(n^2) instead of O(n^2 K^3), seconds instead of minutes.
+        for (auto* keys : {&from_vertical, &from_horizontal}) {
+          std::sort(keys->begin(), keys->end());
+          keys->erase(std::unique(keys->begin(), keys->end()), keys->end());
+        }
         for (std::size_t u = 0; u < n; ++u) {
           const Tile& b = set.tiles[u];
           const EdgeKey towards_v = dx > 0 ? west_key(b) : east_key(b);
           const EdgeKey towards_h = dy > 0 ? south_key(b) : north_key(b);
-          if (std::find(from_vertical.begin(), from_vertical.end(), towards_v) != from_vertical.end() &&
-              std::find(from_horizontal.begin(), from_horizontal.end(), towards_h) != from_horizontal.end())
+          if (std::binary_search(from_vertical.begin(), from_vertical.end(), towards_v) &&
+              std::binary_search(from_horizontal.begin(), from_horizontal.end(), towards_h))
             list(t, dx, dy).push_back(static_cast<std::uint16_t>(u));
         }
       }
