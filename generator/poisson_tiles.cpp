@@ -673,8 +673,8 @@ FilledTileSet export_points(const TileSet& set, const PoissonFillOptions& option
 
 void check_options(const PoissonFillOptions& o) {
   auto fail = [](const std::string& what) { throw Error("Poisson fill: " + what); };
-  if (o.points_per_tile < 1 || o.points_per_tile > 100000)
-    fail("points per tile " + std::to_string(o.points_per_tile) + "; expected 1..100000");
+  if (o.points_per_tile < 1 || o.points_per_tile > kMaxPointsPerTile)
+    fail("points per tile " + std::to_string(o.points_per_tile) + "; expected 1.." + std::to_string(kMaxPointsPerTile));
   if (o.darts_per_visit < 1) fail("darts per visit " + std::to_string(o.darts_per_visit) + "; expected >= 1");
   if (!(o.dart_rho > 0.1 && o.dart_rho < 0.9)) fail("dart rho " + std::to_string(o.dart_rho) + "; expected 0.1..0.9");
   if (!(o.max_rho >= o.dart_rho && o.max_rho < 1.0))
@@ -689,6 +689,25 @@ void check_options(const PoissonFillOptions& o) {
 }
 
 }  // namespace
+
+PoissonFillEstimate estimate_poisson_fill(const TileSet& set, const PoissonFillOptions& options) {
+  // Each dart is checked against the tiles that may sit beside its tile: the mean number of
+  // east neighbours (4 in cohen8, K^3 in complete-edge-K) drives the cost of large sets.
+  std::map<EdgeKey, double> west_keys;
+  for (const Tile& t : set.tiles) west_keys[west_key(t)] += 1;
+  double neighbours = 0;
+  for (const Tile& t : set.tiles) neighbours += west_keys[east_key(t)];
+  neighbours /= std::max<double>(1, double(set.tiles.size()));
+  // Fitted (user CPU seconds, docs/limits.md): cohen8 at 500 / 2000 / 4000 points per tile
+  // 0.57 / 2.98 / 9.88 s, complete-edge-4 at 20: 0.94 s, -6 at 10: 5.5 s, -8 at 20: 72.9 s; each
+  // relaxation round about 0.45 of the darts.
+  const double p = options.points_per_tile;
+  PoissonFillEstimate estimate;
+  estimate.points = double(set.tiles.size()) * p;
+  const double darts = estimate.points * 3.43e-5 * (1 + p / 517) * std::pow(std::max(1.0, neighbours / 4), 0.66);
+  estimate.seconds = 0.3 + darts * (1 + 0.45 * std::max(0, options.relax_rounds));
+  return estimate;
+}
 
 double hexagonal_spacing(double area, double count) { return std::sqrt(2.0 * area / (std::sqrt(3.0) * count)); }
 
@@ -769,6 +788,12 @@ double min_distance_over_configurations(const FilledTileSet& filled) {
 
 FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& options, PoissonFillReport* report) {
   check_options(options);
+  if (const auto estimate = estimate_poisson_fill(set, options); estimate.seconds > kMaxFillSeconds)
+    throw Error(set.describe() + ": filling " + std::to_string(set.tiles.size()) + " tiles with " +
+                std::to_string(options.points_per_tile) + " points each (" + std::to_string(options.relax_rounds) +
+                " relaxation rounds) would take about " + std::to_string(std::lround(estimate.seconds)) +
+                " s; at most " + std::to_string(std::lround(kMaxFillSeconds)) +
+                " s are accepted: use fewer points per tile, fewer relaxation rounds or a smaller tile set");
   if (set.tiles.empty()) throw Error(set.describe() + ": no tiles to fill");
   if (set.tiles.size() > std::numeric_limits<std::uint16_t>::max())
     throw Error(set.describe() + ": " + std::to_string(set.tiles.size()) + " tiles; expected at most 65535");

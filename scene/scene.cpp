@@ -51,7 +51,7 @@ std::vector<Mesh> make_models(const ModelsConfig& config) {
 // ---- the field: tiles laid over the ground, flowers where the masks allow -------------------
 
 std::shared_ptr<const SceneField> make_field(const SceneConfig& config, const SceneGround& ground,
-                                             std::size_t model_count) {
+                                             std::size_t model_count, const StageObserver& stage) {
   auto field = std::make_shared<SceneField>();
   field->ground = ground;
   Extent area = ground.extent();
@@ -87,7 +87,15 @@ std::shared_ptr<const SceneField> make_field(const SceneConfig& config, const Sc
   } catch (const Error& e) {
     throw config.error_at("tiles.set", e.what());
   }
-  field->filled = fill_poisson_tiles(set, fill);
+  const auto fill_cost = estimate_poisson_fill(set, fill);
+  say(stage, "filling tile set " + config.tiles.set + " with " + std::to_string(config.tiles.points_per_tile) +
+                 " points per tile (" + std::to_string(std::llround(fill_cost.points)) + " points, about " +
+                 std::to_string(std::llround(std::ceil(fill_cost.seconds))) + " s)");
+  try {
+    field->filled = fill_poisson_tiles(set, fill);
+  } catch (const Error& e) {
+    throw config.error_at("tiles.points_per_tile", e.what());
+  }
   if (config.models.facing) {
     // Compass (clockwise from north) to yaw (counter-clockwise from east).
     field->facing_yaw = (90.0 - *config.models.facing) * std::numbers::pi / 180;
@@ -220,9 +228,7 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage) {
                  : "loading model " + config.models.mesh.string());
   scene.models = make_models(config.models);
 
-  say(stage, "filling tile set " + config.tiles.set + " with " + std::to_string(config.tiles.points_per_tile) +
-                 " points per tile");
-  const auto field = make_field(config, ground, scene.models.size());
+  const auto field = make_field(config, ground, scene.models.size(), stage);
   scene.field = field;
   scene.field_area = *field->placement.area;
   scene.instances = [field](const InstanceSink& sink) { field->place(sink); };

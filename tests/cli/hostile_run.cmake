@@ -84,3 +84,10 @@ file(WRITE "${run_dir}/huge_mask.toml"
 hostile_test(mask_too_large 1 "huge_mask.tif: the mask image of 30000 x 30000 pixels would need about 15.30 GB of memory"
              sh -c "rm -f \"$1\" && gdal_create -q -of GTiff -outsize 30000 30000 -bands 4 -ot Byte -co SPARSE_OK=TRUE -co TILED=YES \"$1\" && exec \"$0\" build \"$2\" --out \"$3\""
              "${WANGSCAPE_BIN}" "${run_dir}/huge_mask.tif" "${run_dir}/huge_mask.toml" "${run_dir}/huge_mask_out")
+
+# Runaway fills: points_per_tile above what finishes, a set whose fill is estimated above a minute.
+file(WRITE "${run_dir}/many_points.toml" "[terrain]\nflat_size = 20.0\n[tiles]\npoints_per_tile = 100000\n")
+hostile_test(points_per_tile_too_many 1 "many_points.toml:4: 'tiles.points_per_tile' must be between 1 and 10000"
+             "${WANGSCAPE_BIN}" build "${run_dir}/many_points.toml" --out "${run_dir}/many_points_out")
+hostile_test(fill_too_long 1 "filling 4096 tiles with 20 points each .* would take about [0-9]+ s. at most 60 s are accepted"
+             "${WANGSCAPE_BIN}" tileset --set complete-edge-8 --per-tile 20)
