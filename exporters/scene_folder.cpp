@@ -8,6 +8,7 @@
 
 #include "core/atomic_file.h"
 #include "core/run_cleanup.h"
+#include "core/text_file.h"
 #include "exporters/blender_export.h"
 #include "exporters/gltf_writer.h"
 #include "exporters/povray_writer.h"
@@ -18,6 +19,9 @@ namespace wangscape {
 namespace fs = std::filesystem;
 
 namespace {
+
+// One line: the absolute folder the relative paths of scene.toml resolve against.
+constexpr const char* kSceneBaseFile = "scene_base.txt";
 
 void say(const SceneFolderObserver& observer, const std::string& message) {
   if (observer.stage) observer.stage(message);
@@ -78,7 +82,8 @@ void check_scene_folder_target(const fs::path& out_dir_in) {
 }
 
 SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& exports, const std::string& scene_text,
-                                      const fs::path& out_dir_in, const SceneFolderObserver& observer) {
+                                      const fs::path& out_dir_in, const SceneFolderObserver& observer,
+                                      const fs::path& scene_base_dir) {
   const auto start = std::chrono::steady_clock::now();
   check_scene_folder_target(out_dir_in);
   auto out_dir = fs::absolute(out_dir_in).lexically_normal();
@@ -135,6 +140,8 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
     }
     if (povray) summary.povray_bytes = povray->stats().total_bytes;
     write_file_atomically(staging / "scene.toml", scene_text);
+    if (!scene_base_dir.empty())
+      write_file_atomically(staging / kSceneBaseFile, fs::absolute(scene_base_dir).lexically_normal().string() + "\n");
     publish(staging, out_dir);
   } catch (...) {
     fs::remove_all(staging, ec);
@@ -150,7 +157,21 @@ SceneFolderSummary build_scene_folder(const SceneConfig& config, const fs::path&
   // Refuse an unusable folder before the (long) scene assembly.
   check_scene_folder_target(out_dir);
   const Scene scene = make_scene(config, observer.stage);
-  return write_scene_folder(scene, config.exports, config.text, out_dir, observer);
+  return write_scene_folder(scene, config.exports, config.text, out_dir, observer, config.base_dir);
+}
+
+SceneConfig load_scene_folder_config(const fs::path& dir) {
+  const fs::path file = dir / "scene.toml";
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) throw Error(file, "", "is missing: give a folder written by `wangscape build`");
+  const std::string text = read_text_file(file, kMaxSceneFileBytes, "scene file");
+  fs::path base = dir;
+  if (fs::is_regular_file(dir / kSceneBaseFile, ec)) {
+    std::string line = read_text_file(dir / kSceneBaseFile, 1 << 16, "scene base file");
+    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+    if (!line.empty()) base = line;
+  }
+  return parse_scene_config(text, file, base);
 }
 
 }  // namespace wangscape

@@ -239,7 +239,9 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage) {
     const auto exemplars = load_ground_exemplars(config);
     std::shared_ptr<const GroundLook> look;
     try {
-      look = std::make_shared<const GroundLook>(*config.ground, exemplars);
+      // The field (which owns the ground) outlives the look: both live as long as the Scene.
+      look = std::make_shared<const GroundLook>(*config.ground, exemplars,
+                                                [field](double x, double y) { return field->ground.height(x, y); });
     } catch (const Error& e) {
       // The texture tiles' limits (exemplar smaller than a tile) come from these keys.
       throw config.error_at("ground.texture_pixels", e.message());

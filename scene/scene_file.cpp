@@ -372,6 +372,10 @@ SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem
     };
     exemplar("exemplar", g.exemplar);
     exemplar("exemplar2", g.exemplar2);
+    if (s.read("exemplar2_above", g.exemplar2_above)) {
+      s.check_range("exemplar2_above", *g.exemplar2_above, -1000, 10000);
+      if (g.exemplar2.empty()) s.fail(*s.node("exemplar2_above"), "exemplar2_above", "needs an exemplar2 to switch to");
+    }
     if (s.read("texture_scale", g.texture_scale)) s.check_range("texture_scale", g.texture_scale, 0.01, 1e6);
     if (s.read_int("texture_pixels", g.texture_pixels, 16, 512) && g.texture_pixels % 2 != 0)
       s.fail(*s.node("texture_pixels"), "texture_pixels", "must be even");
