@@ -1,6 +1,7 @@
 #include "core/run_cleanup.h"
 
 #include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -64,6 +65,11 @@ void remove_quietly(const fs::path& path) {
   Registry& r = registry();
   r.mutex.lock();  // never released: the process ends here
   for (const pid_t child : r.children) ::kill(child, SIGTERM);
+  // Let them end (up to 2 s) before removing what they may still write.
+  for (int wait = 0; wait < 100 && !r.children.empty(); ++wait) {
+    std::erase_if(r.children, [](pid_t child) { return ::waitpid(child, nullptr, WNOHANG) != 0; });
+    if (!r.children.empty()) ::usleep(20000);
+  }
   for (auto it = r.temporaries.rbegin(); it != r.temporaries.rend(); ++it) remove_quietly(*it);
   const char* name = signal_number == SIGINT ? "SIGINT" : signal_number == SIGTERM ? "SIGTERM" : "SIGHUP";
   std::string message = "\nwangscape: interrupted by ";

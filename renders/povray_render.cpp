@@ -53,6 +53,8 @@ PovrayRenderResult render_povray(const std::filesystem::path& dir_in, const Povr
   PovrayRenderResult result{dir / options.image_name, dir / "povray.log", 0};
   AtomicPath image(result.image);
   AtomicPath log(result.log);
+  // POV-Ray's state file beside the temporary image: removed after the run or on an interrupt.
+  const AtomicPath pov_state(dir / (std::filesystem::path(options.image_name).stem().string() + ".pov-state"));
 
   // Output to a temporary name, renamed into place only when POV-Ray succeeds.
   // POV-Ray rejoins its arguments and splits them at spaces: paths go quoted.

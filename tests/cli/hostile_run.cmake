@@ -5,6 +5,7 @@
 set(run_dir "${CLI_SCRATCH}/hostile_run")
 file(MAKE_DIRECTORY "${run_dir}")
 set(interrupt sh "${CMAKE_CURRENT_SOURCE_DIR}/interrupt.sh")
+tiny_scene("${run_dir}/pov.toml" EXPORTS "povray = true")
 
 # SIGINT / SIGTERM while writing: exit 130 / 143, no temporary left, a dead run's removed.
 tiny_scene("${run_dir}/big_field.toml" TILES "" EXPORTS "povray = true\ngltf = true")
@@ -23,6 +24,10 @@ hostile_test(interrupt_scatter_sigterm 0 "SIGTERM -> exit 143"
 hostile_test(interrupt_build_sigterm 0 "SIGTERM -> exit 143"
              ${interrupt} TERM 143 "${run_dir}/build" ".out.partial-*"
              "${WANGSCAPE_BIN}" --quiet build "${run_dir}/big_field.toml" --out "${run_dir}/build/out")
+# During a POV-Ray render: POV-Ray is stopped too, its temporary image and state file removed.
+hostile_test(interrupt_render_sigterm 0 "SIGTERM -> exit 143"
+             sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$2\" --out \"$1\" && exec $3 TERM 143 \"$1\" '.tmp-*' \"$0\" --quiet render \"$1\" --width 1600 --height 1200"
+             "${WANGSCAPE_BIN}" "${run_dir}/render" "${run_dir}/pov.toml" "sh ${CMAKE_CURRENT_SOURCE_DIR}/interrupt.sh")
 
 # A full disk (the file-size limit) during a PNG: an error naming the file, nothing published.
 # (No ';' in these scripts: CMake would split the argument there.)
@@ -38,7 +43,6 @@ hostile_test(png_disk_full 1 "cannot write '.*/m.png': write failed"
 
 # POV-Ray renders from a folder with a space and a ';' (made by printf '\073'); a newline
 # in the folder is refused, and no staging folder stays.
-tiny_scene("${run_dir}/pov.toml" EXPORTS "povray = true")
 hostile_test(povray_folder_with_space 0 "rendered"
              sh -c "d=\"$1$(printf '\\073')x\" && rm -rf \"$d\" && \"$0\" --quiet build \"$2\" --out \"$d\" && \"$0\" --quiet render \"$d\" --width 32 --height 24 && test -s \"$d/render.png\" && echo rendered"
              "${WANGSCAPE_BIN}" "${run_dir}/a folder" "${run_dir}/pov.toml")
