@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/printable.h"
 #include "exporters/export_support.h"
 #include "exporters/image_io.h"
 
@@ -308,11 +309,23 @@ std::string scene_ini(const Scene& scene, const std::filesystem::path& library_d
   if (r.threads > 0) s += "Work_Threads=" + std::to_string(r.threads) + "\n";
   s += "File_Gamma=sRGB\nDisplay=off\nPause_When_Done=off\n";
   // Includes resolve against the current directory and these paths, not the .pov's folder.
-  s += "Library_Path=" + library_dir.string() + "\n";
+  s += "Library_Path=" + povray_quoted_path(library_dir) + "\n";
   return s;
 }
 
 }  // namespace
+
+std::string povray_quoted_path(const std::filesystem::path& path) {
+  const std::string text = path.string();
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f || c == '"')
+      throw Error(printable(text), "",
+                  "POV-Ray cannot use this path: it holds a control character (a newline, a tab, ...) or a "
+                  "double quote; choose a folder name without them");
+  }
+  return '"' + text + '"';
+}
 
 std::string povray_camera_and_sun(const Camera& cam, const Sun& sun) {
   std::string s;

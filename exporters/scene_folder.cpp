@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "core/atomic_file.h"
+#include "core/run_cleanup.h"
 #include "core/text_file.h"
 #include "exporters/blender_export.h"
 #include "exporters/gltf_writer.h"
@@ -41,6 +42,7 @@ fs::path sibling(const fs::path& out_dir, const char* role) {
 // first renamed aside (so a reader sees the old folder or the new one, never a mix) and
 // removed once the new one is in place.
 void publish(const fs::path& staging, const fs::path& out_dir) {
+  auto uninterrupted = hold_run_cleanup();  // an interrupt waits until the swap is done
   std::error_code ec;
   if (fs::exists(out_dir, ec)) {
     const fs::path old = sibling(out_dir, "old");
@@ -53,11 +55,16 @@ void publish(const fs::path& staging, const fs::path& out_dir) {
       fs::rename(old, out_dir, restore);
       throw Error(out_dir, "", "cannot move the new build into place: " + ec.message());
     }
+    unregister_temporary(staging);
+    register_temporary(old);
+    uninterrupted.unlock();
     fs::remove_all(old, ec);
+    unregister_temporary(old);
     return;
   }
   fs::rename(staging, out_dir, ec);
   if (ec) throw Error(out_dir, "", "cannot create the scene folder: " + ec.message());
+  unregister_temporary(staging);
 }
 
 }  // namespace
@@ -84,10 +91,14 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
 
   std::error_code ec;
   fs::create_directories(out_dir.parent_path(), ec);
+  remove_stale_temporaries(out_dir.parent_path());
   const fs::path staging = sibling(out_dir, "partial");
   fs::remove_all(staging, ec);
-  if (!fs::create_directory(staging, ec) || ec)
+  register_temporary(staging);
+  if (!fs::create_directory(staging, ec) || ec) {
+    unregister_temporary(staging);
     throw Error(staging, "", "cannot create the staging folder beside the output folder: " + ec.message());
+  }
 
   SceneFolderSummary summary;
   try {
@@ -134,6 +145,7 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
     publish(staging, out_dir);
   } catch (...) {
     fs::remove_all(staging, ec);
+    unregister_temporary(staging);
     throw;
   }
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
