@@ -1,0 +1,16 @@
+// libFuzzer target: the tile-set JSON reader. A set it accepts must survive a write and a
+// re-read unchanged (the writer's text read back gives the same text again).
+#include <cstdlib>
+
+#include "fuzz/fuzz_input.h"
+#include "scene/tileset_file.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace wangscape;
+  const fuzz::InputFile file(data, size);
+  return fuzz::refusals_are_fine([&] {
+    const std::string written = format_tileset_json(tileset_to_json(read_tileset_json(file.path())));
+    const TileSet reread = tileset_from_json(Json::parse(written), "rewritten");
+    if (format_tileset_json(tileset_to_json(reread)) != written) std::abort();  // the writer lost something
+  });
+}
