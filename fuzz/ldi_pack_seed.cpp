@@ -1,5 +1,5 @@
 // Writes the LDI pack seed of the ldi_pack fuzzer (fuzz/corpus/ldi_pack/cohen8-tiny.ldi) with the
-// real builder: cohen8 with 3 sunflowers a tile, 1 level, 2 directions, sampled for a 16-pixel
+// real builder: cohen8 with 3 sunflowers a tile, 1 level, 1 direction, sampled for a 16-pixel
 // view so the pack stays a few KB. Usage: ldi_pack_seed OUT.ldi
 #include <cstdio>
 #include <exception>
@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
     const std::vector<Mesh> models = {make_sunflower(1, 0, kSunflowerMinimumTriangleBudget).mesh};
     LdiBuildOptions options;
     options.view.levels = 1;
-    options.view.directions = 2;
+    options.view.directions = 1;
     options.view.image_width = 16;
     options.shading.ao_rays = 0;
     build_ldi_pack(filled, models, options, argv[1]);
