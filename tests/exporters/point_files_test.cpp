@@ -71,7 +71,7 @@ TEST(FilledTilesetJson, RangesHoldForTheFloatsKept) {
   const struct {
     const char* key;
     double value;
-  } cases[] = {{"x", 0.99999999}, {"y", 0.99999999}, {"scale", 1e-6}, {"yaw", 7.0000001}};
+  } cases[] = {{"x", 0.99999999}, {"y", 0.99999999}, {"scale", 1e-6}, {"yaw", 6.99999999}};
   for (const auto& c : cases) {
     Json doc = good;
     doc["tiles"][1]["points"][0][c.key] = c.value;
