@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <optional>
 #include <string>
 
 #include "core/error.h"
@@ -43,6 +44,19 @@ int refusals_are_fine(Read&& read) {
     read();
   } catch (const Error&) {
   }
+  return 0;
+}
+
+// For a writer and its reader: what `read` accepts, `write` turns into text that `parse` reads
+// back to a value written as the same text. A refusal of the writer's own text escapes
+// (it runs outside refusals_are_fine), as does a difference (abort).
+template <class Read, class Write, class Parse>
+int accepted_values_round_trip(Read&& read, Write&& write, Parse&& parse) {
+  std::optional<decltype(read())> value;
+  refusals_are_fine([&] { value = read(); });
+  if (!value) return 0;
+  const std::string written = write(*value);
+  if (write(parse(written)) != written) std::abort();  // the writer lost or changed something
   return 0;
 }
 
