@@ -114,6 +114,19 @@ TEST(Dem, AStripTooLongForOneFrameIsRefusedQuickly) {
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 3.0);
 }
 
+// Found by fuzz/dem_fuzz: a GeoTIFF in UTM 10N whose origin a flipped bit put 2.4e12 km east
+// escaped as GeographicLib's own exception instead of an Error naming the DEM.
+TEST(Dem, UtmCoordinatesOutsideTheZoneAreAnErrorNamingTheDem) {
+  try {
+    Terrain::load(test_dem("edge-cases/utm_easting_out_of_zone.tif"));
+    FAIL() << "a DEM 2.4e12 km east became a terrain";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("utm_easting_out_of_zone.tif': coordinates do not transform to WGS 84"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Dem, EdgeCaseTruncatedUtmDemsLoad) {
   const DemRaster a = read_dem(test_dem("edge-cases/39109h1_truncated.dem"));
   EXPECT_EQ(a.width, 2);
