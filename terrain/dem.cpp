@@ -128,7 +128,15 @@ DemRaster read_dem(const std::filesystem::path& path) {
     throw Error("DEM " + quoted(path) + " stores heights in unit '" + dem.height_unit_in_file +
                 "', expected meters or feet");
 
-  dem.heights.resize(std::size_t(dem.width) * std::size_t(dem.height));
+  // A header may declare far more cells than its file holds (a 1 KB USGS header asked for 1.7 GB
+  // of heights): refused before allocating (docs/limits.md).
+  constexpr std::uint64_t kMaxDemCells = std::uint64_t{1} << 28;
+  const std::uint64_t cells = std::uint64_t(dem.width) * std::uint64_t(dem.height);
+  if (cells > kMaxDemCells)
+    throw Error("DEM " + quoted(path) + " declares " + std::to_string(dem.width) + " x " + std::to_string(dem.height) +
+                " cells (" + std::to_string(cells * sizeof(float) >> 20) + " MiB of heights); at most " +
+                std::to_string(kMaxDemCells) + " cells (1 GiB) are read");
+  dem.heights.resize(std::size_t(cells));
   if (band->RasterIO(GF_Read, 0, 0, dem.width, dem.height, dem.heights.data(), dem.width, dem.height, GDT_Float32, 0, 0,
                      nullptr) != CE_None) {
     std::string why = "cannot read its heights";

@@ -127,6 +127,19 @@ TEST(Dem, UtmCoordinatesOutsideTheZoneAreAnErrorNamingTheDem) {
   }
 }
 
+// Found by fuzz/dem_fuzz: a 978-byte USGS header declaring 1 x 428515590 cells had 1.7 GB of
+// heights allocated and zeroed before GDAL found no profiles. Refused before allocating.
+TEST(Dem, AHeaderDeclaringMoreCellsThanTheLimitIsRefusedBeforeAllocating) {
+  try {
+    read_dem(test_dem("edge-cases/usgs_declares_428m_cells.dem"));
+    FAIL() << "428 million cells accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("declares 1 x 428515590 cells (1634 MiB of heights); at most 268435456"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Dem, EdgeCaseTruncatedUtmDemsLoad) {
   const DemRaster a = read_dem(test_dem("edge-cases/39109h1_truncated.dem"));
   EXPECT_EQ(a.width, 2);
