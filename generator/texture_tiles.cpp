@@ -205,7 +205,8 @@ std::uint64_t quadrant_cut(const Problem& p, const Layout& layout, std::size_t t
     if (f.pixels) return f.pixels + f.origin + (static_cast<std::ptrdiff_t>(y) * f.width + x) * 3;
     return source_color(p, layout, pixel_source(p, layout, tile, slot, x, y), x, y);
   };
-  const auto [x0, y0] = quadrant_pixel(p.half, quadrant, 0, 0);
+  const auto corner = quadrant_pixel(p.half, quadrant, 0, 0);  // no structured binding: clang 14 cannot capture one
+  const int x0 = corner[0], y0 = corner[1];
   const int step_x = quadrant == kNEq || quadrant == kSEq ? 1 : -1,
             step_y = quadrant == kSEq || quadrant == kSWq ? 1 : -1;
   const auto errors = [&](int k, std::vector<std::uint64_t>& e) {

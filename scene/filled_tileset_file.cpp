@@ -21,12 +21,26 @@ const Json& required(const Json& object, const char* key, const std::string& at,
   return *it;
 }
 
+bool in_range(double v, double lo, double hi, bool hi_open) { return v >= lo && (hi_open ? v < hi : v <= hi); }
+
+std::string expected_range(double lo, double hi, bool hi_open) {
+  return "expected a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + (hi_open ? ")" : "]");
+}
+
 double number_in(const Json& value, const std::string& at, const char* key, double lo, double hi, bool hi_open) {
-  if (!value.is_number() || !(value.get<double>() >= lo) ||
-      !(hi_open ? value.get<double>() < hi : value.get<double>() <= hi))
-    throw Error(at + ": \"" + key + "\" is " + value.dump() + "; expected a number in [" + std::to_string(lo) + ", " +
-                std::to_string(hi) + (hi_open ? ")" : "]"));
+  if (!value.is_number() || !in_range(value.get<double>(), lo, hi, hi_open))
+    throw Error(at + ": \"" + key + "\" is " + value.dump() + "; " + expected_range(lo, hi, hi_open));
   return value.get<double>();
+}
+
+// Point values are kept as floats: the range holds for the float kept, not only for the text
+// (x = 0.99999999 is 1.0f, which the writer would write and the reader then refuse).
+float float_in(const Json& value, const std::string& at, const char* key, double lo, double hi, bool hi_open) {
+  const auto kept = static_cast<float>(number_in(value, at, key, lo, hi, hi_open));
+  if (!in_range(kept, lo, hi, hi_open))
+    throw Error(at + ": \"" + key + "\" is " + value.dump() + ", " + Json(kept).dump() + " as a float; " +
+                expected_range(lo, hi, hi_open));
+  return kept;
 }
 
 std::uint64_t integer_in(const Json& value, const std::string& at, const char* key, std::uint64_t hi) {
@@ -103,14 +117,12 @@ FilledTileSet filled_tileset_from_json(const Json& document, std::string_view so
       TilePoint tp;
       tp.id =
           static_cast<std::uint32_t>(integer_in(required(p, "id", point_at, "an integer"), point_at, "id", UINT32_MAX));
-      tp.x = static_cast<float>(number_in(required(p, "x", point_at, "a number"), point_at, "x", 0.0, 1.0, true));
-      tp.y = static_cast<float>(number_in(required(p, "y", point_at, "a number"), point_at, "y", 0.0, 1.0, true));
+      tp.x = float_in(required(p, "x", point_at, "a number"), point_at, "x", 0.0, 1.0, true);
+      tp.y = float_in(required(p, "y", point_at, "a number"), point_at, "y", 0.0, 1.0, true);
       tp.variant = static_cast<std::uint16_t>(integer_in(required(p, "variant", point_at, "an integer"), point_at,
                                                          "variant", static_cast<std::uint64_t>(filled.variants - 1)));
-      tp.yaw =
-          static_cast<float>(number_in(required(p, "yaw", point_at, "a number"), point_at, "yaw", -7.0, 7.0, false));
-      tp.scale = static_cast<float>(
-          number_in(required(p, "scale", point_at, "a number"), point_at, "scale", 1e-6, 1e6, false));
+      tp.yaw = float_in(required(p, "yaw", point_at, "a number"), point_at, "yaw", -7.0, 7.0, false);
+      tp.scale = float_in(required(p, "scale", point_at, "a number"), point_at, "scale", 1e-6, 1e6, false);
       filled.tiles[t].push_back(tp);
     }
   }

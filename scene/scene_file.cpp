@@ -325,7 +325,8 @@ SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem
   }
   {
     Section s(top.table("sun"), "sun", source, config.key_lines);
-    const bool has_angles = s.read("azimuth", config.sun.azimuth) | s.read("elevation", config.sun.elevation);
+    const bool has_azimuth = s.read("azimuth", config.sun.azimuth);  // both read: each marks its key used
+    const bool has_angles = s.read("elevation", config.sun.elevation) || has_azimuth;
     s.check_range("elevation", config.sun.elevation, -90, 90);
     if (const auto* node = s.node("time")) {
       const auto* when = node->as_date_time();

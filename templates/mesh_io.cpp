@@ -437,7 +437,7 @@ PlyHeader read_ply_header(std::istream& in, const std::string& source) {
       }
       has_format = true;
     } else if (tokens[0] == "element") {
-      long long count;
+      long long count = 0;
       if (tokens.size() != 3 || !parse_integer(tokens[2], count) || count < 0) {
         fail("expected 'element <name> <count>'");
       }

@@ -11,8 +11,6 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kGoldenAngle = kPi * (3.0 - 2.23606797749979);  // radians, ~137.5 degrees
 constexpr int kFloretSides = 6;
-// Below this many florets the seed head stops reading as a spiral.
-constexpr int kMinimumFlorets = 8;
 // Share of the budget for everything but the florets, which take the rest: the seed head is
 // where a close-up spends its detail.
 constexpr double kNonFloretShare = 0.45;

@@ -129,10 +129,18 @@ DemRaster read_dem(const std::filesystem::path& path) {
     throw Error("DEM " + quoted(path) + " stores heights in unit '" + dem.height_unit_in_file +
                 "', expected meters or feet");
 
-  // Heights are held as 4-byte floats, one per cell.
+  // Heights are held as 4-byte floats, one per cell: first the memory this machine can give
+  // (the estimate names the size), then a fixed cap on cells, so that a 1 KB header declaring
+  // 1.7 GB of heights is refused on any machine (docs/limits.md).
   check_memory_estimate(path, "its " + std::to_string(dem.width) + " x " + std::to_string(dem.height) + " heights",
                         4.0 * dem.width * dem.height);
-  dem.heights.resize(std::size_t(dem.width) * std::size_t(dem.height));
+  constexpr std::uint64_t kMaxDemCells = std::uint64_t{1} << 28;
+  const std::uint64_t cells = std::uint64_t(dem.width) * std::uint64_t(dem.height);
+  if (cells > kMaxDemCells)
+    throw Error("DEM " + quoted(path) + " declares " + std::to_string(dem.width) + " x " + std::to_string(dem.height) +
+                " cells (" + std::to_string(cells * sizeof(float) >> 20) + " MiB of heights); at most " +
+                std::to_string(kMaxDemCells) + " cells (1 GiB) are read");
+  dem.heights.resize(std::size_t(cells));
   if (band->RasterIO(GF_Read, 0, 0, dem.width, dem.height, dem.heights.data(), dem.width, dem.height, GDT_Float32, 0, 0,
                      nullptr) != CE_None) {
     std::string why = "cannot read its heights";

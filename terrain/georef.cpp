@@ -232,7 +232,11 @@ void CrsToWgs84::to_wgs84(std::span<double> x_to_lon, std::span<double> y_to_lat
     case Impl::Kind::utm:
       for (std::size_t k = 0; k < x_to_lon.size(); ++k) {
         double lat = 0, lon = 0;
-        GeographicLib::UTMUPS::Reverse(impl_->zone, impl_->north, x_to_lon[k], y_to_lat[k], lat, lon);
+        try {  // GeographicLib throws for coordinates outside the zone (a corrupt header's corner)
+          GeographicLib::UTMUPS::Reverse(impl_->zone, impl_->north, x_to_lon[k], y_to_lat[k], lat, lon);
+        } catch (const GeographicLib::GeographicErr& e) {
+          throw Error("DEM '" + impl_->path + "': coordinates do not transform to WGS 84 (" + e.what() + ")");
+        }
         x_to_lon[k] = lon;
         y_to_lat[k] = lat;
       }
@@ -256,7 +260,12 @@ void CrsToWgs84::from_wgs84(std::span<double> lon_to_x, std::span<double> lat_to
         int zone = 0;
         bool north = true;
         double x = 0, y = 0;
-        GeographicLib::UTMUPS::Forward(lat_to_y[k], lon_to_x[k], zone, north, x, y, impl_->zone);
+        try {
+          GeographicLib::UTMUPS::Forward(lat_to_y[k], lon_to_x[k], zone, north, x, y, impl_->zone);
+        } catch (const GeographicLib::GeographicErr&) {  // as for a PROJ transform: this point has no ground
+          lon_to_x[k] = lat_to_y[k] = std::numeric_limits<double>::quiet_NaN();
+          continue;
+        }
         // The DEM's hemisphere decides the false northing, not the point's.
         if (north != impl_->north) y += impl_->north ? -1e7 : 1e7;
         lon_to_x[k] = x;

@@ -13,6 +13,7 @@ namespace {
 // Lattice nodes are this many DEM samples apart: the ENU -> sample mapping bends by about
 // (step^2 / Earth radius) over a lattice cell, far below a millimeter at this size.
 constexpr double kLatticeStepInSamples = 8.0;
+constexpr double kMaxLatticeNodesPerCell = 4.0;  // a regular DEM needs 1/64
 
 std::string degrees(double value) {
   char text[32];
@@ -158,8 +159,22 @@ void Terrain::build_extent() {
 
 void Terrain::build_lattice() {
   const double step = kLatticeStepInSamples * std::min(spacing_m_[0], spacing_m_[1]);
-  lattice_nx_ = std::max(2, int(std::ceil(extent_.width() / step)) + 1);
-  lattice_ny_ = std::max(2, int(std::ceil(extent_.height() / step)) + 1);
+  const double nx = std::max(2.0, std::ceil(extent_.width() / step) + 1),
+               ny = std::max(2.0, std::ceil(extent_.height() / step) + 1);
+  // A regular DEM needs about one lattice node per 64 cells. A grid whose cells spread far wider
+  // in the scene's frame (a strip thousands of kilometers long, bent by the frame) would need
+  // work out of proportion to its data: refused before the conversions (docs/limits.md).
+  const double max_nodes = kMaxLatticeNodesPerCell * double(dem_.cell_count()) + 65536.0;
+  const auto km = [](double m) {
+    return std::isfinite(m) ? std::to_string(static_cast<long long>(std::min(m, 1e15) / 1000)) : std::string("?");
+  };
+  if (!(nx * ny <= max_nodes))
+    throw Error("DEM '" + dem_.path.string() + "': its heights span " + km(extent_.width()) + " x " +
+                km(extent_.height()) + " km in the scene's frame, more than its " + std::to_string(dem_.cell_count()) +
+                " cells cover (at most " + std::to_string(int(kMaxLatticeNodesPerCell)) +
+                " georeference nodes per cell); a grid this long or bent does not fit one local frame");
+  lattice_nx_ = int(nx);
+  lattice_ny_ = int(ny);
   lattice_x0_ = extent_.min_x;
   lattice_y0_ = extent_.min_y;
   inverse_lattice_step_ = 1.0 / step;

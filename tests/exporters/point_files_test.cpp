@@ -61,6 +61,35 @@ TEST(FilledTilesetJson, NamesTheTileAndPointAtFault) {
   EXPECT_THROW(filled_tileset_from_json(plain, "plain.json"), Error);
 }
 
+// Found by fuzz/filled_tileset_fuzz (fuzz/corpus/filled_tileset/regress-x-rounds-to-one.json): a
+// value in range as text but out of range as the float kept was accepted, written back as 1.0
+// and then refused. Every float key is checked as kept; an accepted set re-reads as it was.
+TEST(FilledTilesetJson, RangesHoldForTheFloatsKept) {
+  PoissonFillOptions options;
+  options.points_per_tile = 3;
+  const Json good = filled_tileset_to_json(fill_poisson_tiles(builtin_tileset("cohen8"), options));
+  const struct {
+    const char* key;
+    double value;
+  } cases[] = {{"x", 0.99999999}, {"y", 0.99999999}, {"scale", 1e-6}, {"yaw", 6.99999999}};
+  for (const auto& c : cases) {
+    Json doc = good;
+    doc["tiles"][1]["points"][0][c.key] = c.value;
+    try {
+      const FilledTileSet accepted = filled_tileset_from_json(doc, "edge.json");
+      EXPECT_EQ(filled_tileset_from_json(filled_tileset_to_json(accepted), "rewritten.json").tiles, accepted.tiles)
+          << c.key;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("tile 1 point 0: \"" + std::string(c.key) + "\""), std::string::npos)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find("as a float"), std::string::npos) << e.what();
+    }
+  }
+  Json rounded = good;
+  rounded["tiles"][1]["points"][0]["x"] = 0.99999999;
+  EXPECT_THROW(filled_tileset_from_json(rounded, "x.json"), Error);
+}
+
 InstanceBatch sample_batch() {
   InstanceBatch b;
   b.push_back(1.5f, -2.25f, 100.125f, 0.5f, 1.0f, 3, 7);

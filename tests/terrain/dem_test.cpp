@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include <cmath>
 #include <regex>
 
@@ -91,6 +93,51 @@ TEST(Dem, EdgeCaseChecksumsMatchGdalsOwnTests) {
   EXPECT_EQ(gdal_checksum(test_dem("edge-cases/39079G6_truncated.dem")), 61424);
   EXPECT_EQ(gdal_checksum(test_dem("edge-cases/114p01_0100_deme_truncated.dem")), 53864);
   EXPECT_THROW(gdal_checksum(test_dem("edge-cases/fema06-140cm_2995441b_truncated.dem")), Error);
+}
+
+// Found by fuzz/dem_fuzz: 39079G6_truncated.dem with its row count raised to 147154 (a strip
+// 4400 km long, 2 columns) read fine, and building its frame then took 6 s of CPU (minutes under
+// ASan) for 294,000 cells: its cells spread over a box that needs 3.6 million georeference
+// nodes. Work out of proportion to the data is refused, naming the DEM, before it starts.
+TEST(Dem, AStripTooLongForOneFrameIsRefusedQuickly) {
+  const auto path = test_dem("edge-cases/strip_4400km.dem");
+  EXPECT_EQ(read_dem(path).height, 147154);
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    Terrain::load(path);
+    FAIL() << "a 4400 km strip became a terrain";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("strip_4400km.dem': its heights span"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("georeference nodes per cell"), std::string::npos) << e.what();
+  }
+  // Refused before the conversions: far under the seconds they took (a loose bound for a loaded machine).
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 3.0);
+}
+
+// Found by fuzz/dem_fuzz: a GeoTIFF in UTM 10N whose origin a flipped bit put 2.4e12 km east
+// escaped as GeographicLib's own exception instead of an Error naming the DEM.
+TEST(Dem, UtmCoordinatesOutsideTheZoneAreAnErrorNamingTheDem) {
+  try {
+    Terrain::load(test_dem("edge-cases/utm_easting_out_of_zone.tif"));
+    FAIL() << "a DEM 2.4e12 km east became a terrain";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("utm_easting_out_of_zone.tif': coordinates do not transform to WGS 84"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// Found by fuzz/dem_fuzz: a 978-byte USGS header declaring 1 x 428515590 cells had 1.7 GB of
+// heights allocated and zeroed before GDAL found no profiles. Refused before allocating.
+TEST(Dem, AHeaderDeclaringMoreCellsThanTheLimitIsRefusedBeforeAllocating) {
+  try {
+    read_dem(test_dem("edge-cases/usgs_declares_428m_cells.dem"));
+    FAIL() << "428 million cells accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("declares 1 x 428515590 cells (1634 MiB of heights); at most 268435456"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(Dem, EdgeCaseTruncatedUtmDemsLoad) {
