@@ -272,7 +272,7 @@ void paint_far_field(GroundBake& bake, const SceneField& field, const FieldTextu
   const int w = bake.image.width, h = bake.image.height;
   const double dx = e.width() / w, dy = e.height() / h;
   const double far = view.options().far;
-  constexpr int kSub = 3;  // subsamples per pixel side
+  constexpr int kSub = 2;  // subsamples per pixel side
   const double footprint = std::max(dx, dy) / kSub / s;
   const auto& cam = view.position();
   tbb::parallel_for(0, h, [&](int row) {

@@ -4,10 +4,10 @@
 # the full still.
 set(aware_dir "${CLI_SCRATCH}/camera_aware")
 file(MAKE_DIRECTORY "${aware_dir}")
-set(dem "${WANGSCAPE_SOURCE_DIR}/data/SainteHelens.dem")
+set(dem "${PROJECT_SOURCE_DIR}/data/SainteHelens.dem")
 
 # The whole-DEM scene at 160 x 90 (far = 51 m by default) with a smaller ground bake.
-file(READ "${WANGSCAPE_SOURCE_DIR}/templates/scenes/whole-dem.toml" whole)
+file(READ "${PROJECT_SOURCE_DIR}/templates/scenes/whole-dem.toml" whole)
 string(REPLACE "\"../../data/SainteHelens.dem\"" "\"${dem}\"" whole "${whole}")
 string(REGEX REPLACE "\nwidth = [0-9]+" "\nwidth = 160" whole "${whole}")
 string(REGEX REPLACE "\nheight = [0-9]+" "\nheight = 90" whole "${whole}")
@@ -22,7 +22,7 @@ add_test(NAME camera_aware_whole_dem_render
 set_tests_properties(camera_aware_whole_dem_render PROPERTIES DEPENDS camera_aware_whole_dem_build)
 
 # A 120 x 200 m patch of the default scene, in full and camera-aware (near 15 m, far 60 m).
-file(READ "${WANGSCAPE_SOURCE_DIR}/templates/scenes/default.toml" patch)
+file(READ "${PROJECT_SOURCE_DIR}/templates/scenes/default.toml" patch)
 string(REPLACE "\"data/SainteHelens.dem\"" "\"${dem}\"" patch "${patch}")
 string(REGEX REPLACE "\narea = [^\n]*" "\narea = [-60.0, 6400.0, 60.0, 6600.0]" patch "${patch}")
 string(REGEX REPLACE "\nwidth = [0-9]+" "\nwidth = 160" patch "${patch}")
