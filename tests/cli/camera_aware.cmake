@@ -6,13 +6,22 @@ set(aware_dir "${CLI_SCRATCH}/camera_aware")
 file(MAKE_DIRECTORY "${aware_dir}")
 set(dem "${PROJECT_SOURCE_DIR}/data/SainteHelens.dem")
 
-# The whole-DEM scene at 160 x 90 (far = 51 m by default) with a smaller ground bake.
-file(READ "${PROJECT_SOURCE_DIR}/templates/scenes/whole-dem.toml" whole)
-string(REPLACE "\"../../data/SainteHelens.dem\"" "\"${dem}\"" whole "${whole}")
-string(REGEX REPLACE "\nwidth = [0-9]+" "\nwidth = 160" whole "${whole}")
-string(REGEX REPLACE "\nheight = [0-9]+" "\nheight = 90" whole "${whole}")
-string(REGEX REPLACE "\nbake_pixels = [0-9]+" "\nbake_pixels = 1024" whole "${whole}")
-file(WRITE "${aware_dir}/whole_dem.toml" "${whole}")
+# aware_scene(OUT SCENE DEM_AS_WRITTEN REGEX REPLACEMENT...): templates/scenes/SCENE at 160 x 90
+# with its DEM named absolutely and each REGEX replaced, written to OUT.
+function(aware_scene out scene dem_as_written)
+  file(READ "${PROJECT_SOURCE_DIR}/templates/scenes/${scene}" text)
+  string(REPLACE "\"${dem_as_written}\"" "\"${dem}\"" text "${text}")
+  set(edits "\nwidth = [0-9]+" "\nwidth = 160" "\nheight = [0-9]+" "\nheight = 90" ${ARGN})
+  while(edits)
+    list(POP_FRONT edits pattern replacement)
+    string(REGEX REPLACE "${pattern}" "${replacement}" text "${text}")
+  endwhile()
+  file(WRITE "${out}" "${text}")
+endfunction()
+
+# The whole-DEM scene (far = 51 m by default at 160 px) with a smaller ground bake.
+aware_scene("${aware_dir}/whole_dem.toml" whole-dem.toml "../../data/SainteHelens.dem"
+            "\nbake_pixels = [0-9]+" "\nbake_pixels = 1024")
 add_test(NAME camera_aware_whole_dem_build
   COMMAND ${cli_expect} 0 "tiles: [1-9][0-9]* visible, [1-9][0-9]* placed, [1-9][0-9]{6,} culled; flowers: [1-9][0-9]* models, [1-9][0-9]* proxies"
           sh -c "rm -rf \"$1\" && \"$0\" build \"$1.toml\" --out \"$1\"" "${WANGSCAPE_BIN}" "${aware_dir}/whole_dem")
@@ -22,12 +31,9 @@ add_test(NAME camera_aware_whole_dem_render
 set_tests_properties(camera_aware_whole_dem_render PROPERTIES DEPENDS camera_aware_whole_dem_build)
 
 # A 120 x 200 m patch of the default scene, in full and camera-aware (near 15 m, far 60 m).
-file(READ "${PROJECT_SOURCE_DIR}/templates/scenes/default.toml" patch)
-string(REPLACE "\"data/SainteHelens.dem\"" "\"${dem}\"" patch "${patch}")
-string(REGEX REPLACE "\narea = [^\n]*" "\narea = [-60.0, 6400.0, 60.0, 6600.0]" patch "${patch}")
-string(REGEX REPLACE "\nwidth = [0-9]+" "\nwidth = 160" patch "${patch}")
-string(REGEX REPLACE "\nheight = [0-9]+" "\nheight = 90" patch "${patch}")
-file(WRITE "${aware_dir}/patch_full.toml" "${patch}")
+aware_scene("${aware_dir}/patch_full.toml" default.toml "data/SainteHelens.dem"
+            "\narea = [^\n]*" "\narea = [-60.0, 6400.0, 60.0, 6600.0]")
+file(READ "${aware_dir}/patch_full.toml" patch)
 file(WRITE "${aware_dir}/patch_aware.toml" "${patch}\n[camera_aware]\nenabled = true\nnear = 15.0\nfar = 60.0\n")
 foreach(variant IN ITEMS patch_full patch_aware)
   add_test(NAME camera_aware_${variant}
