@@ -30,7 +30,7 @@ void run_build(const SceneConfig& config, const std::filesystem::path& out_dir, 
   }
   check_scene_folder_target(out_dir);  // before the scene is assembled
   const Scene scene = make_scene(config, observer.stage);
-  const auto summary = write_scene_folder(scene, config.exports, config.text, out_dir, observer);
+  const auto summary = write_scene_folder(scene, config.exports, config.text, out_dir, observer, config.base_dir);
   progress.reset();
   // The LDIs are sampled from the tile set, not from the placed field: a pass of their own.
   if (config.exports.ldi) build_scene_ldi_pack(scene, out_dir / "tiles.ldi", ldi_options(config));

@@ -1,18 +1,20 @@
-// wangscape render DIR --engine povray|blender [--width W --height H]: renders a built scene
-// folder with the real renderer (POV-Ray: DIR/render.png; Blender: DIR/render_blender.png and
-// DIR/scene.blend), keeping its log beside the image.
+// wangscape render DIR --engine povray|blender|embree [--width W --height H]: renders a built
+// scene folder with the real renderer (POV-Ray: DIR/render.png; Blender: DIR/render_blender.png
+// and DIR/scene.blend), keeping its log beside the image; or with the Embree reference renderer
+// (DIR/render_embree.png, or --out, with --spp samples per pixel).
 #include <cstdio>
 #include <memory>
 
 #include "cli/command.h"
 #include "cli/progress.h"
 #include "cli/scene_commands.h"
+#include "renders/embree_reference.h"
 #include "renders/render_folder.h"
 
 namespace wangscape::cli {
 
 void run_render(const std::filesystem::path& dir, const RenderRequest& request, const GlobalOptions& global) {
-  FolderRenderRequest folder{request.engine, request.width, request.height, {}};
+  FolderRenderRequest folder{request.engine, request.width, request.height, request.out, request.spp, {}};
   std::unique_ptr<Progress> progress;
   if (chatty(global)) {
     std::fprintf(stderr, "wangscape: rendering %s with %s\n", dir.string().c_str(), request.engine.c_str());
@@ -25,8 +27,8 @@ void run_render(const std::filesystem::path& dir, const RenderRequest& request, 
   const auto result = render_scene_folder(dir, folder);
   progress.reset();
   if (chatty(global))
-    std::fprintf(stderr, "wangscape: wrote %s in %.1f s (log: %s)\n", result.image.string().c_str(), result.seconds,
-                 result.log.string().c_str());
+    std::fprintf(stderr, "wangscape: wrote %s in %.1f s (%s)\n", result.image.string().c_str(), result.seconds,
+                 result.log.empty() ? result.summary.c_str() : ("log: " + result.log.string()).c_str());
 }
 
 void register_render_command(CLI::App& app, const GlobalOptions& global) {
@@ -34,11 +36,14 @@ void register_render_command(CLI::App& app, const GlobalOptions& global) {
   auto request = std::make_shared<RenderRequest>();
   auto dir = std::make_shared<std::string>();
   sub->add_option("dir", *dir, "Scene folder")->required();
-  sub->add_option("--engine", request->engine, "Renderer: povray or blender")->capture_default_str();
+  sub->add_option("--engine", request->engine, "Renderer: povray, blender or embree")->capture_default_str();
   sub->add_option("--width", request->width, "Image width in pixels (default: the scene's)")
       ->check(CLI::Range(1, 32768));
   sub->add_option("--height", request->height, "Image height in pixels (default: the scene's)")
       ->check(CLI::Range(1, 32768));
+  sub->add_option("--out", request->out, "embree: the image to write (default DIR/render_embree.png)");
+  sub->add_option("--spp", request->spp, "embree: samples per pixel (default: the scene's antialias squared)")
+      ->check(CLI::Range(1, kMaxReferenceSamples));
   sub->callback([dir, request, &global] { run_render(*dir, *request, global); });
 }
 

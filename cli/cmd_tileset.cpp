@@ -23,6 +23,7 @@ struct TilesetOptions {
   int per_tile = 0;        // Poisson points per tile; 0 = colors only
   int relax = 0;           // relaxation rounds after dart throwing
   std::string out;         // the filled set as JSON (docs/filled-tileset-format.md)
+  bool quiet = false;      // --quiet: no stage message
 };
 
 // --per-tile N: fill the set with Poisson-disk points, write --out, draw --sheet with discs.
@@ -31,6 +32,9 @@ void fill(const TileSet& set, const TilesetOptions& options) {
   fill_options.points_per_tile = options.per_tile;
   fill_options.relax_rounds = options.relax;
   fill_options.seed = options.seed;
+  if (const auto estimate = estimate_poisson_fill(set, fill_options);
+      !options.quiet && estimate.seconds > 5 && estimate.seconds <= kMaxFillSeconds)
+    fmt::print(stderr, "wangscape: filling {:.0f} points, about {:.0f} s\n", estimate.points, estimate.seconds);
   PoissonFillReport report;
   const FilledTileSet filled = fill_poisson_tiles(set, fill_options, &report);
   if (!options.out.empty()) write_filled_tileset_json(options.out, filled);
@@ -53,7 +57,7 @@ void run(const TilesetOptions& options) {
 
 }  // namespace
 
-void register_tileset_command(CLI::App& app, const GlobalOptions&) {
+void register_tileset_command(CLI::App& app, const GlobalOptions& global) {
   auto* sub = app.add_subcommand("tileset", "Print, draw or fill a Wang tile set");
   auto options = std::make_shared<TilesetOptions>();
   sub->add_option("--set", options->set,
@@ -67,12 +71,15 @@ void register_tileset_command(CLI::App& app, const GlobalOptions&) {
       ->capture_default_str();
   sub->add_option("--seed", options->seed, "Random seed")->check(seed_number())->capture_default_str();
   sub->add_option("--per-tile", options->per_tile, "Fill every tile with this many Poisson-disk points")
-      ->check(CLI::Range(1, 100000));
+      ->check(CLI::Range(1, kMaxPointsPerTile));
   sub->add_option("--relax", options->relax, "Relaxation rounds after dart throwing (stops before a lattice)")
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
   sub->add_option("--out", options->out, "With --per-tile: write the filled set as JSON");
-  sub->callback([options] { run(*options); });
+  sub->callback([options, &global] {
+    options->quiet = global.quiet;
+    run(*options);
+  });
 }
 
 }  // namespace wangscape::cli

@@ -75,5 +75,6 @@ void register_scatter_command(CLI::App& app, const GlobalOptions& global);
 void register_tiles_commands(CLI::App& app, const GlobalOptions& global);  // noise tiles, texture tiles
 void register_batch_command(CLI::App& app, const GlobalOptions& global);
 void register_ldi_command(CLI::App& app, const GlobalOptions& global);
+void register_view_command(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace wangscape::cli

@@ -6,8 +6,11 @@
 #include <new>
 
 #include "cli/command.h"
+#include "core/printable.h"
+#include "core/run_cleanup.h"
 
 int main(int argc, char** argv) {
+  wangscape::install_run_cleanup();  // before any thread starts: SIGINT/SIGTERM remove this run's temporaries
   // Numbers we write for POV-Ray, Python and JSON must not depend on the user's locale.
   std::setlocale(LC_ALL, "C");
 
@@ -29,6 +32,7 @@ int main(int argc, char** argv) {
   wangscape::cli::register_tiles_commands(app, global);
   wangscape::cli::register_batch_command(app, global);
   wangscape::cli::register_ldi_command(app, global);
+  wangscape::cli::register_view_command(app, global);
 
   try {
     app.parse(argc, argv);
@@ -40,7 +44,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "wangscape: error: out of memory: the request needs more memory than this machine has\n");
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "wangscape: error: %s\n", e.what());
+    // Messages quote user text (names, paths): no control character reaches the terminal.
+    std::fprintf(stderr, "wangscape: error: %s\n", wangscape::printable(e.what(), true).c_str());
     return 1;
   }
   return 0;

@@ -16,6 +16,8 @@ void run_build(const SceneConfig& config, const std::filesystem::path& out_dir, 
 struct RenderRequest {
   std::string engine = "povray";
   int width = 0, height = 0;  // 0 = as the scene says
+  std::string out;            // embree: the image (default DIR/render_embree.png)
+  int spp = 0;                // embree: samples per pixel (0 = from the scene)
 };
 // Renders a built folder into DIR/render.png (cmd_render.cpp).
 void run_render(const std::filesystem::path& dir, const RenderRequest& request, const GlobalOptions& global);

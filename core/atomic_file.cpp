@@ -4,13 +4,19 @@
 
 #include <system_error>
 
+#include "core/run_cleanup.h"
+
 namespace wangscape {
 
 namespace {
+// Also registers the temporary for removal on an interrupt, after clearing the folder of
+// dead runs' temporaries.
 std::filesystem::path temporary_beside(const std::filesystem::path& path) {
+  remove_stale_temporaries(path.parent_path());
   // Keep the extension last: some writers (OIIO) pick the format from it.
   std::filesystem::path temp = path;
   temp.replace_filename(".tmp-" + std::to_string(::getpid()) + "-" + path.filename().string());
+  register_temporary(temp);
   return temp;
 }
 
@@ -19,21 +25,31 @@ void rename_into_place(const std::filesystem::path& from, const std::filesystem:
   std::filesystem::rename(from, to, ec);
   if (ec) {
     std::filesystem::remove(from, ec);
+    unregister_temporary(from);
     throw Error("cannot write '" + to.string() + "': rename failed");
   }
+  unregister_temporary(from);
+}
+
+void remove_temporary(const std::filesystem::path& temp) {
+  std::error_code ec;
+  std::filesystem::remove(temp, ec);
+  unregister_temporary(temp);
 }
 }  // namespace
 
 AtomicFile::AtomicFile(std::filesystem::path path) : path_(std::move(path)), temp_path_(temporary_beside(path_)) {
   stream_.open(temp_path_, std::ios::binary | std::ios::trunc);
-  if (!stream_) throw Error("cannot write '" + path_.string() + "': cannot create a file in its folder");
+  if (!stream_) {
+    unregister_temporary(temp_path_);
+    throw Error("cannot write '" + path_.string() + "': cannot create a file in its folder");
+  }
 }
 
 AtomicFile::~AtomicFile() {
   if (committed_) return;
   stream_.close();
-  std::error_code ec;
-  std::filesystem::remove(temp_path_, ec);
+  remove_temporary(temp_path_);
 }
 
 void AtomicFile::commit() {
@@ -55,8 +71,7 @@ AtomicPath::AtomicPath(std::filesystem::path path) : path_(std::move(path)), tem
 
 AtomicPath::~AtomicPath() {
   if (committed_) return;
-  std::error_code ec;
-  std::filesystem::remove(temp_path_, ec);
+  remove_temporary(temp_path_);
 }
 
 void AtomicPath::commit() {

@@ -1,11 +1,12 @@
-// Helpers the Blender-array and glTF exporters share: float32 bounds, one material list for
-// the whole scene, BlenderGIS georeference keys.
+// Helpers the exporters share: float32 bounds, one material list for the whole scene,
+// BlenderGIS georeference keys, the ground's PNG.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <span>
 #include <string>
 #include <utility>
@@ -52,5 +53,9 @@ void check_mesh(const Mesh& mesh, const std::string& what);
 // the georeference under the names docs/blender-format.md lists; absent keys are left out.
 // Values: SRID a string ("EPSG:32632"), the others numbers.
 std::vector<std::pair<std::string, std::string>> blendergis_properties(const Georeference& georeference);
+
+// The PNG of a baked ground, encoded once however many writers of a build ask for it
+// (POV-Ray and Blender write it, glTF embeds it). Thread-safe.
+std::shared_ptr<const std::string> ground_png(const std::shared_ptr<const GroundBake>& bake);
 
 }  // namespace wangscape

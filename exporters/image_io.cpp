@@ -15,12 +15,25 @@ void write_pixels(const std::filesystem::path& path, int width, int height, int 
                   const void* pixels) {
   const std::string name = path.string();
   if (width < 1 || height < 1) throw Error("cannot write '" + name + "': the image is empty");
-  AtomicPath atomic(path);
   auto output = OIIO::ImageOutput::create(name);  // chooses the format from the target's extension
   if (!output)
     throw Error("cannot write '" + name + "': no image format for extension '" + path.extension().string() + "' (" +
                 OIIO::geterror() + ")");
   const OIIO::ImageSpec spec(width, height, channels, type);
+  if (output->supports("ioproxy")) {
+    // Encoded in memory, then written through AtomicFile, which checks every write and the
+    // close: OIIO's PNG writer reports no error when the disk fills (a truncated file).
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput proxy(bytes);
+    if (!output->set_ioproxy(&proxy) || !output->open(name, spec) || !output->write_image(type, pixels) ||
+        !output->close())
+      throw Error("cannot write '" + name + "': " + output->geterror());
+    AtomicFile file(path);
+    file.stream().write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    file.commit();
+    return;
+  }
+  AtomicPath atomic(path);
   const std::string temp = atomic.temp_path().string();
   if (!output->open(temp, spec) || !output->write_image(type, pixels) || !output->close())
     throw Error("cannot write '" + name + "': " + output->geterror());

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/printable.h"
+#include "exporters/export_support.h"
 #include "exporters/image_io.h"
 
 namespace wangscape {
@@ -175,7 +177,8 @@ void append_mesh2(std::string& out, const Mesh& mesh, int position_decimals, con
   out += "}\n";
 }
 
-void check_mesh(const Mesh& mesh, const std::string& what) {
+// What POV-Ray needs of a mesh (normals are optional in mesh2, unlike in the array exports).
+void check_povray_mesh(const Mesh& mesh, const std::string& what) {
   if (mesh.triangles.empty()) throw Error("POV-Ray export: " + what + " has no triangles");
   for (const auto& tri : mesh.triangles)
     for (auto index : tri)
@@ -306,11 +309,23 @@ std::string scene_ini(const Scene& scene, const std::filesystem::path& library_d
   if (r.threads > 0) s += "Work_Threads=" + std::to_string(r.threads) + "\n";
   s += "File_Gamma=sRGB\nDisplay=off\nPause_When_Done=off\n";
   // Includes resolve against the current directory and these paths, not the .pov's folder.
-  s += "Library_Path=" + library_dir.string() + "\n";
+  s += "Library_Path=" + povray_quoted_path(library_dir) + "\n";
   return s;
 }
 
 }  // namespace
+
+std::string povray_quoted_path(const std::filesystem::path& path) {
+  const std::string text = path.string();
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f || c == '"')
+      throw Error(printable(text), "",
+                  "POV-Ray cannot use this path: it holds a control character (a newline, a tab, ...) or a "
+                  "double quote; choose a folder name without them");
+  }
+  return '"' + text + '"';
+}
 
 std::string povray_camera_and_sun(const Camera& cam, const Sun& sun) {
   std::string s;
@@ -396,10 +411,11 @@ PovrayWriter::PovrayWriter(const Scene& scene, const std::filesystem::path& dir,
   if (!std::filesystem::is_directory(dir))
     throw Error("POV-Ray export: output folder '" + dir.string() + "' does not exist");
   if (scene.models.empty() && scene.instances) throw Error("POV-Ray export: the scene has instances but no models");
-  for (std::size_t v = 0; v < scene.models.size(); ++v) check_mesh(scene.models[v], "model " + povray_model_name(v));
+  for (std::size_t v = 0; v < scene.models.size(); ++v)
+    check_povray_mesh(scene.models[v], "model " + povray_model_name(v));
   Impl& impl = *impl_;
   impl.has_terrain = !scene.terrain.triangles.empty();
-  if (impl.has_terrain) check_mesh(scene.terrain, "the terrain");
+  if (impl.has_terrain) check_povray_mesh(scene.terrain, "the terrain");
   impl.has_instances = static_cast<bool>(scene.instances);
 
   const auto library_dir = std::filesystem::absolute(options.final_dir.empty() ? dir : options.final_dir);
@@ -453,7 +469,7 @@ void PovrayWriter::finish(const StreamTotals& totals) {
   }
   if (impl.has_terrain && impl.scene.ground_texture) {
     // Written last but one, so a failure here still leaves none of the text files.
-    write_image(impl.dir / kPovrayGroundImage, impl.scene.ground_texture->image);
+    write_file_atomically(impl.dir / kPovrayGroundImage, *ground_png(impl.scene.ground_texture));
     std::error_code ec;
     impl.stats.total_bytes += std::filesystem::file_size(impl.dir / kPovrayGroundImage, ec);
   }

@@ -69,6 +69,12 @@ PovrayExportStats write_povray_scene(const Scene& scene, const std::filesystem::
 // scene folder, so a new viewpoint or hour costs no new placement).
 std::string povray_camera_and_sun(const Camera& camera, const Sun& sun);
 
+// `path` in double quotes for a POV-Ray ini value or command-line option (POV-Ray rejoins its
+// arguments and splits them at spaces; an unquoted ';' starts an ini comment). Throws Error
+// naming the path when it holds a control character (a newline would add an ini line) or a
+// '"', which POV-Ray cannot quote.
+std::string povray_quoted_path(const std::filesystem::path& path);
+
 // POV-Ray's name of model variant `variant` in models.inc ("Sunflower_3").
 std::string povray_model_name(std::size_t variant);
 

@@ -6,6 +6,7 @@
 #include <variant>
 
 #include "core/atomic_file.h"
+#include "core/printable.h"
 
 namespace wangscape {
 
@@ -31,7 +32,7 @@ Json tiling_stats_json(const TileSet& set, const Tiling& tiling, const TilingRun
 std::string tiling_stats_text(const TileSet& set, const Tiling& tiling, const TilingRun& run,
                               const TilingStats& stats) {
   std::string out;
-  out += fmt::format("set:                  {} ({} tiles)\n", set.name, set.size());
+  out += fmt::format("set:                  {} ({} tiles)\n", printable(set.name), set.size());
   out += fmt::format("window:               {} x {} tiles from ({}, {})\n", tiling.width, tiling.height,
                      tiling.origin_i, tiling.origin_j);
   out += fmt::format("algorithm:            {}, seed {}{}\n", run.algorithm, run.seed,
@@ -165,7 +166,7 @@ std::string point_metrics_text(const PointMetrics& m, double packing_diameter) {
 
 std::string tileset_summary_text(const TileSet& set) {
   std::string out;
-  out += fmt::format("name:    {}\n", set.name);
+  out += fmt::format("name:    {}\n", printable(set.name));
   out += fmt::format("kind:    {}{}\n", set.kind == TileKind::edge ? "edge" : "corner",
                      set.kind == TileKind::edge && set.has_corners ? " (corners coded too)" : "");
   out += fmt::format("tiles:   {}\n", set.size());
@@ -179,9 +180,9 @@ std::string poisson_fill_text(const FilledTileSet& filled, const PoissonFillRepo
   return fmt::format(
       "{}: {} distinct points; rho over every configuration {:.4f} after darts, {:.4f} after {} relaxation "
       "rounds{}; radius_packing {:.5f}, radius_tight {:.5f} (tile sides)\n",
-      filled.set.name, report.class_points, report.dart_min_distance / spacing, report.final_min_distance / spacing,
-      report.relax_rounds_run, report.stopped_before_lattice ? " (stopped before a lattice)" : "",
-      filled.radius_packing, filled.radius_tight);
+      printable(filled.set.name), report.class_points, report.dart_min_distance / spacing,
+      report.final_min_distance / spacing, report.relax_rounds_run,
+      report.stopped_before_lattice ? " (stopped before a lattice)" : "", filled.radius_packing, filled.radius_tight);
 }
 
 }  // namespace wangscape

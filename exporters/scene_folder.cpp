@@ -7,6 +7,8 @@
 #include <memory>
 
 #include "core/atomic_file.h"
+#include "core/run_cleanup.h"
+#include "core/text_file.h"
 #include "exporters/blender_export.h"
 #include "exporters/gltf_writer.h"
 #include "exporters/povray_writer.h"
@@ -17,6 +19,9 @@ namespace wangscape {
 namespace fs = std::filesystem;
 
 namespace {
+
+// One line: the absolute folder the relative paths of scene.toml resolve against.
+constexpr const char* kSceneBaseFile = "scene_base.txt";
 
 void say(const SceneFolderObserver& observer, const std::string& message) {
   if (observer.stage) observer.stage(message);
@@ -37,6 +42,7 @@ fs::path sibling(const fs::path& out_dir, const char* role) {
 // first renamed aside (so a reader sees the old folder or the new one, never a mix) and
 // removed once the new one is in place.
 void publish(const fs::path& staging, const fs::path& out_dir) {
+  auto uninterrupted = hold_run_cleanup();  // an interrupt waits until the swap is done
   std::error_code ec;
   if (fs::exists(out_dir, ec)) {
     const fs::path old = sibling(out_dir, "old");
@@ -49,11 +55,16 @@ void publish(const fs::path& staging, const fs::path& out_dir) {
       fs::rename(old, out_dir, restore);
       throw Error(out_dir, "", "cannot move the new build into place: " + ec.message());
     }
+    unregister_temporary(staging);
+    register_temporary(old);
+    uninterrupted.unlock();
     fs::remove_all(old, ec);
+    unregister_temporary(old);
     return;
   }
   fs::rename(staging, out_dir, ec);
   if (ec) throw Error(out_dir, "", "cannot create the scene folder: " + ec.message());
+  unregister_temporary(staging);
 }
 
 }  // namespace
@@ -71,7 +82,8 @@ void check_scene_folder_target(const fs::path& out_dir_in) {
 }
 
 SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& exports, const std::string& scene_text,
-                                      const fs::path& out_dir_in, const SceneFolderObserver& observer) {
+                                      const fs::path& out_dir_in, const SceneFolderObserver& observer,
+                                      const fs::path& scene_base_dir) {
   const auto start = std::chrono::steady_clock::now();
   check_scene_folder_target(out_dir_in);
   auto out_dir = fs::absolute(out_dir_in).lexically_normal();
@@ -79,10 +91,14 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
 
   std::error_code ec;
   fs::create_directories(out_dir.parent_path(), ec);
+  remove_stale_temporaries(out_dir.parent_path());
   const fs::path staging = sibling(out_dir, "partial");
   fs::remove_all(staging, ec);
-  if (!fs::create_directory(staging, ec) || ec)
+  register_temporary(staging);
+  if (!fs::create_directory(staging, ec) || ec) {
+    unregister_temporary(staging);
     throw Error(staging, "", "cannot create the staging folder beside the output folder: " + ec.message());
+  }
 
   SceneFolderSummary summary;
   try {
@@ -125,9 +141,12 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
     }
     if (povray) summary.povray_bytes = povray->stats().total_bytes;
     write_file_atomically(staging / "scene.toml", scene_text);
+    if (!scene_base_dir.empty())
+      write_file_atomically(staging / kSceneBaseFile, fs::absolute(scene_base_dir).lexically_normal().string() + "\n");
     publish(staging, out_dir);
   } catch (...) {
     fs::remove_all(staging, ec);
+    unregister_temporary(staging);
     throw;
   }
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -139,7 +158,21 @@ SceneFolderSummary build_scene_folder(const SceneConfig& config, const fs::path&
   // Refuse an unusable folder before the (long) scene assembly.
   check_scene_folder_target(out_dir);
   const Scene scene = make_scene(config, observer.stage);
-  return write_scene_folder(scene, config.exports, config.text, out_dir, observer);
+  return write_scene_folder(scene, config.exports, config.text, out_dir, observer, config.base_dir);
+}
+
+SceneConfig load_scene_folder_config(const fs::path& dir) {
+  const fs::path file = dir / "scene.toml";
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) throw Error(file, "", "is missing: give a folder written by `wangscape build`");
+  const std::string text = read_text_file(file, kMaxSceneFileBytes, "scene file");
+  fs::path base = dir;
+  if (fs::is_regular_file(dir / kSceneBaseFile, ec)) {
+    std::string line = read_text_file(dir / kSceneBaseFile, 1 << 16, "scene base file");
+    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+    if (!line.empty()) base = line;
+  }
+  return parse_scene_config(text, file, base);
 }
 
 }  // namespace wangscape

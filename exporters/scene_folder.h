@@ -33,8 +33,18 @@ struct SceneFolderSummary {
 // scene folder (it holds scene.toml) or empty, and is replaced whole, so no file of an earlier
 // build stays behind. Throws Error naming the folder or file at fault; on failure `out_dir`
 // is as it was.
+// `scene_base_dir`, when given, is the folder the relative paths of `scene_text` resolve against
+// (SceneConfig::base_dir): it is kept in DIR/scene_base.txt so that load_scene_folder_config
+// finds the DEM and the masks again.
 SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& exports, const std::string& scene_text,
-                                      const std::filesystem::path& out_dir, const SceneFolderObserver& observer = {});
+                                      const std::filesystem::path& out_dir, const SceneFolderObserver& observer = {},
+                                      const std::filesystem::path& scene_base_dir = {});
+
+// The scene file of a folder written by write_scene_folder (DIR/scene.toml), its relative paths
+// resolved against the folder DIR/scene_base.txt names (the scene file's own folder at build
+// time), or against DIR when that file is absent. make_scene of it gives the folder's Scene
+// again. Throws Error naming DIR/scene.toml (missing, or the parser's file:line message).
+SceneConfig load_scene_folder_config(const std::filesystem::path& dir);
 
 // Throws Error when `out_dir` cannot be a scene folder: it exists and is not a folder, or is a
 // folder that is neither empty nor an earlier scene folder (no scene.toml). Cheap: call it

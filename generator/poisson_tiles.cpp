@@ -185,13 +185,17 @@ class ContentModel {
           group_of_[t * 9 + static_cast<std::size_t>(region)] = it->second;
         }
     }
+    // Holders share most neighbours (complete-edge-8: 512 holders of 512 each): each is
+    // collected once, then sorted, instead of sorting every repeat.
+    std::vector<char> seen(tile_count_, 0);
     for (Group& g : groups_)
       for (const auto& [dx, dy] : kDirections) {
         std::vector<std::uint16_t>& around = g.around[static_cast<std::size_t>(block_index(dx, dy))];
         for (std::uint16_t t : g.holders)
-          for (std::uint16_t u : adjacency.neighbours(t, dx, dy)) around.push_back(u);
+          for (std::uint16_t u : adjacency.neighbours(t, dx, dy))
+            if (!seen[u]) seen[u] = 1, around.push_back(u);
+        for (std::uint16_t u : around) seen[u] = 0;
         std::sort(around.begin(), around.end());
-        around.erase(std::unique(around.begin(), around.end()), around.end());
       }
   }
 
@@ -669,8 +673,8 @@ FilledTileSet export_points(const TileSet& set, const PoissonFillOptions& option
 
 void check_options(const PoissonFillOptions& o) {
   auto fail = [](const std::string& what) { throw Error("Poisson fill: " + what); };
-  if (o.points_per_tile < 1 || o.points_per_tile > 100000)
-    fail("points per tile " + std::to_string(o.points_per_tile) + "; expected 1..100000");
+  if (o.points_per_tile < 1 || o.points_per_tile > kMaxPointsPerTile)
+    fail("points per tile " + std::to_string(o.points_per_tile) + "; expected 1.." + std::to_string(kMaxPointsPerTile));
   if (o.darts_per_visit < 1) fail("darts per visit " + std::to_string(o.darts_per_visit) + "; expected >= 1");
   if (!(o.dart_rho > 0.1 && o.dart_rho < 0.9)) fail("dart rho " + std::to_string(o.dart_rho) + "; expected 0.1..0.9");
   if (!(o.max_rho >= o.dart_rho && o.max_rho < 1.0))
@@ -685,6 +689,25 @@ void check_options(const PoissonFillOptions& o) {
 }
 
 }  // namespace
+
+PoissonFillEstimate estimate_poisson_fill(const TileSet& set, const PoissonFillOptions& options) {
+  // Each dart is checked against the tiles that may sit beside its tile: the mean number of
+  // east neighbours (4 in cohen8, K^3 in complete-edge-K) drives the cost of large sets.
+  std::map<EdgeKey, double> west_keys;
+  for (const Tile& t : set.tiles) west_keys[west_key(t)] += 1;
+  double neighbours = 0;
+  for (const Tile& t : set.tiles) neighbours += west_keys[east_key(t)];
+  neighbours /= std::max<double>(1, double(set.tiles.size()));
+  // Fitted (user CPU seconds, docs/limits.md): cohen8 at 500 / 2000 / 4000 points per tile
+  // 0.57 / 2.98 / 9.88 s, complete-edge-4 at 20: 0.94 s, -6 at 10: 5.5 s, -8 at 20: 72.9 s; each
+  // relaxation round about 0.45 of the darts.
+  const double p = options.points_per_tile;
+  PoissonFillEstimate estimate;
+  estimate.points = double(set.tiles.size()) * p;
+  const double darts = estimate.points * 3.43e-5 * (1 + p / 517) * std::pow(std::max(1.0, neighbours / 4), 0.66);
+  estimate.seconds = 0.3 + darts * (1 + 0.45 * std::max(0, options.relax_rounds));
+  return estimate;
+}
 
 double hexagonal_spacing(double area, double count) { return std::sqrt(2.0 * area / (std::sqrt(3.0) * count)); }
 
@@ -730,12 +753,18 @@ TileAdjacency::TileAdjacency(const TileSet& set) {
           from_vertical.push_back(dx > 0 ? east_key(set.tiles[v]) : west_key(set.tiles[v]));
         for (std::uint16_t h : list(t, dx, 0))
           from_horizontal.push_back(dy > 0 ? north_key(set.tiles[h]) : south_key(set.tiles[h]));
+        // Few distinct keys among many neighbours (complete-edge-8: 512 tiles, 8 keys): keeping
+        // each once makes this O(n^2) instead of O(n^2 K^3), seconds instead of minutes.
+        for (auto* keys : {&from_vertical, &from_horizontal}) {
+          std::sort(keys->begin(), keys->end());
+          keys->erase(std::unique(keys->begin(), keys->end()), keys->end());
+        }
         for (std::size_t u = 0; u < n; ++u) {
           const Tile& b = set.tiles[u];
           const EdgeKey towards_v = dx > 0 ? west_key(b) : east_key(b);
           const EdgeKey towards_h = dy > 0 ? south_key(b) : north_key(b);
-          if (std::find(from_vertical.begin(), from_vertical.end(), towards_v) != from_vertical.end() &&
-              std::find(from_horizontal.begin(), from_horizontal.end(), towards_h) != from_horizontal.end())
+          if (std::binary_search(from_vertical.begin(), from_vertical.end(), towards_v) &&
+              std::binary_search(from_horizontal.begin(), from_horizontal.end(), towards_h))
             list(t, dx, dy).push_back(static_cast<std::uint16_t>(u));
         }
       }
@@ -767,6 +796,12 @@ double min_distance_over_configurations(const FilledTileSet& filled) {
 
 FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& options, PoissonFillReport* report) {
   check_options(options);
+  if (const auto estimate = estimate_poisson_fill(set, options); estimate.seconds > kMaxFillSeconds)
+    throw Error(set.describe() + ": filling " + std::to_string(set.tiles.size()) + " tiles with " +
+                std::to_string(options.points_per_tile) + " points each (" + std::to_string(options.relax_rounds) +
+                " relaxation rounds) would take about " + std::to_string(std::lround(estimate.seconds)) +
+                " s; at most " + std::to_string(std::lround(kMaxFillSeconds)) +
+                " s are accepted: use fewer points per tile, fewer relaxation rounds or a smaller tile set");
   if (set.tiles.empty()) throw Error(set.describe() + ": no tiles to fill");
   if (set.tiles.size() > std::numeric_limits<std::uint16_t>::max())
     throw Error(set.describe() + ": " + std::to_string(set.tiles.size()) + " tiles; expected at most 65535");

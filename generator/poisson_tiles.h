@@ -83,8 +83,20 @@ struct PoissonFillReport {
   std::vector<double> round_min_distance, round_nn_spread;
 };
 
+// The most points per tile a fill takes (cohen8: about 56 s of one core at 10000; docs/limits.md).
+inline constexpr int kMaxPointsPerTile = 10000;
+// The longest fill accepted, by estimate_poisson_fill: about a minute.
+inline constexpr double kMaxFillSeconds = 60.0;
+
+// What a fill will cost, told before it starts (and refused above kMaxFillSeconds).
+struct PoissonFillEstimate {
+  double points = 0;   // tiles x points per tile
+  double seconds = 0;  // of one core, fitted to measured fills (docs/limits.md): within 2x
+};
+PoissonFillEstimate estimate_poisson_fill(const TileSet& set, const PoissonFillOptions& options);
+
 // Fills every tile of `set`. Deterministic from options.seed, same result on any thread count.
-// Throws Error when the options are out of range.
+// Throws Error when the options are out of range or the estimate exceeds kMaxFillSeconds.
 FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& options,
                                  PoissonFillReport* report = nullptr);
 

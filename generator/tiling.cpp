@@ -518,6 +518,15 @@ std::uint32_t HashedTiling::code(const std::array<std::uint32_t, kSlotCount>& co
   return c;
 }
 
+std::uint32_t HashedTiling::tile_with_colors(const std::array<std::uint32_t, kSlotCount>& colors) const {
+  for (int slot = 0; slot < kSlotCount; ++slot)
+    if (colors[static_cast<std::size_t>(slot)] >= radix_[static_cast<std::size_t>(slot)])
+      throw Error(std::string("hashed tiling: ") + kSlotNames[static_cast<std::size_t>(slot)] + " color " +
+                  std::to_string(colors[static_cast<std::size_t>(slot)]) + " is outside the set's " +
+                  std::to_string(radix_[static_cast<std::size_t>(slot)]) + " colors");
+  return lookup_[code(colors)];
+}
+
 std::uint32_t HashedTiling::row_key(std::int64_t y, std::uint64_t salt) const {
   return static_cast<std::uint32_t>(mix64(seed_ ^ salt ^ (static_cast<std::uint64_t>(y) * 0xD6E8FEB86659FD93ull)));
 }

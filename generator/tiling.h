@@ -80,6 +80,10 @@ class HashedTiling {
   HashedTiling(const TileSet& set, std::uint64_t seed, bool forbid_identical_neighbours = false);
 
   std::uint32_t tile_at(std::int64_t i, std::int64_t j) const;
+  // The tile with these colors (slots N, E, S, W, NE, SE, SW, NW; 0 where the set has none), for
+  // callers that choose some colors themselves (e.g. corner marks from the terrain). Throws Error
+  // for a color outside the set's alphabet.
+  std::uint32_t tile_with_colors(const std::array<std::uint32_t, kSlotCount>& colors) const;
   // Tiles (first_i + k, j) for k in [0, out.size()). Thread-safe (const).
   void fill_row(std::int64_t first_i, std::int64_t j, std::span<std::uint16_t> out) const;
 

@@ -201,7 +201,7 @@ fs::path render_povray_task(const fs::path& dir, const Plan& plan, const BatchTa
   std::istringstream lines(read_text(scene / "scene.ini"));
   for (std::string line; std::getline(lines, line);)
     if (line.rfind("Library_Path=", 0) != 0 && line.rfind("Work_Threads=", 0) != 0) ini += line + "\n";
-  ini += "Work_Threads=1\nLibrary_Path=" + scene.string() + "\n";
+  ini += "Work_Threads=1\nLibrary_Path=" + povray_quoted_path(scene) + "\n";
   write_file_atomically(work / "scene.ini", ini);
   PovrayRenderOptions options;
   options.width = t.width;

@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "core/run_cleanup.h"
+
 namespace wangscape {
 
 std::filesystem::path find_program(const std::string& program) {
@@ -49,6 +51,7 @@ ChildExit run_logged(const std::vector<std::string>& args, const std::filesystem
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error("cannot start '" + args.at(0) + "': " + std::strerror(errno));
   if (pid == 0) {
+    reset_signals_in_child();
     const int fd = ::open(log_string.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
     if (fd < 0) ::_exit(126);
     if (!dir_string.empty() && ::chdir(dir_string.c_str()) != 0) ::_exit(126);
@@ -60,17 +63,21 @@ ChildExit run_logged(const std::vector<std::string>& args, const std::filesystem
     ::execv(argv[0], argv.data());
     ::_exit(127);
   }
+  register_child(pid);  // stopped if this run is interrupted
   int status = 0;
   for (;;) {
     const pid_t done = ::waitpid(pid, &status, while_running ? WNOHANG : 0);
     if (done == pid) break;
-    if (done < 0 && errno != EINTR)
+    if (done < 0 && errno != EINTR) {
+      unregister_child(pid);
       throw std::runtime_error("lost the process '" + args.at(0) + "': " + std::strerror(errno));
+    }
     if (done == 0) {
       while_running();
       std::this_thread::sleep_for(std::chrono::milliseconds(200));
     }
   }
+  unregister_child(pid);
   ChildExit result;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.exited = WIFEXITED(status);

@@ -19,6 +19,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "renders/embree_device.h"
 
 namespace wangscape {
 
@@ -41,50 +42,8 @@ constexpr float kPrismBottom = -1e-3f;  // meters: just below the ground plane, 
 
 // ---- Embree: the device, one prototype scene per model, one context scene per tile ----------
 
-class Device {
- public:
-  Device() {
-    device_ = rtcNewDevice(nullptr);
-    if (!device_)
-      throw Error("Embree: cannot create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
-    rtcSetDeviceErrorFunction(device_, &Device::on_error, this);
-  }
-  ~Device() { rtcReleaseDevice(device_); }
-  Device(const Device&) = delete;
-  Device& operator=(const Device&) = delete;
-  RTCDevice get() const { return device_; }
-  // Throws the first error Embree reported, naming what we were doing.
-  void check(const std::string& doing) {
-    std::lock_guard lock(mutex_);
-    if (!error_.empty()) throw Error("Embree error while " + doing + ": " + error_);
-  }
-
- private:
-  static void on_error(void* user, RTCError code, const char* message) {
-    auto* self = static_cast<Device*>(user);
-    std::lock_guard lock(self->mutex_);
-    if (self->error_.empty())
-      self->error_ = std::string(message ? message : "?") + " (code " + std::to_string(int(code)) + ")";
-  }
-  RTCDevice device_ = nullptr;
-  std::mutex mutex_;
-  std::string error_;
-};
-
-class Scene {
- public:
-  explicit Scene(RTCDevice device) : scene_(rtcNewScene(device)) {}
-  ~Scene() {
-    if (scene_) rtcReleaseScene(scene_);
-  }
-  Scene(Scene&& o) noexcept : scene_(std::exchange(o.scene_, nullptr)) {}
-  Scene(const Scene&) = delete;
-  Scene& operator=(const Scene&) = delete;
-  RTCScene get() const { return scene_; }
-
- private:
-  RTCScene scene_ = nullptr;
-};
+using Device = EmbreeDevice;
+using Scene = EmbreeScene;
 
 // One recorded hit along a ray.
 struct Hit {
@@ -133,17 +92,7 @@ void collect_hits(const RTCFilterFunctionNArguments* args) {
 
 RTCGeometry triangle_geometry(RTCDevice device, std::span<const std::array<float, 3>> positions,
                               std::span<const std::array<std::uint32_t, 3>> triangles) {
-  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  // Copies into Embree's buffers: they carry the padding its 16-byte vertex loads need.
-  auto* v = static_cast<float*>(
-      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), positions.size()));
-  auto* t = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                3 * sizeof(std::uint32_t), triangles.size()));
-  if (v) std::memcpy(v, positions.data(), positions.size_bytes());
-  if (t) std::memcpy(t, triangles.data(), triangles.size_bytes());
-  rtcSetGeometryIntersectFilterFunction(g, &collect_hits);
-  rtcCommitGeometry(g);
-  return g;
+  return wangscape::triangle_geometry(device, positions, triangles, &collect_hits);
 }
 
 // The flowers of one 3 x 3 context, as structure of arrays indexed by Hit::inst (the Embree
@@ -495,30 +444,7 @@ class LdiSampler {
   // Normal (smooth where the model has normals) and material of a model hit.
   void surface(const Hit& h, SurfaceSample& s) const {
     const Instances& in = c_.instances;
-    const Mesh& mesh = c_.models[in.variant[h.inst]];
-    const auto& tri = mesh.triangles[h.prim];
-    std::array<float, 3> n{};
-    if (!mesh.normals.empty()) {
-      const float w0 = 1 - h.u - h.v;
-      for (int c = 0; c < 3; ++c)
-        n[std::size_t(c)] = w0 * mesh.normals[tri[0]][std::size_t(c)] + h.u * mesh.normals[tri[1]][std::size_t(c)] +
-                            h.v * mesh.normals[tri[2]][std::size_t(c)];
-    } else {
-      const auto& p0 = mesh.positions[tri[0]];
-      const auto& p1 = mesh.positions[tri[1]];
-      const auto& p2 = mesh.positions[tri[2]];
-      const V3 e1{p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, e2{p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-      n = to_float(cross(e1, e2));
-    }
-    const float c = in.cos_yaw[h.inst], sn = in.sin_yaw[h.inst];
-    const std::array<float, 3> r{c * n[0] - sn * n[1], sn * n[0] + c * n[1], n[2]};
-    const float len = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-    s.normal = len > 0 ? std::array<float, 3>{r[0] / len, r[1] / len, r[2] / len} : std::array<float, 3>{0, 0, 1};
-    const std::uint16_t slot = mesh.triangle_material[h.prim];
-    if (slot < mesh.materials.size()) {
-      s.base_color = mesh.materials[slot].base_color;
-      s.translucency = mesh.materials[slot].translucency;
-    }
+    model_surface(c_.models[in.variant[h.inst]], h.prim, h.u, h.v, in.cos_yaw[h.inst], in.sin_yaw[h.inst], s);
   }
 
   const TileContext& c_;
@@ -591,22 +517,7 @@ LdiImage sample_ldi(const TileContext& c, int level, int direction, tbb::enumera
 
 // The models as Embree prototype scenes (built once, instanced by every context).
 std::vector<Scene> prototype_scenes(Device& device, std::span<const Mesh> models) {
-  std::vector<Scene> scenes;
-  scenes.reserve(models.size());
-  for (const Mesh& m : models) {
-    Scene scene(device.get());
-    // Single-level instancing: the prototypes hold triangles only.
-    rtcSetSceneBuildQuality(scene.get(), RTC_BUILD_QUALITY_HIGH);
-    if (!m.triangles.empty()) {
-      RTCGeometry g = triangle_geometry(device.get(), m.positions, m.triangles);
-      rtcAttachGeometryByID(scene.get(), g, 0);
-      rtcReleaseGeometry(g);
-    }
-    rtcCommitScene(scene.get());
-    scenes.push_back(std::move(scene));
-  }
-  device.check("building the model scenes");
-  return scenes;
+  return model_scenes(device, models, &collect_hits);
 }
 
 // The 3 x 3 context of `tile` as one Embree scene: per point an instance of its model's scene, or

@@ -23,9 +23,7 @@ LdiBuildReport build_scene_ldi_pack(const Scene& scene, const std::filesystem::p
   for (auto& points : filled.tiles)  // the yaw placement gives each instance
     for (TilePoint& p : points) p.yaw = field.yaw_of(p.yaw);
   options.tile_size = field.placement.tile_size;
-  const auto sun = scene.sun.direction();
-  options.shading.sun_direction = {float(sun[0]), float(sun[1]), float(sun[2])};
-  for (float& c : options.shading.sun_color) c *= float(scene.sun.strength);
+  options.shading = with_sun(options.shading, scene.sun);
   if (observer.progress) options.progress = observer.progress;
   if (observer.stage)
     observer.stage("sampling " + std::to_string(filled.tiles.size()) + " tiles x " +

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "exporters/povray_writer.h"
 #include "renders/child_process.h"
 
 namespace wangscape {
@@ -52,11 +53,18 @@ PovrayRenderResult render_povray(const std::filesystem::path& dir_in, const Povr
   PovrayRenderResult result{dir / options.image_name, dir / "povray.log", 0};
   AtomicPath image(result.image);
   AtomicPath log(result.log);
+  // POV-Ray's state file beside the temporary image: removed after the run or on an interrupt.
+  const AtomicPath pov_state(dir / (std::filesystem::path(options.image_name).stem().string() + ".pov-state"));
 
   // Output to a temporary name, renamed into place only when POV-Ray succeeds.
-  std::vector<std::string> args{
-      povray.string(),    "scene.ini", "+O" + image.temp_path().filename().string(), "+FN", "-D", "-P",
-      "+L" + dir.string()};
+  // POV-Ray rejoins its arguments and splits them at spaces: paths go quoted.
+  std::vector<std::string> args{povray.string(),
+                                "scene.ini",
+                                "+O" + povray_quoted_path(image.temp_path().filename()),
+                                "+FN",
+                                "-D",
+                                "-P",
+                                "+L" + povray_quoted_path(dir)};
   if (options.width > 0) args.push_back("+W" + std::to_string(options.width));
   if (options.height > 0) args.push_back("+H" + std::to_string(options.height));
   if (options.threads > 0) args.push_back("+WT" + std::to_string(options.threads));

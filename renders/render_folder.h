@@ -10,9 +10,13 @@
 namespace wangscape {
 
 struct FolderRenderRequest {
-  std::string engine = "povray";  // povray or blender
+  std::string engine = "povray";  // povray, blender or embree
   int width = 0, height = 0;      // 0 = as the scene says
-  // POV-Ray only: pixels done of the total, now and then.
+  // Embree only: the image (default DIR/render_embree.png) and samples per pixel (0 = the
+  // scene's antialias setting squared). Other engines refuse them.
+  std::filesystem::path out;
+  int samples_per_pixel = 0;
+  // POV-Ray and Embree: pixels done of the total, now and then.
   std::function<void(std::uint64_t done, std::uint64_t total)> on_progress;
 };
 
@@ -20,9 +24,15 @@ struct FolderRenderResult {
   std::filesystem::path image, log;
   std::filesystem::path blend;  // Blender: the .blend saved beside the image
   double seconds = 0;
+  std::string summary;  // Embree: size, samples, flowers, build and trace seconds, rays per second
 };
 
-// Renders DIR with the requested engine. Throws Error naming an unknown engine (and the known
+// The image `wangscape render DIR --engine embree` writes unless told otherwise.
+inline constexpr const char* kEmbreeRenderImage = "render_embree.png";
+
+// Renders DIR with the requested engine. Embree renders the Scene made again from
+// DIR/scene.toml (load_scene_folder_config), with the sky rays of its [ldi] section, so it needs
+// no export of its own. Throws Error naming an unknown engine (and the known
 // ones), a folder without that engine's export, or the renderer's own failure.
 FolderRenderResult render_scene_folder(const std::filesystem::path& dir, const FolderRenderRequest& request);
 

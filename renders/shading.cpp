@@ -7,6 +7,8 @@
 #include <limits>
 #include <numbers>
 
+#include "scene/sun.h"
+
 namespace wangscape {
 
 namespace {
@@ -41,6 +43,56 @@ Vec3f sun_direction_from_degrees(double azimuth_degrees, double elevation_degree
   const double az = azimuth_degrees * std::numbers::pi / 180, el = elevation_degrees * std::numbers::pi / 180;
   return {static_cast<float>(std::sin(az) * std::cos(el)), static_cast<float>(std::cos(az) * std::cos(el)),
           static_cast<float>(std::sin(el))};
+}
+
+ShadingSettings with_sun(ShadingSettings base, const Sun& sun) {
+  const auto d = sun.direction();
+  base.sun_direction = {float(d[0]), float(d[1]), float(d[2])};
+  for (float& c : base.sun_color) c *= float(sun.strength);
+  return base;
+}
+
+Vec3f sky_radiance(const ShadingSettings& s, const Vec3f& direction) {
+  const float length = std::sqrt(dot(direction, direction));
+  const float up = length > 0 ? std::clamp(direction[2] / length, 0.0f, 1.0f) : 0.0f;
+  // The horizon halfway between sky_color and a pale haze; the zenith a deeper sky_color.
+  constexpr Vec3f kHaze{0.80f, 0.85f, 0.90f};
+  const float toward_zenith = std::sqrt(up);
+  Vec3f out;
+  for (int c = 0; c < 3; ++c) {
+    const float horizon = 0.5f * (s.sky_color[c] + kHaze[c]), zenith = 0.7f * s.sky_color[c];
+    out[c] = (horizon + (zenith - horizon) * toward_zenith) * s.exposure;
+  }
+  return out;
+}
+
+void model_surface(const Mesh& mesh, unsigned prim, float u, float v, float cos_yaw, float sin_yaw,
+                   SurfaceSample& out) {
+  const auto& tri = mesh.triangles[prim];
+  Vec3f n{};
+  if (!mesh.normals.empty()) {
+    const float w0 = 1 - u - v;
+    for (std::size_t c = 0; c < 3; ++c)
+      n[c] = w0 * mesh.normals[tri[0]][c] + u * mesh.normals[tri[1]][c] + v * mesh.normals[tri[2]][c];
+  } else {
+    const auto& p0 = mesh.positions[tri[0]];
+    const auto& p1 = mesh.positions[tri[1]];
+    const auto& p2 = mesh.positions[tri[2]];
+    const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+    const double e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+    n = {float(e1[1] * e2[2] - e1[2] * e2[1]), float(e1[2] * e2[0] - e1[0] * e2[2]),
+         float(e1[0] * e2[1] - e1[1] * e2[0])};
+  }
+  const Vec3f r{cos_yaw * n[0] - sin_yaw * n[1], sin_yaw * n[0] + cos_yaw * n[1], n[2]};
+  const float len = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+  out.normal = len > 0 ? Vec3f{r[0] / len, r[1] / len, r[2] / len} : Vec3f{0, 0, 1};
+  if (prim < mesh.triangle_material.size()) {
+    const std::uint16_t slot = mesh.triangle_material[prim];
+    if (slot < mesh.materials.size()) {
+      out.base_color = mesh.materials[slot].base_color;
+      out.translucency = mesh.materials[slot].translucency;
+    }
+  }
 }
 
 Vec3f shade(RTCSceneTy* scene, const ShadingSettings& s, const SurfaceSample& sample, std::uint64_t random,

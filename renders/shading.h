@@ -15,6 +15,8 @@ struct RTCSceneTy;
 
 namespace wangscape {
 
+struct Sun;
+
 using Vec3f = std::array<float, 3>;
 
 // Unit vector from the ground towards a sun at compass azimuth (degrees clockwise from north)
@@ -33,6 +35,16 @@ struct ShadingSettings {
   Vec3f ground_color{0.30f, 0.24f, 0.15f};  // linear base color of the ground plane
 };
 
+// `base` lit by the scene's sun: its direction and its strength (a scale of sun_color). What
+// the LDI build and the Embree reference both do, so they show the same light.
+ShadingSettings with_sun(ShadingSettings base, const Sun& sun);
+
+// Linear RGB (times exposure) seen along a ray that meets nothing: a gradient from a pale horizon
+// to a deeper zenith around sky_color (the open sky's irradiance in shade(), so a white surface
+// under the open sky is as bright as the sky beside it). Directions below the horizon see the
+// horizon's color. `direction` need not be unit. The Embree reference draws it; so can the view.
+Vec3f sky_radiance(const ShadingSettings& settings, const Vec3f& direction);
+
 // A point to shade, in the scene space of the Embree scene given to shade().
 struct SurfaceSample {
   Vec3f position{};                    // meters
@@ -40,6 +52,13 @@ struct SurfaceSample {
   Vec3f base_color{0.5f, 0.5f, 0.5f};  // linear RGB
   float translucency = 0;              // 0..1 of the sun on the back that comes through
 };
+
+// The surface of triangle `prim` of a model hit at barycentric (u, v): the normal (smooth where
+// the mesh has normals, else the triangle's), turned by the instance's yaw about +z and made unit
+// (+z when degenerate), and the triangle's material (base color, translucency; left as they are
+// when the triangle has none). A uniform scale does not change normals. Not yet turned towards
+// the viewer.
+void model_surface(const Mesh& mesh, unsigned prim, float u, float v, float cos_yaw, float sin_yaw, SurfaceSample& out);
 
 // Outgoing linear RGB at `sample`. Shadow and sky rays are rtcOccluded1 queries of `scene`
 // (which must hold every occluder: in the LDI build, the 3 x 3 context); `random` seeds the sky

@@ -7,10 +7,14 @@
 // turbulence of one unbounded hashed noise tiling (generator/noise_tiles.h); band borders are
 // bent by the same noise so they never run along a contour line. A quilted texture tiling
 // (generator/texture_tiles.h, hashed corner-2 tiles of one or two exemplars) either replaces
-// the materials ("texture") or adds its detail over them ("both").
+// the materials ("texture") or adds its detail over them ("both"). With exemplar2_above, the
+// tiles are corner-4 and each vertex's color is 2 * (a hashed bit) + (its mark: 1 where the
+// terrain at the vertex is above that height): the texture changes from one exemplar to the
+// other along the contour (seed 000 section 3.5) and stays stochastic on either side.
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -33,9 +37,13 @@ struct GroundColor {
 
 class GroundLook {
  public:
+  // The terrain height at ENU (x, y) meters, empty off the terrain; thread-safe.
+  using HeightAt = std::function<std::optional<double>(double x, double y)>;
+
   // exemplars: the images the config's exemplar (and exemplar2) name, already read; unused
-  // for look = "materials". Throws Error (from the tile generators) when they are too small.
-  GroundLook(const GroundConfig& config, const std::vector<ImageRgb8>& exemplars);
+  // for look = "materials". height_at: where exemplar2_above reads the terrain (required with
+  // it). Throws Error (from the tile generators) when they are too small.
+  GroundLook(const GroundConfig& config, const std::vector<ImageRgb8>& exemplars, HeightAt height_at = {});
 
   const GroundConfig& config() const { return config_; }
   // The texture tiles, or nullptr for look = "materials".
@@ -48,11 +56,13 @@ class GroundLook {
  private:
   GroundColor materials_at(double x, double y, double height, double slope_degrees) const;
   GroundColor texture_at(double x, double y) const;
+  std::uint32_t texture_tile(std::int64_t i, std::int64_t j) const;
 
   GroundConfig config_;
   NoiseField noise_;
   std::optional<TextureTileSet> texture_;
   std::optional<HashedTiling> texture_tiling_;
+  HeightAt height_at_;
   float texture_mean_luminance_ = 1;
 };
 

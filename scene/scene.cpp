@@ -58,7 +58,8 @@ std::vector<Mesh> make_models(const ModelsConfig& config) {
 // Camera-aware export is on by default for a field over the whole ground (no [tiles] area).
 bool camera_aware(const SceneConfig& config) { return config.camera_aware.enabled.value_or(!config.tiles.area); }
 
-std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGround& ground, std::size_t model_count) {
+std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGround& ground, std::size_t model_count,
+                                       const StageObserver& stage) {
   auto field = std::make_shared<SceneField>();
   field->ground = ground;
   Extent area = ground.extent();
@@ -96,7 +97,15 @@ std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGro
   } catch (const Error& e) {
     throw config.error_at("tiles.set", e.what());
   }
-  field->filled = fill_poisson_tiles(set, fill);
+  const auto fill_cost = estimate_poisson_fill(set, fill);
+  say(stage, "filling tile set " + config.tiles.set + " with " + std::to_string(config.tiles.points_per_tile) +
+                 " points per tile (" + std::to_string(std::llround(fill_cost.points)) + " points, about " +
+                 std::to_string(std::llround(std::ceil(fill_cost.seconds))) + " s)");
+  try {
+    field->filled = fill_poisson_tiles(set, fill);
+  } catch (const Error& e) {
+    throw config.error_at("tiles.points_per_tile", e.what());
+  }
   if (config.tiles.interior_variation)
     field->placement.world_attributes =
         PlacementOptions::WorldAttributes{config.tiles.seed, fill.variants, fill.min_scale, fill.max_scale};
@@ -161,9 +170,23 @@ void check_visible_flowers(const SceneConfig& config, const SceneField& field) {
 // ---- camera and sun// ---- camera and sun
 // -----------------------------------------------------------------------------
 
+// A camera inside the hill renders the hill's inside (or nothing): refused. A look-at point
+// below the surface still gives a valid direction, so only the position is checked.
+void check_camera_above_ground(const std::array<double, 3>& p, const SceneGround& ground, const SceneConfig& config,
+                               const std::string& key_at_fault) {
+  const auto h = ground.height(p[0], p[1]);
+  if (h && p[2] < *h)
+    throw config.error_at(key_at_fault, "puts the camera " + number(*h - p[2]) + " m below the ground (up " +
+                                            number(p[2]) + " m, the ground is at " + number(*h) +
+                                            " m there); raise it above the ground");
+}
+
 std::array<double, 3> resolve_point(const CameraPoint& point, const SceneGround& ground, const SceneConfig& config,
                                     const std::string& key, const std::array<double, 3>& fallback) {
-  if (point.enu) return *point.enu;
+  if (point.enu) {
+    if (key == "position") check_camera_above_ground(*point.enu, ground, config, "camera.position");
+    return *point.enu;
+  }
   std::array<double, 2> xy{fallback[0], fallback[1]};
   std::string key_at_fault = "camera." + key;
   if (point.enu_ground) {
@@ -172,13 +195,16 @@ std::array<double, 3> resolve_point(const CameraPoint& point, const SceneGround&
     xy = ground.to_enu(*point.latitude, *point.longitude);
     key_at_fault = key == "position" ? "camera.latitude" : "camera.target_latitude";
   } else {
+    if (key == "position") check_camera_above_ground(fallback, ground, config, "camera.height_above_ground");
     return fallback;
   }
   const auto h = ground.height(xy[0], xy[1]);
   if (!h)
     throw config.error_at(key_at_fault, "(east " + number(xy[0]) + " m, north " + number(xy[1]) +
                                             " m) is not over the ground (" + ground.description() + ")");
-  return {xy[0], xy[1], *h + point.height_above_ground};
+  const std::array<double, 3> resolved{xy[0], xy[1], *h + point.height_above_ground};
+  if (key == "position") check_camera_above_ground(resolved, ground, config, "camera.height_above_ground");
+  return resolved;
 }
 
 Camera make_camera(const SceneConfig& config, const SceneGround& ground, const Extent& field) {
@@ -321,9 +347,7 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage) {
                  : "loading model " + config.models.mesh.string());
   scene.models = make_models(config.models);
 
-  say(stage, "filling tile set " + config.tiles.set + " with " + std::to_string(config.tiles.points_per_tile) +
-                 " points per tile");
-  const auto field = make_field(config, ground, scene.models.size());
+  const auto field = make_field(config, ground, scene.models.size(), stage);
   scene.field = field;
   scene.field_area = *field->placement.area;
   scene.camera = make_camera(config, ground, scene.field_area);
@@ -358,7 +382,9 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage) {
     const auto exemplars = load_ground_exemplars(with_ground);
     std::shared_ptr<const GroundLook> look;
     try {
-      look = std::make_shared<const GroundLook>(ground_config, exemplars);
+      // The field (which owns the ground) outlives the look: both live as long as the Scene.
+      look = std::make_shared<const GroundLook>(ground_config, exemplars,
+                                                [field](double x, double y) { return field->ground.height(x, y); });
     } catch (const Error& e) {
       // The texture tiles' limits (exemplar smaller than a tile) come from these keys.
       throw config.error_at("ground.texture_pixels", e.message());

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/text_file.h"
+#include "generator/poisson_tiles.h"
 #include "templates/sunflower.h"
 
 namespace wangscape {
@@ -260,7 +261,7 @@ SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem
           set.find('/') != std::string::npos || set.ends_with(".json") ? resolve(base_dir, set).string() : set;
     }
     if (s.read("tile_size", config.tiles.tile_size)) s.check_range("tile_size", config.tiles.tile_size, 0.1, 10000);
-    s.read_int("points_per_tile", config.tiles.points_per_tile, 1, 100000);
+    s.read_int("points_per_tile", config.tiles.points_per_tile, 1, kMaxPointsPerTile);
     s.read_int("relaxation_rounds", config.tiles.relaxation_rounds, 0, 1000);
     s.read_int("seed", config.tiles.seed, 0, std::numeric_limits<std::int64_t>::max());
     if (s.read("algorithm", config.tiles.algorithm)) {
@@ -372,6 +373,10 @@ SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem
     };
     exemplar("exemplar", g.exemplar);
     exemplar("exemplar2", g.exemplar2);
+    if (s.read("exemplar2_above", g.exemplar2_above)) {
+      s.check_range("exemplar2_above", *g.exemplar2_above, -1000, 10000);
+      if (g.exemplar2.empty()) s.fail(*s.node("exemplar2_above"), "exemplar2_above", "needs an exemplar2 to switch to");
+    }
     if (s.read("texture_scale", g.texture_scale)) s.check_range("texture_scale", g.texture_scale, 0.01, 1e6);
     if (s.read_int("texture_pixels", g.texture_pixels, 16, 512) && g.texture_pixels % 2 != 0)
       s.fail(*s.node("texture_pixels"), "texture_pixels", "must be even");

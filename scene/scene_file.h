@@ -107,10 +107,13 @@ struct GroundConfig {
   double slope_blend = 6.0;         // degrees
   std::string exemplar = "meadow";  // shipped exemplar name (meadow, pumice) or an image path
   std::string exemplar2;            // optional second exemplar (corner-marked tiles)
-  double texture_scale = 64.0;      // meters per texture tile
-  int texture_pixels = 64;          // pixels per texture tile side
-  double texture_strength = 0.6;    // with look = "both": 0 = materials only, 1 = full texture detail
-  int bake_pixels = 2048;           // longer side of the baked ground texture
+  // meters: the texture is exemplar's below this height and exemplar2's above it, switching
+  // along the contour (corner marks from the terrain); empty = marks at random
+  std::optional<double> exemplar2_above;
+  double texture_scale = 64.0;    // meters per texture tile
+  int texture_pixels = 64;        // pixels per texture tile side
+  double texture_strength = 0.6;  // with look = "both": 0 = materials only, 1 = full texture detail
+  int bake_pixels = 2048;         // longer side of the baked ground texture
 };
 
 // [camera_aware]: export only what the camera sees (docs/scene-file.md). Distances are meters

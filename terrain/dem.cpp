@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 
+#include "core/memory_budget.h"
 #include "terrain/gdal_support.h"
 
 namespace wangscape {
@@ -128,6 +129,9 @@ DemRaster read_dem(const std::filesystem::path& path) {
     throw Error("DEM " + quoted(path) + " stores heights in unit '" + dem.height_unit_in_file +
                 "', expected meters or feet");
 
+  // Heights are held as 4-byte floats, one per cell.
+  check_memory_estimate(path, "its " + std::to_string(dem.width) + " x " + std::to_string(dem.height) + " heights",
+                        4.0 * dem.width * dem.height);
   dem.heights.resize(std::size_t(dem.width) * std::size_t(dem.height));
   if (band->RasterIO(GF_Read, 0, 0, dem.width, dem.height, dem.heights.data(), dem.width, dem.height, GDT_Float32, 0, 0,
                      nullptr) != CE_None) {

@@ -8,6 +8,7 @@
 #include <memory>
 #include <numbers>
 
+#include "core/memory_budget.h"
 #include "terrain/gdal_support.h"
 
 namespace wangscape {
@@ -53,11 +54,22 @@ DatasetPtr open_image(const std::filesystem::path& image, const std::string& wha
   return dataset;
 }
 
+// Refuses an image whose reader would hold more than the memory limit (`bytes_per_pixel` at
+// its peak).
+void check_image_memory(const std::filesystem::path& image, const std::string& what, GDALDataset& dataset,
+                        double bytes_per_pixel) {
+  const int width = dataset.GetRasterXSize(), height = dataset.GetRasterYSize();
+  check_memory_estimate(image,
+                        "the " + what + " of " + std::to_string(width) + " x " + std::to_string(height) + " pixels",
+                        bytes_per_pixel * width * height);
+}
+
 }  // namespace
 
 RgbRaster read_rgb_raster(const std::filesystem::path& image) {
   const std::string path = image.string();
   const auto dataset = open_image(image, "image");
+  check_image_memory(image, "image", *dataset, 3 + 4);  // RGB bytes and one float band
   RgbRaster raster;
   raster.width = dataset->GetRasterXSize();
   raster.height = dataset->GetRasterYSize();
@@ -87,6 +99,8 @@ PaintedMask PaintedMask::load(const std::filesystem::path& image, const Extent& 
   // Gray, gray + alpha, RGB, RGB + alpha.
   const bool color = bands >= 3;
   const int alpha_band = bands == 2 ? 2 : bands >= 4 ? 4 : 0;
+  // Luminance (with two more color bands) and alpha as floats at the peak, then one byte.
+  check_image_memory(image, "mask image", *dataset, 4.0 * ((color ? 3 : 1) + (alpha_band > 0 ? 1 : 0)) + 1);
   std::vector<float> luminance = read_unit_band(*dataset, 1, path);
   if (color) {
     const auto g = read_unit_band(*dataset, 2, path), b = read_unit_band(*dataset, 3, path);

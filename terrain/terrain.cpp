@@ -1,6 +1,8 @@
 #include "terrain/terrain.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 
@@ -12,10 +14,39 @@ namespace {
 // (step^2 / Earth radius) over a lattice cell, far below a millimeter at this size.
 constexpr double kLatticeStepInSamples = 8.0;
 
+std::string degrees(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4f", value);
+  return text;
+}
+
+// The ENU frame and the sample lattice need one continuous longitude range within +-180
+// degrees: a geographic DEM past 180 (across the antimeridian, or in 0..360 longitudes) is
+// refused with what to do, instead of failing later on an origin "out of range".
+void check_longitudes(const DemRaster& dem) {
+  if (!dem.geographic) return;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const double col : {-0.5, dem.width - 0.5})  // pixel edges, as GDAL's corners
+    for (const double row : {-0.5, dem.height - 0.5}) {
+      const double lon = dem.crs_of(col, row)[0];
+      lo = std::min(lo, lon);
+      hi = std::max(hi, lon);
+    }
+  if (lo >= -180.0 && hi <= 180.0) return;
+  const bool crosses = (lo < -180.0 && hi > -180.0) || (lo < 180.0 && hi > 180.0);
+  throw Error(dem.path, "",
+              "the DEM spans longitudes " + degrees(lo) + " to " + degrees(hi) + ", " +
+                  (crosses ? "across the antimeridian (180 degrees)" : "beyond +-180 degrees (0..360 longitudes)") +
+                  "; Wangscape needs geographic longitudes within -180..180: reproject the DEM to a projected CRS, "
+                  "e.g. UTM zone 60 (gdalwarp -t_srs EPSG:32660, or EPSG:32760 south of the equator), or cut it at "
+                  "180 degrees");
+}
+
 const DemRaster& checked(const DemRaster& dem) {
   if (dem.width < 2 || dem.height < 2)
     throw Error("DEM '" + dem.path.string() + "' has " + std::to_string(dem.width) + " x " +
                 std::to_string(dem.height) + " samples; at least 2 x 2 are needed to interpolate heights");
+  check_longitudes(dem);
   return dem;
 }
 

@@ -111,5 +111,23 @@ TEST(SceneFolder, FailureLeavesTheEarlierBuildAsItWas) {
     EXPECT_EQ(entry.path().filename().string().find(".failure."), std::string::npos) << entry.path();
 }
 
+// The folder remembers where the scene file's relative paths resolve: loading it again finds
+// the same mask as the file did, wherever the folder is.
+TEST(SceneFolder, LoadingTheFolderResolvesPathsAsTheSceneFileDid) {
+  int runs = 0;
+  const auto out = scratch("reload");
+  const fs::path base = out.parent_path() / "scene_source";
+  const std::string text = "name = \"reload\"\n[masks]\nmask = \"masks/field.png\"\n";
+  write_scene_folder(counted_scene(10, runs), {false, false, false}, text, out, {}, base);
+  const SceneConfig again = load_scene_folder_config(out);
+  EXPECT_EQ(again.masks.mask, fs::absolute(base).lexically_normal() / "masks/field.png");
+  EXPECT_EQ(again.name, "reload");
+  EXPECT_EQ(again.source, out / "scene.toml");
+  // Without the base file (a folder from elsewhere), paths resolve against the folder itself.
+  fs::remove(out / "scene_base.txt");
+  EXPECT_EQ(load_scene_folder_config(out).masks.mask, out / "masks/field.png");
+  EXPECT_THROW(load_scene_folder_config(out / "missing"), Error);
+}
+
 }  // namespace
 }  // namespace wangscape

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
 
 #include "scene/ground.h"
 #include "scene/ground_look.h"
@@ -116,6 +118,77 @@ TEST(GroundLook, BakeCoversTheGroundWithTheLongerSideGiven) {
   EXPECT_EQ(bake.image.at(10, 5).g, static_cast<std::uint8_t>(std::lround(std::clamp(c.g, 0.f, 1.f) * 255)));
   const auto [lo, hi] = std::minmax_element(bake.image.pixels.begin(), bake.image.pixels.end());
   EXPECT_GT(*hi - *lo, 20);
+}
+
+// Mean sRGB color of an image.
+std::array<double, 3> mean_color(const ImageRgb8& image) {
+  std::array<double, 3> sum{};
+  for (std::size_t p = 0; p < image.pixels.size(); ++p) sum[p % 3] += image.pixels[p] / 255.0;
+  for (double& v : sum) v /= static_cast<double>(image.pixels.size() / 3);
+  return sum;
+}
+
+// Mean color of the look (texture only) over x in [x0, x1), and the mean absolute difference of
+// each sample from the sample one texture tile east: zero if every tile there were the same.
+struct RegionLook {
+  std::array<double, 3> mean{};
+  double tile_period_difference = 0;
+};
+RegionLook region_look(const GroundLook& look, double x0, double x1, double tile) {
+  RegionLook region;
+  int n = 0;
+  for (double x = x0; x < x1; x += 0.37 * tile / 8)
+    for (double y = 0; y < 6 * tile; y += 0.41 * tile / 8, ++n) {
+      const GroundColor c = look.color_at(x, y, 0, 0), east = look.color_at(x + tile, y, 0, 0);
+      region.mean[0] += c.r;
+      region.mean[1] += c.g;
+      region.mean[2] += c.b;
+      region.tile_period_difference += std::abs(c.g - east.g);
+    }
+  for (double& v : region.mean) v /= n;
+  region.tile_period_difference /= n;
+  return region;
+}
+
+double distance(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+}
+
+TEST(GroundLook, Exemplar2AboveSwitchesTheTextureAlongTheContour) {
+  // A ramp: height = x meters. Below 0 m the texture must be the meadow's, above it the pumice's,
+  // and each side must stay a stochastic tiling (not one tile repeated).
+  const SceneConfig scene = parse(
+      "[ground]\nlook = \"texture\"\nexemplar = \"meadow\"\nexemplar2 = \"pumice\"\n"
+      "texture_scale = 8.0\nexemplar2_above = 0.0\n");
+  const auto exemplars = load_ground_exemplars(scene);
+  ASSERT_EQ(exemplars.size(), 2u);
+  const GroundLook look(*scene.ground, exemplars, [](double x, double) { return std::optional<double>(x); });
+  const double tile = 8.0;
+  const RegionLook west = region_look(look, -12 * tile, -2 * tile, tile);
+  const RegionLook east = region_look(look, 2 * tile, 12 * tile, tile);
+  const auto meadow = mean_color(exemplars[0]), pumice = mean_color(exemplars[1]);
+  EXPECT_LT(distance(west.mean, meadow), 0.25 * distance(meadow, pumice));
+  EXPECT_LT(distance(east.mean, pumice), 0.25 * distance(meadow, pumice));
+  EXPECT_GT(west.tile_period_difference, 0.02);
+  EXPECT_GT(east.tile_period_difference, 0.02);
+
+  // Control: with random marks both sides mix the two exemplars alike.
+  const SceneConfig random =
+      parse("[ground]\nlook = \"texture\"\nexemplar = \"meadow\"\nexemplar2 = \"pumice\"\ntexture_scale = 8.0\n");
+  const GroundLook mixed(*random.ground, load_ground_exemplars(random));
+  const RegionLook mixed_west = region_look(mixed, -12 * tile, -2 * tile, tile);
+  const RegionLook mixed_east = region_look(mixed, 2 * tile, 12 * tile, tile);
+  EXPECT_LT(distance(mixed_west.mean, mixed_east.mean), 0.25 * distance(meadow, pumice));
+}
+
+TEST(GroundLook, Exemplar2AboveNeedsASecondExemplar) {
+  try {
+    parse("[ground]\nexemplar2_above = 1200.0\n");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("test.toml:2: 'ground.exemplar2_above' needs an exemplar2"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

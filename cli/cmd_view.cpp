@@ -1,0 +1,74 @@
+// wangscape view DIR: the real-time LDI view of a scene folder built with [exports] ldi — a
+// window, or offline frames, frame statistics and path playback (docs/viewer.md).
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <sstream>
+
+#include "cli/command.h"
+#include "renders/ldi_view.h"
+
+namespace wangscape::cli {
+
+namespace {
+// "A,B" or "A,B,C" as numbers (a missing third is NaN); empty when it is not that.
+std::optional<std::array<double, 3>> parse_triple(const std::string& text, bool third_optional) {
+  std::array<double, 3> v{0, 0, std::numeric_limits<double>::quiet_NaN()};
+  std::istringstream in(text);
+  in.imbue(std::locale::classic());
+  char comma = 0;
+  if (!(in >> v[0] >> comma) || comma != ',' || !(in >> v[1])) return std::nullopt;
+  if (in >> comma) {
+    if (comma != ',' || !(in >> v[2])) return std::nullopt;
+  } else if (!third_optional) {
+    return std::nullopt;
+  }
+  in >> std::ws;
+  if (!in.eof() || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !(std::isnan(v[2]) || std::isfinite(v[2])))
+    return std::nullopt;
+  return v;
+}
+}  // namespace
+
+void register_view_command(CLI::App& app, const GlobalOptions& global) {
+  auto* sub = app.add_subcommand("view", "Walk through a scene folder's field in a window, or render its LDI frames");
+  struct Options {
+    ViewRequest request;
+    std::string dir, camera, look_at, size;
+  };
+  auto o = std::make_shared<Options>();
+  sub->add_option("dir", o->dir, "Scene folder written by `wangscape build` with [exports] ldi")->required();
+  sub->add_option("--camera", o->camera, "Eye E,N[,H] (ENU m; without H: head height above the ground)");
+  sub->add_option("--look-at", o->look_at, "Point looked at, E,N,H (ENU m)");
+  sub->add_option("--fov", o->request.fov_degrees, "Horizontal field of view, degrees")->check(finite_number());
+  sub->add_option("--size", o->size, "Frame size WIDTHxHEIGHT (default: the scene's image size)");
+  sub->add_option("--out", o->request.out, "Write one offline frame (PNG) instead of opening a window");
+  sub->add_flag("--stats", o->request.stats, "Print frame statistics (median over --repeat frames)");
+  sub->add_flag("--json", o->request.json, "With --stats: as one JSON object");
+  sub->add_option("--repeat", o->request.repeat, "Frames timed for --stats (default 200)");
+  sub->add_option("--path", o->request.path, "Keyframes JSON to fly along (docs/viewer.md)");
+  sub->add_option("--frames", o->request.frames_dir, "Folder for the path's frames (and path.mp4 with ffmpeg)");
+  sub->add_option("--fps", o->request.path_fps, "Frames per second of the path")->check(finite_number());
+  sub->add_option("--script", o->request.script, "Window: scripted input, e.g. \"W*30,screenshot,Escape\"");
+  sub->add_flag("--compare", o->request.compare, "Also ray trace the frame (Embree) and print PSNR, SSIM, holes");
+  sub->add_option("--diff", o->request.diff, "With --compare: write the difference image");
+  sub->add_option("--spp", o->request.reference_samples, "With --compare: reference samples per pixel");
+  sub->add_option("--threads", o->request.threads, "Threads (default: all cores)")->check(CLI::Range(0, 1024));
+  sub->callback([o, &global] {
+    ViewRequest& r = o->request;
+    r.dir = o->dir;
+    r.quiet = global.quiet;
+    if (!o->camera.empty() && !(r.camera = parse_triple(o->camera, true)))
+      throw CLI::ValidationError("--camera", "'" + o->camera + "' is not E,N or E,N,H in meters");
+    if (!o->look_at.empty() && !(r.look_at = parse_triple(o->look_at, false)))
+      throw CLI::ValidationError("--look-at", "'" + o->look_at + "' is not E,N,H in meters");
+    if (!o->size.empty() && std::sscanf(o->size.c_str(), "%dx%d", &r.width, &r.height) != 2)
+      throw CLI::ValidationError("--size", "'" + o->size + "' is not WIDTHxHEIGHT in pixels");
+    if (!o->size.empty() && (r.width < 1 || r.height < 1))
+      throw CLI::ValidationError("--size", "'" + o->size + "': each side must be at least 1 pixel");
+    run_view(r);
+  });
+}
+
+}  // namespace wangscape::cli

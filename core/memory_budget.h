@@ -1,0 +1,21 @@
+// Large buffers (a DEM raster, a painted mask, an image) are estimated before they are
+// allocated and refused above a limit, with the estimate and the limit in the message, so an
+// absurd input fails at once with a message instead of `bad_alloc` or the OOM killer.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+namespace wangscape {
+
+// The most one such buffer may take: half the machine's physical memory, at most 8 GiB
+// (kMaxBufferBytes), so the rest of the run (meshes, the field, the writers) still fits.
+inline constexpr std::uint64_t kMaxBufferBytes = std::uint64_t{8} << 30;
+std::uint64_t memory_limit_bytes();
+
+// Throws Error(file, "", "<what> would need about N GB ...; the limit is L GB ...") when
+// `estimated_bytes` (a double: products of sizes never wrap) exceeds memory_limit_bytes().
+void check_memory_estimate(const std::filesystem::path& file, const std::string& what, double estimated_bytes);
+
+}  // namespace wangscape

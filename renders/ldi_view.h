@@ -1,0 +1,191 @@
+// The real-time view of a scene folder (seed 003 section 5): the folder's Scene (terrain, sun,
+// the field's tiling and masks) and its mmap'ed LDI pack, drawn in software per frame:
+//  - the tiles `wangscape build` placed (same tiling, same masks, same tile indices), each
+//    frustum-culled by its box and sorted back to front;
+//  - per tile a level by its projected size (distance scaled by the view's pixels per radian
+//    against the pack's) and a direction by the dot product of the view ray with each
+//    direction; across a level's last half and near the bisector of two directions the two
+//    LDIs are screen-door dithered (an ordered 4 x 4 threshold), so nothing pops;
+//  - each LDI warped in McMillan's occlusion-compatible order (pixels far from the eye's
+//    epipole first, layers back to front), sheared onto the tile's two terrain triangles,
+//    each depth pixel splatted as a square as large as its projected footprint;
+//  - the terrain mesh rasterized (perspective-correct), shaded with the sun and sky of
+//    renders/shading.h and colored by Scene::ground_texture; beyond the last level each tile
+//    adds its directional average color (made once from the coarsest LDIs) over the ground;
+//  - one software z-buffer: depth and color packed in 64 bits, written with an atomic minimum,
+//    so tiles and triangles run in parallel (TBB) and the frame is the same on any thread count;
+//  - the sky where nothing was drawn.
+// Buffers are sized once per renderer: a frame allocates nothing.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "generator/image.h"
+#include "renders/ldi_pack.h"
+#include "renders/shading.h"
+#include "scene/scene.h"
+
+namespace wangscape {
+
+// Where the eye is and where it looks (ENU meters), and its horizontal field of view.
+struct ViewCamera {
+  std::array<double, 3> position{0, 0, 2};
+  std::array<double, 3> target{10, 0, 2};
+  double fov_degrees = 50;
+};
+
+// The scene folder as the view needs it: the Scene, the pack, the placed tiles with their
+// terrain corners, the terrain mesh with its lighting and the far-field colors. Immutable.
+class ViewWorld {
+ public:
+  // Reads DIR/scene.toml (load_scene_folder_config; where its files are not found, relative
+  // paths resolve against the data folder, data_root(), as for the default scene) and
+  // DIR/tiles.ldi. Throws Error naming the file
+  // at fault: a missing folder, scene or pack, a corrupt pack, a pack of another tile set.
+  static std::shared_ptr<const ViewWorld> load(const std::filesystem::path& dir, const StageObserver& stage = {});
+  // The same from a Scene already made and a pack file (tests).
+  ViewWorld(Scene scene, const std::filesystem::path& pack_path, const ShadingSettings& shading = {});
+
+  struct Tiles {                          // structure of arrays, one entry per placed tile, rows south to north
+    std::vector<double> x0, y0;           // the tile's south-west corner, meters
+    std::vector<std::uint32_t> tile;      // index into the set (and the pack)
+    std::vector<std::int32_t> cell;       // index into the tile grid
+    std::array<std::vector<float>, 4> h;  // ground height at the corners: SW, SE, NW, NE
+    std::vector<float> z_min, z_max;      // of the corners
+    std::size_t size() const { return tile.size(); }
+  };
+  struct Terrain {                                 // structure of arrays
+    std::vector<float> x, y, z;                    // ENU meters
+    std::vector<float> light_r, light_g, light_b;  // sun + sky irradiance (linear) at the vertex
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+  };
+
+  const Scene& scene() const { return scene_; }
+  const LdiPack& pack() const { return *pack_; }
+  const Tiles& tiles() const { return tiles_; }
+  const Terrain& terrain() const { return terrain_; }
+  double tile_size() const { return tile_size_; }
+  // The grid of tile cells over the field's area (-1 where no tile was placed).
+  std::int64_t grid_i0() const { return grid_i0_; }
+  std::int64_t grid_j0() const { return grid_j0_; }
+  int grid_width() const { return grid_width_; }
+  int grid_height() const { return grid_height_; }
+  const std::vector<std::int32_t>& grid() const { return grid_; }
+  // Per (set tile, direction): the linear average color of the coarsest LDI's front flower
+  // samples and the share of its front samples that are flowers (not ground).
+  const std::vector<std::array<float, 4>>& far_colors() const { return far_; }
+  // The ground's height (meters) at (x, y), or `fallback` off the ground.
+  double ground_height(double x, double y, double fallback) const;
+  // Linear base color of the ground at (x, y): the baked ground texture (bilinear), or the
+  // shading model's ground color without [ground].
+  std::array<float, 3> ground_color(double x, double y) const;
+  const std::array<float, 3>& sun_direction() const { return sun_; }
+  // The light the pack was shaded with (the scene's [ldi] sky rays; the Embree reference of
+  // --compare uses it too).
+  const ShadingSettings& shading() const { return shading_; }
+
+ private:
+  Scene scene_;
+  std::unique_ptr<LdiPack> pack_;
+  Tiles tiles_;
+  Terrain terrain_;
+  double tile_size_ = 4;
+  std::int64_t grid_i0_ = 0, grid_j0_ = 0;
+  int grid_width_ = 0, grid_height_ = 0;
+  std::vector<std::int32_t> grid_;
+  std::vector<std::array<float, 4>> far_;
+  std::array<float, 3> sun_{0, 0, 1};
+  std::array<float, 3> plain_ground_{};  // linear, without a ground texture
+  ShadingSettings shading_;
+};
+
+// What one frame drew.
+struct ViewFrameStats {
+  double frame_ms = 0;
+  std::uint64_t depth_pixels = 0;  // depth pixels warped
+  std::uint64_t tiles_drawn = 0;   // in the frustum: drawn as LDIs or as far-field color
+  std::uint64_t tiles_culled = 0;  // outside the frustum
+  // Tiles drawn per level (each at its nearer level when two are dithered); the last entry
+  // counts those beyond the last level, drawn as the far-field color.
+  std::vector<std::uint64_t> levels;
+};
+
+class LdiRenderer {
+ public:
+  // Throws Error when the size is not 1 .. 16384 per side.
+  LdiRenderer(std::shared_ptr<const ViewWorld> world, int width, int height);
+  ~LdiRenderer();
+  LdiRenderer(const LdiRenderer&) = delete;
+  LdiRenderer& operator=(const LdiRenderer&) = delete;
+
+  // Draws one frame into image(). Throws Error for a camera with no direction or a field of
+  // view outside (0, 179) degrees.
+  const ViewFrameStats& render(const ViewCamera& camera);
+  const ImageRgb8& image() const { return image_; }
+  // Per pixel of the last frame: true where the sky shows (nothing was drawn), and the camera
+  // depth (meters along the view axis; infinity for the sky).
+  bool sky_at(int x, int y) const;
+  float depth_at(int x, int y) const;
+  // Draws only the placed tiles whose entry is nonzero (the terrain and sky as always); empty:
+  // every tile. For tests and for looking at single tiles.
+  void set_tile_mask(std::vector<std::uint8_t> mask) { mask_ = std::move(mask); }
+  // The placed-tile indices warped as LDIs in the last frame, back to front.
+  const std::vector<std::uint32_t>& draw_order() const { return order_; }
+  // Distance (meters) from the last frame's eye to placed tile `t`'s nearest ground point.
+  double tile_distance(std::uint32_t t) const;
+  int width() const { return image_.width; }
+  int height() const { return image_.height; }
+
+ private:
+  struct Impl;
+  std::shared_ptr<const ViewWorld> world_;
+  std::unique_ptr<Impl> impl_;
+  ImageRgb8 image_;
+  std::vector<std::uint32_t> order_;
+  std::vector<std::uint8_t> mask_;
+  ViewFrameStats stats_;
+};
+
+// ---- what `wangscape view` runs -------------------------------------------------------------
+
+struct ViewRequest {
+  std::filesystem::path dir;
+  std::optional<std::array<double, 3>> camera;   // E, N, H; H absent (NaN) = head height above the ground
+  std::optional<std::array<double, 3>> look_at;  // E, N, H
+  std::optional<double> fov_degrees;
+  int width = 0, height = 0;  // 0 = the scene's image size
+  std::filesystem::path out;  // one offline frame
+  bool stats = false, json = false;
+  int repeat = 0;                    // frames timed for --stats (0: 200)
+  std::filesystem::path path;        // keyframes JSON
+  std::filesystem::path frames_dir;  // where the path's frames go
+  double path_fps = 24;
+  std::string script;          // window: scripted input (docs/viewer.md)
+  bool compare = false;        // also ray trace the frame with Embree and compare
+  std::filesystem::path diff;  // with compare: the difference image
+  int reference_samples = 0;   // with compare: samples per pixel (0: the scene's)
+  int threads = 0;             // 0 = all cores
+  bool quiet = false;
+};
+
+// The camera of the request: its flags, or the scene's own camera. Throws Error naming the
+// flag at fault (--fov outside (0, 179), a camera off the ground without a height, ...).
+ViewCamera view_camera(const ViewWorld& world, const ViewRequest& request);
+
+// Offline frame(s), path playback or the window, as the request says; prints stats to stdout.
+// Returns the exit code (0). Throws Error for bad input.
+int run_view(const ViewRequest& request);
+
+// Median frame statistics over `frames` renders of one camera.
+ViewFrameStats measure_view(LdiRenderer& renderer, const ViewCamera& camera, int frames);
+// {"frame_ms": ..., "fps": ..., "depth_pixels": ..., "tiles": {...}, "levels": [...]}
+std::string view_stats_json(const ViewFrameStats& stats);
+
+}  // namespace wangscape

@@ -1,0 +1,77 @@
+# wangscape view on a tiny flat field built with the LDI export (2 levels, 2 directions, no sky
+# rays): an offline frame, --stats --json with exactly its keys, path playback with ffmpeg, the
+# window under a real Xvfb driven by a script (its screenshot is the offline frame of the same
+# camera, and not one color), and the refusals of bad flags and folders.
+set(view_dir "${CLI_SCRATCH}/view")
+file(MAKE_DIRECTORY "${view_dir}")
+tiny_scene("${view_dir}/field.toml" EXPORTS "povray = false\nldi = true\n[ldi]\nlevels = 2\ndirections = 2\nsky_rays = 0")
+set(view_folder "${view_dir}/field")
+find_program(system_python3 python3 PATHS /usr/bin NO_DEFAULT_PATH)  # the one with python3-numpy
+
+function(view_test name)
+  add_test(NAME cli_view_${name} COMMAND ${ARGN})
+  set_tests_properties(cli_view_${name} PROPERTIES LABELS "cli;view" TIMEOUT 120 FIXTURES_REQUIRED view_folder)
+endfunction()
+
+# view_sh_test(NAME REGEX SCRIPT [ARGS...]): `sh -c SCRIPT` with $0 the program, $1 the folder,
+# $2 the system python, $3... ARGS; passes on exit 0 with REGEX in its output.
+function(view_sh_test name regex script)
+  view_test(${name} ${cli_expect} 0 "${regex}" sh -c "${script}" "${WANGSCAPE_BIN}" "${view_folder}" "${system_python3}" ${ARGN})
+endfunction()
+set(ground_variance "${CMAKE_CURRENT_LIST_DIR}/ground_variance.py")
+
+add_test(NAME cli_view_build
+  COMMAND ${cli_expect} 0 "" sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$1.toml\" --out \"$1\" && test -s \"$1/tiles.ldi\""
+          "${WANGSCAPE_BIN}" "${view_folder}")
+set_tests_properties(cli_view_build PROPERTIES LABELS "cli;view" TIMEOUT 300 FIXTURES_SETUP view_folder)
+
+# One frame of the scene's own camera, not one color below the horizon.
+view_sh_test(frame "stddev" "\"$0\" --quiet view \"$1\" --size 320x240 --out \"$1.frame.png\" && \"$2\" \"$3\" \"$1.frame.png\" 0.55 1.0 8"
+  "${ground_variance}")
+
+# --stats --json: exactly the documented keys; the tiny field's 36 tiles are drawn or culled.
+view_sh_test(stats_json "^ok 36 levels 3$"
+  "\"$0\" --quiet view \"$1\" --camera 0,-16,2.2 --look-at 0,0,1.2 --size 320x240 --stats --json --repeat 5 | \"$2\" \"$3\""
+  "${CMAKE_CURRENT_LIST_DIR}/view_stats_check.py")
+
+# A camera looking away from the field: every tile culled, no depth pixel.
+view_test(looking_away ${cli_expect} 0 "\"depth_pixels\": 0, \"tiles\": \\{\"drawn\": 0, \"culled\": 36\\}"
+  "${WANGSCAPE_BIN}" --quiet view "${view_folder}" --camera 0,-20 --look-at 0,-40,1.7 --size 32x24 --stats --json --repeat 1)
+
+# A flythrough: 0.3 s at 10 frames/s is 4 frames, and the .mp4 through ffmpeg.
+file(WRITE "${view_dir}/path.json"
+  "{\"keyframes\": [{\"time\": 0, \"position\": [0, -16, 2.2], \"look_at\": [0, 0, 1.2]},\n"
+  "                {\"time\": 0.3, \"position\": [2, -10, 2.0], \"look_at\": [0, 4, 1.0]}]}\n")
+view_sh_test(path "path.mp4"
+  "rm -rf \"$3\" && \"$0\" --quiet view \"$1\" --path \"$4\" --frames \"$3\" --fps 10 --size 48x32 && ls \"$3\" && test -s \"$3/frame-00003.png\" && test ! -e \"$3/frame-00004.png\" && test -s \"$3/path.mp4\""
+  "${view_dir}/path_frames" "${view_dir}/path.json")
+
+# The window under a real X server: scripted keys go through SDL's event queue; the first
+# screenshot (before any move) is the offline frame of the same camera, the second after a walk
+# and a turn differs from it and is not one color; Escape quits with 0.
+view_sh_test(window "stddev"
+  "rm -rf \"$1.win\" && mkdir -p \"$1.win\" && cd \"$1.win\" && xvfb-run -a -s '-screen 0 640x480x24' \"$0\" --quiet view \"$1\" --size 320x240 --script 'screenshot,W*20,mouse:60:0,D*5,screenshot,Escape' && \"$0\" --quiet view \"$1\" --size 320x240 --out offline.png && idiff -a view-0001.png offline.png && ! idiff -a view-0002.png offline.png >/dev/null && \"$2\" \"$3\" view-0002.png 0.5 1.0 6"
+  "${ground_variance}")
+view_test(window_bad_script ${cli_expect} 1 "--script: 'W\\*x' has no frame count"
+  "${WANGSCAPE_BIN}" --quiet view "${view_folder}" --script "W*x")
+
+# Refusals: bad sizes and angles name the flag; a folder without a pack names tiles.ldi.
+view_test(bad_size ${cli_expect} 2 "--size.*0x10" "${WANGSCAPE_BIN}" view "${view_folder}" --size 0x10 --out "${view_dir}/x.png")
+view_test(bad_size_text ${cli_expect} 2 "--size.*'big'" "${WANGSCAPE_BIN}" view "${view_folder}" --size big --out "${view_dir}/x.png")
+view_test(bad_fov ${cli_expect} 1 "--fov 200" "${WANGSCAPE_BIN}" view "${view_folder}" --fov 200 --out "${view_dir}/x.png")
+view_test(bad_camera ${cli_expect} 2 "--camera.*'1,b'" "${WANGSCAPE_BIN}" view "${view_folder}" --camera 1,b --out "${view_dir}/x.png")
+view_test(no_such_folder ${cli_expect} 1 "no_such_folder: no such scene folder" "${WANGSCAPE_BIN}" view "${view_dir}/no_such_folder" --out "${view_dir}/x.png")
+view_test(no_pack ${cli_expect} 1 "nopack/tiles\\.ldi: missing: build the folder from a scene with \\[exports\\] ldi"
+  sh -c "mkdir -p \"$1\" && cp \"$2/scene.toml\" \"$1/\" && \"$0\" view \"$1\" --out \"$1/x.png\""
+  "${WANGSCAPE_BIN}" "${view_dir}/nopack" "${view_folder}")
+view_test(corrupt_pack ${cli_expect} 1 "broken/tiles\\.ldi: truncated"
+  sh -c "mkdir -p \"$1\" && cp \"$2/scene.toml\" \"$1/\" && head -c 100 \"$2/tiles.ldi\" > \"$1/tiles.ldi\" && \"$0\" view \"$1\" --out \"$1/x.png\""
+  "${WANGSCAPE_BIN}" "${view_dir}/broken" "${view_folder}")
+
+# --compare against the Embree reference of the same camera: PSNR above a floor measured on this
+# field (18.97 dB at 320 x 240, 4 samples per pixel: 2 levels, so the far field starts 7.5 m
+# away and its flowers are a flat color), few holes, the difference image written.
+view_sh_test(compare "^ok"
+  "rm -f \"$1.diff.png\" && \"$0\" --quiet view \"$1\" --size 320x240 --compare --json --spp 4 --diff \"$1.diff.png\" | \"$2\" \"$3\" 17.0 0.5 0.03 && test -s \"$1.diff.png\""
+  "${CMAKE_CURRENT_LIST_DIR}/view_compare_check.py")
+view_test(diff_needs_compare ${cli_expect} 1 "--diff: needs --compare" "${WANGSCAPE_BIN}" view "${view_folder}" --diff "${view_dir}/d.png" --out "${view_dir}/x.png")

@@ -1,0 +1,205 @@
+// The real-time LDI view against a real pack of a tiny flat field (built here by Embree, coarse
+// levels): deterministic frames on 1 and 2 threads, every placed tile drawn or culled, frustum
+// culling, no holes in a close view, levels by distance, back-to-front order and the z-buffer
+// letting the near tile hide the far one. Suites are named ldi_view so `ctest -R ldi` runs them.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <numbers>
+#include <string>
+
+#include "renders/ldi_scene.h"
+#include "renders/ldi_view.h"
+#include "scene/scene.h"
+#include "scene/scene_file.h"
+
+namespace wangscape {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("wangscape_ldi_view_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+// A flat field over `area` (ENU m), its pack built with 3 levels x 4 directions at a coarse
+// resolution, and the view's world over both.
+std::shared_ptr<const ViewWorld> tiny_world(const std::string& area, const std::string& name) {
+  const std::string text =
+      "name = \"view test\"\n[terrain]\nflat_size = 60.0\n[tiles]\nset = \"cohen8\"\n"
+      "tile_size = 4.0\npoints_per_tile = 10\nseed = 5\narea = " +
+      area + "\n[models]\nvariants = 2\ntriangle_budget = 400\n[sun]\nazimuth = 200.0\nelevation = 40.0\n";
+  const SceneConfig config = parse_scene_config(text, name + ".toml", fs::temp_directory_path());
+  Scene scene = make_scene(config);
+  LdiBuildOptions options;
+  options.view.levels = 3;
+  options.view.directions = 4;
+  options.view.image_width = 128;
+  options.shading.ao_rays = 0;
+  const fs::path pack = scratch(name + ".ldi");
+  build_scene_ldi_pack(scene, pack, options);
+  return std::make_shared<const ViewWorld>(std::move(scene), pack);
+}
+
+const std::shared_ptr<const ViewWorld>& field() {
+  static const auto world = tiny_world("[-12.0, -12.0, 12.0, 12.0]", "field");
+  return world;
+}
+
+ViewCamera looking(double x, double y, double z, double tx, double ty, double tz, double fov = 60) {
+  return {{x, y, z}, {tx, ty, tz}, fov};
+}
+
+// A frame of only the tiles `mask` keeps: its depths (row-major) and its pixels.
+std::pair<std::vector<float>, std::vector<std::uint8_t>> masked_frame(LdiRenderer& renderer, const ViewCamera& camera,
+                                                                      std::vector<std::uint8_t> mask) {
+  renderer.set_tile_mask(std::move(mask));
+  renderer.render(camera);
+  const int w = renderer.width(), h = renderer.height();
+  std::vector<float> depth(std::size_t(w * h));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) depth[std::size_t(y * w + x)] = renderer.depth_at(x, y);
+  return {depth, renderer.image().pixels};
+}
+
+TEST(ldi_view, PlacesEveryTileOfTheArea) {
+  // 24 m x 24 m of 4 m tiles on a flat plane without masks: 6 x 6 tiles, each with flowers.
+  EXPECT_EQ(field()->tiles().size(), 36u);
+}
+
+TEST(ldi_view, DrawnAndCulledAddUpToThePlacedTiles) {
+  LdiRenderer renderer(field(), 96, 64);
+  for (const ViewCamera& camera : {looking(0, -16, 2, 0, 0, 1), looking(3, 1, 1.7, 10, 5, 1),
+                                   looking(-30, -30, 20, 0, 0, 0), looking(0, 0, 1.7, 0, -10, 0.5)}) {
+    const ViewFrameStats& stats = renderer.render(camera);
+    EXPECT_EQ(stats.tiles_drawn + stats.tiles_culled, 36u);
+    std::uint64_t by_level = 0;
+    for (std::uint64_t n : stats.levels) by_level += n;
+    EXPECT_EQ(by_level, stats.tiles_drawn);
+  }
+}
+
+TEST(ldi_view, LookingAwayFromTheFieldDrawsNoTile) {
+  LdiRenderer renderer(field(), 96, 64);
+  const ViewFrameStats& stats = renderer.render(looking(0, -20, 1.7, 0, -40, 1.7));
+  EXPECT_EQ(stats.tiles_drawn, 0u);
+  EXPECT_EQ(stats.tiles_culled, 36u);
+  EXPECT_EQ(stats.depth_pixels, 0u);
+  // Turned round, the same eye sees tiles.
+  EXPECT_GT(renderer.render(looking(0, -20, 1.7, 0, 0, 1.7)).tiles_drawn, 0u);
+}
+
+TEST(ldi_view, SameBytesOnOneAndTwoThreadsAndTwice) {
+  const ViewCamera camera = looking(-2, -9, 1.7, 4, 6, 0.8);
+  std::vector<std::uint8_t> one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    LdiRenderer renderer(field(), 120, 80);
+    renderer.render(camera);
+    one = renderer.image().pixels;
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    LdiRenderer renderer(field(), 120, 80);
+    renderer.render(camera);
+    two = renderer.image().pixels;
+    renderer.render(looking(5, 5, 3, 0, 0, 0));
+    renderer.render(camera);
+    EXPECT_EQ(renderer.image().pixels, two);
+  }
+  EXPECT_EQ(one, two);
+}
+
+TEST(ldi_view, NoHolesInACloseView) {
+  // Standing in the field looking across it. A hole is a pixel where the ground shows through a
+  // surface: the terrain's own depth there, its left and right neighbours flower samples of about
+  // the same depth (within 2 %). Measured with splats 1.5 x the projected depth-pixel size:
+  // flowers cover 51.6 % of the frame, 64 holes (0.32 % of the flower pixels, mostly real gaps
+  // between stems); with 0.6 x they cover 24 %.
+  const int w = 240, h = 160;
+  LdiRenderer renderer(field(), w, h);
+  const ViewCamera camera = looking(0, -6, 1.7, 0, 4, 0.6, 60);
+  const auto ground = masked_frame(renderer, camera, std::vector<std::uint8_t>(field()->tiles().size(), 0)).first;
+  const auto all = masked_frame(renderer, camera, {}).first;
+  int flowers = 0, holes = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 1; x + 1 < w; ++x) {
+      const std::size_t p = std::size_t(y * w + x);
+      auto flower = [&](std::size_t q) { return all[q] < ground[q]; };
+      flowers += flower(p);
+      if (!flower(p) && flower(p - 1) && flower(p + 1) && std::abs(all[p - 1] - all[p + 1]) < 0.02f * all[p - 1])
+        ++holes;
+    }
+  EXPECT_GT(flowers, w * h * 45 / 100);
+  EXPECT_LT(holes, flowers / 100) << holes << " holes among " << flowers << " flower pixels";
+}
+
+TEST(ldi_view, LevelsCoarsenWithDistance) {
+  LdiRenderer renderer(field(), 160, 90);
+  auto mean_level = [&](const ViewCamera& camera) {
+    const ViewFrameStats& stats = renderer.render(camera);
+    double sum = 0, n = 0;
+    for (std::size_t k = 0; k < stats.levels.size(); ++k) {
+      sum += double(k) * double(stats.levels[k]);
+      n += double(stats.levels[k]);
+    }
+    return sum / n;
+  };
+  const double near = mean_level(looking(0, -14, 1.7, 0, 0, 0.5));
+  const double middle = mean_level(looking(0, -22, 1.7, 0, 0, 0.5));
+  const double far = mean_level(looking(0, -120, 1.7, 0, 0, 0.5));
+  EXPECT_LT(near, middle);
+  EXPECT_LT(middle, far);
+  // From 120 m every tile is beyond the last level: the far field's directional color.
+  const ViewFrameStats& stats = renderer.render(looking(0, -120, 1.7, 0, 0, 0.5));
+  EXPECT_EQ(stats.levels.back(), stats.tiles_drawn);
+  EXPECT_EQ(stats.depth_pixels, 0u);
+}
+
+TEST(ldi_view, TilesAreDrawnBackToFront) {
+  LdiRenderer renderer(field(), 96, 64);
+  renderer.render(looking(1, -3, 1.7, 2, 8, 0.5));
+  const auto& order = renderer.draw_order();
+  ASSERT_GT(order.size(), 3u);
+  for (std::size_t k = 1; k < order.size(); ++k)
+    EXPECT_GE(renderer.tile_distance(order[k - 1]), renderer.tile_distance(order[k]));
+}
+
+TEST(ldi_view, TheNearTileHidesTheFarOne) {
+  // Two tiles in a row, the eye low in front of them looking along the row.
+  const auto world = tiny_world("[0.0, 0.0, 8.0, 4.0]", "row");
+  ASSERT_EQ(world->tiles().size(), 2u);
+  const std::size_t near_tile = world->tiles().x0[0] < world->tiles().x0[1] ? 0 : 1;
+  const int w = 120, h = 80;
+  LdiRenderer renderer(world, w, h);
+  const ViewCamera camera = looking(-2.5, 2, 0.9, 8, 2, 0.9, 70);
+  auto frame = [&](std::vector<std::uint8_t> mask) { return masked_frame(renderer, camera, std::move(mask)); };
+  std::vector<std::uint8_t> only_near(2, 0), only_far(2, 0);
+  only_near[near_tile] = 1;
+  only_far[1 - near_tile] = 1;
+  const auto [near_depth, near_rgb] = frame(only_near);
+  const auto [far_depth, far_rgb] = frame(only_far);
+  const auto [ground_depth, ground_rgb] = frame({0, 0});  // the terrain alone
+  const auto [both_depth, both_rgb] = frame({});
+  ASSERT_EQ(renderer.draw_order().size(), 2u);
+  EXPECT_EQ(renderer.draw_order()[0], 1 - near_tile);  // the far one first
+  int hidden = 0;
+  for (std::size_t p = 0; p < near_depth.size(); ++p) {
+    EXPECT_EQ(both_depth[p], std::min(near_depth[p], far_depth[p]));
+    const bool near_wins = near_depth[p] < far_depth[p];
+    for (std::size_t c = 0; c < 3; ++c)
+      EXPECT_EQ(both_rgb[3 * p + c], near_wins ? near_rgb[3 * p + c] : far_rgb[3 * p + c]);
+    // A far-tile flower behind a near-tile flower: hidden.
+    hidden += near_depth[p] < far_depth[p] && far_depth[p] < ground_depth[p];
+  }
+  EXPECT_GT(hidden, w * h / 50);
+}
+
+}  // namespace
+}  // namespace wangscape
