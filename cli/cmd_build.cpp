@@ -38,6 +38,11 @@ void run_build(const SceneConfig& config, const std::filesystem::path& out_dir, 
     std::fprintf(stderr, "wangscape: wrote %s (%llu flowers, %.1f MB of POV-Ray files, %.1f s)\n",
                  out_dir.string().c_str(), static_cast<unsigned long long>(summary.instances),
                  double(summary.povray_bytes) / 1e6, summary.seconds);
+  if (const auto& f = summary.field; f && !global.quiet)
+    std::fprintf(stderr,
+                 "wangscape: tiles: %llu visible, %llu placed, %llu culled; flowers: %llu models, %llu proxies\n",
+                 (unsigned long long)f->visible_tiles, (unsigned long long)f->placed_tiles,
+                 (unsigned long long)f->culled_tiles, (unsigned long long)f->models, (unsigned long long)f->proxies);
 }
 
 void register_build_command(CLI::App& app, const GlobalOptions& global) {

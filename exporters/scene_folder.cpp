@@ -136,6 +136,7 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
       const StreamTotals totals = run_scene_stream(scene, writers, on_batch);
       summary.instances = totals.instances;
       summary.per_variant = totals.per_variant;
+      if (scene.last_placement) summary.field = *scene.last_placement;
       if (observer.placing) observer.placing(1.0);
     }
     if (povray) summary.povray_bytes = povray->stats().total_bytes;

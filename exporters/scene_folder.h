@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,7 +23,8 @@ struct SceneFolderObserver {
 struct SceneFolderSummary {
   std::uint64_t instances = 0;
   std::vector<std::uint64_t> per_variant;
-  std::uint64_t povray_bytes = 0;  // POV-Ray files
+  std::uint64_t povray_bytes = 0;    // POV-Ray files
+  std::optional<FieldReport> field;  // tiles visible, placed and culled, models and proxies (a scene's field)
   double seconds = 0;
 };
 

@@ -64,6 +64,14 @@ TileRange tile_range(const Extent& area, double tile_size) {
   return r;
 }
 
+TileRange clip_range(const TileRange& part, const TileRange& whole) {
+  TileRange r{std::max(part.i0, whole.i0), std::max(part.j0, whole.j0), std::min(part.i1, whole.i1),
+              std::min(part.j1, whole.j1)};
+  if (r.i1 < r.i0) r.i1 = r.i0;
+  if (r.j1 < r.j0) r.j1 = r.j0;
+  return r;
+}
+
 RowTiles::RowTiles(const TileSet& set, const TileRange& range, const PlacementOptions& options) : range_(range) {
   if (options.algorithm == TilingAlgorithm::hash) {
     hashed_.emplace(set, options.seed);
@@ -78,12 +86,13 @@ RowTiles::RowTiles(const TileSet& set, const TileRange& range, const PlacementOp
   tiling_.emplace(make_tiling(set, range.width(), range.height(), tiling_options));
 }
 
-void RowTiles::row(int r, std::span<std::uint16_t> out) const {
+void RowTiles::row(int r, std::span<std::uint16_t> out, int c) const {
   if (hashed_) {
-    hashed_->fill_row(range_.i0, range_.j0 + r, out);
+    hashed_->fill_row(range_.i0 + c, range_.j0 + r, out);
     return;
   }
-  const auto* start = tiling_->tiles.data() + static_cast<std::size_t>(r) * static_cast<std::size_t>(range_.width());
+  const auto* start = tiling_->tiles.data() + static_cast<std::size_t>(r) * static_cast<std::size_t>(range_.width()) +
+                      static_cast<std::size_t>(c);
   std::copy(start, start + out.size(), out.begin());
 }
 

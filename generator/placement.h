@@ -26,7 +26,18 @@ struct PlacementOptions {
   TilingAlgorithm algorithm = TilingAlgorithm::scanline;
   std::uint64_t seed = 1;
   bool forbid_identical_neighbours = false;
-  std::optional<Extent> area;           // what to cover; the ground's extent when unset
+  std::optional<Extent> area;  // what to cover; the ground's extent when unset
+  // Only the tiles meeting `window` are laid; the tiling stays that of `area`, so a window holds
+  // exactly the tiles (and flowers) the whole area has there. Unset: the whole area.
+  std::optional<Extent> window;
+  // Interior variation: when set, each instance's variant, yaw and scale come from
+  // world_point_attributes (its world tile and index) instead of from the tile's point.
+  struct WorldAttributes {
+    std::uint64_t seed = 1;
+    int variants = 1;
+    double min_scale = 1, max_scale = 1;
+  };
+  std::optional<WorldAttributes> world_attributes;
   std::size_t batch_points = 1u << 16;  // rows are grouped until a batch holds about this many points
 };
 
@@ -46,7 +57,7 @@ struct KeepAllPoints {
 };
 
 struct PlacementStats {
-  std::uint64_t tiles = 0;       // tiles of the tiling over the area
+  std::uint64_t tiles = 0;       // tiles of the tiling over the area (the window, when set)
   std::uint64_t tiles_kept = 0;  // tiles the tile filter kept
   std::uint64_t points = 0;      // instances handed to the sink
   std::uint64_t batches = 0;
@@ -68,14 +79,16 @@ struct TileRange {
   int height() const { return static_cast<int>(j1 - j0); }
 };
 TileRange tile_range(const Extent& area, double tile_size);
+// The tiles of `part` that lie in `whole` (empty when they do not meet).
+TileRange clip_range(const TileRange& part, const TileRange& whole);
 
 // Tiles of the area row by row (local row r = tile row j0 + r): computed up front for scanline
 // and bottom-left tilings (2 bytes per tile), per row on demand for hashed ones.
 class RowTiles {
  public:
   RowTiles(const TileSet& set, const TileRange& range, const PlacementOptions& options);
-  // Tiles of local row r into out (size range.width()).
-  void row(int r, std::span<std::uint16_t> out) const;
+  // Tiles of local row r from local column c into out (at most range.width() - c).
+  void row(int r, std::span<std::uint16_t> out, int c = 0) const;
 
  private:
   TileRange range_;
@@ -97,12 +110,14 @@ PlacementStats place_instances(const FilledTileSet& filled, const G& ground, con
   if (!(options.tile_size > 0))
     throw Error("placement: tile size " + std::to_string(options.tile_size) + " m; expected > 0");
   const Extent area = options.area ? *options.area : Extent(ground.extent());
-  const TileRange range = tile_range(area, options.tile_size);
+  const TileRange whole = tile_range(area, options.tile_size);
+  const TileRange range = options.window ? clip_range(tile_range(*options.window, options.tile_size), whole) : whole;
   PlacementStats stats;
   if (range.width() <= 0 || range.height() <= 0) return stats;
   const PlacementTable table(filled);
-  const RowTiles rows(filled.set, range, options);
+  const RowTiles rows(filled.set, whole, options);
   const double s = options.tile_size;
+  const auto* world = options.world_attributes ? &*options.world_attributes : nullptr;
 
   // Rows per batch, from the mean points per tile.
   const double mean_points = static_cast<double>(table.x.size()) / std::max<std::size_t>(filled.tiles.size(), 1);
@@ -146,7 +161,7 @@ PlacementStats place_instances(const FilledTileSet& filled, const G& ground, con
         std::uint32_t* otile = out.tile.data();
         std::size_t n = 0;
         for (int r = r_begin; r < r_end; ++r) {
-          rows.row(r, slot.row_tiles);
+          rows.row(static_cast<int>(range.j0 - whole.j0) + r, slot.row_tiles, static_cast<int>(range.i0 - whole.i0));
           const std::int64_t j = range.j0 + r;
           for (int c = 0; c < range.width(); ++c) {
             const std::int64_t i = range.i0 + c;
@@ -161,9 +176,17 @@ PlacementStats place_instances(const FilledTileSet& filled, const G& ground, con
               ox[n] = static_cast<float>(x);
               oy[n] = static_cast<float>(y);
               oz[n] = static_cast<float>(*z);
-              oyaw[n] = table.yaw[k];
-              oscale[n] = table.scale[k];
-              ovariant[n] = table.variant[k];
+              if (world) {
+                const PointAttributes a = world_point_attributes(world->seed, i, j, k - table.first[t], world->variants,
+                                                                 world->min_scale, world->max_scale);
+                oyaw[n] = a.yaw;
+                oscale[n] = a.scale;
+                ovariant[n] = a.variant;
+              } else {
+                oyaw[n] = table.yaw[k];
+                oscale[n] = table.scale[k];
+                ovariant[n] = table.variant[k];
+              }
               otile[n] = t;
               ++n;
             }

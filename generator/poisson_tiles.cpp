@@ -721,6 +721,14 @@ PointAttributes point_attributes(std::uint64_t seed, std::uint32_t id, int varia
   return a;
 }
 
+PointAttributes world_point_attributes(std::uint64_t seed, std::int64_t i, std::int64_t j, std::uint32_t k,
+                                       int variants, double min_scale, double max_scale) {
+  const std::uint64_t where = hash_combine(
+      hash_combine(hash_combine(seed ^ 0x3c1d, static_cast<std::uint64_t>(i)), static_cast<std::uint64_t>(j)), k);
+  return point_attributes(seed, static_cast<std::uint32_t>(where >> 32) ^ static_cast<std::uint32_t>(where), variants,
+                          min_scale, max_scale);
+}
+
 TileAdjacency::TileAdjacency(const TileSet& set) {
   const std::size_t n = set.tiles.size();
   lists_.assign(n * 9, {});

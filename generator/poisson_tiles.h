@@ -126,6 +126,10 @@ struct PointAttributes {
 };
 PointAttributes point_attributes(std::uint64_t seed, std::uint32_t id, int variants, double min_scale,
                                  double max_scale);
+// Interior variation: the attributes of the k-th point of the tile at world tile (i, j), a
+// function of (seed, i, j, k) only, so two copies of one tile carry different flowers.
+PointAttributes world_point_attributes(std::uint64_t seed, std::int64_t i, std::int64_t j, std::uint32_t k,
+                                       int variants, double min_scale, double max_scale);
 
 // The tile-set sheet (draw_tileset_sheet's layout and colors, paled) with every tile's points:
 // packing discs as dark rings, tight discs filled (replicas show in every tile that holds them,

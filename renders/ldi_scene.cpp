@@ -29,7 +29,11 @@ LdiBuildReport build_scene_ldi_pack(const Scene& scene, const std::filesystem::p
     observer.stage("sampling " + std::to_string(filled.tiles.size()) + " tiles x " +
                    std::to_string(options.view.levels) + " levels x " + std::to_string(options.view.directions) +
                    " directions into " + out.string());
-  return build_ldi_pack(filled, scene.models, options, out);
+  // The LDIs are per tile at their own levels of detail: the full models, never the proxies
+  // camera-aware export appends.
+  if (field.proxy_offset == 0) return build_ldi_pack(filled, scene.models, options, out);
+  const std::vector<Mesh> full(scene.models.begin(), scene.models.begin() + std::ptrdiff_t(field.proxy_offset));
+  return build_ldi_pack(filled, full, options, out);
 }
 
 LdiBuildOptions ldi_options(const SceneConfig& config) {

@@ -167,18 +167,28 @@ Mesh SceneGround::mesh(std::size_t max_vertices) const {
 }
 
 PlacementStats SceneGround::place(const FilledTileSet& filled, const PlacementOptions& options,
-                                  const std::function<void(const InstanceBatch&)>& sink) const {
+                                  const std::function<void(const InstanceBatch&)>& sink,
+                                  const std::function<bool(const TileCell&)>& also) const {
   const Impl& impl = *impl_;
-  if (!impl.terrain) return place_instances(filled, *this, options, sink);  // the plane passed the masks at load
+  const auto asked = [&](const TileCell& cell) { return !also || also(cell); };
+  if (!impl.terrain)  // the plane passed the masks at load
+    return place_instances(filled, *this, options, sink, asked);
   const TerrainFilter& filter = *impl.filter;
   if (impl.masks.fair_edges)
     return place_instances(
-        filled, *this, options, sink, [&](const TileCell& cell) { return filter.tile_may_pass(cell.bounds); },
+        filled, *this, options, sink,
+        [&](const TileCell& cell) { return asked(cell) && filter.tile_may_pass(cell.bounds); },
         [&](double x, double y, double z) { return filter.point_passes(x, y, z); });
   // tile_passes holds for all of a tile's ground, so its points need no test of their own.
   return place_instances(
-      filled, *this, options, sink, [&](const TileCell& cell) { return filter.tile_passes(cell.bounds); },
-      KeepAllPoints{});
+      filled, *this, options, sink,
+      [&](const TileCell& cell) { return asked(cell) && filter.tile_passes(cell.bounds); }, KeepAllPoints{});
+}
+
+bool SceneGround::flowers_grow_at(double x, double y, double z, const Extent& tile) const {
+  const Impl& impl = *impl_;
+  if (!impl.terrain) return impl.area.contains(x, y);
+  return impl.masks.fair_edges ? impl.filter->point_passes(x, y, z) : impl.filter->tile_passes(tile);
 }
 
 void SceneGround::check_tile_size(double tile_size, const std::string& what) const {

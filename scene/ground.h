@@ -50,8 +50,13 @@ class SceneGround {
   // the masks: with fair edges, every tile that may pass is laid and each flower is kept only
   // if its own ground passes (the border follows the contour); without, only tiles whose whole
   // ground passes (seed 003, a staircase along the contour). Thread-safe.
+  // `also` (optional) is asked first about every tile: a tile it refuses is never laid.
   PlacementStats place(const FilledTileSet& filled, const PlacementOptions& options,
-                       const std::function<void(const InstanceBatch&)>& sink) const;
+                       const std::function<void(const InstanceBatch&)>& sink,
+                       const std::function<bool(const TileCell&)>& also = {}) const;
+  // Whether the masks let a flower grow at (x, y) on ground `z` high, in the tile `tile`
+  // (the tile's whole ground is tested without fair edges, as place does).
+  bool flowers_grow_at(double x, double y, double z, const Extent& tile) const;
 
   // Throws Error when tiles of `tile_size` meters cannot fit the ground; `what` names the value
   // in the message (a flag, a key).

@@ -1,9 +1,14 @@
 #include "scene/scene.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <atomic>
 #include <cmath>
 #include <numbers>
 
 #include "generator/tiling.h"
+#include "scene/far_field.h"
 #include "scene/tileset_file.h"
 #include "templates/mesh_io.h"
 #include "templates/sunflower.h"
@@ -50,8 +55,11 @@ std::vector<Mesh> make_models(const ModelsConfig& config) {
 
 // ---- the field: tiles laid over the ground, flowers where the masks allow -------------------
 
-std::shared_ptr<const SceneField> make_field(const SceneConfig& config, const SceneGround& ground,
-                                             std::size_t model_count, const StageObserver& stage) {
+// Camera-aware export is on by default for a field over the whole ground (no [tiles] area).
+bool camera_aware(const SceneConfig& config) { return config.camera_aware.enabled.value_or(!config.tiles.area); }
+
+std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGround& ground, std::size_t model_count,
+                                       const StageObserver& stage) {
   auto field = std::make_shared<SceneField>();
   field->ground = ground;
   Extent area = ground.extent();
@@ -63,11 +71,13 @@ std::shared_ptr<const SceneField> make_field(const SceneConfig& config, const Sc
   const double tile_size = config.tiles.tile_size;
   const double tiles_x = std::ceil(area.width() / tile_size) + 1, tiles_y = std::ceil(area.height() / tile_size) + 1;
   const double estimate = tiles_x * tiles_y * config.tiles.points_per_tile;
-  if (estimate > kMaxFieldInstances)
+  // With camera-aware export the limit applies to what the camera sees (checked once it stands).
+  if (estimate > kMaxFieldInstances && !camera_aware(config))
     throw config.error_at("tiles.area", "gives a field of up to " + std::to_string(std::llround(estimate)) +
                                             " flowers (" + std::to_string(std::llround(tiles_x)) + " x " +
                                             std::to_string(std::llround(tiles_y)) +
-                                            " tiles); limit it with tiles.area or a larger tiles.tile_size "
+                                            " tiles); limit it with tiles.area or a larger tiles.tile_size, or "
+                                            "export what the camera sees ([camera_aware] enabled = true, far) "
                                             "(at most 50 million)");
   field->placement.tile_size = tile_size;
   field->placement.algorithm = parse_tiling_algorithm(config.tiles.algorithm);
@@ -96,6 +106,9 @@ std::shared_ptr<const SceneField> make_field(const SceneConfig& config, const Sc
   } catch (const Error& e) {
     throw config.error_at("tiles.points_per_tile", e.what());
   }
+  if (config.tiles.interior_variation)
+    field->placement.world_attributes =
+        PlacementOptions::WorldAttributes{config.tiles.seed, fill.variants, fill.min_scale, fill.max_scale};
   if (config.models.facing) {
     // Compass (clockwise from north) to yaw (counter-clockwise from east).
     field->facing_yaw = (90.0 - *config.models.facing) * std::numbers::pi / 180;
@@ -104,7 +117,58 @@ std::shared_ptr<const SceneField> make_field(const SceneConfig& config, const Sc
   return field;
 }
 
-// ---- camera and sun -----------------------------------------------------------------------------
+// The camera's view of the field: distances from the image and the models, the window, and the
+// limit on what the camera sees.
+std::shared_ptr<const CameraView> make_view(const SceneConfig& config, const SceneField& field, const Scene& scene) {
+  const auto& c = config.camera_aware;
+  // A 30 cm head: full models while it spans 8 pixels or more, proxies down to one pixel.
+  const double head = 0.3 * config.models.scale;
+  CameraViewOptions options;
+  options.far = c.far.value_or(distance_for_pixels(head, 1, config.image.width, config.camera.fov));
+  options.near =
+      std::min(options.far, c.near.value_or(distance_for_pixels(head, 8, config.image.width, config.camera.fov)));
+  if (c.near && *c.near > options.far)
+    throw config.error_at("camera_aware.near", "is beyond camera_aware.far (" + number(options.far) + " m)");
+  double height = 0, reach = 0;
+  for (std::size_t v = 0; v < std::size_t(field.filled.variants) && v < scene.models.size(); ++v)
+    for (const auto& p : scene.models[v].positions) {
+      height = std::max<double>(height, p[2]);
+      reach = std::max<double>(reach, std::hypot(p[0], p[1]));
+    }
+  const double max_scale = 1 + config.models.scale_jitter;
+  options.flower_height = height * max_scale;
+  options.flower_reach = reach * max_scale;
+  const double elevation = std::max(scene.sun.elevation_degrees, 1.0) * std::numbers::pi / 180;
+  options.sun_margin = c.sun_margin.value_or(std::min(200.0, options.flower_height / std::tan(elevation)));
+  const double aspect = double(config.image.width) / config.image.height;
+  return std::make_shared<const CameraView>(scene.camera, scene.sun, aspect, options);
+}
+
+// Refuses a view that holds more than kMaxFieldInstances flowers, counting the visible tiles.
+void check_visible_flowers(const SceneConfig& config, const SceneField& field) {
+  const double s = field.placement.tile_size;
+  const TileRange range = clip_range(tile_range(field.view->window(), s), tile_range(*field.placement.area, s));
+  const std::uint64_t visible = tbb::parallel_reduce(
+      tbb::blocked_range<std::int64_t>(range.j0, range.j1), std::uint64_t{0},
+      [&](const tbb::blocked_range<std::int64_t>& rows, std::uint64_t count) {
+        for (std::int64_t j = rows.begin(); j < rows.end(); ++j)
+          for (std::int64_t i = range.i0; i < range.i1; ++i) {
+            const double x = double(i) * s, y = double(j) * s;
+            count += field.tile_in_view(TileCell{i, j, 0, Extent{x, y, x + s, y + s}});
+          }
+        return count;
+      },
+      std::plus<>());
+  const double estimate = double(visible) * config.tiles.points_per_tile;
+  if (estimate > kMaxFieldInstances)
+    throw config.error_at("camera_aware.far", "lets the camera see up to " + std::to_string(std::llround(estimate)) +
+                                                  " flowers (" + std::to_string(visible) +
+                                                  " visible tiles); lower camera_aware.far or give a tiles.area "
+                                                  "(at most 50 million)");
+}
+
+// ---- camera and sun// ---- camera and sun
+// -----------------------------------------------------------------------------
 
 // A camera inside the hill renders the hill's inside (or nothing): refused. A look-at point
 // below the surface still gives a valid direction, so only the position is checked.
@@ -197,14 +261,69 @@ float SceneField::yaw_of(float point_yaw) const {
   return float(*facing_yaw + (2 * u - 1) * facing_jitter);
 }
 
-PlacementStats SceneField::place(const InstanceSink& sink) const {
-  if (!facing_yaw) return ground.place(filled, placement, sink);
-  InstanceBatch turned;
-  return ground.place(filled, placement, [&](const InstanceBatch& batch) {
-    turned = batch;
-    for (auto& yaw : turned.yaw) yaw = yaw_of(yaw);
-    sink(turned);
-  });
+bool SceneField::tile_in_view(const TileCell& cell) const {
+  if (!view) return true;
+  // The ground's heights over the tile, from its corners and centre (DEM cells are much larger
+  // than a tile, so a meter of slack covers the bilinear bend between them).
+  const Extent& b = cell.bounds;
+  double lo = INFINITY, hi = -INFINITY;
+  for (const auto& [x, y] : {std::pair{b.min_x, b.min_y},
+                             {b.max_x, b.min_y},
+                             {b.min_x, b.max_y},
+                             {b.max_x, b.max_y},
+                             {(b.min_x + b.max_x) / 2, (b.min_y + b.max_y) / 2}})
+    if (const auto z = ground.height(x, y)) {
+      lo = std::min(lo, *z);
+      hi = std::max(hi, *z);
+    }
+  if (lo > hi) return view->tile_visible(b, view->position()[2] - 1e4, view->position()[2] + 1e4);
+  return view->tile_visible(b, lo - 1, hi + 1);
+}
+
+FieldReport SceneField::place(const InstanceSink& sink) const {
+  FieldReport report;
+  const TileRange whole = tile_range(*placement.area, placement.tile_size);
+  report.field_tiles = std::uint64_t(whole.width()) * std::uint64_t(whole.height());
+  std::atomic<std::uint64_t> visible{0};
+  const auto in_view = [&](const TileCell& cell) {
+    if (!tile_in_view(cell)) return false;
+    visible.fetch_add(1, std::memory_order_relaxed);
+    return true;
+  };
+  InstanceBatch out;
+  const auto pass_on = [&](const InstanceBatch& batch) {
+    if (!facing_yaw && !view) {
+      report.models += batch.size();
+      sink(batch);
+      return;
+    }
+    out.clear();
+    out.reserve(batch.size());
+    for (std::size_t k = 0; k < batch.size(); ++k) {
+      std::uint16_t variant = batch.variant[k];
+      if (view) {
+        const double d = view->distance(batch.x[k], batch.y[k], batch.z[k]);
+        if (d > view->options().far) continue;
+        if (d > view->options().near && proxy_offset) variant = static_cast<std::uint16_t>(variant + proxy_offset);
+      }
+      ++(variant >= proxy_offset && proxy_offset ? report.proxies : report.models);
+      out.push_back(batch.x[k], batch.y[k], batch.z[k], yaw_of(batch.yaw[k]), batch.scale[k], variant, batch.tile[k]);
+    }
+    if (!out.empty()) sink(out);
+  };
+  PlacementStats stats;
+  if (view) {
+    PlacementOptions windowed = placement;
+    windowed.window = view->window();
+    stats = ground.place(filled, windowed, pass_on, in_view);
+    report.visible_tiles = visible.load();
+  } else {
+    stats = ground.place(filled, placement, pass_on);
+    report.visible_tiles = report.field_tiles;
+  }
+  report.placed_tiles = stats.tiles_kept;
+  report.culled_tiles = report.field_tiles - report.visible_tiles;
+  return report;
 }
 
 Scene make_scene(const SceneConfig& config, const StageObserver& stage) {
@@ -231,27 +350,56 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage) {
   const auto field = make_field(config, ground, scene.models.size(), stage);
   scene.field = field;
   scene.field_area = *field->placement.area;
-  scene.instances = [field](const InstanceSink& sink) { field->place(sink); };
+  scene.camera = make_camera(config, ground, scene.field_area);
+  scene.sun = make_sun(config, ground);
+  if (camera_aware(config)) {
+    field->view = make_view(config, *field, scene);
+    check_visible_flowers(config, *field);
+    if (config.models.mesh.empty()) {
+      say(stage, "building " + std::to_string(config.models.variants) + " proxy sunflowers (" +
+                     std::to_string(config.camera_aware.proxy_triangles) + " triangles each)");
+      ModelsConfig proxies = config.models;
+      proxies.triangle_budget = std::min(config.camera_aware.proxy_triangles, config.models.triangle_budget);
+      field->proxy_offset = scene.models.size();
+      for (auto& model : make_models(proxies)) {
+        model.name += " proxy";
+        scene.models.push_back(std::move(model));
+      }
+    }
+  }
+  auto report = std::make_shared<FieldReport>();
+  scene.last_placement = report;
+  scene.instances = [field, report](const InstanceSink& sink) { *report = field->place(sink); };
 
-  if (config.ground) {
-    say(stage, "baking the ground's look (" + config.ground->look + ", " + std::to_string(config.ground->bake_pixels) +
+  const bool far_texture = field->view && config.camera_aware.far_texture;
+  if (config.ground || far_texture) {
+    // The far field lives in the bake: camera-aware export bakes [ground]'s defaults without one.
+    const GroundConfig ground_config = config.ground.value_or(GroundConfig{});
+    SceneConfig with_ground = config;
+    with_ground.ground = ground_config;
+    say(stage, "baking the ground's look (" + ground_config.look + ", " + std::to_string(ground_config.bake_pixels) +
                    " pixels)");
-    const auto exemplars = load_ground_exemplars(config);
+    const auto exemplars = load_ground_exemplars(with_ground);
     std::shared_ptr<const GroundLook> look;
     try {
       // The field (which owns the ground) outlives the look: both live as long as the Scene.
-      look = std::make_shared<const GroundLook>(*config.ground, exemplars,
+      look = std::make_shared<const GroundLook>(ground_config, exemplars,
                                                 [field](double x, double y) { return field->ground.height(x, y); });
     } catch (const Error& e) {
       // The texture tiles' limits (exemplar smaller than a tile) come from these keys.
       throw config.error_at("ground.texture_pixels", e.message());
     }
-    scene.ground_texture = std::make_shared<const GroundBake>(bake_ground(*look, ground, config.ground->bake_pixels));
+    auto bake = bake_ground(*look, ground, ground_config.bake_pixels);
+    if (far_texture) {
+      say(stage, "painting the field beyond " + number(field->view->options().far) + " m into the ground");
+      const std::vector<Mesh> full(scene.models.begin(), scene.models.begin() + std::ptrdiff_t(field->filled.variants));
+      paint_far_field(bake, *field, FieldTexture(*field, full, field->view->far_view_direction(), scene.sun),
+                      *field->view);
+    }
+    scene.ground_texture = std::make_shared<const GroundBake>(std::move(bake));
     scene.ground_look = std::move(look);
   }
 
-  scene.camera = make_camera(config, ground, scene.field_area);
-  scene.sun = make_sun(config, ground);
   scene.render.width = config.image.width;
   scene.render.height = config.image.height;
   scene.render.antialias_samples = config.image.antialias;

@@ -16,6 +16,7 @@
 #include "generator/instances.h"
 #include "generator/placement.h"
 #include "generator/poisson_tiles.h"
+#include "scene/camera_view.h"
 #include "scene/ground.h"
 #include "scene/ground_look.h"
 #include "scene/scene_file.h"
@@ -47,6 +48,16 @@ using InstanceSink = std::function<void(const InstanceBatch&)>;
 // south to north. Each call places the whole field again: run it once and fan the batches out.
 using InstanceStream = std::function<void(const InstanceSink& sink)>;
 
+// What one run of a field's stream laid, and (camera-aware) what the camera saw.
+struct FieldReport {
+  std::uint64_t field_tiles = 0;    // tiles of the tiling over the whole field area
+  std::uint64_t visible_tiles = 0;  // tiles the camera view kept (all of them without one)
+  std::uint64_t placed_tiles = 0;   // visible tiles the masks kept
+  std::uint64_t culled_tiles = 0;   // field tiles outside the view (never laid)
+  std::uint64_t models = 0;         // instances of the full models
+  std::uint64_t proxies = 0;        // instances of the proxies (camera-aware, near .. far)
+};
+
 // The field: a filled tile set laid over the ground, flowers where the masks allow.
 struct SceneField {
   SceneGround ground;
@@ -54,9 +65,15 @@ struct SceneField {
   PlacementOptions placement;        // placement.area is set: the area the field covers
   std::optional<double> facing_yaw;  // radians, counter-clockwise from east; empty = the tile's yaw
   double facing_jitter = 0;          // radians
+  // Camera-aware export: only tiles the view keeps are laid (placement.window is its window);
+  // flowers between near and far become variant + proxy_offset, beyond far none. Empty: all.
+  std::shared_ptr<const CameraView> view;
+  std::size_t proxy_offset = 0;  // 0: no proxies (the full models go on to far)
 
   // Places every instance (thread-safe, deterministic).
-  PlacementStats place(const InstanceSink& sink) const;
+  FieldReport place(const InstanceSink& sink) const;
+  // Whether the camera view keeps the tile (true without a view). Thread-safe.
+  bool tile_in_view(const TileCell& cell) const;
   // The yaw (radians) an instance of a point with tile yaw `point_yaw` gets: the configured
   // facing spread over +- jitter by the point's own uniform yaw, or the point's yaw.
   float yaw_of(float point_yaw) const;
@@ -69,6 +86,8 @@ struct Scene {
   InstanceStream instances;                 // may be empty (no instances)
   Extent field_area;                        // where instances may stand (ENU m); rows of the stream go south to north
   std::shared_ptr<const SceneField> field;  // what the stream places (empty for hand-made scenes)
+  // The counts of the stream's last run (set by the field's stream; empty for hand-made scenes).
+  std::shared_ptr<FieldReport> last_placement;
   Camera camera;
   Sun sun;
   RenderSettings render;
@@ -79,8 +98,9 @@ struct Scene {
   std::shared_ptr<const GroundBake> ground_texture;
 };
 
-// The most flowers a field (or a scatter) may hold, counted before masks: above it the outputs
-// would outgrow what POV-Ray can hold (about 1.4 GB per million flowers) and the disk.
+// The most flowers a field (or a scatter) may hold, counted before masks (with camera-aware
+// export: the visible tiles' flowers): above it the outputs would outgrow what POV-Ray can hold
+// (about 1.4 GB per million flowers) and the disk.
 inline constexpr double kMaxFieldInstances = 50e6;
 
 // Stage messages while a scene is assembled (a program shows them, e.g. on a terminal).

@@ -274,6 +274,7 @@ SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem
       if (!(c[2] > c[0] && c[3] > c[1]))
         s.fail(*s.node("area"), "area", "must be [min_east, min_north, max_east, max_north] with max > min");
     }
+    s.read("interior_variation", config.tiles.interior_variation);
     s.reject_unknown();
   }
   {
@@ -382,6 +383,19 @@ SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem
       s.fail(*s.node("texture_pixels"), "texture_pixels", "must be even");
     if (s.read("texture_strength", g.texture_strength)) s.check_range("texture_strength", g.texture_strength, 0, 1);
     s.read_int("bake_pixels", g.bake_pixels, 16, 8192);
+    s.reject_unknown();
+  }
+  {
+    Section s(top.table("camera_aware"), "camera_aware", source, config.key_lines);
+    CameraAwareConfig& c = config.camera_aware;
+    bool enabled = false;
+    if (s.read("enabled", enabled)) c.enabled = enabled;
+    if (s.read("near", c.near)) s.check_range("near", *c.near, 0, 1e6);
+    if (s.read("far", c.far)) s.check_range("far", *c.far, 0.1, 1e6);
+    if (c.near && c.far && *c.near > *c.far) s.fail(*s.node("near"), "near", "must not be beyond far");
+    if (s.read("sun_margin", c.sun_margin)) s.check_range("sun_margin", *c.sun_margin, 0, 1e4);
+    s.read_int("proxy_triangles", c.proxy_triangles, kSunflowerMinimumTriangleBudget, kSunflowerMaximumTriangleBudget);
+    s.read("far_texture", c.far_texture);
     s.reject_unknown();
   }
   {

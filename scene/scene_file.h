@@ -34,6 +34,7 @@ struct TilesConfig {
   std::uint64_t seed = 1;                     // tiling, points and flower yaw/scale
   std::string algorithm = "scanline";         // tiling algorithm: scanline, bottom-left, hash
   std::optional<std::array<double, 4>> area;  // where flowers grow, ENU m; default: the ground's extent
+  bool interior_variation = false;            // variant, yaw, scale from the world tile and index, not the tile's point
 };
 
 // [masks]
@@ -115,6 +116,17 @@ struct GroundConfig {
   int bake_pixels = 2048;         // longer side of the baked ground texture
 };
 
+// [camera_aware]: export only what the camera sees (docs/scene-file.md). Distances are meters
+// from the camera; unset ones follow from the image width and field of view.
+struct CameraAwareConfig {
+  std::optional<bool> enabled;        // default: on when [tiles] gives no area
+  std::optional<double> near;         // full models closer than this
+  std::optional<double> far;          // proxies up to this; beyond it, the field texture
+  std::optional<double> sun_margin;   // meters toward the sun kept for shadows falling into view
+  std::size_t proxy_triangles = 400;  // triangle budget of the proxy sunflowers
+  bool far_texture = true;            // the flowers beyond `far` as a texture in the ground bake
+};
+
 // [exports]
 struct ExportsConfig {
   bool povray = true;
@@ -143,6 +155,7 @@ struct SceneConfig {
   SunConfig sun;
   ImageConfig image;
   std::optional<GroundConfig> ground;  // [ground], when the file has it
+  CameraAwareConfig camera_aware;
   ExportsConfig exports;
   LdiConfig ldi;
   std::string text;  // the TOML as read (copied into the output folder)
