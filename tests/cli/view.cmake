@@ -52,6 +52,10 @@ view_sh_test(path "path.mp4"
 view_sh_test(window "stddev"
   "rm -rf \"$1.win\" && mkdir -p \"$1.win\" && cd \"$1.win\" && xvfb-run -a -s '-screen 0 640x480x24' \"$0\" --quiet view \"$1\" --size 320x240 --script 'screenshot,W*20,mouse:60:0,D*5,screenshot,Escape' && \"$0\" --quiet view \"$1\" --size 320x240 --out offline.png && idiff -a view-0001.png offline.png && ! idiff -a view-0002.png offline.png >/dev/null && \"$2\" \"$3\" view-0002.png 0.5 1.0 6"
   "${ground_variance}")
+# Under the asan preset: SDL's X11 and GL drivers are dlopen'ed and unloaded, so what they keep
+# until exit shows as leaks in an unknown module that no suppression can name; the other ASan
+# checks stay on. (No effect on a build without ASan.)
+set_property(TEST cli_view_window APPEND PROPERTY ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0")
 view_test(window_bad_script ${cli_expect} 1 "--script: 'W\\*x' has no frame count"
   "${WANGSCAPE_BIN}" --quiet view "${view_folder}" --script "W*x")
 

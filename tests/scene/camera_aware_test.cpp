@@ -178,7 +178,8 @@ TEST(CameraAware, IsOnWithoutAnAreaAndOffWithOne) {
   EXPECT_TRUE(
       scene_of(field_scene("[camera_aware]\nenabled = true\n", "area = [-50.0, -50.0, 50.0, 50.0]\n")).field->view);
   // Default distances: a 30 cm head spans 8 pixels at near and one at far (160 px, 50 degrees).
-  const auto& options = scene_of(field_scene("")).field->view->options();
+  const Scene scene = scene_of(field_scene(""));  // keeps the view the options belong to alive
+  const auto& options = scene.field->view->options();
   EXPECT_NEAR(options.far, 0.3 * 160 / (2 * std::tan(25 * std::numbers::pi / 180)), 1e-9);
   EXPECT_NEAR(options.near, options.far / 8, 1e-9);
   // The sun margin: the tallest flower's shadow at 15 degrees.
