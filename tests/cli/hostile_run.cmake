@@ -10,9 +10,10 @@ tiny_scene("${run_dir}/pov.toml" EXPORTS "povray = true")
 # SIGINT / SIGTERM while writing: exit 130 / 143, no temporary left, a dead run's removed.
 tiny_scene("${run_dir}/big_field.toml" TILES "" EXPORTS "povray = true\ngltf = true")
 file(READ "${run_dir}/big_field.toml" big_field)
-# About 1.4 million flowers (a few seconds of writing) over flat ground of 400 m.
-string(REPLACE "flat_size = 120.0" "flat_size = 400.0" big_field "${big_field}")
-string(REPLACE "area = [-12.0, -12.0, 12.0, 12.0]" "area = [-200.0, -200.0, 200.0, 200.0]" big_field "${big_field}")
+# About 5.8 million flowers over flat ground of 800 m: long enough that the signal always lands
+# before the build ends, even on an idle machine (1.4 million could finish first).
+string(REPLACE "flat_size = 120.0" "flat_size = 800.0" big_field "${big_field}")
+string(REPLACE "area = [-12.0, -12.0, 12.0, 12.0]" "area = [-400.0, -400.0, 400.0, 400.0]" big_field "${big_field}")
 string(REPLACE "points_per_tile = 10" "points_per_tile = 60" big_field "${big_field}")
 file(WRITE "${run_dir}/big_field.toml" "${big_field}")
 hostile_test(interrupt_tiling_sigint 0 "SIGINT -> exit 130"
