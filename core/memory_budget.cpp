@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 
 #include "core/error.h"
@@ -15,12 +16,23 @@ std::string gigabytes(double bytes) {
   std::snprintf(text, sizeof text, "%.2f GB", bytes / 1e9);
   return text;
 }
-}  // namespace
 
-std::uint64_t memory_limit_bytes() {
+std::atomic<std::uint64_t> process_limit_bytes{0};
+
+std::uint64_t machine_limit_bytes() {
   const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGESIZE);
   if (pages <= 0 || page_size <= 0) return kMaxBufferBytes;
   return std::min(kMaxBufferBytes, std::uint64_t(pages) * std::uint64_t(page_size) / 2);
+}
+}  // namespace
+
+std::uint64_t memory_limit_bytes() {
+  const std::uint64_t lowered = process_limit_bytes.load(std::memory_order_relaxed);
+  return lowered != 0 ? lowered : machine_limit_bytes();
+}
+
+void set_memory_limit_bytes_for_process(std::uint64_t bytes) {
+  process_limit_bytes.store(bytes, std::memory_order_relaxed);
 }
 
 void check_memory_estimate(const std::filesystem::path& file, const std::string& what, double estimated_bytes) {

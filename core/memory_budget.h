@@ -14,6 +14,11 @@ namespace wangscape {
 inline constexpr std::uint64_t kMaxBufferBytes = std::uint64_t{8} << 30;
 std::uint64_t memory_limit_bytes();
 
+// Lowers the limit for this process (0 restores the machine's). The DEM fuzzer sets 16 MiB so
+// that an input declaring a large raster is refused at once instead of costing seconds per
+// execution; the large-raster paths are covered by the tests at the real limit.
+void set_memory_limit_bytes_for_process(std::uint64_t bytes);
+
 // Throws Error(file, "", "<what> would need about N GB ...; the limit is L GB ...") when
 // `estimated_bytes` (a double: products of sizes never wrap) exceeds memory_limit_bytes().
 void check_memory_estimate(const std::filesystem::path& file, const std::string& what, double estimated_bytes);
