@@ -12,6 +12,7 @@
 
 #include "cli/command.h"
 #include "cli/progress.h"
+#include "core/memory_budget.h"
 #include "exporters/image_io.h"
 #include "exporters/point_writer.h"
 #include "exporters/reports.h"
@@ -91,6 +92,12 @@ void run(const ScatterOptions& options, const GlobalOptions& global) {
         fmt::format("scatter: {:.0f} x {:.0f} m in {:g} m tiles would place about {:.3g} instances; at most {:.0f} "
                     "million: a smaller --plane or a larger --tile-size",
                     plane.width(), plane.height(), options.tile_size, estimate, kMaxFieldInstances / 1e6));
+  if (options.metrics) {
+    check_memory_estimate(options.tileset, fmt::format("scatter --metrics over about {:.3g} instances", estimate),
+                          kMetricsBytesPerPoint * estimate);
+    xs.reserve(std::size_t(estimate * 1.05));  // no doubling past the estimate
+    ys.reserve(std::size_t(estimate * 1.05));
+  }
   Progress progress("scatter", static_cast<std::uint64_t>(estimate), global.quiet);
   const auto start = std::chrono::steady_clock::now();
   const auto sink = [&](const InstanceBatch& b) {

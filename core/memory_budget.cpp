@@ -1,5 +1,6 @@
 #include "core/memory_budget.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -19,10 +20,16 @@ std::string gigabytes(double bytes) {
 
 std::atomic<std::uint64_t> process_limit_bytes{0};
 
+// Half of what this process may hold: the physical memory, and the address-space limit when
+// one is set (`ulimit -v`, `prlimit --as`), where an allocation past it fails at once.
 std::uint64_t machine_limit_bytes() {
+  std::uint64_t limit = kMaxBufferBytes;
   const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGESIZE);
-  if (pages <= 0 || page_size <= 0) return kMaxBufferBytes;
-  return std::min(kMaxBufferBytes, std::uint64_t(pages) * std::uint64_t(page_size) / 2);
+  if (pages > 0 && page_size > 0) limit = std::min(limit, std::uint64_t(pages) * std::uint64_t(page_size) / 2);
+  rlimit address_space{};
+  if (::getrlimit(RLIMIT_AS, &address_space) == 0 && address_space.rlim_cur != RLIM_INFINITY)
+    limit = std::min(limit, std::uint64_t(address_space.rlim_cur) / 2);
+  return limit;
 }
 }  // namespace
 
@@ -41,7 +48,7 @@ void check_memory_estimate(const std::filesystem::path& file, const std::string&
     throw Error(file, "",
                 what + " would need about " + gigabytes(estimated_bytes) + " of memory; the limit is " +
                     gigabytes(limit) +
-                    " (half the physical memory, at most 8 GiB; see docs/limits.md): use a smaller raster");
+                    " (half the physical memory or of the address-space limit, at most 8 GiB; see docs/limits.md)");
 }
 
 }  // namespace wangscape

@@ -81,6 +81,10 @@ struct PointMetrics {
 
 PointMetrics measure_points(std::span<const float> x, std::span<const float> y, const PointMetricsOptions& options);
 
+// Peak bytes per point of collecting the points (two floats) and measuring them (the grid's
+// cell index, order and start, the spectrum windows' members), for estimating before a run.
+inline constexpr double kMetricsBytesPerPoint = 8.0 + 4.0 + 4.0 + 8.0 + 4.0;
+
 // A picture of the spectrum: left, the averaged periodogram (log scale, DC at the centre);
 // right, the radial power (white: 1 = white noise level, blue: power) and the anisotropy (red,
 // with its noise floor dashed) against frequency, up to 3.5 peak frequencies.

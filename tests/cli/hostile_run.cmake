@@ -96,3 +96,10 @@ hostile_test(points_per_tile_too_many 1 "many_points.toml:4: 'tiles.points_per_t
              "${WANGSCAPE_BIN}" build "${run_dir}/many_points.toml" --out "${run_dir}/many_points_out")
 hostile_test(fill_too_long 1 "filling 4096 tiles with 20 points each .* would take about [0-9]+ s. at most 60 s are accepted"
              "${WANGSCAPE_BIN}" tileset --set complete-edge-8 --per-tile 20)
+
+# scatter --metrics holds every point: estimated against the memory limit before placing, which
+# an address-space limit lowers (prlimit --as; ASan's shadow memory cannot start under one).
+hostile_test(scatter_metrics_memory 1 "filled.json: scatter --metrics over about 3.6e\\+07 instances would need about 1.01 GB of memory. the limit is 0.75 GB"
+             sh -c "\"$0\" --quiet tileset --set cohen8 --per-tile 5 --out \"$1/filled.json\" >/dev/null && exec prlimit --as=1500000000 \"$0\" scatter --tileset \"$1/filled.json\" --plane 3000x3000 --tile-size 1 --metrics"
+             "${WANGSCAPE_BIN}" "${run_dir}")
+set_property(TEST hostile_scatter_metrics_memory APPEND PROPERTY LABELS address-space-limit)
