@@ -16,6 +16,7 @@
 
 #include "core/error.h"
 #include "renders/embree_device.h"
+#include "renders/ground_colors.h"
 
 namespace wangscape {
 
@@ -33,47 +34,6 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 
 constexpr int kTile = 16;  // pixels: the unit of parallel work
 constexpr unsigned kTerrainId = 0;
-
-// The terrain's base color: the baked ground (sRGB8, pixel centres, north at the top) looked up
-// bilinearly by ENU (x, y) and decoded to linear, or one plain color.
-class GroundColors {
- public:
-  GroundColors(const GroundBake* bake, const Vec3f& plain) : bake_(bake), plain_(plain) {
-    for (int i = 0; i < 256; ++i) {
-      const float e = float(i) / 255.0f;
-      linear_[std::size_t(i)] = e <= 0.04045f ? e / 12.92f : std::pow((e + 0.055f) / 1.055f, 2.4f);
-    }
-    if (bake_ && (bake_->image.width < 1 || bake_->image.height < 1 || !(bake_->extent.width() > 0) ||
-                  !(bake_->extent.height() > 0)))
-      bake_ = nullptr;
-  }
-
-  Vec3f at(double x, double y) const {
-    if (!bake_) return plain_;
-    const ImageRgb8& img = bake_->image;
-    const Extent& e = bake_->extent;
-    const double fx = std::clamp((x - e.min_x) / e.width() * img.width - 0.5, 0.0, double(img.width - 1));
-    const double fy = std::clamp((e.max_y - y) / e.height() * img.height - 0.5, 0.0, double(img.height - 1));
-    const int x0 = int(fx), y0 = int(fy);
-    const int x1 = std::min(x0 + 1, img.width - 1), y1 = std::min(y0 + 1, img.height - 1);
-    const float ax = float(fx - x0), ay = float(fy - y0);
-    Vec3f out{};
-    for (std::size_t c = 0; c < 3; ++c) {
-      const auto v = [&](int px, int py) { return float(img.pixels[img.offset(px, py) + c]); };
-      const float top = v(x0, y0) + (v(x1, y0) - v(x0, y0)) * ax;
-      const float bottom = v(x0, y1) + (v(x1, y1) - v(x0, y1)) * ax;
-      const float srgb = top + (bottom - top) * ay;  // 0..255, interpolated as stored (as POV-Ray does)
-      const int i = std::clamp(int(srgb), 0, 254);
-      out[c] = linear_[std::size_t(i)] + (linear_[std::size_t(i) + 1] - linear_[std::size_t(i)]) * (srgb - float(i));
-    }
-    return out;
-  }
-
- private:
-  const GroundBake* bake_;
-  Vec3f plain_;
-  std::array<float, 256> linear_{};
-};
 
 // The flowers as structure of arrays, indexed by Embree instance id - 1.
 struct Flowers {

@@ -29,10 +29,13 @@ constexpr float kGroundEpsilon = 0.002f;
 constexpr float kNear = 0.05f;            // meters: the near plane
 constexpr float kSplatScale = 1.5f;       // splat side over the projected depth-pixel size (measured: no holes)
 constexpr int kMaxSplat = 24;             // pixels
-constexpr float kLevelBlendStart = 0.5f;  // of a level's range: where dithering into the next level starts
-constexpr float kDirectionBand = 0.15f;   // of the angle between two directions: dithered either side of the bisector
+constexpr float kLevelBlendStart = 0.75f;  // of a level's range: where dithering into the next level starts
+constexpr float kDirectionBand = 0.08f;   // of the angle between two directions: dithered either side of the bisector
 constexpr float kCanopyShare = 0.55f;     // of the prism top: the far field's color comes from samples above it
 constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+// Far-field steps after the pack's levels: one-layer LDIs of 1/2, 1/4, ... of the coarsest
+// level's resolution, each over twice the distance of the one before.
+constexpr std::uint32_t kFarSteps = 5;
 
 // The ordered 4 x 4 (Bayer) thresholds in (0, 1): which of two dithered LDIs owns a pixel.
 constexpr float kBayer[4][4] = {{0.5f / 16, 8.5f / 16, 2.5f / 16, 10.5f / 16},
@@ -57,6 +60,82 @@ struct Luts {
 const Luts& luts() {
   static const Luts l;
   return l;
+}
+
+// The front sample of an LDI pixel of `count` layers lies on the ground plane (the terrain draws
+// the ground; an LDI only adds what stands on it).
+bool front_is_ground(const LdiView& v, int x, int y, std::uint8_t count, const DepthPixel& front) {
+  return count == 1 && v.position(x, y, front)[2] < kGroundEpsilon + 0.75f * v.frame->pixel_size;
+}
+
+// A one-layer LDI of `v` at 1/factor of its resolution: per block of factor x factor pixels, the
+// mean linear color and mean depth of the front samples standing on the ground (not the ground
+// itself), kept where an ordered threshold of the block is below their share of the block, so
+// that the tile's cover is kept on average. Each sample sits at its block's centre.
+LdiImage one_layer_ldi(const LdiView& v, int factor) {
+  const LdiFrame& f = *v.frame;
+  LdiImage out;
+  out.frame = f;
+  out.frame.width = (f.width + std::uint32_t(factor) - 1) / std::uint32_t(factor);
+  out.frame.height = (f.height + std::uint32_t(factor) - 1) / std::uint32_t(factor);
+  out.frame.pixel_size = f.pixel_size * float(factor);
+  const std::uint32_t w = out.frame.width, h = out.frame.height;
+  struct Block {
+    double r = 0, g = 0, b = 0, depth = 0;
+    std::uint32_t flowers = 0;
+    std::uint16_t normal = 0;
+  };
+  std::vector<Block> blocks(std::size_t(w) * h);
+  const Luts& lut = luts();
+  for (std::uint32_t y = 0; y < f.height; ++y)
+    for (std::uint32_t s = v.row_spans[y]; s < v.row_spans[y + 1]; ++s) {
+      const LdiSpan& span = v.spans[s];
+      std::uint32_t depth = span.first_depth;
+      for (std::uint32_t k = 0; k < span.length; ++k) {
+        const std::uint8_t count = v.counts[span.first_pixel + k];
+        if (count == 0) continue;
+        const DepthPixel& front = v.depth_pixels[depth];
+        depth += count;
+        const int x = int(span.x + k);
+        if (front_is_ground(v, x, int(y), count, front)) continue;
+        Block& b = blocks[std::size_t(y / std::uint32_t(factor)) * w + std::uint32_t(x) / std::uint32_t(factor)];
+        b.r += lut.to_linear[front.r];
+        b.g += lut.to_linear[front.g];
+        b.b += lut.to_linear[front.b];
+        b.depth += front.depth();
+        if (b.flowers++ == 0) b.normal = front.normal();
+      }
+    }
+  const double area = double(factor) * double(factor);
+  out.row_spans.push_back(0);
+  for (std::uint32_t y = 0; y < h; ++y) {
+    std::uint32_t first = w, last = 0;
+    for (std::uint32_t x = 0; x < w; ++x) {
+      const Block& b = blocks[std::size_t(y) * w + x];
+      if (b.flowers == 0 || double(b.flowers) / area <= threshold(int(x), int(y))) continue;
+      first = std::min(first, x);
+      last = x;
+    }
+    if (first < w) {
+      out.spans.push_back({std::uint16_t(first), std::uint16_t(last - first + 1), std::uint32_t(out.counts.size()),
+                           std::uint32_t(out.depth_pixels.size())});
+      for (std::uint32_t x = first; x <= last; ++x) {
+        const Block& b = blocks[std::size_t(y) * w + x];
+        const bool kept = b.flowers > 0 && double(b.flowers) / area > threshold(int(x), int(y));
+        out.counts.push_back(kept ? 1 : 0);
+        if (!kept) continue;
+        const double n = double(b.flowers);
+        out.depth_pixels.push_back(DepthPixel::make(lut.encode(float(b.r / n)), lut.encode(float(b.g / n)),
+                                                    lut.encode(float(b.b / n)),
+                                                    std::uint16_t(std::lround(b.depth / n)), b.normal));
+      }
+    }
+    out.row_spans.push_back(std::uint32_t(out.spans.size()));
+  }
+  out.frame.span_count = std::uint32_t(out.spans.size());
+  out.frame.pixel_count = std::uint32_t(out.counts.size());
+  out.frame.depth_pixel_count = std::uint32_t(out.depth_pixels.size());
+  return out;
 }
 
 // The z-buffer entry: camera depth (positive float bits order like the floats) over the color.
@@ -112,7 +191,10 @@ std::shared_ptr<const ViewWorld> ViewWorld::load(const fs::path& dir, const Stag
 }
 
 ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettings& shading_settings)
-    : scene_(std::move(scene)), pack_(std::make_unique<LdiPack>(pack_path)), shading_(shading_settings) {
+    : scene_(std::move(scene)),
+      pack_(std::make_unique<LdiPack>(pack_path)),
+      shading_(shading_settings),
+      ground_colors_(scene_.ground_texture.get(), shading_.ground_color) {
   if (!scene_.field) throw Error("scene '" + scene_.name + "': no field of flowers to view");
   const SceneField& field = *scene_.field;
   const LdiPackInfo& info = pack_->info();
@@ -168,7 +250,6 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
 
   // Light as the LDI build's: the scene's sun (scaled by its strength) and the open sky.
   const ShadingSettings& shading = shading_;
-  plain_ground_ = shading.ground_color;
   const auto sun = scene_.sun.direction();
   sun_ = {float(sun[0]), float(sun[1]), float(sun[2])};
   const Mesh& mesh = scene_.terrain;
@@ -211,7 +292,7 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
             if (count == 0) continue;
             const DepthPixel& front = v.depth_pixels[depth];
             const float z = v.position(int(span.x + k), int(y), front)[2];
-            if (count == 1 && z < kGroundEpsilon + 0.75f * v.frame->pixel_size) {
+            if (front_is_ground(v, int(span.x + k), int(y), count, front)) {
               ++ground;
             } else {
               ++flowers;
@@ -231,34 +312,21 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
         out[std::size_t(c)] = float(top ? top_sum[c] / double(top) : sum[c] / double(flowers));
       out[3] = float(double(flowers) / double(flowers + ground));
     }
+
+  // The one-layer far LDIs, while the coarsest level's resolution allows a step.
+  while (far_steps_ < kFarSteps && (pack_->ldi(0, level, 0).frame->width >> (far_steps_ + 1)) >= 1) ++far_steps_;
+  far_ldis_.reserve(std::size_t(info.tiles) * info.directions * far_steps_);
+  for (std::uint32_t t = 0; t < info.tiles; ++t)
+    for (std::uint32_t d = 0; d < info.directions; ++d)
+      for (std::uint32_t k = 0; k < far_steps_; ++k) far_ldis_.push_back(one_layer_ldi(pack_->ldi(t, level, d), 2 << k));
+}
+
+LdiView ViewWorld::far_ldi(std::uint32_t tile, std::uint32_t direction, std::uint32_t step) const {
+  return far_ldis_[(std::size_t(tile) * pack_->info().directions + direction) * far_steps_ + step].view();
 }
 
 double ViewWorld::ground_height(double x, double y, double fallback) const {
   return scene_.field->ground.height(x, y).value_or(fallback);
-}
-
-std::array<float, 3> ViewWorld::ground_color(double x, double y) const {
-  const GroundBake* bake = scene_.ground_texture.get();
-  if (!bake || bake->image.width <= 0 || bake->extent.width() <= 0 || bake->extent.height() <= 0) return plain_ground_;
-  const ImageRgb8& image = bake->image;
-  // Pixel centres, north at the top.
-  const double u = (x - bake->extent.min_x) / bake->extent.width() * image.width - 0.5;
-  const double v = (bake->extent.max_y - y) / bake->extent.height() * image.height - 0.5;
-  const int x0 = std::clamp(int(std::floor(u)), 0, image.width - 1),
-            y0 = std::clamp(int(std::floor(v)), 0, image.height - 1);
-  const int x1 = std::min(x0 + 1, image.width - 1), y1 = std::min(y0 + 1, image.height - 1);
-  const float fx = float(std::clamp(u - std::floor(u), 0.0, 1.0)), fy = float(std::clamp(v - std::floor(v), 0.0, 1.0));
-  const Luts& lut = luts();
-  const std::uint8_t* p = image.pixels.data();
-  const std::size_t o00 = image.offset(x0, y0), o10 = image.offset(x1, y0), o01 = image.offset(x0, y1),
-                    o11 = image.offset(x1, y1);
-  std::array<float, 3> out{};
-  for (std::size_t c = 0; c < 3; ++c) {
-    const float top = lut.to_linear[p[o00 + c]] * (1 - fx) + lut.to_linear[p[o10 + c]] * fx;
-    const float bottom = lut.to_linear[p[o01 + c]] * (1 - fx) + lut.to_linear[p[o11 + c]] * fx;
-    out[c] = top * (1 - fy) + bottom * fy;
-  }
-  return out;
 }
 
 // ---- the renderer --------------------------------------------------------------------------
@@ -372,9 +440,10 @@ void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, 
       depth_write(zbuffer[std::size_t(py) * std::size_t(width) + std::size_t(px)], entry);
       return;
     }
-    const int n = std::min(int(std::ceil(size)), kMaxSplat);
-    const int x0 = int(std::ceil(sx - 0.5f * float(n) - 0.5f)), y0 = int(std::ceil(sy - 0.5f * float(n) - 0.5f));
-    const int xa = std::max(x0, 0), xb = std::min(x0 + n, width), ya = std::max(y0, 0), yb = std::min(y0 + n, height);
+    // The pixels whose centres the splat's square covers: about size^2 of them, not ceil(size)^2.
+    const float half = 0.5f * std::min(size, float(kMaxSplat));
+    const int xa = std::max(int(std::ceil(sx - half - 0.5f)), 0), xb = std::min(int(std::ceil(sx + half - 0.5f)), width);
+    const int ya = std::max(int(std::ceil(sy - half - 0.5f)), 0), yb = std::min(int(std::ceil(sy + half - 0.5f)), height);
     for (int py = ya; py < yb; ++py) {
       std::uint64_t* row = zbuffer + std::size_t(py) * std::size_t(width);
       for (int px = xa; px < xb; ++px) {
@@ -475,6 +544,13 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   const double pack_focal = double(info.image_width) / 2 / std::tan(double(info.fov_degrees) * std::numbers::pi / 360);
   const double distance_scale = pack_focal / double(m.focal);
   const double far_start = double(info.level_distances[levels - 1]) + s;
+  // The pack's levels, then the far steps: where (in the pack view's distances) level a starts.
+  const std::uint32_t drawn_levels = levels + world.far_steps();
+  const auto level_start = [&](std::uint32_t a) {
+    if (a == 0) return 0.0;
+    if (a < levels) return double(info.level_distances[a]);
+    return far_start * double(1u << (a - levels));
+  };
   const float top = info.prism_top;
   for (std::size_t t = 0; t < tiles.size(); ++t) {
     const double x0 = tiles.x0[t], y0 = tiles.y0[t];
@@ -489,18 +565,17 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
     // Level: the finest whose near distance the tile has passed; the last half of its range
     // dithers into the next (or into the far field after the last).
     std::uint32_t a = 0;
-    while (a < levels && e >= (a + 1 < levels ? double(info.level_distances[a + 1]) : far_start)) ++a;
+    while (a < drawn_levels && e >= level_start(a + 1)) ++a;
     float wb = 0;
-    if (a < levels) {
-      const double lo = a == 0 ? 0.0 : double(info.level_distances[a]);
-      const double hi = a + 1 < levels ? double(info.level_distances[a + 1]) : far_start;
+    if (a < drawn_levels) {
+      const double lo = level_start(a), hi = level_start(a + 1);
       const double f = (e - lo) / (hi - lo);
       wb = float(std::clamp((f - kLevelBlendStart) / (1 - kLevelBlendStart), 0.0, 1.0));
     }
     m.level_a[t] = std::uint8_t(a);
-    m.level_b[t] = std::uint8_t(std::min(a + 1, levels));
+    m.level_b[t] = std::uint8_t(std::min(a + 1, drawn_levels));
     m.level_b_weight[t] = wb;
-    m.far_from[t] = a >= levels ? 0.0f : (a + 1 == levels ? 1.0f - wb : 2.0f);
+    m.far_from[t] = a >= drawn_levels ? 0.0f : (a + 1 == drawn_levels ? 1.0f - wb : 2.0f);
 
     // Direction: the two whose rays are closest to the view ray (largest dot products).
     const double vx = x0 + s / 2 - m.eye[0], vy = y0 + s / 2 - m.eye[1], vn = std::hypot(vx, vy);
@@ -552,14 +627,15 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
       continue;
     }
     ++stats_.tiles_drawn;
-    ++stats_.levels[a];
-    if (a < levels && (mask_.empty() || (t < mask_.size() && mask_[t]))) order_.push_back(std::uint32_t(t));
+    ++stats_.levels[std::min(a, levels)];
+    if (a < drawn_levels && (mask_.empty() || (t < mask_.size() && mask_[t]))) order_.push_back(std::uint32_t(t));
   }
   // Back to front (the farthest first; ties by index).
   std::sort(order_.begin(), order_.end(), [&](std::uint32_t p, std::uint32_t q) {
     return m.distance[p] != m.distance[q] ? m.distance[p] > m.distance[q] : p < q;
   });
 
+  const auto tiles_done = std::chrono::steady_clock::now();
   // ---- the LDIs: tiles in parallel into the one z-buffer ----
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, order_.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -579,8 +655,10 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
                                  {lb, m.dir_a[t], split, split + wl * (1 - wd)},
                                  {lb, m.dir_b[t], split + wl * (1 - wd), 1}};
           for (const Part& part : parts) {
-            if (!(part.to > part.from) || part.level >= levels) continue;
-            const LdiView v = pack.ldi(tiles.tile[t], part.level, part.direction);
+            if (!(part.to > part.from) || part.level >= drawn_levels) continue;
+            const bool far = part.level >= levels;
+            const LdiView v = far ? world.far_ldi(tiles.tile[t], part.direction, part.level - levels)
+                                  : pack.ldi(tiles.tile[t], part.level, part.direction);
             const LdiFrame& f = *v.frame;
             Warp w;
             const double p = f.pixel_size;
@@ -602,7 +680,8 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
             w.h11 = tiles.h[3][t];
             w.inverse_tile = float(1 / s);
             w.depth_scale = f.depth_range / 65535.0f;
-            w.ground_below = kGroundEpsilon + 0.75f * f.pixel_size;
+            // (A far LDI holds no ground samples: its low samples are flowers.)
+            w.ground_below = far ? -std::numeric_limits<float>::infinity() : kGroundEpsilon + 0.75f * f.pixel_size;
             w.splat = float(p) * m.focal * kSplatScale;
             w.from = part.from;
             w.to = part.to;
@@ -621,6 +700,7 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
         m.depth_pixels += counted;
       });
 
+  const auto ldis_done = std::chrono::steady_clock::now();
   // ---- the terrain: vertices to camera space, triangles rasterized in parallel ----
   const ViewWorld::Terrain& terrain = world.terrain();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, terrain.x.size(), 4096), [&](const auto& r) {
@@ -681,6 +761,11 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
         if (wa < 0 || wb < 0 || wc < 0) continue;
         const float iz = wa * iza + wb * izb + wc * izc;
         const float z = 1 / iz;
+        // Early depth test: most ground under the field is hidden by flowers drawn before it.
+        const std::uint64_t drawn = std::atomic_ref<std::uint64_t>(m.zbuffer[std::size_t(py) * std::size_t(m.width) +
+                                                                             std::size_t(px)])
+                                        .load(std::memory_order_relaxed);
+        if (pack_entry(z, 0, 0, 0) > drawn) continue;
         wa *= iza * z;
         wb *= izb * z;
         wc *= izc * z;
@@ -738,6 +823,7 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
     }
   });
 
+  const auto terrain_done = std::chrono::steady_clock::now();
   // ---- resolve: the z-buffer's colors, the sky where nothing was drawn ----
   tbb::parallel_for(tbb::blocked_range<int>(0, m.height, 8), [&](const tbb::blocked_range<int>& r) {
     for (int py = r.begin(); py != r.end(); ++py) {
@@ -763,8 +849,12 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
       }
     }
   });
+  const auto end = std::chrono::steady_clock::now();
+  const auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
+  stats_.phase_ms = {ms(start, tiles_done), ms(tiles_done, ldis_done), ms(ldis_done, terrain_done),
+                     ms(terrain_done, end)};
   stats_.depth_pixels = m.depth_pixels;
-  stats_.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  stats_.frame_ms = ms(start, end);
   return stats_;
 }
 

@@ -10,8 +10,10 @@
 //    epipole first, layers back to front), sheared onto the tile's two terrain triangles,
 //    each depth pixel splatted as a square as large as its projected footprint;
 //  - the terrain mesh rasterized (perspective-correct), shaded with the sun and sky of
-//    renders/shading.h and colored by Scene::ground_texture; beyond the last level each tile
-//    adds its directional average color (made once from the coarsest LDIs) over the ground;
+//    renders/shading.h and colored by Scene::ground_texture;
+//  - beyond the last level, one-layer LDIs made once from the coarsest level at 1/2, 1/4, ...
+//    of its resolution, warped like the others over doubling distances, so the heads stand out
+//    to the horizon; beyond those, each tile's directional average color over the ground;
 //  - one software z-buffer: depth and color packed in 64 bits, written with an atomic minimum,
 //    so tiles and triangles run in parallel (TBB) and the frame is the same on any thread count;
 //  - the sky where nothing was drawn.
@@ -28,6 +30,7 @@
 #include <vector>
 
 #include "generator/image.h"
+#include "renders/ground_colors.h"
 #include "renders/ldi_pack.h"
 #include "renders/shading.h"
 #include "scene/scene.h"
@@ -81,11 +84,16 @@ class ViewWorld {
   // Per (set tile, direction): the linear average color of the coarsest LDI's front flower
   // samples and the share of its front samples that are flowers (not ground).
   const std::vector<std::array<float, 4>>& far_colors() const { return far_; }
+  // Beyond the pack's levels, the field goes on as one-layer LDIs (seed 003's future work), per
+  // (set tile, direction) and step: step k has 1 / 2^(k+1) of the coarsest level's resolution
+  // and is drawn over twice the distance of step k - 1; beyond the last step, the far colors.
+  std::uint32_t far_steps() const { return far_steps_; }
+  LdiView far_ldi(std::uint32_t tile, std::uint32_t direction, std::uint32_t step) const;
   // The ground's height (meters) at (x, y), or `fallback` off the ground.
   double ground_height(double x, double y, double fallback) const;
   // Linear base color of the ground at (x, y): the baked ground texture (bilinear), or the
-  // shading model's ground color without [ground].
-  std::array<float, 3> ground_color(double x, double y) const;
+  // shading model's ground color without [ground]; the Embree reference's (GroundColors).
+  std::array<float, 3> ground_color(double x, double y) const { return ground_colors_.at(x, y); }
   const std::array<float, 3>& sun_direction() const { return sun_; }
   // The light the pack was shaded with (the scene's [ldi] sky rays; the Embree reference of
   // --compare uses it too).
@@ -101,14 +109,18 @@ class ViewWorld {
   int grid_width_ = 0, grid_height_ = 0;
   std::vector<std::int32_t> grid_;
   std::vector<std::array<float, 4>> far_;
+  std::uint32_t far_steps_ = 0;
+  std::vector<LdiImage> far_ldis_;  // (tile * directions + direction) * far_steps_ + step
   std::array<float, 3> sun_{0, 0, 1};
-  std::array<float, 3> plain_ground_{};  // linear, without a ground texture
   ShadingSettings shading_;
+  GroundColors ground_colors_;  // of scene_'s bake, shading_'s plain ground
 };
 
 // What one frame drew.
 struct ViewFrameStats {
   double frame_ms = 0;
+  // Of it: choosing and culling tiles, warping LDIs, rasterizing the terrain, resolving (sky).
+  std::array<double, 4> phase_ms{};
   std::uint64_t depth_pixels = 0;  // depth pixels warped
   std::uint64_t tiles_drawn = 0;   // in the frustum: drawn as LDIs or as far-field color
   std::uint64_t tiles_culled = 0;  // outside the frustum

@@ -180,15 +180,20 @@ ViewCamera view_camera(const ViewWorld& world, const ViewRequest& request) {
 }
 
 ViewFrameStats measure_view(LdiRenderer& renderer, const ViewCamera& camera, int frames) {
-  std::vector<double> times;
-  times.reserve(std::size_t(std::max(frames, 1)));
+  // The frame time and each phase's: medians of their own.
+  std::array<std::vector<double>, 5> times;
   ViewFrameStats stats;
   for (int k = 0; k < std::max(frames, 1); ++k) {
     stats = renderer.render(camera);
-    times.push_back(stats.frame_ms);
+    times[0].push_back(stats.frame_ms);
+    for (std::size_t p = 0; p < 4; ++p) times[p + 1].push_back(stats.phase_ms[p]);
   }
-  std::nth_element(times.begin(), times.begin() + std::ptrdiff_t(times.size() / 2), times.end());
-  stats.frame_ms = times[times.size() / 2];
+  const auto median = [](std::vector<double>& v) {
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  stats.frame_ms = median(times[0]);
+  for (std::size_t p = 0; p < 4; ++p) stats.phase_ms[p] = median(times[p + 1]);
   return stats;
 }
 
@@ -256,6 +261,8 @@ int run_view(const ViewRequest& request) {
                   camera.target[2], camera.fov_degrees, width, height);
       std::printf("frame: %.2f ms (%.1f frames/s, median of %d)\n", stats.frame_ms,
                   stats.frame_ms > 0 ? 1000 / stats.frame_ms : 0.0, request.repeat ? request.repeat : 200);
+      std::printf("of it: tiles %.2f ms, LDIs %.2f ms, terrain %.2f ms, sky and resolve %.2f ms\n", stats.phase_ms[0],
+                  stats.phase_ms[1], stats.phase_ms[2], stats.phase_ms[3]);
       std::printf("depth pixels: %llu (%.1f M/s)\n", static_cast<unsigned long long>(stats.depth_pixels),
                   stats.frame_ms > 0 ? double(stats.depth_pixels) / stats.frame_ms / 1e3 : 0.0);
       std::printf("tiles: %llu drawn, %llu culled\n", static_cast<unsigned long long>(stats.tiles_drawn),
