@@ -1,5 +1,6 @@
 #include "renders/ldi_view.h"
 
+#include <embree3/rtcore.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -14,6 +15,7 @@
 #include "core/error.h"
 #include "exporters/scene_folder.h"
 #include "generator/placement.h"
+#include "renders/embree_device.h"
 #include "renders/ldi_scene.h"
 #include "renders/shading.h"
 
@@ -167,6 +169,42 @@ bool files_resolve(const SceneConfig& c) {
   return true;
 }
 
+// The terrain's shadows on itself, as the reference's shadow rays see them, per vertex: 1 where
+// the sun is seen past the terrain from just above the vertex, else 0 (interpolated over the
+// triangles, so a shadow's edge is as soft as the mesh is coarse).
+std::vector<float> terrain_sun_visibility(const Mesh& mesh, const std::array<float, 3>& sun) {
+  std::vector<float> visible(mesh.positions.size(), sun[2] > 0 ? 1.0f : 0.0f);
+  if (sun[2] <= 0 || mesh.triangles.empty()) return visible;
+  EmbreeDevice device;
+  EmbreeScene scene(device.get());
+  RTCGeometry geometry = triangle_geometry(device.get(), mesh.positions, mesh.triangles);
+  rtcAttachGeometry(scene.get(), geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(scene.get());
+  device.check("building the terrain's shadow scene");
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, visible.size(), 2048), [&](const auto& r) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    for (std::size_t v = r.begin(); v != r.end(); ++v) {
+      const auto& p = mesh.positions[v];
+      RTCRay ray{};
+      ray.org_x = p[0];
+      ray.org_y = p[1];
+      ray.org_z = p[2] + 0.05f;  // above the vertex's own triangles
+      ray.dir_x = sun[0];
+      ray.dir_y = sun[1];
+      ray.dir_z = sun[2];
+      ray.tnear = 0.01f;
+      ray.tfar = std::numeric_limits<float>::infinity();
+      ray.mask = ~0u;
+      rtcOccluded1(scene.get(), &context, &ray);
+      if (ray.tfar < 0) visible[v] = 0;  // Embree's mark of an occluded ray
+    }
+  });
+  device.check("tracing the terrain's shadows");
+  return visible;
+}
+
 }  // namespace
 
 // ---- the world -----------------------------------------------------------------------------
@@ -248,19 +286,21 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
     }
   }
 
-  // Light as the LDI build's: the scene's sun (scaled by its strength) and the open sky.
+  // Light as the LDI build's: the scene's sun (scaled by its strength, where the terrain does not
+  // shadow it) and the open sky.
   const ShadingSettings& shading = shading_;
   const auto sun = scene_.sun.direction();
   sun_ = {float(sun[0]), float(sun[1]), float(sun[2])};
   const Mesh& mesh = scene_.terrain;
   terrain_.triangles = mesh.triangles;
+  const std::vector<float> sunlit = terrain_sun_visibility(mesh, sun_);
   for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
     const auto& p = mesh.positions[v];
     terrain_.x.push_back(p[0]);
     terrain_.y.push_back(p[1]);
     terrain_.z.push_back(p[2]);
     const std::array<float, 3> n = v < mesh.normals.size() ? mesh.normals[v] : std::array<float, 3>{0, 0, 1};
-    const float cos_sun = std::max(0.0f, n[0] * sun_[0] + n[1] * sun_[1] + n[2] * sun_[2]);
+    const float cos_sun = sunlit[v] * std::max(0.0f, n[0] * sun_[0] + n[1] * sun_[1] + n[2] * sun_[2]);
     const float strength = float(scene_.sun.strength);
     auto light = [&](int c) {
       return (shading.sun_color[std::size_t(c)] * strength * cos_sun + shading.sky_color[std::size_t(c)]) *

@@ -30,7 +30,9 @@
 #include <vector>
 
 #include "generator/image.h"
+#include "renders/embree_reference.h"
 #include "renders/ground_colors.h"
+#include "renders/image_compare.h"
 #include "renders/ldi_pack.h"
 #include "renders/shading.h"
 #include "scene/scene.h"
@@ -194,6 +196,17 @@ ViewCamera view_camera(const ViewWorld& world, const ViewRequest& request);
 // Offline frame(s), path playback or the window, as the request says; prints stats to stdout.
 // Returns the exit code (0). Throws Error for bad input.
 int run_view(const ViewRequest& request);
+
+// The renderer's last frame (drawn from `camera`) against the Embree reference of the same
+// camera and size, ray traced with the light the pack was shaded with at `samples_per_pixel`
+// (0: the scene's): PSNR, SSIM, holes (sky in the frame where the reference has geometry) and
+// the difference image; `reference` holds the reference's own figures (its time).
+struct ViewComparison {
+  ImageComparison comparison;
+  ReferenceStats reference;
+};
+ViewComparison compare_with_reference(const ViewWorld& world, const LdiRenderer& renderer, const ViewCamera& camera,
+                                      int samples_per_pixel);
 
 // Median frame statistics over `frames` renders of one camera.
 ViewFrameStats measure_view(LdiRenderer& renderer, const ViewCamera& camera, int frames);

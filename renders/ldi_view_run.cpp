@@ -124,13 +124,32 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest&
 }
 
 // --compare: the same camera ray traced by the Embree reference, and the figures.
-void compare_with_reference(const ViewWorld& world, const LdiRenderer& renderer, const ViewCamera& camera,
-                            const ViewRequest& request) {
+void print_comparison(const ViewWorld& world, const LdiRenderer& renderer, const ViewCamera& camera,
+                      const ViewRequest& request) {
+  const ViewComparison v = compare_with_reference(world, renderer, camera, request.reference_samples);
+  const ImageComparison& c = v.comparison;
+  if (!request.diff.empty()) write_image(request.diff, c.difference);
+  if (request.json)
+    std::printf("{\"psnr_db\": %s, \"ssim\": %s, \"hole_share\": %s, \"holes\": %llu, \"reference_seconds\": %s}\n",
+                number(c.psnr_db).c_str(), number(c.ssim).c_str(), number(c.holes.share).c_str(),
+                static_cast<unsigned long long>(c.holes.holes), number(v.reference.seconds).c_str());
+  else
+    std::printf(
+        "PSNR: %.2f dB\nSSIM: %.4f\nholes: %.4f %% of the pixels (%llu; %.4f %% of the reference's covered)\n"
+        "reference: %d samples per pixel, %.2f s\n",
+        c.psnr_db, c.ssim, 100 * c.holes.share, static_cast<unsigned long long>(c.holes.holes),
+        100 * c.holes.share_of_covered, v.reference.samples_per_pixel, v.reference.seconds);
+}
+
+}  // namespace
+
+ViewComparison compare_with_reference(const ViewWorld& world, const LdiRenderer& renderer, const ViewCamera& camera,
+                                      int samples_per_pixel) {
   ReferenceOptions options;
   options.camera = Camera{camera.position, camera.target, camera.fov_degrees};
   options.width = renderer.width();
   options.height = renderer.height();
-  options.samples_per_pixel = request.reference_samples;
+  options.samples_per_pixel = samples_per_pixel;
   options.shading = world.shading();
   const ReferenceImage reference = render_reference(world.scene(), options);
   const CoverageMask reference_mask = coverage_mask(reference.coverage, renderer.width(), renderer.height());
@@ -139,21 +158,8 @@ void compare_with_reference(const ViewWorld& world, const LdiRenderer& renderer,
   for (int y = 0; y < renderer.height(); ++y)
     for (int x = 0; x < renderer.width(); ++x)
       view_mask.covered[std::size_t(y) * std::size_t(renderer.width()) + std::size_t(x)] = !renderer.sky_at(x, y);
-  const ImageComparison c = compare_images(renderer.image(), reference.image, &view_mask, &reference_mask);
-  if (!request.diff.empty()) write_image(request.diff, c.difference);
-  if (request.json)
-    std::printf("{\"psnr_db\": %s, \"ssim\": %s, \"hole_share\": %s, \"holes\": %llu, \"reference_seconds\": %s}\n",
-                number(c.psnr_db).c_str(), number(c.ssim).c_str(), number(c.holes.share).c_str(),
-                static_cast<unsigned long long>(c.holes.holes), number(reference.stats.seconds).c_str());
-  else
-    std::printf(
-        "PSNR: %.2f dB\nSSIM: %.4f\nholes: %.4f %% of the pixels (%llu; %.4f %% of the reference's covered)\n"
-        "reference: %d samples per pixel, %.2f s\n",
-        c.psnr_db, c.ssim, 100 * c.holes.share, static_cast<unsigned long long>(c.holes.holes),
-        100 * c.holes.share_of_covered, reference.stats.samples_per_pixel, reference.stats.seconds);
+  return {compare_images(renderer.image(), reference.image, &view_mask, &reference_mask), reference.stats};
 }
-
-}  // namespace
 
 ViewCamera view_camera(const ViewWorld& world, const ViewRequest& request) {
   ViewCamera camera;
@@ -249,7 +255,7 @@ int run_view(const ViewRequest& request) {
       request.stats ? measure_view(renderer, camera, request.repeat ? request.repeat : 200) : renderer.render(camera);
   if (!request.out.empty()) write_image(request.out, renderer.image());
   if (request.compare) {
-    compare_with_reference(*world, renderer, camera, request);
+    print_comparison(*world, renderer, camera, request);
     return 0;
   }
   if (request.stats) {
