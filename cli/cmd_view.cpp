@@ -55,6 +55,9 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--diff", o->request.diff, "With --compare: write the difference image");
   sub->add_option("--spp", o->request.reference_samples, "With --compare: reference samples per pixel");
   sub->add_option("--threads", o->request.threads, "Threads (default: all cores)")->check(CLI::Range(0, 1024));
+  sub->add_option("--detail", o->request.detail,
+                  "Level-of-detail scale: 1 the pack's levels, 0.5 coarser and faster, 2 finer (0.1 .. 10)")
+      ->check(finite_number());
   sub->callback([o, &global] {
     ViewRequest& r = o->request;
     r.dir = o->dir;

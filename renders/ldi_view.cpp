@@ -2,6 +2,7 @@
 
 #include <embree3/rtcore.h>
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -371,6 +372,54 @@ double ViewWorld::ground_height(double x, double y, double fallback) const {
 
 // ---- the renderer --------------------------------------------------------------------------
 
+namespace {
+
+// Bit k set: the thresholds (k + 0.5) / 16 in [from, to), those of kBayer a dithered LDI owns.
+std::uint16_t owned_thresholds(float from, float to) {
+  std::uint16_t mask = 0;
+  for (int k = 0; k < 16; ++k) {
+    const float th = (float(k) + 0.5f) / 16;
+    if (th >= from && th < to) mask = std::uint16_t(mask | 1u << k);
+  }
+  return mask;
+}
+int bayer_index(int x, int y) { return int(kBayer[y & 3][x & 3] * 16); }  // k of (k + 0.5) / 16
+
+// Splats are not written as they are made: each goes into the bucket of the 64 x 64 pixel bin
+// it covers (one set of buckets per thread), and the bins are then resolved one per task, so a
+// bin's z-buffer stays in the core's cache and no write needs an atomic. The z-buffer keeps the
+// smallest entry, so the order of the buckets does not change a byte.
+constexpr int kBinShift = 6;
+struct Splat {
+  std::uint64_t entry;
+  std::uint16_t x, y;   // the top-left pixel
+  std::uint8_t w, h;    // pixels
+  std::uint16_t owned;  // owned_thresholds of its LDI
+};
+static_assert(sizeof(Splat) == 16);
+
+struct SplatBins {
+  int columns = 0;
+  std::vector<std::vector<Splat>> bins;  // row-major; cleared per frame, their capacity kept
+  void reset(int bin_columns, int bin_rows) {
+    columns = bin_columns;
+    bins.resize(std::size_t(bin_columns) * std::size_t(bin_rows));
+    for (auto& b : bins) b.clear();
+  }
+  // The pixels [xa, xb) x [ya, yb), not empty and inside the frame.
+  void add(int xa, int xb, int ya, int yb, std::uint64_t entry, std::uint16_t owned) {
+    for (int by = ya >> kBinShift; by <= (yb - 1) >> kBinShift; ++by)
+      for (int bx = xa >> kBinShift; bx <= (xb - 1) >> kBinShift; ++bx) {
+        const int x0 = std::max(xa, bx << kBinShift), x1 = std::min(xb, (bx + 1) << kBinShift);
+        const int y0 = std::max(ya, by << kBinShift), y1 = std::min(yb, (by + 1) << kBinShift);
+        bins[std::size_t(by) * std::size_t(columns) + std::size_t(bx)].push_back(
+            {entry, std::uint16_t(x0), std::uint16_t(y0), std::uint8_t(x1 - x0), std::uint8_t(y1 - y0), owned});
+      }
+  }
+};
+
+}  // namespace
+
 struct LdiRenderer::Impl {
   int width = 0, height = 0;
   std::vector<std::uint64_t> zbuffer;
@@ -384,6 +433,8 @@ struct LdiRenderer::Impl {
   // Terrain vertices in camera space.
   std::vector<float> vx, vy, vz;
   std::atomic<std::uint64_t> depth_pixels{0};
+  tbb::enumerable_thread_specific<SplatBins> splat_bins;  // per thread, kept across frames
+  int bin_columns = 0, bin_rows = 0;
 
   std::array<float, 3> to_camera(double x, double y, double z) const {
     const V3 d{x - eye[0], y - eye[1], z - eye[2]};
@@ -404,6 +455,8 @@ LdiRenderer::LdiRenderer(std::shared_ptr<const ViewWorld> world, int width, int 
   m.width = width;
   m.height = height;
   m.zbuffer.assign(std::size_t(width) * std::size_t(height), kEmpty);
+  m.bin_columns = (width + (1 << kBinShift) - 1) >> kBinShift;
+  m.bin_rows = (height + (1 << kBinShift) - 1) >> kBinShift;
   image_ = ImageRgb8(width, height);
   const std::size_t n = world_->tiles().size();
   for (auto* v :
@@ -431,6 +484,13 @@ float LdiRenderer::depth_at(int x, int y) const {
 
 double LdiRenderer::tile_distance(std::uint32_t t) const { return impl_->distance[t]; }
 
+void LdiRenderer::set_detail(double detail) {
+  if (!(detail >= kMinViewDetail && detail <= kMaxViewDetail))
+    throw Error("view: detail " + std::to_string(detail) + "; expected " + std::to_string(kMinViewDetail) + " .. " +
+                std::to_string(kMaxViewDetail) + " (1: the pack's levels at their own distances)");
+  detail_ = detail;
+}
+
 namespace {
 
 // One LDI of one tile warped into the z-buffer: what stays fixed over its depth pixels.
@@ -440,15 +500,14 @@ struct Warp {
   std::array<float, 3> local_base{}, local_x{}, local_y{}, local_d{};  // tile-local position, likewise
   float h00 = 0, h10 = 0, h01 = 0, h11 = 0, inverse_tile = 1;
   float depth_scale = 0, splat = 0;  // meters per depth step; splat side times depth (pixels x meters)
-  float from = 0, to = 1;            // the dither thresholds this LDI owns
+  std::uint16_t owned = 0xffff;      // the dither thresholds this LDI owns (owned_thresholds)
   float ground_below = 0;            // meters: a last layer lower than this is the ground plane
   bool reverse_layers = false;
   int epipole_x = 0, epipole_y = 0;
 };
 
 void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, int width, int height,
-              std::uint64_t* zbuffer, std::uint64_t& depth_pixels) {
-  const bool all = w.from <= 0 && w.to >= 1;
+              SplatBins& out, std::uint64_t& depth_pixels) {
   // What one pixel of the LDI contributes before its layers' depths: tile-local and camera space.
   struct PixelBase {
     float lx, ly, lz, cx, cy, cz;
@@ -473,27 +532,14 @@ void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, 
     if (size <= 1.0f) {  // most splats: one pixel
       const int px = int(std::floor(sx)), py = int(std::floor(sy));
       if (px < 0 || py < 0 || px >= width || py >= height) return;
-      if (!all) {
-        const float th = threshold(px, py);
-        if (th < w.from || th >= w.to) return;
-      }
-      depth_write(zbuffer[std::size_t(py) * std::size_t(width) + std::size_t(px)], entry);
+      out.add(px, px + 1, py, py + 1, entry, w.owned);
       return;
     }
     // The pixels whose centres the splat's square covers: about size^2 of them, not ceil(size)^2.
     const float half = 0.5f * std::min(size, float(kMaxSplat));
     const int xa = std::max(int(std::ceil(sx - half - 0.5f)), 0), xb = std::min(int(std::ceil(sx + half - 0.5f)), width);
     const int ya = std::max(int(std::ceil(sy - half - 0.5f)), 0), yb = std::min(int(std::ceil(sy + half - 0.5f)), height);
-    for (int py = ya; py < yb; ++py) {
-      std::uint64_t* row = zbuffer + std::size_t(py) * std::size_t(width);
-      for (int px = xa; px < xb; ++px) {
-        if (!all) {
-          const float th = threshold(px, py);
-          if (th < w.from || th >= w.to) continue;
-        }
-        depth_write(row[px], entry);
-      }
-    }
+    if (xa < xb && ya < yb) out.add(xa, xb, ya, yb, entry, w.owned);
   };
   auto visit = [&](int x, int y, std::uint32_t first, std::uint32_t count) {
     depth_pixels += count;
@@ -600,7 +646,7 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
     const double dz = std::max(0.0, m.eye[2] - ground - info.head_height);
     const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
     m.distance[t] = float(d);
-    const double e = d * distance_scale;  // the distance at which the pack's view sees the tile this large
+    const double e = d * distance_scale / detail_;  // the distance at which the pack's view sees the tile this large
 
     // Level: the finest whose near distance the tile has passed; the last half of its range
     // dithers into the next (or into the far field after the last).
@@ -680,6 +726,9 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, order_.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
         std::uint64_t counted = 0;
+        SplatBins& bins = m.splat_bins.local();
+        if (bins.bins.size() != std::size_t(m.bin_columns) * std::size_t(m.bin_rows))
+          bins.reset(m.bin_columns, m.bin_rows);
         for (std::size_t o = r.begin(); o != r.end(); ++o) {
           const std::uint32_t t = order_[o];
           // Up to two levels x two directions, each owning a slice of the dither thresholds.
@@ -723,8 +772,7 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
             // (A far LDI holds no ground samples: its low samples are flowers.)
             w.ground_below = far ? -std::numeric_limits<float>::infinity() : kGroundEpsilon + 0.75f * f.pixel_size;
             w.splat = float(p) * m.focal * kSplatScale;
-            w.from = part.from;
-            w.to = part.to;
+            w.owned = owned_thresholds(part.from, part.to);
             // The eye in the LDI's frame (unsheared: the shear moves samples, not the order).
             const V3 eye_local{m.eye[0] - tiles.x0[t] - f.origin[0], m.eye[1] - tiles.y0[t] - f.origin[1],
                                m.eye[2] - double(w.h00 + w.h10 + w.h01 + w.h11) / 4 - f.origin[2]};
@@ -734,11 +782,28 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
             w.epipole_y = int(std::floor(std::clamp(ey, -2.0, double(f.height) + 1)));
             // The eye before the image plane: deeper layers are farther, so they go first.
             w.reverse_layers = dot(eye_local, {f.forward[0], f.forward[1], f.forward[2]}) < f.depth_range * 0.5;
-            warp_ldi(v, w, m.focal, m.cx, m.cy, m.width, m.height, m.zbuffer.data(), counted);
+            warp_ldi(v, w, m.focal, m.cx, m.cy, m.width, m.height, bins, counted);
           }
         }
         m.depth_pixels += counted;
       });
+  // The bins: one task each, every thread's bucket of it, then the buckets emptied.
+  tbb::parallel_for(tbb::blocked_range<int>(0, m.bin_columns * m.bin_rows, 1), [&](const tbb::blocked_range<int>& r) {
+    for (int b = r.begin(); b != r.end(); ++b)
+      for (SplatBins& bins : m.splat_bins) {
+        if (bins.bins.empty()) continue;
+        auto& bucket = bins.bins[std::size_t(b)];
+        for (const Splat& splat : bucket)
+          for (int py = splat.y; py < splat.y + splat.h; ++py) {
+            std::uint64_t* row = m.zbuffer.data() + std::size_t(py) * std::size_t(m.width);
+            for (int px = splat.x; px < splat.x + splat.w; ++px) {
+              if (splat.owned != 0xffff && !(splat.owned >> bayer_index(px, py) & 1)) continue;
+              if (splat.entry < row[px]) row[px] = splat.entry;
+            }
+          }
+        bucket.clear();
+      }
+  });
 
   const auto ldis_done = std::chrono::steady_clock::now();
   // ---- the terrain: vertices to camera space, triangles rasterized in parallel ----
@@ -790,9 +855,23 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
     if (x0 > x1 || y0 > y1) return;
     const float inv_area = 1.0f / area;
     const float iza = 1 / a.z, izb = 1 / b.z, izc = 1 / c.z;
+    // Per row, the span where the three weights are >= 0 (each is linear in x), widened by a
+    // pixel: the exact test below decides, the span only skips what surely fails (thin far
+    // triangles have bounding boxes many times their area).
+    const float slope_a = (by - cy) * inv_area, slope_b = (cy - ay) * inv_area, slope_c = -slope_a - slope_b;
     for (int py = y0; py <= y1; ++py) {
       const float fy = float(py) + 0.5f;
-      for (int px = x0; px <= x1; ++px) {
+      const float wa0 = (bx * (cy - fy) - (by - fy) * cx) * inv_area, wb0 = (cx * (ay - fy) - (cy - fy) * ax) * inv_area;
+      float lo = float(x0) + 0.5f, hi = float(x1) + 0.5f;
+      bool empty = false;
+      for (const auto& [w0, slope] : {std::pair{wa0, slope_a}, std::pair{wb0, slope_b}, std::pair{1 - wa0 - wb0, slope_c}}) {
+        if (slope > 0) lo = std::max(lo, -w0 / slope);
+        else if (slope < 0) hi = std::min(hi, -w0 / slope);
+        else empty |= w0 < 0;
+      }
+      if (empty || !(lo <= hi + 2)) continue;
+      const int span_x0 = std::max(x0, int(std::ceil(lo - 0.5f)) - 1), span_x1 = std::min(x1, int(std::floor(hi - 0.5f)) + 1);
+      for (int px = span_x0; px <= span_x1; ++px) {
         const float fx = float(px) + 0.5f;
         // Barycentric weights (either winding), a pixel on a shared edge goes to one side only.
         float wa = ((bx - fx) * (cy - fy) - (by - fy) * (cx - fx)) * inv_area;

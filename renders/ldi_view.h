@@ -118,6 +118,8 @@ class ViewWorld {
   GroundColors ground_colors_;  // of scene_'s bake, shading_'s plain ground
 };
 
+inline constexpr double kMinViewDetail = 0.1, kMaxViewDetail = 10;
+
 // What one frame drew.
 struct ViewFrameStats {
   double frame_ms = 0;
@@ -147,6 +149,10 @@ class LdiRenderer {
   // depth (meters along the view axis; infinity for the sky).
   bool sky_at(int x, int y) const;
   float depth_at(int x, int y) const;
+  // Level-of-detail scale: each level is used up to `detail` times its own distance (1: as the
+  // pack was built for; 0.5: coarser levels at half the distance, fewer depth pixels, a faster
+  // and blockier frame; 2: finer). Throws Error outside kMinViewDetail .. kMaxViewDetail.
+  void set_detail(double detail);
   // Draws only the placed tiles whose entry is nonzero (the terrain and sky as always); empty:
   // every tile. For tests and for looking at single tiles.
   void set_tile_mask(std::vector<std::uint8_t> mask) { mask_ = std::move(mask); }
@@ -165,6 +171,7 @@ class LdiRenderer {
   std::vector<std::uint32_t> order_;
   std::vector<std::uint8_t> mask_;
   ViewFrameStats stats_;
+  double detail_ = 1;
 };
 
 // ---- what `wangscape view` runs -------------------------------------------------------------
@@ -186,6 +193,7 @@ struct ViewRequest {
   std::filesystem::path diff;  // with compare: the difference image
   int reference_samples = 0;   // with compare: samples per pixel (0: the scene's)
   int threads = 0;             // 0 = all cores
+  double detail = 1;           // LdiRenderer::set_detail
   bool quiet = false;
 };
 

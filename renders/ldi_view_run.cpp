@@ -96,6 +96,7 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest&
   fs::create_directories(request.frames_dir, ec);
   if (!fs::is_directory(request.frames_dir, ec)) throw Error(request.frames_dir, "", "cannot make the frames folder");
   LdiRenderer renderer(world, width, height);
+  renderer.set_detail(request.detail);
   const double fps = request.path_fps;
   const int frames = int(std::floor((keys.back().time - keys.front().time) * fps)) + 1;
   for (int k = 0; k < frames; ++k) {
@@ -223,6 +224,9 @@ int run_view(const ViewRequest& request) {
   if (!request.path.empty() && request.frames_dir.empty()) throw Error("--path: needs --frames OUTDIR");
   if (!(request.path_fps > 0 && request.path_fps <= 240)) throw Error("--fps: expected 0 .. 240 frames per second");
   if (request.repeat < 0 || request.repeat > 100000) throw Error("--repeat: expected 0 .. 100000 frames");
+  if (!(request.detail >= kMinViewDetail && request.detail <= kMaxViewDetail))
+    throw Error("--detail " + number(request.detail) + ": expected " + number(kMinViewDetail) + " .. " +
+                number(kMaxViewDetail) + " (1: the pack's levels at their own distances)");
   if (!request.diff.empty() && !request.compare) throw Error("--diff: needs --compare");
   if (request.reference_samples < 0 || request.reference_samples > 1024) throw Error("--spp: expected 1 .. 1024");
   const bool window = request.out.empty() && request.path.empty() && !request.stats && !request.compare;
@@ -247,10 +251,12 @@ int run_view(const ViewRequest& request) {
     options.height = height;
     options.script = request.script;
     options.quiet = request.quiet;
+    options.detail = request.detail;
     run_view_window(world, camera, options);
     return 0;
   }
   LdiRenderer renderer(world, width, height);
+  renderer.set_detail(request.detail);
   const ViewFrameStats stats =
       request.stats ? measure_view(renderer, camera, request.repeat ? request.repeat : 200) : renderer.render(camera);
   if (!request.out.empty()) write_image(request.out, renderer.image());

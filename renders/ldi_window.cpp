@@ -236,6 +236,7 @@ void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& s
                      const ViewWindowOptions& options) {
   const std::vector<ScriptStep> script = parse_script(options.script);
   LdiRenderer renderer(world, options.width, options.height);
+  renderer.set_detail(options.detail);
   const SdlSession sdl(options.width, options.height);
   if (options.script.empty()) SDL_SetRelativeMouseMode(SDL_TRUE);  // mouse look (a script moves it itself)
 

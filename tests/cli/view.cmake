@@ -63,6 +63,7 @@ view_test(window_bad_script ${cli_expect} 1 "--script: 'W\\*x' has no frame coun
 view_test(bad_size ${cli_expect} 2 "--size.*0x10" "${WANGSCAPE_BIN}" view "${view_folder}" --size 0x10 --out "${view_dir}/x.png")
 view_test(bad_size_text ${cli_expect} 2 "--size.*'big'" "${WANGSCAPE_BIN}" view "${view_folder}" --size big --out "${view_dir}/x.png")
 view_test(bad_fov ${cli_expect} 1 "--fov 200" "${WANGSCAPE_BIN}" view "${view_folder}" --fov 200 --out "${view_dir}/x.png")
+view_test(bad_detail ${cli_expect} 1 "--detail 0: expected 0.1 .. 10" "${WANGSCAPE_BIN}" view "${view_folder}" --detail 0 --out "${view_dir}/x.png")
 view_test(bad_camera ${cli_expect} 2 "--camera.*'1,b'" "${WANGSCAPE_BIN}" view "${view_folder}" --camera 1,b --out "${view_dir}/x.png")
 view_test(no_such_folder ${cli_expect} 1 "no_such_folder: no such scene folder" "${WANGSCAPE_BIN}" view "${view_dir}/no_such_folder" --out "${view_dir}/x.png")
 view_test(no_pack ${cli_expect} 1 "nopack/tiles\\.ldi: missing: build the folder from a scene with \\[exports\\] ldi"

@@ -56,6 +56,16 @@ ViewCamera looking(double x, double y, double z, double tx, double ty, double tz
   return {{x, y, z}, {tx, ty, tz}, fov};
 }
 
+// The mean level of the drawn tiles (the far field counted as the last).
+double mean_drawn_level(const ViewFrameStats& stats) {
+  double sum = 0, n = 0;
+  for (std::size_t k = 0; k < stats.levels.size(); ++k) {
+    sum += double(k) * double(stats.levels[k]);
+    n += double(stats.levels[k]);
+  }
+  return sum / n;
+}
+
 // A frame of only the tiles `mask` keeps: its depths (row-major) and its pixels.
 std::pair<std::vector<float>, std::vector<std::uint8_t>> masked_frame(LdiRenderer& renderer, const ViewCamera& camera,
                                                                       std::vector<std::uint8_t> mask) {
@@ -142,15 +152,7 @@ TEST(ldi_view, NoHolesInACloseView) {
 
 TEST(ldi_view, LevelsCoarsenWithDistance) {
   LdiRenderer renderer(field(), 160, 90);
-  auto mean_level = [&](const ViewCamera& camera) {
-    const ViewFrameStats& stats = renderer.render(camera);
-    double sum = 0, n = 0;
-    for (std::size_t k = 0; k < stats.levels.size(); ++k) {
-      sum += double(k) * double(stats.levels[k]);
-      n += double(stats.levels[k]);
-    }
-    return sum / n;
-  };
+  auto mean_level = [&](const ViewCamera& camera) { return mean_drawn_level(renderer.render(camera)); };
   const double near = mean_level(looking(0, -14, 1.7, 0, 0, 0.5));
   const double middle = mean_level(looking(0, -22, 1.7, 0, 0, 0.5));
   const double far = mean_level(looking(0, -120, 1.7, 0, 0, 0.5));
@@ -166,6 +168,19 @@ TEST(ldi_view, LevelsCoarsenWithDistance) {
   const ViewFrameStats& beyond = renderer.render(looking(0, -5000, 1.7, 0, 0, 0.5));
   EXPECT_EQ(beyond.levels.back(), beyond.tiles_drawn);
   EXPECT_EQ(beyond.depth_pixels, 0u);
+}
+
+TEST(ldi_view, LessDetailDrawsCoarserLevelsAndFewerDepthPixels) {
+  LdiRenderer renderer(field(), 160, 90);
+  const ViewCamera camera = looking(0, -14, 1.7, 0, 0, 0.5);
+  const ViewFrameStats full = renderer.render(camera);
+  renderer.set_detail(0.5);
+  const ViewFrameStats half = renderer.render(camera);
+  EXPECT_EQ(half.tiles_drawn, full.tiles_drawn);
+  EXPECT_LT(half.depth_pixels * 2, full.depth_pixels) << half.depth_pixels << " vs " << full.depth_pixels;
+  EXPECT_GT(mean_drawn_level(half), mean_drawn_level(full));
+  EXPECT_THROW(renderer.set_detail(0), Error);
+  EXPECT_THROW(renderer.set_detail(std::numeric_limits<double>::quiet_NaN()), Error);
 }
 
 TEST(ldi_view, TilesAreDrawnBackToFront) {
