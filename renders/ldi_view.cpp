@@ -29,12 +29,12 @@ namespace {
 // LDI samples of the ground plane are drawn by the terrain instead: the last layer of a pixel
 // this low (meters, plus 3/4 of a pixel: positions go through the pixel centre, rays did not).
 constexpr float kGroundEpsilon = 0.002f;
-constexpr float kNear = 0.05f;            // meters: the near plane
-constexpr float kSplatScale = 1.5f;       // splat side over the projected depth-pixel size (measured: no holes)
-constexpr int kMaxSplat = 24;             // pixels
+constexpr float kNear = 0.05f;             // meters: the near plane
+constexpr float kSplatScale = 1.5f;        // splat side over the projected depth-pixel size (measured: no holes)
+constexpr int kMaxSplat = 24;              // pixels
 constexpr float kLevelBlendStart = 0.75f;  // of a level's range: where dithering into the next level starts
-constexpr float kDirectionBand = 0.08f;   // of the angle between two directions: dithered either side of the bisector
-constexpr float kCanopyShare = 0.55f;     // of the prism top: the far field's color comes from samples above it
+constexpr float kDirectionBand = 0.08f;    // of the angle between two directions: dithered either side of the bisector
+constexpr float kCanopyShare = 0.55f;      // of the prism top: the far field's color comes from samples above it
 constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
 // Far-field steps after the pack's levels: one-layer LDIs of 1/2, 1/4, ... of the coarsest
 // level's resolution, each over twice the distance of the one before.
@@ -129,8 +129,8 @@ LdiImage one_layer_ldi(const LdiView& v, int factor) {
         if (!kept) continue;
         const double n = double(b.flowers);
         out.depth_pixels.push_back(DepthPixel::make(lut.encode(float(b.r / n)), lut.encode(float(b.g / n)),
-                                                    lut.encode(float(b.b / n)),
-                                                    std::uint16_t(std::lround(b.depth / n)), b.normal));
+                                                    lut.encode(float(b.b / n)), std::uint16_t(std::lround(b.depth / n)),
+                                                    b.normal));
       }
     }
     out.row_spans.push_back(std::uint32_t(out.spans.size()));
@@ -359,7 +359,8 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
   far_ldis_.reserve(std::size_t(info.tiles) * info.directions * far_steps_);
   for (std::uint32_t t = 0; t < info.tiles; ++t)
     for (std::uint32_t d = 0; d < info.directions; ++d)
-      for (std::uint32_t k = 0; k < far_steps_; ++k) far_ldis_.push_back(one_layer_ldi(pack_->ldi(t, level, d), 2 << k));
+      for (std::uint32_t k = 0; k < far_steps_; ++k)
+        far_ldis_.push_back(one_layer_ldi(pack_->ldi(t, level, d), 2 << k));
 }
 
 LdiView ViewWorld::far_ldi(std::uint32_t tile, std::uint32_t direction, std::uint32_t step) const {
@@ -430,6 +431,7 @@ struct LdiRenderer::Impl {
   std::vector<float> distance, far_from, far_r, far_g, far_b, far_cover;
   std::vector<std::uint8_t> level_a, level_b, dir_a, dir_b;
   std::vector<float> level_b_weight, dir_b_weight;
+  std::vector<double> direction_east, direction_north;  // the pack's ray directions, horizontal unit
   // Terrain vertices in camera space.
   std::vector<float> vx, vy, vz;
   std::atomic<std::uint64_t> depth_pixels{0};
@@ -506,8 +508,8 @@ struct Warp {
   int epipole_x = 0, epipole_y = 0;
 };
 
-void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, int width, int height,
-              SplatBins& out, std::uint64_t& depth_pixels) {
+void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, int width, int height, SplatBins& out,
+              std::uint64_t& depth_pixels) {
   // What one pixel of the LDI contributes before its layers' depths: tile-local and camera space.
   struct PixelBase {
     float lx, ly, lz, cx, cy, cz;
@@ -537,8 +539,10 @@ void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, 
     }
     // The pixels whose centres the splat's square covers: about size^2 of them, not ceil(size)^2.
     const float half = 0.5f * std::min(size, float(kMaxSplat));
-    const int xa = std::max(int(std::ceil(sx - half - 0.5f)), 0), xb = std::min(int(std::ceil(sx + half - 0.5f)), width);
-    const int ya = std::max(int(std::ceil(sy - half - 0.5f)), 0), yb = std::min(int(std::ceil(sy + half - 0.5f)), height);
+    const int xa = std::max(int(std::ceil(sx - half - 0.5f)), 0),
+              xb = std::min(int(std::ceil(sx + half - 0.5f)), width);
+    const int ya = std::max(int(std::ceil(sy - half - 0.5f)), 0),
+              yb = std::min(int(std::ceil(sy + half - 0.5f)), height);
     if (xa < xb && ya < yb) out.add(xa, xb, ya, yb, entry, w.owned);
   };
   auto visit = [&](int x, int y, std::uint32_t first, std::uint32_t count) {
@@ -638,6 +642,12 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
     return far_start * double(1u << (a - levels));
   };
   const float top = info.prism_top;
+  if (m.direction_east.size() != directions)
+    for (std::uint32_t k = 0; k < directions; ++k) {
+      const double az = double(info.azimuths[k]) * std::numbers::pi / 180;
+      m.direction_east.push_back(std::sin(az));
+      m.direction_north.push_back(std::cos(az));
+    }
   for (std::size_t t = 0; t < tiles.size(); ++t) {
     const double x0 = tiles.x0[t], y0 = tiles.y0[t];
     const double dx = std::max({x0 - m.eye[0], m.eye[0] - (x0 + s), 0.0});
@@ -669,8 +679,7 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
     std::uint32_t best = 0, second = 0;
     double best_dot = -2, second_dot = -2;
     for (std::uint32_t k = 0; k < directions; ++k) {
-      const double az = double(info.azimuths[k]) * std::numbers::pi / 180;
-      const double c = std::sin(az) * ux + std::cos(az) * uy;
+      const double c = m.direction_east[k] * ux + m.direction_north[k] * uy;
       if (c > best_dot) {
         second = best;
         second_dot = best_dot;
@@ -861,16 +870,22 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
     const float slope_a = (by - cy) * inv_area, slope_b = (cy - ay) * inv_area, slope_c = -slope_a - slope_b;
     for (int py = y0; py <= y1; ++py) {
       const float fy = float(py) + 0.5f;
-      const float wa0 = (bx * (cy - fy) - (by - fy) * cx) * inv_area, wb0 = (cx * (ay - fy) - (cy - fy) * ax) * inv_area;
+      const float wa0 = (bx * (cy - fy) - (by - fy) * cx) * inv_area,
+                  wb0 = (cx * (ay - fy) - (cy - fy) * ax) * inv_area;
       float lo = float(x0) + 0.5f, hi = float(x1) + 0.5f;
       bool empty = false;
-      for (const auto& [w0, slope] : {std::pair{wa0, slope_a}, std::pair{wb0, slope_b}, std::pair{1 - wa0 - wb0, slope_c}}) {
-        if (slope > 0) lo = std::max(lo, -w0 / slope);
-        else if (slope < 0) hi = std::min(hi, -w0 / slope);
-        else empty |= w0 < 0;
+      for (const auto& [w0, slope] :
+           {std::pair{wa0, slope_a}, std::pair{wb0, slope_b}, std::pair{1 - wa0 - wb0, slope_c}}) {
+        if (slope > 0)
+          lo = std::max(lo, -w0 / slope);
+        else if (slope < 0)
+          hi = std::min(hi, -w0 / slope);
+        else
+          empty |= w0 < 0;
       }
       if (empty || !(lo <= hi + 2)) continue;
-      const int span_x0 = std::max(x0, int(std::ceil(lo - 0.5f)) - 1), span_x1 = std::min(x1, int(std::floor(hi - 0.5f)) + 1);
+      const int span_x0 = std::max(x0, int(std::ceil(lo - 0.5f)) - 1),
+                span_x1 = std::min(x1, int(std::floor(hi - 0.5f)) + 1);
       for (int px = span_x0; px <= span_x1; ++px) {
         const float fx = float(px) + 0.5f;
         // Barycentric weights (either winding), a pixel on a shared edge goes to one side only.
@@ -881,9 +896,9 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
         const float iz = wa * iza + wb * izb + wc * izc;
         const float z = 1 / iz;
         // Early depth test: most ground under the field is hidden by flowers drawn before it.
-        const std::uint64_t drawn = std::atomic_ref<std::uint64_t>(m.zbuffer[std::size_t(py) * std::size_t(m.width) +
-                                                                             std::size_t(px)])
-                                        .load(std::memory_order_relaxed);
+        const std::uint64_t drawn =
+            std::atomic_ref<std::uint64_t>(m.zbuffer[std::size_t(py) * std::size_t(m.width) + std::size_t(px)])
+                .load(std::memory_order_relaxed);
         if (pack_entry(z, 0, 0, 0) > drawn) continue;
         wa *= iza * z;
         wb *= izb * z;
