@@ -71,6 +71,24 @@ bool front_is_ground(const LdiView& v, int x, int y, std::uint8_t count, const D
   return count == 1 && v.position(x, y, front)[2] < kGroundEpsilon + 0.75f * v.frame->pixel_size;
 }
 
+// Calls visit(x, y, front, is_ground) for the front sample of every pixel of `v` that has one.
+template <class Visit>
+void for_each_front_sample(const LdiView& v, Visit&& visit) {
+  for (std::uint32_t y = 0; y < v.frame->height; ++y)
+    for (std::uint32_t s = v.row_spans[y]; s < v.row_spans[y + 1]; ++s) {
+      const LdiSpan& span = v.spans[s];
+      std::uint32_t depth = span.first_depth;
+      for (std::uint32_t k = 0; k < span.length; ++k) {
+        const std::uint8_t count = v.counts[span.first_pixel + k];
+        if (count == 0) continue;
+        const DepthPixel& front = v.depth_pixels[depth];
+        depth += count;
+        const int x = int(span.x + k);
+        visit(x, int(y), front, front_is_ground(v, x, int(y), count, front));
+      }
+    }
+}
+
 // A one-layer LDI of `v` at 1/factor of its resolution: per block of factor x factor pixels, the
 // mean linear color and mean depth of the front samples standing on the ground (not the ground
 // itself), kept where an ordered threshold of the block is below their share of the block, so
@@ -90,25 +108,15 @@ LdiImage one_layer_ldi(const LdiView& v, int factor) {
   };
   std::vector<Block> blocks(std::size_t(w) * h);
   const Luts& lut = luts();
-  for (std::uint32_t y = 0; y < f.height; ++y)
-    for (std::uint32_t s = v.row_spans[y]; s < v.row_spans[y + 1]; ++s) {
-      const LdiSpan& span = v.spans[s];
-      std::uint32_t depth = span.first_depth;
-      for (std::uint32_t k = 0; k < span.length; ++k) {
-        const std::uint8_t count = v.counts[span.first_pixel + k];
-        if (count == 0) continue;
-        const DepthPixel& front = v.depth_pixels[depth];
-        depth += count;
-        const int x = int(span.x + k);
-        if (front_is_ground(v, x, int(y), count, front)) continue;
-        Block& b = blocks[std::size_t(y / std::uint32_t(factor)) * w + std::uint32_t(x) / std::uint32_t(factor)];
-        b.r += lut.to_linear[front.r];
-        b.g += lut.to_linear[front.g];
-        b.b += lut.to_linear[front.b];
-        b.depth += front.depth();
-        if (b.flowers++ == 0) b.normal = front.normal();
-      }
-    }
+  for_each_front_sample(v, [&](int x, int y, const DepthPixel& front, bool is_ground) {
+    if (is_ground) return;
+    Block& b = blocks[std::size_t(y / factor) * w + std::uint32_t(x / factor)];
+    b.r += lut.to_linear[front.r];
+    b.g += lut.to_linear[front.g];
+    b.b += lut.to_linear[front.b];
+    b.depth += front.depth();
+    if (b.flowers++ == 0) b.normal = front.normal();
+  });
   const double area = double(factor) * double(factor);
   out.row_spans.push_back(0);
   for (std::uint32_t y = 0; y < h; ++y) {
@@ -324,29 +332,19 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
       const LdiView v = pack_->ldi(t, level, d);
       double sum[3] = {0, 0, 0}, top_sum[3] = {0, 0, 0};
       std::uint64_t flowers = 0, ground = 0, top = 0;
-      for (std::uint32_t y = 0; y < v.frame->height; ++y)
-        for (std::uint32_t s = v.row_spans[y]; s < v.row_spans[y + 1]; ++s) {
-          const LdiSpan& span = v.spans[s];
-          std::uint32_t depth = span.first_depth;
-          for (std::uint32_t k = 0; k < span.length; ++k) {
-            const std::uint8_t count = v.counts[span.first_pixel + k];
-            if (count == 0) continue;
-            const DepthPixel& front = v.depth_pixels[depth];
-            const float z = v.position(int(span.x + k), int(y), front)[2];
-            if (front_is_ground(v, int(span.x + k), int(y), count, front)) {
-              ++ground;
-            } else {
-              ++flowers;
-              const double rgb[3] = {lut.to_linear[front.r], lut.to_linear[front.g], lut.to_linear[front.b]};
-              for (int c = 0; c < 3; ++c) sum[c] += rgb[c];
-              if (z >= canopy) {
-                ++top;
-                for (int c = 0; c < 3; ++c) top_sum[c] += rgb[c];
-              }
-            }
-            depth += count;
-          }
+      for_each_front_sample(v, [&](int x, int y, const DepthPixel& front, bool is_ground) {
+        if (is_ground) {
+          ++ground;
+          return;
         }
+        ++flowers;
+        const double rgb[3] = {lut.to_linear[front.r], lut.to_linear[front.g], lut.to_linear[front.b]};
+        for (int c = 0; c < 3; ++c) sum[c] += rgb[c];
+        if (v.position(x, y, front)[2] >= canopy) {
+          ++top;
+          for (int c = 0; c < 3; ++c) top_sum[c] += rgb[c];
+        }
+      });
       if (flowers == 0) continue;
       auto& out = far_[std::size_t(t) * info.directions + d];
       for (int c = 0; c < 3; ++c)
