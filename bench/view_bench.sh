@@ -1,5 +1,6 @@
 #!/bin/sh
-# bench/view_bench.sh [WANGSCAPE] [FOLDER]: frames/s and depth pixels/s of the real-time LDI view
+# bench/view_bench.sh [WANGSCAPE] [FOLDER] (the CLI side of build/release/bench/view_bench, the
+# Google Benchmark of the same views with the phases and the reference): frames/s and depth pixels/s of the real-time LDI view
 # (`wangscape view --stats`, median of REPEAT frames) on the default scene built with the LDI
 # export, from three cameras (at the field's northern edge looking south across it: the scene's
 # own camera; in the field; from above the field) at 640x360 and 1280x720. FOLDER (default
