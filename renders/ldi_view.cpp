@@ -382,7 +382,9 @@ std::uint16_t owned_thresholds(float from, float to) {
   }
   return mask;
 }
-int bayer_index(int x, int y) { return int(kBayer[y & 3][x & 3] * 16); }  // k of (k + 0.5) / 16
+// k of kBayer's (k + 0.5) / 16 at a pixel.
+constexpr std::uint8_t kBayerIndex[4][4] = {{0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};
+int bayer_index(int x, int y) { return kBayerIndex[y & 3][x & 3]; }
 
 // Splats are not written as they are made: each goes into the bucket of the 64 x 64 pixel bin
 // it covers (one set of buckets per thread), and the bins are then resolved one per task, so a
@@ -800,7 +802,13 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
       for (SplatBins& bins : m.splat_bins) {
         if (bins.bins.empty()) continue;
         auto& bucket = bins.bins[std::size_t(b)];
-        for (const Splat& splat : bucket)
+        for (const Splat& splat : bucket) {
+          if ((splat.w | splat.h) == 1) {  // most splats: one pixel
+            std::uint64_t& slot = m.zbuffer[std::size_t(splat.y) * std::size_t(m.width) + splat.x];
+            if (splat.entry < slot && (splat.owned == 0xffff || splat.owned >> bayer_index(splat.x, splat.y) & 1))
+              slot = splat.entry;
+            continue;
+          }
           for (int py = splat.y; py < splat.y + splat.h; ++py) {
             std::uint64_t* row = m.zbuffer.data() + std::size_t(py) * std::size_t(m.width);
             for (int px = splat.x; px < splat.x + splat.w; ++px) {
@@ -808,6 +816,7 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
               if (splat.entry < row[px]) row[px] = splat.entry;
             }
           }
+        }
         bucket.clear();
       }
   });
