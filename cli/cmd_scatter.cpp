@@ -6,20 +6,15 @@
 // --fair-edges for partial tiles.
 #include <fmt/core.h>
 
-#include <chrono>
 #include <memory>
 #include <optional>
 
 #include "cli/command.h"
 #include "cli/progress.h"
-#include "core/memory_budget.h"
 #include "exporters/image_io.h"
-#include "exporters/point_writer.h"
 #include "exporters/reports.h"
-#include "generator/placement.h"
-#include "generator/point_metrics.h"
-#include "scene/filled_tileset_file.h"
-#include "scene/scene.h"
+#include "exporters/scatter_run.h"
+#include "scene/ground.h"
 
 namespace wangscape::cli {
 
@@ -41,93 +36,50 @@ struct ScatterOptions {
   bool fair_edges = false;
 };
 
-// The scene's ground for --dem, with every mask the flags give.
-SceneGround load_dem_ground(const ScatterOptions& options) {
-  TerrainConfig terrain;
-  terrain.dem = options.dem;
-  if (!options.origin.empty()) {
-    const auto origin = parse_lat_lon(options.origin);
-    terrain.origin_latitude = origin[0];
-    terrain.origin_longitude = origin[1];
-  }
-  MasksConfig masks;
-  masks.max_height = options.max_height;
-  masks.min_height = options.min_height;
-  masks.max_slope = options.max_slope;
-  masks.mask = options.mask;
-  masks.fair_edges = options.fair_edges;
-  return SceneGround::load(terrain, masks);
-}
-
 void run(const ScatterOptions& options, const GlobalOptions& global) {
   if (options.out.empty() && !options.metrics)
     throw std::runtime_error("scatter: nothing to do; give --out FILE and/or --metrics");
-  if (!(options.tile_size > 0))
-    throw std::runtime_error("--tile-size " + std::to_string(options.tile_size) + ": expected meters > 0");
-  // Over a DEM: loaded and checked before any output is opened.
-  std::optional<SceneGround> dem;
+  ScatterRequest request;
+  request.tileset = options.tileset;
   if (!options.dem.empty()) {
-    dem = load_dem_ground(options);
-    dem->check_tile_size(options.tile_size, "--tile-size");
-  }
-  const Extent plane = dem ? dem->extent() : parse_plane(options.plane);
-  const FilledTileSet filled = read_filled_tileset_json(options.tileset);
-
-  PlacementOptions placement;
-  placement.tile_size = options.tile_size;
-  placement.seed = options.seed;
-  placement.algorithm = parse_tiling_algorithm(options.algorithm);
-
-  std::optional<PointWriter> writer;
-  if (!options.out.empty()) writer.emplace(options.out);
-  std::vector<float> xs, ys;
-  const TileRange range = tile_range(plane, options.tile_size);
-  const double tiles = static_cast<double>(range.width()) * range.height();
-  std::size_t total_points = 0;
-  for (const auto& t : filled.tiles) total_points += t.size();
-  const double estimate =
-      tiles * static_cast<double>(total_points) / double(std::max<std::size_t>(filled.tiles.size(), 1));
-  if (estimate > kMaxFieldInstances)
-    throw Error(
-        fmt::format("scatter: {:.0f} x {:.0f} m in {:g} m tiles would place about {:.3g} instances; at most {:.0f} "
-                    "million: a smaller --plane or a larger --tile-size",
-                    plane.width(), plane.height(), options.tile_size, estimate, kMaxFieldInstances / 1e6));
-  if (options.metrics) {
-    check_memory_estimate(options.tileset, fmt::format("scatter --metrics over about {:.3g} instances", estimate),
-                          kMetricsBytesPerPoint * estimate);
-    xs.reserve(std::size_t(estimate * 1.05));  // no doubling past the estimate
-    ys.reserve(std::size_t(estimate * 1.05));
-  }
-  Progress progress("scatter", static_cast<std::uint64_t>(estimate), global.quiet);
-  const auto start = std::chrono::steady_clock::now();
-  const auto sink = [&](const InstanceBatch& b) {
-    if (writer) writer->write(b);
-    if (options.metrics) {
-      xs.insert(xs.end(), b.x.begin(), b.x.end());
-      ys.insert(ys.end(), b.y.begin(), b.y.end());
+    TerrainConfig& terrain = request.dem.emplace();
+    terrain.dem = options.dem;
+    if (!options.origin.empty()) {
+      const auto origin = parse_lat_lon(options.origin);
+      terrain.origin_latitude = origin[0];
+      terrain.origin_longitude = origin[1];
     }
+    request.masks.max_height = options.max_height;
+    request.masks.min_height = options.min_height;
+    request.masks.max_slope = options.max_slope;
+    request.masks.mask = options.mask;
+    request.masks.fair_edges = options.fair_edges;
+  } else {
+    request.plane = parse_plane(options.plane);
+  }
+  request.placement.tile_size = options.tile_size;
+  request.placement.seed = options.seed;
+  request.placement.algorithm = parse_tiling_algorithm(options.algorithm);
+  request.out = options.out;
+  request.metrics = options.metrics;
+  std::optional<Progress> progress;
+  request.progress = [&](std::uint64_t placed, std::uint64_t expected) {
+    if (!progress) progress.emplace("scatter", expected, global.quiet);
+    progress->update(placed);
   };
-  const PlacementStats stats =
-      dem ? dem->place(filled, placement, sink) : place_instances(filled, FlatGround{plane, 0.0}, placement, sink);
-  if (dem && stats.points == 0 && !global.quiet)
-    fmt::print(stderr, "wangscape: empty result: {}\n", dem->explain_empty(options.tile_size));
-  progress.finish();
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (writer) writer->commit();
-
-  if (options.metrics) {
-    PointMetricsOptions metric_options;
-    metric_options.area = plane;
-    metric_options.tile_size = options.tile_size;
-    metric_options.packing_diameter = 2.0 * filled.radius_packing * options.tile_size;
-    const PointMetrics m = measure_points(xs, ys, metric_options);
-    if (!options.spectrum_png.empty()) write_image(options.spectrum_png, draw_spectrum_plot(m.spectrum));
+  const ScatterResult result = run_scatter(request);
+  if (progress) progress->finish();
+  if (!result.empty_reason.empty() && !global.quiet)
+    fmt::print(stderr, "wangscape: empty result: {}\n", result.empty_reason);
+  if (result.metrics) {
+    if (!options.spectrum_png.empty()) write_image(options.spectrum_png, draw_spectrum_plot(result.metrics->spectrum));
     if (options.json)
-      fmt::print("{}\n", point_metrics_json(m, seconds).dump(2));
+      fmt::print("{}\n", point_metrics_json(*result.metrics, result.seconds).dump(2));
     else
-      fmt::print("{}", point_metrics_text(m, metric_options.packing_diameter));
+      fmt::print("{}", point_metrics_text(*result.metrics, result.packing_diameter));
   } else if (!global.quiet) {
-    fmt::print(stderr, "wangscape: {} instances from {} tiles -> {}\n", stats.points, stats.tiles, options.out);
+    fmt::print(stderr, "wangscape: {} instances from {} tiles -> {}\n", result.stats.points, result.stats.tiles,
+               options.out);
   }
 }
 

@@ -2,12 +2,12 @@
 //   [--origin I,J] [--no-identical-neighbours] [--out FILE.png|FILE.csv] [--stats] [--json]
 #include <fmt/core.h>
 
-#include <charconv>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "cli/command.h"
 #include "cli/progress.h"
+#include "core/number_text.h"
 #include "exporters/image_io.h"
 #include "exporters/reports.h"
 #include "generator/tiling_preview.h"
@@ -31,24 +31,11 @@ struct TilingCommandOptions {
   bool json = false;
 };
 
-// Parses "<a><separator><b>" with both parts integers; false when malformed.
-template <typename T>
-bool parse_pair(const std::string& text, char separator, T& a, T& b) {
-  const auto split = text.find(separator);
-  if (split == std::string::npos) return false;
-  const char* begin = text.data();
-  const char* middle = begin + split;
-  const char* end = begin + text.size();
-  const auto first = std::from_chars(begin, middle, a);
-  const auto second = std::from_chars(middle + 1, end, b);
-  return first.ec == std::errc() && first.ptr == middle && second.ec == std::errc() && second.ptr == end;
-}
-
 constexpr int kMaxSide = 1'000'000;
 
 std::string validate_size(const std::string& text) {
   int w = 0, h = 0;
-  if (!parse_pair(text, 'x', w, h)) return "size '" + text + "' is not WxH (e.g. 64x48)";
+  if (!parse_number_pair(text, 'x', w, h)) return "size '" + text + "' is not WxH (e.g. 64x48)";
   if (w < 1 || h < 1 || w > kMaxSide || h > kMaxSide)
     return "size '" + text + "': width and height must be 1.." + std::to_string(kMaxSide) + " tiles";
   return "";
@@ -56,7 +43,7 @@ std::string validate_size(const std::string& text) {
 
 std::string validate_origin(const std::string& text) {
   std::int64_t i = 0, j = 0;
-  return parse_pair(text, ',', i, j) ? "" : "origin '" + text + "' is not I,J (two integers, e.g. -10,5)";
+  return parse_number_pair(text, ',', i, j) ? "" : "origin '" + text + "' is not I,J (two integers, e.g. -10,5)";
 }
 
 void run(const TilingCommandOptions& options, const GlobalOptions& global) {
@@ -70,29 +57,12 @@ void run(const TilingCommandOptions& options, const GlobalOptions& global) {
   tiling_options.seed = options.seed;
   tiling_options.forbid_identical_neighbours = options.no_identical_neighbours;
   int width = 0, height = 0;
-  parse_pair(options.size, 'x', width, height);
-  // The window is held in memory (2 bytes per tile) for the outputs and statistics.
-  constexpr std::int64_t kMaxTiles = std::int64_t{1} << 30;
-  if (std::int64_t{width} * height > kMaxTiles)
-    throw std::runtime_error("size '" + options.size + "' is " + std::to_string(std::int64_t{width} * height) +
-                             " tiles; at most 2^30 (" + std::to_string(kMaxTiles) + ") fit in memory");
-  parse_pair(options.origin, ',', tiling_options.origin_i, tiling_options.origin_j);
-
-  Tiling tiling;
-  {
-    Progress progress("tiling", static_cast<std::uint64_t>(height), global.quiet);
-    std::uint64_t rows = 0;
-    tiling.width = width;
-    tiling.height = height;
-    tiling.origin_i = tiling_options.origin_i;
-    tiling.origin_j = tiling_options.origin_j;
-    tiling.tiles.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
-    stream_tiling(set, width, height, tiling_options, [&](int local_j, std::span<const std::uint16_t> row) {
-      std::copy(row.begin(), row.end(), tiling.tiles.begin() + static_cast<std::ptrdiff_t>(local_j) * width);
-      progress.update(++rows);
-    });
-    progress.finish();
-  }
+  parse_number_pair(options.size, 'x', width, height);
+  parse_number_pair(options.origin, ',', tiling_options.origin_i, tiling_options.origin_j);
+  Progress progress("tiling", static_cast<std::uint64_t>(height), global.quiet);
+  const Tiling tiling =
+      make_tiling(set, width, height, tiling_options, [&](int rows) { progress.update(std::uint64_t(rows)); });
+  progress.finish();
   if (extension == ".png") write_image(out, draw_tile_map(tiling, options.pixels_per_tile));
   if (extension == ".csv") write_tiling_csv(out, tiling);
   if (options.stats || options.json) {

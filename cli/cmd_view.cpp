@@ -1,12 +1,10 @@
 // wangscape view DIR: the real-time LDI view of a scene folder built with [exports] ldi — a
 // window, or offline frames, frame statistics and path playback (docs/viewer.md).
-#include <cmath>
-#include <cstdio>
 #include <limits>
 #include <memory>
-#include <sstream>
 
 #include "cli/command.h"
+#include "core/number_text.h"
 #include "renders/ldi_view.h"
 
 namespace wangscape::cli {
@@ -14,20 +12,9 @@ namespace wangscape::cli {
 namespace {
 // "A,B" or "A,B,C" as numbers (a missing third is NaN); empty when it is not that.
 std::optional<std::array<double, 3>> parse_triple(const std::string& text, bool third_optional) {
-  std::array<double, 3> v{0, 0, std::numeric_limits<double>::quiet_NaN()};
-  std::istringstream in(text);
-  in.imbue(std::locale::classic());
-  char comma = 0;
-  if (!(in >> v[0] >> comma) || comma != ',' || !(in >> v[1])) return std::nullopt;
-  if (in >> comma) {
-    if (comma != ',' || !(in >> v[2])) return std::nullopt;
-  } else if (!third_optional) {
-    return std::nullopt;
-  }
-  in >> std::ws;
-  if (!in.eof() || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !(std::isnan(v[2]) || std::isfinite(v[2])))
-    return std::nullopt;
-  return v;
+  const auto v = parse_number_list(text, ',', third_optional ? 2 : 3, 3);
+  if (!v) return std::nullopt;
+  return std::array<double, 3>{(*v)[0], (*v)[1], v->size() == 3 ? (*v)[2] : std::numeric_limits<double>::quiet_NaN()};
 }
 }  // namespace
 
@@ -66,7 +53,7 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
       throw CLI::ValidationError("--camera", "'" + o->camera + "' is not E,N or E,N,H in meters");
     if (!o->look_at.empty() && !(r.look_at = parse_triple(o->look_at, false)))
       throw CLI::ValidationError("--look-at", "'" + o->look_at + "' is not E,N,H in meters");
-    if (!o->size.empty() && std::sscanf(o->size.c_str(), "%dx%d", &r.width, &r.height) != 2)
+    if (!o->size.empty() && !parse_number_pair(o->size, 'x', r.width, r.height))
       throw CLI::ValidationError("--size", "'" + o->size + "' is not WIDTHxHEIGHT in pixels");
     if (!o->size.empty() && (r.width < 1 || r.height < 1))
       throw CLI::ValidationError("--size", "'" + o->size + "': each side must be at least 1 pixel");

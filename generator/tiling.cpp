@@ -685,6 +685,28 @@ void stream_tiling(const TileSet& set, int width, int height, const TilingOption
   }
 }
 
+Tiling make_tiling(const TileSet& set, int width, int height, const TilingOptions& options,
+                   const std::function<void(int rows_done)>& rows_done) {
+  check_window(set, width, height, options);
+  constexpr std::int64_t kMaxTiles = std::int64_t{1} << 30;
+  if (std::int64_t{width} * height > kMaxTiles)
+    throw Error("tiling: a window of " + std::to_string(width) + " x " + std::to_string(height) + " = " +
+                std::to_string(std::int64_t{width} * height) + " tiles; at most 2^30 (" + std::to_string(kMaxTiles) +
+                ") fit in memory");
+  Tiling tiling;
+  tiling.width = width;
+  tiling.height = height;
+  tiling.origin_i = options.origin_i;
+  tiling.origin_j = options.origin_j;
+  tiling.tiles.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  int rows = 0;
+  stream_tiling(set, width, height, options, [&](int local_j, std::span<const std::uint16_t> row) {
+    std::copy(row.begin(), row.end(), tiling.tiles.begin() + static_cast<std::ptrdiff_t>(local_j) * width);
+    if (rows_done) rows_done(++rows);
+  });
+  return tiling;
+}
+
 Tiling make_tiling(const TileSet& set, int width, int height, const TilingOptions& options) {
   check_window(set, width, height, options);
   Tiling tiling;

@@ -65,6 +65,12 @@ Tiling make_tiling(const TileSet& set, int width, int height, const TilingOption
 using TilingRowSink = std::function<void(int local_j, std::span<const std::uint16_t> tiles)>;
 void stream_tiling(const TileSet& set, int width, int height, const TilingOptions& options, const TilingRowSink& row);
 
+// make_tiling through stream_tiling (the same tiles), calling rows_done(n) after each of the n
+// rows (for a progress bar). Throws Error, as make_tiling, and for windows of more than 2^30
+// tiles (2 bytes each in memory).
+Tiling make_tiling(const TileSet& set, int width, int height, const TilingOptions& options,
+                   const std::function<void(int rows_done)>& rows_done);
+
 // O(1) random access for complete edge sets (edge colors hashed on the doubled grid, seed 002:
 // N of tile (i,j) at (2i+1, 2j+2), S at (2i+1, 2j), E at (2i+2, 2j+1), W at (2i, 2j+1)) and
 // complete corner sets (corner colors hashed on lattice vertices). Deterministic from seed, any int64 i, j.

@@ -1,0 +1,27 @@
+#include "core/number_text.h"
+
+#include <cmath>
+
+namespace wangscape {
+
+std::optional<std::vector<double>> parse_number_list(const std::string& text, char separator, std::size_t min_count,
+                                                     std::size_t max_count) {
+  std::vector<double> values;
+  const char* p = text.data();
+  const char* const end = p + text.size();
+  while (true) {
+    const char* stop = p;
+    while (stop != end && *stop != separator) ++stop;
+    double v = 0;
+    const auto parsed = std::from_chars(p, stop, v);  // the "C" locale's format, always
+    if (parsed.ec != std::errc() || parsed.ptr != stop || !std::isfinite(v)) return std::nullopt;
+    values.push_back(v);
+    if (values.size() > max_count) return std::nullopt;
+    if (stop == end) break;
+    p = stop + 1;
+  }
+  if (values.size() < min_count) return std::nullopt;
+  return values;
+}
+
+}  // namespace wangscape

@@ -1,0 +1,78 @@
+#include "exporters/scatter_run.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "core/error.h"
+#include "core/memory_budget.h"
+#include "exporters/point_writer.h"
+#include "scene/filled_tileset_file.h"
+#include "scene/ground.h"
+#include "scene/scene.h"
+
+namespace wangscape {
+
+ScatterResult run_scatter(const ScatterRequest& request) {
+  const double tile_size = request.placement.tile_size;
+  if (!(tile_size > 0)) throw Error("--tile-size " + std::to_string(tile_size) + ": expected meters > 0");
+  // Over a DEM: loaded and checked before any output is opened.
+  std::optional<SceneGround> dem;
+  if (request.dem) {
+    dem = SceneGround::load(*request.dem, request.masks);
+    dem->check_tile_size(tile_size, "--tile-size");
+  }
+  const Extent plane = dem ? dem->extent() : request.plane;
+  const FilledTileSet filled = read_filled_tileset_json(request.tileset);
+
+  const TileRange range = tile_range(plane, tile_size);
+  const double tiles = static_cast<double>(range.width()) * range.height();
+  std::size_t total_points = 0;
+  for (const auto& t : filled.tiles) total_points += t.size();
+  const double estimate =
+      tiles * static_cast<double>(total_points) / double(std::max<std::size_t>(filled.tiles.size(), 1));
+  if (estimate > kMaxFieldInstances)
+    throw Error(
+        fmt::format("scatter: {:.0f} x {:.0f} m in {:g} m tiles would place about {:.3g} instances; at most {:.0f} "
+                    "million: a smaller --plane or a larger --tile-size",
+                    plane.width(), plane.height(), tile_size, estimate, kMaxFieldInstances / 1e6));
+  std::vector<float> xs, ys;
+  if (request.metrics) {
+    check_memory_estimate(request.tileset, fmt::format("scatter --metrics over about {:.3g} instances", estimate),
+                          kMetricsBytesPerPoint * estimate);
+    xs.reserve(std::size_t(estimate * 1.05));  // no doubling past the estimate
+    ys.reserve(std::size_t(estimate * 1.05));
+  }
+
+  std::optional<PointWriter> writer;
+  if (!request.out.empty()) writer.emplace(request.out);
+  const auto start = std::chrono::steady_clock::now();
+  std::uint64_t placed = 0;
+  const auto sink = [&](const InstanceBatch& b) {
+    if (writer) writer->write(b);
+    if (request.metrics) {
+      xs.insert(xs.end(), b.x.begin(), b.x.end());
+      ys.insert(ys.end(), b.y.begin(), b.y.end());
+    }
+    placed += b.size();
+    if (request.progress) request.progress(placed, static_cast<std::uint64_t>(estimate));
+  };
+  ScatterResult result;
+  result.stats = dem ? dem->place(filled, request.placement, sink)
+                     : place_instances(filled, FlatGround{plane, 0.0}, request.placement, sink);
+  if (dem && result.stats.points == 0) result.empty_reason = dem->explain_empty(tile_size);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (writer) writer->commit();
+  result.packing_diameter = 2.0 * filled.radius_packing * tile_size;
+  if (request.metrics) {
+    PointMetricsOptions metric_options;
+    metric_options.area = plane;
+    metric_options.tile_size = tile_size;
+    metric_options.packing_diameter = result.packing_diameter;
+    result.metrics = measure_points(xs, ys, metric_options);
+  }
+  return result;
+}
+
+}  // namespace wangscape

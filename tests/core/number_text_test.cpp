@@ -1,0 +1,42 @@
+// Numbers from command-line text: whole strings only, finite, the "C" format in any locale.
+#include "core/number_text.h"
+
+#include <gtest/gtest.h>
+
+#include <clocale>
+#include <cstdint>
+
+namespace wangscape {
+namespace {
+
+TEST(NumberText, PairsAreWholeNumbersAroundTheSeparator) {
+  int w = 0, h = 0;
+  EXPECT_TRUE(parse_number_pair(std::string("640x360"), 'x', w, h));
+  EXPECT_EQ(w, 640);
+  EXPECT_EQ(h, 360);
+  std::int64_t i = 0, j = 0;
+  EXPECT_TRUE(parse_number_pair(std::string("-10,5"), ',', i, j));
+  EXPECT_EQ(i, -10);
+  for (const char* bad : {"640", "640x", "x360", "640x360x2", "64.5x3", " 64x3", "99999999999x1"})
+    EXPECT_FALSE(parse_number_pair(std::string(bad), 'x', w, h)) << bad;
+}
+
+TEST(NumberText, ListsAreFiniteNumbersInTheirCountRange) {
+  const auto v = parse_number_list("0,6300.5,-1e3", ',', 2, 3);
+  ASSERT_TRUE(v);
+  EXPECT_EQ(*v, (std::vector<double>{0, 6300.5, -1000}));
+  EXPECT_EQ(parse_number_list("1,2", ',', 2, 3)->size(), 2u);
+  for (const char* bad : {"1", "1,2,3,4", "1,,2", "1,b", "nan,1", "inf,1", "1,2,", "1, 2"})
+    EXPECT_FALSE(parse_number_list(bad, ',', 2, 3)) << bad;
+}
+
+TEST(NumberText, TheLocaleDoesNotChangeTheDecimalPoint) {
+  if (!std::setlocale(LC_ALL, "de_DE.UTF-8")) GTEST_SKIP() << "no de_DE locale here";
+  const auto v = parse_number_list("1.5,2", ',', 2, 2);
+  std::setlocale(LC_ALL, "C");
+  ASSERT_TRUE(v);
+  EXPECT_EQ((*v)[0], 1.5);
+}
+
+}  // namespace
+}  // namespace wangscape
