@@ -40,12 +40,11 @@ constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
 // level's resolution, each over twice the distance of the one before.
 constexpr std::uint32_t kFarSteps = 5;
 
-// The ordered 4 x 4 (Bayer) thresholds in (0, 1): which of two dithered LDIs owns a pixel.
-constexpr float kBayer[4][4] = {{0.5f / 16, 8.5f / 16, 2.5f / 16, 10.5f / 16},
-                                {12.5f / 16, 4.5f / 16, 14.5f / 16, 6.5f / 16},
-                                {3.5f / 16, 11.5f / 16, 1.5f / 16, 9.5f / 16},
-                                {15.5f / 16, 7.5f / 16, 13.5f / 16, 5.5f / 16}};
-float threshold(int x, int y) { return kBayer[y & 3][x & 3]; }
+// The ordered 4 x 4 (Bayer) dither: cell k of a pixel, its threshold (k + 0.5) / 16 in (0, 1),
+// which decides which of two dithered LDIs owns the pixel.
+constexpr std::uint8_t kBayerIndex[4][4] = {{0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};
+int bayer_index(int x, int y) { return kBayerIndex[y & 3][x & 3]; }
+float threshold(int x, int y) { return (float(bayer_index(x, y)) + 0.5f) / 16; }
 
 float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
@@ -373,7 +372,7 @@ double ViewWorld::ground_height(double x, double y, double fallback) const {
 
 namespace {
 
-// Bit k set: the thresholds (k + 0.5) / 16 in [from, to), those of kBayer a dithered LDI owns.
+// Bit k set: the thresholds (k + 0.5) / 16 in [from, to), the Bayer cells a dithered LDI owns.
 std::uint16_t owned_thresholds(float from, float to) {
   std::uint16_t mask = 0;
   for (int k = 0; k < 16; ++k) {
@@ -382,9 +381,6 @@ std::uint16_t owned_thresholds(float from, float to) {
   }
   return mask;
 }
-// k of kBayer's (k + 0.5) / 16 at a pixel.
-constexpr std::uint8_t kBayerIndex[4][4] = {{0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};
-int bayer_index(int x, int y) { return kBayerIndex[y & 3][x & 3]; }
 
 // Splats are not written as they are made: each goes into the bucket of the 64 x 64 pixel bin
 // it covers (one set of buckets per thread), and the bins are then resolved one per task, so a
