@@ -9,6 +9,7 @@
 #include <cmath>
 #include <regex>
 
+#include "core/memory_budget.h"
 #include "terrain/terrain.h"
 #include "terrain_test_support.h"
 
@@ -112,6 +113,46 @@ TEST(Dem, AStripTooLongForOneFrameIsRefusedQuickly) {
   }
   // Refused before the conversions: far under the seconds they took (a loose bound for a loaded machine).
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 3.0);
+}
+
+// Found by bench/fuzz_million.sh: 2 x 280,487 cells whose extent the scene frame bends to
+// 31 x 4,116 km passed the earlier cap of 4 nodes per cell and took 6 s (2.2 million nodes).
+TEST(Dem, AStripBentByTheFrameIsRefusedBeforeItsLattice) {
+  const auto path = test_dem("edge-cases/strip_bent_4116km.dem");
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    Terrain::load(path);
+    FAIL() << "a strip bent over 4116 km became a terrain";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("strip_bent_4116km.dem': its heights span 31 x 41"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 3.0);
+}
+
+// The lattice is a buffer sized by the input: over the memory limit it is refused with its
+// estimate before a node is converted.
+TEST(Dem, ALatticeOverTheMemoryLimitIsRefusedWithItsEstimate) {
+  // A strip two cells wide at latitude 80 (cells 5.8 m east by 33 m north; the lattice steps 8
+  // of the narrower): 800 heights (3,200 bytes) under a lattice of 2 x 290 nodes (18,560 bytes), so a
+  // limit between the two holds the heights and refuses the lattice.
+  const auto dir = test::scratch_dir("lattice_memory");
+  std::string grid = "ncols 2\nnrows 400\nxllcorner -105.3\nyllcorner 80.0\ncellsize 0.0003\n";
+  for (int row = 0; row < 400; ++row) grid += std::to_string(1600 + row) + " " + std::to_string(1601 + row) + "\n";
+  test::write_text(dir / "strip.asc", grid);
+  std::filesystem::copy_file(boulder().replace_extension(".prj"), dir / "strip.prj");
+  set_memory_limit_bytes_for_process(8000);
+  try {
+    Terrain::load(dir / "strip.asc");
+    set_memory_limit_bytes_for_process(0);
+    FAIL() << "a lattice over the limit was built";
+  } catch (const Error& e) {
+    set_memory_limit_bytes_for_process(0);
+    EXPECT_NE(std::string(e.what()).find("strip.asc: its georeference lattice of 2 x 290 nodes would need"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_NO_THROW(Terrain::load(dir / "strip.asc"));
 }
 
 // Found by fuzz/dem_fuzz: a GeoTIFF in UTM 10N whose origin a flipped bit put 2.4e12 km east
