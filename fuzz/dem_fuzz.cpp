@@ -21,8 +21,8 @@ constexpr char kWgs84Prj[] =
 // node through PROJ and GeographicLib, ~5 us each under ASan: a legal 4 x 64,003 strip costs a
 // second an execution and held the fuzzer at ~100 exec/s. Grids past these sizes are parsed
 // (GDALOpen reads the header) but not loaded; the large-grid paths are covered by the tests.
-constexpr int kMaxFuzzEdgeSum = 4096;        // width + height, cells
-constexpr double kMaxFuzzCells = 65536;      // width x height
+constexpr int kMaxFuzzEdgeSum = 4096;                               // width + height, cells
+constexpr double kMaxFuzzCells = 65536;                             // width x height
 constexpr std::uint64_t kFuzzMemoryLimit = std::uint64_t{1} << 20;  // bytes: a lattice of <= 32 K nodes
 
 bool small_enough_to_load(const char* path) {
@@ -62,11 +62,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // GDAL reads the buffer in place and never writes it (the file is opened read-only).
   VSILFILE* dem = VSIFileFromMemBuffer(kDemPath, const_cast<GByte*>(data), vsi_l_offset(size), FALSE);
   VSIFCloseL(dem);
-  if (small_enough_to_load(kDemPath)) fuzz::refusals_are_fine([] {
-    const Terrain terrain = Terrain::load(kDemPath);
-    const Extent e = terrain.extent();
-    (void)terrain.height(0.5 * (e.min_x + e.max_x), 0.5 * (e.min_y + e.max_y));
-  });
+  if (small_enough_to_load(kDemPath))
+    fuzz::refusals_are_fine([] {
+      const Terrain terrain = Terrain::load(kDemPath);
+      const Extent e = terrain.extent();
+      (void)terrain.height(0.5 * (e.min_x + e.max_x), 0.5 * (e.min_y + e.max_y));
+    });
   VSIUnlink(kDemPath);
   return 0;
 }

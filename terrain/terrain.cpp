@@ -178,8 +178,9 @@ void Terrain::build_lattice() {
                 " cells cover (at most one georeference node per " + std::to_string(int(1 / kMaxLatticeNodesPerCell)) +
                 " cells); a grid this long or bent does not fit one local frame");
   // Per node: its ENU position while converting (2 doubles) and the sample it maps to (2 doubles).
-  check_memory_estimate(dem_.path, "its georeference lattice of " + std::to_string(static_cast<long long>(nx)) + " x " +
-                                       std::to_string(static_cast<long long>(ny)) + " nodes",
+  check_memory_estimate(dem_.path,
+                        "its georeference lattice of " + std::to_string(static_cast<long long>(nx)) + " x " +
+                            std::to_string(static_cast<long long>(ny)) + " nodes",
                         32.0 * nx * ny);
   lattice_nx_ = int(nx);
   lattice_ny_ = int(ny);
