@@ -213,6 +213,74 @@ std::vector<float> terrain_sun_visibility(const Mesh& mesh, const std::array<flo
   return visible;
 }
 
+constexpr std::size_t kTerrainChunkTriangles = 1024;
+
+// The mesh cut into a square grid of chunks by triangle centroid (about kTerrainChunkTriangles
+// each); a vertex shared by chunks is copied into each, with its light.
+ViewWorld::Terrain chunked_terrain(const Mesh& mesh, const std::vector<std::array<float, 3>>& light) {
+  ViewWorld::Terrain out;
+  if (mesh.triangles.empty()) return out;
+  std::array<float, 2> low{std::numeric_limits<float>::max(), std::numeric_limits<float>::max()};
+  std::array<float, 2> high{-low[0], -low[1]};
+  for (const auto& p : mesh.positions)
+    for (std::size_t k = 0; k < 2; ++k) {
+      low[k] = std::min(low[k], p[k]);
+      high[k] = std::max(high[k], p[k]);
+    }
+  const int side =
+      std::max(1, int(std::lround(std::sqrt(double(mesh.triangles.size()) / double(kTerrainChunkTriangles)))));
+  const auto cell = [&](float v, std::size_t k) {
+    const float f = (v - low[k]) / std::max(high[k] - low[k], 1e-6f);
+    return std::clamp(int(f * float(side)), 0, side - 1);
+  };
+  std::vector<std::vector<std::uint32_t>> members(std::size_t(side) * std::size_t(side));
+  for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& ids = mesh.triangles[t];
+    float cx = 0, cy = 0;
+    for (const std::uint32_t i : ids) {
+      cx += mesh.positions[i][0] / 3;
+      cy += mesh.positions[i][1] / 3;
+    }
+    members[std::size_t(cell(cy, 1)) * std::size_t(side) + std::size_t(cell(cx, 0))].push_back(t);
+  }
+  std::vector<std::uint32_t> local(mesh.positions.size(), ~0u);  // this chunk's copy of a vertex
+  for (const auto& chunk_triangles : members) {
+    if (chunk_triangles.empty()) continue;
+    ViewWorld::Terrain::Chunk chunk;
+    chunk.first_vertex = std::uint32_t(out.x.size());
+    chunk.first_triangle = std::uint32_t(out.triangles.size());
+    chunk.low = {std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
+                 std::numeric_limits<float>::max()};
+    chunk.high = {-chunk.low[0], -chunk.low[1], -chunk.low[2]};
+    for (const std::uint32_t t : chunk_triangles) {
+      std::array<std::uint32_t, 3> remapped{};
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::uint32_t i = mesh.triangles[t][k];
+        if (local[i] == ~0u || local[i] < chunk.first_vertex) {
+          local[i] = std::uint32_t(out.x.size());
+          const auto& p = mesh.positions[i];
+          out.x.push_back(p[0]);
+          out.y.push_back(p[1]);
+          out.z.push_back(p[2]);
+          out.light_r.push_back(light[i][0]);
+          out.light_g.push_back(light[i][1]);
+          out.light_b.push_back(light[i][2]);
+          for (std::size_t c = 0; c < 3; ++c) {
+            chunk.low[c] = std::min(chunk.low[c], p[c]);
+            chunk.high[c] = std::max(chunk.high[c], p[c]);
+          }
+        }
+        remapped[k] = local[i];
+      }
+      out.triangles.push_back(remapped);
+    }
+    chunk.vertex_count = std::uint32_t(out.x.size()) - chunk.first_vertex;
+    chunk.triangle_count = std::uint32_t(out.triangles.size()) - chunk.first_triangle;
+    out.chunks.push_back(chunk);
+  }
+  return out;
+}
+
 }  // namespace
 
 // ---- the world -----------------------------------------------------------------------------
@@ -300,24 +368,19 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
   const auto sun = scene_.sun.direction();
   sun_ = {float(sun[0]), float(sun[1]), float(sun[2])};
   const Mesh& mesh = scene_.terrain;
-  terrain_.triangles = mesh.triangles;
   const std::vector<float> sunlit = terrain_sun_visibility(mesh, sun_);
+  std::vector<std::array<float, 3>> light(mesh.positions.size());
   for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-    const auto& p = mesh.positions[v];
-    terrain_.x.push_back(p[0]);
-    terrain_.y.push_back(p[1]);
-    terrain_.z.push_back(p[2]);
     const std::array<float, 3> n = v < mesh.normals.size() ? mesh.normals[v] : std::array<float, 3>{0, 0, 1};
     const float cos_sun = sunlit[v] * std::max(0.0f, n[0] * sun_[0] + n[1] * sun_[1] + n[2] * sun_[2]);
     const float strength = float(scene_.sun.strength);
-    auto light = [&](int c) {
+    auto light_of = [&](int c) {
       return (shading.sun_color[std::size_t(c)] * strength * cos_sun + shading.sky_color[std::size_t(c)]) *
              shading.exposure;
     };
-    terrain_.light_r.push_back(light(0));
-    terrain_.light_g.push_back(light(1));
-    terrain_.light_b.push_back(light(2));
+    light[v] = {light_of(0), light_of(1), light_of(2)};
   }
+  terrain_ = chunked_terrain(mesh, light);
 
   // The far field: per tile and direction, the coarsest LDI's front flower samples averaged —
   // those in the canopy's upper part: seen from afar at a grazing angle, the tiles in front hide
@@ -403,6 +466,11 @@ struct SplatBins {
     bins.resize(std::size_t(bin_columns) * std::size_t(bin_rows));
     for (auto& b : bins) b.clear();
   }
+  // One pixel (most splats), inside the frame.
+  void add_pixel(int x, int y, std::uint64_t entry, std::uint16_t owned) {
+    bins[std::size_t(y >> kBinShift) * std::size_t(columns) + std::size_t(x >> kBinShift)].push_back(
+        {entry, std::uint16_t(x), std::uint16_t(y), 1, 1, owned});
+  }
   // The pixels [xa, xb) x [ya, yb), not empty and inside the frame.
   void add(int xa, int xb, int ya, int yb, std::uint64_t entry, std::uint16_t owned) {
     for (int by = ya >> kBinShift; by <= (yb - 1) >> kBinShift; ++by)
@@ -441,6 +509,19 @@ struct LdiRenderer::Impl {
   std::array<float, 3> direction_to_camera(double x, double y, double z) const {
     const V3 d{x, y, z};
     return {float(dot(d, right)), float(dot(d, up)), float(dot(d, forward))};
+  }
+  // True when all eight corners of the box lie outside one plane of the view frustum.
+  bool box_outside_frustum(const std::array<double, 3>& low, const std::array<double, 3>& high) const {
+    int outside[5] = {0, 0, 0, 0, 0};
+    for (int k = 0; k < 8; ++k) {
+      const auto c = to_camera(k & 1 ? high[0] : low[0], k & 2 ? high[1] : low[1], k & 4 ? high[2] : low[2]);
+      outside[0] += c[2] < kNear;
+      outside[1] += c[0] > c[2] * tan_x;
+      outside[2] += c[0] < -c[2] * tan_x;
+      outside[3] += c[1] > c[2] * tan_y;
+      outside[4] += c[1] < -c[2] * tan_y;
+    }
+    return std::any_of(std::begin(outside), std::end(outside), [](int n) { return n == 8; });
   }
 };
 
@@ -527,10 +608,9 @@ void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, 
     const float sx = cx + focal * camera_x * inv, sy = cy - focal * camera_y * inv;
     const std::uint64_t entry = pack_entry(camera_z, p.r, p.g, p.b);
     const float size = w.splat * inv;
-    if (size <= 1.0f) {  // most splats: one pixel
-      const int px = int(std::floor(sx)), py = int(std::floor(sy));
-      if (px < 0 || py < 0 || px >= width || py >= height) return;
-      out.add(px, px + 1, py, py + 1, entry, w.owned);
+    if (size <= 1.0f) {  // most splats: one pixel (truncation is the floor of a coordinate >= 0)
+      if (!(sx >= 0 && sy >= 0 && sx < float(width) && sy < float(height))) return;
+      out.add_pixel(std::min(int(sx), width - 1), std::min(int(sy), height - 1), entry, w.owned);
       return;
     }
     // The pixels whose centres the splat's square covers: about size^2 of them, not ceil(size)^2.
@@ -703,17 +783,8 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
     m.far_cover[t] = fa[3] * (1 - w2) + fb[3] * w2;
 
     // The frustum: culled when all eight corners of the tile's box are outside one plane.
-    int outside[5] = {0, 0, 0, 0, 0};
-    for (int k = 0; k < 8; ++k) {
-      const auto c = m.to_camera(x0 + (k & 1 ? s : 0), y0 + (k & 2 ? s : 0),
-                                 k & 4 ? double(tiles.z_max[t]) + top : double(tiles.z_min[t]) - 0.01);
-      outside[0] += c[2] < kNear;
-      outside[1] += c[0] > c[2] * m.tan_x;
-      outside[2] += c[0] < -c[2] * m.tan_x;
-      outside[3] += c[1] > c[2] * m.tan_y;
-      outside[4] += c[1] < -c[2] * m.tan_y;
-    }
-    if (std::any_of(std::begin(outside), std::end(outside), [](int n) { return n == 8; })) {
+    if (m.box_outside_frustum({x0, y0, double(tiles.z_min[t]) - 0.01},
+                              {x0 + s, y0 + s, double(tiles.z_max[t]) + top})) {
       ++stats_.tiles_culled;
       continue;
     }
@@ -818,16 +889,9 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   });
 
   const auto ldis_done = std::chrono::steady_clock::now();
-  // ---- the terrain: vertices to camera space, triangles rasterized in parallel ----
+  // ---- the terrain: chunks in the frustum, their vertices to camera space, their triangles
+  // rasterized, in parallel ----
   const ViewWorld::Terrain& terrain = world.terrain();
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, terrain.x.size(), 4096), [&](const auto& r) {
-    for (std::size_t v = r.begin(); v != r.end(); ++v) {
-      const auto c = m.to_camera(terrain.x[v], terrain.y[v], terrain.z[v]);
-      m.vx[v] = c[0];
-      m.vy[v] = c[1];
-      m.vz[v] = c[2];
-    }
-  });
   const Luts& lut = luts();
   const float ex = float(m.eye[0]), ey = float(m.eye[1]);
   const float inv_s = float(1 / s);
@@ -912,51 +976,64 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
       }
     }
   };
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, terrain.triangles.size(), 512), [&](const auto& r) {
-    for (std::size_t tri = r.begin(); tri != r.end(); ++tri) {
-      const auto& ids = terrain.triangles[tri];
-      Vertex v[3];
-      int behind = 0;
-      for (int k = 0; k < 3; ++k) {
-        const std::uint32_t i = ids[std::size_t(k)];
-        v[k] = {m.vx[i],
-                m.vy[i],
-                m.vz[i],
-                terrain.x[i] - ex,
-                terrain.y[i] - ey,
-                terrain.light_r[i],
-                terrain.light_g[i],
-                terrain.light_b[i]};
-        behind += v[k].z < kNear;
+  auto draw_triangle = [&](const std::array<std::uint32_t, 3>& ids) {
+    Vertex v[3];
+    int behind = 0;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t i = ids[std::size_t(k)];
+      v[k] = {m.vx[i],
+              m.vy[i],
+              m.vz[i],
+              terrain.x[i] - ex,
+              terrain.y[i] - ey,
+              terrain.light_r[i],
+              terrain.light_g[i],
+              terrain.light_b[i]};
+      behind += v[k].z < kNear;
+    }
+    if (behind == 3) return;
+    // A quick reject: all three beyond one side plane.
+    auto out = [&](auto&& side) { return side(v[0]) && side(v[1]) && side(v[2]); };
+    if (out([&](const Vertex& q) { return q.x > q.z * m.tan_x; }) ||
+        out([&](const Vertex& q) { return q.x < -q.z * m.tan_x; }) ||
+        out([&](const Vertex& q) { return q.y > q.z * m.tan_y; }) ||
+        out([&](const Vertex& q) { return q.y < -q.z * m.tan_y; }))
+      return;
+    if (behind == 0) {
+      raster(v[0], v[1], v[2]);
+      return;
+    }
+    // Clip against the near plane (Sutherland-Hodgman): 3 or 4 vertices, drawn as a fan.
+    Vertex poly[4];
+    int n = 0;
+    for (int k = 0; k < 3; ++k) {
+      const Vertex& p = v[k];
+      const Vertex& q = v[(k + 1) % 3];
+      const bool pin = p.z >= kNear, qin = q.z >= kNear;
+      if (pin) poly[n++] = p;
+      if (pin != qin) {
+        const float f = (kNear - p.z) / (q.z - p.z);
+        auto lerp = [f](float a, float b) { return a + (b - a) * f; };
+        poly[n++] = {lerp(p.x, q.x),   lerp(p.y, q.y),   kNear,           lerp(p.wx, q.wx), lerp(p.wy, q.wy),
+                     lerp(p.lr, q.lr), lerp(p.lg, q.lg), lerp(p.lb, q.lb)};
       }
-      if (behind == 3) continue;
-      // A quick reject: all three beyond one side plane.
-      auto out = [&](auto&& side) { return side(v[0]) && side(v[1]) && side(v[2]); };
-      if (out([&](const Vertex& q) { return q.x > q.z * m.tan_x; }) ||
-          out([&](const Vertex& q) { return q.x < -q.z * m.tan_x; }) ||
-          out([&](const Vertex& q) { return q.y > q.z * m.tan_y; }) ||
-          out([&](const Vertex& q) { return q.y < -q.z * m.tan_y; }))
+    }
+    for (int k = 1; k + 1 < n; ++k) raster(poly[0], poly[k], poly[k + 1]);
+  };
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, terrain.chunks.size(), 1), [&](const auto& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) {
+      const ViewWorld::Terrain::Chunk& chunk = terrain.chunks[k];
+      if (m.box_outside_frustum({chunk.low[0], chunk.low[1], chunk.low[2]},
+                                {chunk.high[0], chunk.high[1], chunk.high[2]}))
         continue;
-      if (behind == 0) {
-        raster(v[0], v[1], v[2]);
-        continue;
+      for (std::uint32_t v = chunk.first_vertex; v < chunk.first_vertex + chunk.vertex_count; ++v) {
+        const auto c = m.to_camera(terrain.x[v], terrain.y[v], terrain.z[v]);
+        m.vx[v] = c[0];
+        m.vy[v] = c[1];
+        m.vz[v] = c[2];
       }
-      // Clip against the near plane (Sutherland-Hodgman): 3 or 4 vertices, drawn as a fan.
-      Vertex poly[4];
-      int n = 0;
-      for (int k = 0; k < 3; ++k) {
-        const Vertex& p = v[k];
-        const Vertex& q = v[(k + 1) % 3];
-        const bool pin = p.z >= kNear, qin = q.z >= kNear;
-        if (pin) poly[n++] = p;
-        if (pin != qin) {
-          const float f = (kNear - p.z) / (q.z - p.z);
-          auto lerp = [f](float a, float b) { return a + (b - a) * f; };
-          poly[n++] = {lerp(p.x, q.x),   lerp(p.y, q.y),   kNear,           lerp(p.wx, q.wx), lerp(p.wy, q.wy),
-                       lerp(p.lr, q.lr), lerp(p.lg, q.lg), lerp(p.lb, q.lb)};
-        }
-      }
-      for (int k = 1; k + 1 < n; ++k) raster(poly[0], poly[k], poly[k + 1]);
+      for (std::uint32_t t = chunk.first_triangle; t < chunk.first_triangle + chunk.triangle_count; ++t)
+        draw_triangle(terrain.triangles[t]);
     }
   });
 

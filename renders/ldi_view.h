@@ -66,10 +66,18 @@ class ViewWorld {
     std::vector<float> z_min, z_max;      // of the corners
     std::size_t size() const { return tile.size(); }
   };
-  struct Terrain {                                 // structure of arrays
-    std::vector<float> x, y, z;                    // ENU meters
-    std::vector<float> light_r, light_g, light_b;  // sun + sky irradiance (linear) at the vertex
-    std::vector<std::array<std::uint32_t, 3>> triangles;
+  // The terrain mesh in square chunks of about kTerrainChunkTriangles triangles, each with its
+  // own copy of its vertices (contiguous), so a frame culls whole chunks by their box and
+  // transforms only the vertices of those it draws, with no two tasks writing one vertex.
+  struct Terrain {                                        // structure of arrays
+    std::vector<float> x, y, z;                           // ENU meters
+    std::vector<float> light_r, light_g, light_b;         // sun + sky irradiance (linear) at the vertex
+    std::vector<std::array<std::uint32_t, 3>> triangles;  // chunk by chunk
+    struct Chunk {
+      std::uint32_t first_vertex = 0, vertex_count = 0, first_triangle = 0, triangle_count = 0;
+      std::array<float, 3> low{}, high{};  // the box of its vertices, ENU meters
+    };
+    std::vector<Chunk> chunks;
   };
 
   const Scene& scene() const { return scene_; }
