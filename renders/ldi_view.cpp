@@ -496,8 +496,10 @@ struct LdiRenderer::Impl {
   std::vector<std::uint8_t> level_a, level_b, dir_a, dir_b;
   std::vector<float> level_b_weight, dir_b_weight;
   std::vector<double> direction_east, direction_north;  // the pack's ray directions, horizontal unit
-  // Terrain vertices in camera space.
+  // Terrain vertices in camera space; the chunks drawn, nearest first, and their distances.
   std::vector<float> vx, vy, vz;
+  std::vector<std::uint32_t> chunk_order;
+  std::vector<float> chunk_distance;
   std::atomic<std::uint64_t> depth_pixels{0};
   tbb::enumerable_thread_specific<SplatBins> splat_bins;  // per thread, kept across frames
   int bin_columns = 0, bin_rows = 0;
@@ -547,6 +549,8 @@ LdiRenderer::LdiRenderer(std::shared_ptr<const ViewWorld> world, int width, int 
   m.vx.assign(vertices, 0);
   m.vy.assign(vertices, 0);
   m.vz.assign(vertices, 0);
+  m.chunk_order.reserve(world_->terrain().chunks.size());
+  m.chunk_distance.assign(world_->terrain().chunks.size(), 0);
   stats_.levels.assign(world_->pack().info().levels + 1, 0);
 }
 
@@ -1020,12 +1024,27 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
     }
     for (int k = 1; k + 1 < n; ++k) raster(poly[0], poly[k], poly[k + 1]);
   };
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, terrain.chunks.size(), 1), [&](const auto& r) {
-    for (std::size_t k = r.begin(); k != r.end(); ++k) {
-      const ViewWorld::Terrain::Chunk& chunk = terrain.chunks[k];
-      if (m.box_outside_frustum({chunk.low[0], chunk.low[1], chunk.low[2]},
-                                {chunk.high[0], chunk.high[1], chunk.high[2]}))
-        continue;
+  // The chunks in the frustum, nearest first: the early depth test then skips the shading of
+  // ground that nearer ground hides (a third of the terrain's time on the scene's camera).
+  m.chunk_order.clear();
+  for (std::uint32_t k = 0; k < terrain.chunks.size(); ++k) {
+    const ViewWorld::Terrain::Chunk& chunk = terrain.chunks[k];
+    const V3 low{chunk.low[0], chunk.low[1], chunk.low[2]}, high{chunk.high[0], chunk.high[1], chunk.high[2]};
+    if (m.box_outside_frustum(low, high)) continue;
+    double squared = 0;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double d = std::max({low[c] - m.eye[c], m.eye[c] - high[c], 0.0});
+      squared += d * d;
+    }
+    m.chunk_distance[k] = float(squared);
+    m.chunk_order.push_back(k);
+  }
+  std::sort(m.chunk_order.begin(), m.chunk_order.end(), [&](std::uint32_t p, std::uint32_t q) {
+    return m.chunk_distance[p] != m.chunk_distance[q] ? m.chunk_distance[p] < m.chunk_distance[q] : p < q;
+  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.chunk_order.size(), 1), [&](const auto& r) {
+    for (std::size_t o = r.begin(); o != r.end(); ++o) {
+      const ViewWorld::Terrain::Chunk& chunk = terrain.chunks[m.chunk_order[o]];
       for (std::uint32_t v = chunk.first_vertex; v < chunk.first_vertex + chunk.vertex_count; ++v) {
         const auto c = m.to_camera(terrain.x[v], terrain.y[v], terrain.z[v]);
         m.vx[v] = c[0];
