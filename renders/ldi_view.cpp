@@ -614,7 +614,10 @@ void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, 
     const float size = w.splat * inv;
     if (size <= 1.0f) {  // most splats: one pixel (truncation is the floor of a coordinate >= 0)
       if (!(sx >= 0 && sy >= 0 && sx < float(width) && sy < float(height))) return;
-      out.add_pixel(std::min(int(sx), width - 1), std::min(int(sy), height - 1), entry, w.owned);
+      const int px = std::min(int(sx), width - 1), py = std::min(int(sy), height - 1);
+      // A dithered LDI's pixel another LDI owns: the resolve would drop it, so it is not binned.
+      if (w.owned != 0xffff && !(w.owned >> bayer_index(px, py) & 1)) return;
+      out.add_pixel(px, py, entry, 0xffff);
       return;
     }
     // The pixels whose centres the splat's square covers: about size^2 of them, not ceil(size)^2.
