@@ -445,41 +445,40 @@ std::uint16_t owned_thresholds(float from, float to) {
   return mask;
 }
 
-// Splats are not written as they are made: each goes into the bucket of the 64 x 64 pixel bin
-// it covers (one set of buckets per thread), and the bins are then resolved one per task, so a
-// bin's z-buffer stays in the core's cache and no write needs an atomic. The z-buffer keeps the
-// smallest entry, so the order of the buckets does not change a byte.
-constexpr int kBinShift = 6;
-struct Splat {
-  std::uint64_t entry;
-  std::uint16_t x, y;   // the top-left pixel
-  std::uint8_t w, h;    // pixels
-  std::uint16_t owned;  // owned_thresholds of its LDI
-};
-static_assert(sizeof(Splat) == 16);
-
-struct SplatBins {
-  int columns = 0;
-  std::vector<std::vector<Splat>> bins;  // row-major; cleared per frame, their capacity kept
-  void reset(int bin_columns, int bin_rows) {
-    columns = bin_columns;
-    bins.resize(std::size_t(bin_columns) * std::size_t(bin_rows));
-    for (auto& b : bins) b.clear();
+// Splats are written straight into a z-buffer of the warping thread's own (no atomic write, no
+// cache line shared between cores); the frame's z-buffer is then the per-pixel smallest entry
+// of the threads' buffers, which is what any order of writes into one buffer leaves.
+struct ThreadDepths {
+  int width = 0;
+  int first_row = 0, last_row = -1;    // the rows written this frame
+  std::vector<std::uint64_t> entries;  // kEmpty where nothing was written (the merge resets them)
+  void reset(int frame_width, int frame_height) {
+    width = frame_width;
+    entries.assign(std::size_t(frame_width) * std::size_t(frame_height), kEmpty);
+    first_row = frame_height;
+    last_row = -1;
+  }
+  void touch(int ya, int yb) {
+    first_row = std::min(first_row, ya);
+    last_row = std::max(last_row, yb - 1);
   }
   // One pixel (most splats), inside the frame.
-  void add_pixel(int x, int y, std::uint64_t entry, std::uint16_t owned) {
-    bins[std::size_t(y >> kBinShift) * std::size_t(columns) + std::size_t(x >> kBinShift)].push_back(
-        {entry, std::uint16_t(x), std::uint16_t(y), 1, 1, owned});
+  void write_pixel(int x, int y, std::uint64_t entry) {
+    touch(y, y + 1);
+    std::uint64_t& slot = entries[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+    if (entry < slot) slot = entry;
   }
-  // The pixels [xa, xb) x [ya, yb), not empty and inside the frame.
-  void add(int xa, int xb, int ya, int yb, std::uint64_t entry, std::uint16_t owned) {
-    for (int by = ya >> kBinShift; by <= (yb - 1) >> kBinShift; ++by)
-      for (int bx = xa >> kBinShift; bx <= (xb - 1) >> kBinShift; ++bx) {
-        const int x0 = std::max(xa, bx << kBinShift), x1 = std::min(xb, (bx + 1) << kBinShift);
-        const int y0 = std::max(ya, by << kBinShift), y1 = std::min(yb, (by + 1) << kBinShift);
-        bins[std::size_t(by) * std::size_t(columns) + std::size_t(bx)].push_back(
-            {entry, std::uint16_t(x0), std::uint16_t(y0), std::uint8_t(x1 - x0), std::uint8_t(y1 - y0), owned});
+  // The pixels [xa, xb) x [ya, yb) that `owned` holds (owned_thresholds), not empty and inside
+  // the frame.
+  void write(int xa, int xb, int ya, int yb, std::uint64_t entry, std::uint16_t owned) {
+    touch(ya, yb);
+    for (int y = ya; y < yb; ++y) {
+      std::uint64_t* row = entries.data() + std::size_t(y) * std::size_t(width);
+      for (int x = xa; x < xb; ++x) {
+        if (owned != 0xffff && !(owned >> bayer_index(x, y) & 1)) continue;
+        if (entry < row[x]) row[x] = entry;
       }
+    }
   }
 };
 
@@ -501,8 +500,7 @@ struct LdiRenderer::Impl {
   std::vector<std::uint32_t> chunk_order;
   std::vector<float> chunk_distance;
   std::atomic<std::uint64_t> depth_pixels{0};
-  tbb::enumerable_thread_specific<SplatBins> splat_bins;  // per thread, kept across frames
-  int bin_columns = 0, bin_rows = 0;
+  tbb::enumerable_thread_specific<ThreadDepths> thread_depths;  // per thread, kept across frames
 
   std::array<float, 3> to_camera(double x, double y, double z) const {
     const V3 d{x - eye[0], y - eye[1], z - eye[2]};
@@ -536,8 +534,6 @@ LdiRenderer::LdiRenderer(std::shared_ptr<const ViewWorld> world, int width, int 
   m.width = width;
   m.height = height;
   m.zbuffer.assign(std::size_t(width) * std::size_t(height), kEmpty);
-  m.bin_columns = (width + (1 << kBinShift) - 1) >> kBinShift;
-  m.bin_rows = (height + (1 << kBinShift) - 1) >> kBinShift;
   image_ = ImageRgb8(width, height);
   const std::size_t n = world_->tiles().size();
   for (auto* v :
@@ -589,8 +585,8 @@ struct Warp {
   int epipole_x = 0, epipole_y = 0;
 };
 
-void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, int width, int height, SplatBins& out,
-              std::uint64_t& depth_pixels) {
+void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, int width, int height,
+              ThreadDepths& out, std::uint64_t& depth_pixels) {
   // What one pixel of the LDI contributes before its layers' depths: tile-local and camera space.
   struct PixelBase {
     float lx, ly, lz, cx, cy, cz;
@@ -615,9 +611,8 @@ void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, 
     if (size <= 1.0f) {  // most splats: one pixel (truncation is the floor of a coordinate >= 0)
       if (!(sx >= 0 && sy >= 0 && sx < float(width) && sy < float(height))) return;
       const int px = std::min(int(sx), width - 1), py = std::min(int(sy), height - 1);
-      // A dithered LDI's pixel another LDI owns: the resolve would drop it, so it is not binned.
-      if (w.owned != 0xffff && !(w.owned >> bayer_index(px, py) & 1)) return;
-      out.add_pixel(px, py, entry, 0xffff);
+      if (w.owned != 0xffff && !(w.owned >> bayer_index(px, py) & 1)) return;  // another LDI's pixel
+      out.write_pixel(px, py, entry);
       return;
     }
     // The pixels whose centres the splat's square covers: about size^2 of them, not ceil(size)^2.
@@ -626,7 +621,7 @@ void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, 
               xb = std::min(int(std::ceil(sx + half - 0.5f)), width);
     const int ya = std::max(int(std::ceil(sy - half - 0.5f)), 0),
               yb = std::min(int(std::ceil(sy + half - 0.5f)), height);
-    if (xa < xb && ya < yb) out.add(xa, xb, ya, yb, entry, w.owned);
+    if (xa < xb && ya < yb) out.write(xa, xb, ya, yb, entry, w.owned);
   };
   auto visit = [&](int x, int y, std::uint32_t first, std::uint32_t count) {
     depth_pixels += count;
@@ -809,9 +804,8 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, order_.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
         std::uint64_t counted = 0;
-        SplatBins& bins = m.splat_bins.local();
-        if (bins.bins.size() != std::size_t(m.bin_columns) * std::size_t(m.bin_rows))
-          bins.reset(m.bin_columns, m.bin_rows);
+        ThreadDepths& depths = m.thread_depths.local();
+        if (depths.entries.size() != m.zbuffer.size()) depths.reset(m.width, m.height);
         for (std::size_t o = r.begin(); o != r.end(); ++o) {
           const std::uint32_t t = order_[o];
           // Up to two levels x two directions, each owning a slice of the dither thresholds.
@@ -865,35 +859,29 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
             w.epipole_y = int(std::floor(std::clamp(ey, -2.0, double(f.height) + 1)));
             // The eye before the image plane: deeper layers are farther, so they go first.
             w.reverse_layers = dot(eye_local, {f.forward[0], f.forward[1], f.forward[2]}) < f.depth_range * 0.5;
-            warp_ldi(v, w, m.focal, m.cx, m.cy, m.width, m.height, bins, counted);
+            warp_ldi(v, w, m.focal, m.cx, m.cy, m.width, m.height, depths, counted);
           }
         }
         m.depth_pixels += counted;
       });
-  // The bins: one task each, every thread's bucket of it, then the buckets emptied.
-  tbb::parallel_for(tbb::blocked_range<int>(0, m.bin_columns * m.bin_rows, 1), [&](const tbb::blocked_range<int>& r) {
-    for (int b = r.begin(); b != r.end(); ++b)
-      for (SplatBins& bins : m.splat_bins) {
-        if (bins.bins.empty()) continue;
-        auto& bucket = bins.bins[std::size_t(b)];
-        for (const Splat& splat : bucket) {
-          if ((splat.w | splat.h) == 1) {  // most splats: one pixel
-            std::uint64_t& slot = m.zbuffer[std::size_t(splat.y) * std::size_t(m.width) + splat.x];
-            if (splat.entry < slot && (splat.owned == 0xffff || splat.owned >> bayer_index(splat.x, splat.y) & 1))
-              slot = splat.entry;
-            continue;
-          }
-          for (int py = splat.y; py < splat.y + splat.h; ++py) {
-            std::uint64_t* row = m.zbuffer.data() + std::size_t(py) * std::size_t(m.width);
-            for (int px = splat.x; px < splat.x + splat.w; ++px) {
-              if (splat.owned != 0xffff && !(splat.owned >> bayer_index(px, py) & 1)) continue;
-              if (splat.entry < row[px]) row[px] = splat.entry;
-            }
-          }
-        }
-        bucket.clear();
+  // The threads' buffers merged into the frame's, row by row, and emptied for the next frame.
+  tbb::parallel_for(tbb::blocked_range<int>(0, m.height, 8), [&](const tbb::blocked_range<int>& r) {
+    for (ThreadDepths& depths : m.thread_depths) {
+      const int y0 = std::max(r.begin(), depths.first_row), y1 = std::min(r.end(), depths.last_row + 1);
+      if (y0 >= y1) continue;
+      const std::size_t begin = std::size_t(y0) * std::size_t(m.width), end = std::size_t(y1) * std::size_t(m.width);
+      std::uint64_t* frame = m.zbuffer.data();
+      std::uint64_t* own = depths.entries.data();
+      for (std::size_t i = begin; i < end; ++i) {
+        frame[i] = std::min(frame[i], own[i]);
+        own[i] = kEmpty;
       }
+    }
   });
+  for (ThreadDepths& depths : m.thread_depths) {
+    depths.first_row = m.height;
+    depths.last_row = -1;
+  }
 
   const auto ldis_done = std::chrono::steady_clock::now();
   // ---- the terrain: chunks in the frustum, their vertices to camera space, their triangles

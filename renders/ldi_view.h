@@ -14,8 +14,9 @@
 //  - beyond the last level, one-layer LDIs made once from the coarsest level at 1/2, 1/4, ...
 //    of its resolution, warped like the others over doubling distances, so the heads stand out
 //    to the horizon; beyond those, each tile's directional average color over the ground;
-//  - one software z-buffer: depth and color packed in 64 bits, written with an atomic minimum,
-//    so tiles and triangles run in parallel (TBB) and the frame is the same on any thread count;
+//  - a software z-buffer: depth and color packed in 64 bits, the smallest kept (tiles warped
+//    into one buffer per thread, merged; terrain triangles with an atomic minimum), so tiles and
+//    triangles run in parallel (TBB) and the frame is the same on any thread count;
 //  - the sky where nothing was drawn.
 // Buffers are sized once per renderer: a frame allocates nothing.
 #pragma once
