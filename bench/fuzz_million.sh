@@ -3,7 +3,8 @@
 # executions (RUNS to change it) from its seed corpus, one after the other, and prints per
 # fuzzer: executions per second, wall time, peak RSS, corpus size reached and findings. The
 # corpus grows in a scratch folder; findings (crash-*, leak-*, timeout-*, oom-*) are kept in
-# build/fuzz/fuzz/million/<name>/ for reproducing: build/fuzz/fuzz/<name>_fuzz FILE.
+# build/fuzz/fuzz/million/<name>/ (OUT=DIR to change, so that two runs can go side by side) for
+# reproducing: build/fuzz/fuzz/<name>_fuzz FILE.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
@@ -12,7 +13,7 @@ runs=${RUNS:-1000000}
 cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz -j 2 >/dev/null
 bin="$root/build/fuzz/fuzz"
-out="$bin/million"
+out=${OUT:-$bin/million}  # where findings and logs go
 echo "load before: $(uptime | sed 's/.*load/load/')"
 printf '%-16s %10s %9s %9s %8s %9s  %s\n' fuzzer executions exec/s wall_s rss_mb corpus findings
 status=0
