@@ -35,9 +35,10 @@ bool small_enough_to_load(const char* path) {
   GDALDatasetH dataset = GDALOpen(path, GA_ReadOnly);
   CPLPopErrorHandler();
   if (dataset == nullptr) return true;  // let the loader refuse it with its own message
-  const int width = GDALGetRasterXSize(dataset), height = GDALGetRasterYSize(dataset);
+  // As doubles: a header may declare sizes whose int sum overflows (found by this fuzzer).
+  const double width = GDALGetRasterXSize(dataset), height = GDALGetRasterYSize(dataset);
   GDALClose(dataset);
-  return width + height <= kMaxFuzzEdgeSum && double(width) * double(height) <= kMaxFuzzCells;
+  return width + height <= kMaxFuzzEdgeSum && width * height <= kMaxFuzzCells;
 }
 
 }  // namespace
