@@ -18,9 +18,9 @@ constexpr char kWgs84Prj[] =
     "PRIMEM[\"Greenwich\",0.0],UNIT[\"Degree\",0.0174532925199433]]";
 
 // The scene frame converts every boundary sample (2 per row and per column) and every lattice
-// node through PROJ and GeographicLib, ~5 us each under ASan: a legal 4 x 64,003 strip costs a
-// second an execution and held the fuzzer at ~100 exec/s. Grids past these sizes are parsed
-// (GDALOpen reads the header) but not loaded; the large-grid paths are covered by the tests.
+// node through PROJ and GeographicLib, so long legal strips cost far more than their bytes and
+// held the fuzzer back. Grids past these sizes are parsed (GDALOpen reads the header) but not
+// loaded; the large-grid paths are covered by the terrain tests.
 constexpr int kMaxFuzzEdgeSum = 4096;                               // width + height, cells
 constexpr double kMaxFuzzCells = 65536;                             // width x height
 constexpr std::uint64_t kFuzzMemoryLimit = std::uint64_t{1} << 20;  // bytes: a lattice of <= 32 K nodes

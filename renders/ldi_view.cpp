@@ -448,36 +448,28 @@ std::uint16_t owned_thresholds(float from, float to) {
 // Splats are written straight into a z-buffer of the warping thread's own (no atomic write, no
 // cache line shared between cores); the frame's z-buffer is then the per-pixel smallest entry
 // of the threads' buffers, which is what any order of writes into one buffer leaves.
+// Whether a dithered LDI owning the Bayer cells `owned` (owned_thresholds) draws pixel (x, y).
+bool owns(std::uint16_t owned, int x, int y) { return owned == 0xffff || (owned >> bayer_index(x, y) & 1); }
+
 struct ThreadDepths {
   int width = 0;
-  int first_row = 0, last_row = -1;    // the rows written this frame
+  bool written = false;                // this frame: merged (and reset) only then
   std::vector<std::uint64_t> entries;  // kEmpty where nothing was written (the merge resets them)
   void reset(int frame_width, int frame_height) {
     width = frame_width;
     entries.assign(std::size_t(frame_width) * std::size_t(frame_height), kEmpty);
-    first_row = frame_height;
-    last_row = -1;
-  }
-  void touch(int ya, int yb) {
-    first_row = std::min(first_row, ya);
-    last_row = std::max(last_row, yb - 1);
   }
   // One pixel (most splats), inside the frame.
   void write_pixel(int x, int y, std::uint64_t entry) {
-    touch(y, y + 1);
     std::uint64_t& slot = entries[std::size_t(y) * std::size_t(width) + std::size_t(x)];
     if (entry < slot) slot = entry;
   }
-  // The pixels [xa, xb) x [ya, yb) that `owned` holds (owned_thresholds), not empty and inside
-  // the frame.
+  // The pixels [xa, xb) x [ya, yb) that `owned` holds, not empty and inside the frame.
   void write(int xa, int xb, int ya, int yb, std::uint64_t entry, std::uint16_t owned) {
-    touch(ya, yb);
     for (int y = ya; y < yb; ++y) {
       std::uint64_t* row = entries.data() + std::size_t(y) * std::size_t(width);
-      for (int x = xa; x < xb; ++x) {
-        if (owned != 0xffff && !(owned >> bayer_index(x, y) & 1)) continue;
-        if (entry < row[x]) row[x] = entry;
-      }
+      for (int x = xa; x < xb; ++x)
+        if (owns(owned, x, y) && entry < row[x]) row[x] = entry;
     }
   }
 };
@@ -611,7 +603,7 @@ void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, 
     if (size <= 1.0f) {  // most splats: one pixel (truncation is the floor of a coordinate >= 0)
       if (!(sx >= 0 && sy >= 0 && sx < float(width) && sy < float(height))) return;
       const int px = std::min(int(sx), width - 1), py = std::min(int(sy), height - 1);
-      if (w.owned != 0xffff && !(w.owned >> bayer_index(px, py) & 1)) return;  // another LDI's pixel
+      if (!owns(w.owned, px, py)) return;  // another LDI's pixel
       out.write_pixel(px, py, entry);
       return;
     }
@@ -806,6 +798,7 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
         std::uint64_t counted = 0;
         ThreadDepths& depths = m.thread_depths.local();
         if (depths.entries.size() != m.zbuffer.size()) depths.reset(m.width, m.height);
+        depths.written = true;
         for (std::size_t o = r.begin(); o != r.end(); ++o) {
           const std::uint32_t t = order_[o];
           // Up to two levels x two directions, each owning a slice of the dither thresholds.
@@ -866,22 +859,18 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
       });
   // The threads' buffers merged into the frame's, row by row, and emptied for the next frame.
   tbb::parallel_for(tbb::blocked_range<int>(0, m.height, 8), [&](const tbb::blocked_range<int>& r) {
+    const std::size_t begin = std::size_t(r.begin()) * std::size_t(m.width);
+    const std::size_t end = std::size_t(r.end()) * std::size_t(m.width);
     for (ThreadDepths& depths : m.thread_depths) {
-      const int y0 = std::max(r.begin(), depths.first_row), y1 = std::min(r.end(), depths.last_row + 1);
-      if (y0 >= y1) continue;
-      const std::size_t begin = std::size_t(y0) * std::size_t(m.width), end = std::size_t(y1) * std::size_t(m.width);
-      std::uint64_t* frame = m.zbuffer.data();
+      if (!depths.written) continue;
       std::uint64_t* own = depths.entries.data();
       for (std::size_t i = begin; i < end; ++i) {
-        frame[i] = std::min(frame[i], own[i]);
+        m.zbuffer[i] = std::min(m.zbuffer[i], own[i]);
         own[i] = kEmpty;
       }
     }
   });
-  for (ThreadDepths& depths : m.thread_depths) {
-    depths.first_row = m.height;
-    depths.last_row = -1;
-  }
+  for (ThreadDepths& depths : m.thread_depths) depths.written = false;
 
   const auto ldis_done = std::chrono::steady_clock::now();
   // ---- the terrain: chunks in the frustum, their vertices to camera space, their triangles
@@ -1016,7 +1005,7 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
     for (int k = 1; k + 1 < n; ++k) raster(poly[0], poly[k], poly[k + 1]);
   };
   // The chunks in the frustum, nearest first: the early depth test then skips the shading of
-  // ground that nearer ground hides (a third of the terrain's time on the scene's camera).
+  // ground that nearer ground hides.
   m.chunk_order.clear();
   for (std::uint32_t k = 0; k < terrain.chunks.size(); ++k) {
     const ViewWorld::Terrain::Chunk& chunk = terrain.chunks[k];
