@@ -11,8 +11,8 @@
 
 #include "exporters/blender_export.h"
 #include "exporters/gltf_writer.h"
-#include "renders/blender_render.h"
-#include "renders/child_process.h"
+#include "renders/external/blender_render.h"
+#include "renders/external/child_process.h"
 #include "tests/blender/test_scene.h"
 
 namespace wangscape {

@@ -12,8 +12,8 @@
 #include <filesystem>
 
 #include "generator/poisson_tiles.h"
-#include "renders/ldi_build.h"
-#include "renders/ldi_pack.h"
+#include "renders/ldi/ldi_build.h"
+#include "renders/ldi/ldi_pack.h"
 #include "templates/sunflower.h"
 
 namespace {

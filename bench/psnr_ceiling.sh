@@ -4,7 +4,7 @@
 # bench/view_bench.sh) at 1, 4, 16, 64 and 256 samples per pixel (SPP to change the list; the
 # last is taken as converged) and prints the PSNR of each image, and of the LDI view's frame,
 # against the 4-sample reference (what `wangscape view --compare` uses by default) and against
-# the converged one. PSNR as `renders/image_compare.h` defines it (8-bit RGB, all channels),
+# the converged one. PSNR as `renders/trace/image_compare.h` defines it (8-bit RGB, all channels),
 # computed here by OpenImageIO's idiff.
 set -eu
 bin=${1:-build/release/cli/wangscape}

@@ -1,8 +1,8 @@
-// wangscape batch plan|example|run|status|run-task (hidden: what workers run): renders/batch_run.h.
+// wangscape batch plan|example|run|status|run-task (hidden: what workers run): renders/batch/batch_run.h.
 #include <iostream>
 #include "cli/command.h"
 #include "cli/progress.h"
-#include "renders/batch_run.h"
+#include "renders/batch/batch_run.h"
 
 namespace wangscape::cli {
 

@@ -8,7 +8,7 @@
 #include "cli/progress.h"
 #include "cli/scene_commands.h"
 #include "exporters/scene_folder.h"
-#include "renders/ldi_scene.h"
+#include "renders/ldi/ldi_scene.h"
 
 namespace wangscape::cli {
 

@@ -1,5 +1,5 @@
 // wangscape ldi build SCENE.toml --out PACK: every tile of the scene's set sampled into
-// pre-shaded LDIs (renders/ldi_build.h); ldi info PACK [--json]; ldi sheet PACK --tile K --out PNG.
+// pre-shaded LDIs (renders/ldi/ldi_build.h); ldi info PACK [--json]; ldi sheet PACK --tile K --out PNG.
 #include <fmt/core.h>
 
 #include <chrono>
@@ -9,9 +9,9 @@
 
 #include "cli/command.h"
 #include "cli/progress.h"
-#include "renders/ldi_info.h"
-#include "renders/ldi_scene.h"
-#include "renders/ldi_sheet.h"
+#include "renders/ldi/ldi_info.h"
+#include "renders/ldi/ldi_scene.h"
+#include "renders/ldi/ldi_sheet.h"
 
 namespace wangscape::cli {
 

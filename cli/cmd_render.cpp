@@ -8,7 +8,7 @@
 #include "cli/command.h"
 #include "cli/progress.h"
 #include "cli/scene_commands.h"
-#include "renders/embree_reference.h"
+#include "renders/trace/embree_reference.h"
 #include "renders/render_folder.h"
 
 namespace wangscape::cli {

@@ -5,7 +5,7 @@
 
 #include "cli/command.h"
 #include "core/number_text.h"
-#include "renders/ldi_view.h"
+#include "renders/window/view_program.h"
 
 namespace wangscape::cli {
 

@@ -18,7 +18,7 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(TOMLPLUSPLUS REQUIRED IMPORTED_TARGET tomlplusplus)
 find_package(GDAL CONFIG REQUIRED)
 find_package(embree 3 REQUIRED)
-# The real-time view's window (renders/ldi_window.cpp); Debian's SDL2 exports SDL2::SDL2.
+# The real-time view's window (renders/window/ldi_window.cpp); Debian's SDL2 exports SDL2::SDL2.
 find_package(SDL2 REQUIRED)
 if(WANGSCAPE_BUILD_BENCH)
   find_package(benchmark REQUIRED)

@@ -7,7 +7,7 @@
 
 #include "generator/poisson_tiles.h"
 #include "generator/tileset.h"
-#include "renders/ldi_build.h"
+#include "renders/ldi/ldi_build.h"
 #include "templates/sunflower.h"
 
 int main(int argc, char** argv) {

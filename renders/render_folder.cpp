@@ -7,10 +7,10 @@
 #include "core/error.h"
 #include "exporters/image_io.h"
 #include "exporters/scene_folder.h"
-#include "renders/blender_render.h"
-#include "renders/embree_reference.h"
-#include "renders/ldi_scene.h"
-#include "renders/povray_render.h"
+#include "renders/external/blender_render.h"
+#include "renders/trace/embree_reference.h"
+#include "renders/ldi/ldi_scene.h"
+#include "renders/external/povray_render.h"
 
 namespace wangscape {
 

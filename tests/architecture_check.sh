@@ -1,27 +1,59 @@
 #!/bin/sh
 # architecture_check.sh SOURCE_DIR: every #include "folder/..." in a library folder must point to
-# the folder itself or to one it may depend on (docs/architecture.md). Prints each wrong arrow.
+# the folder itself or to one it may depend on (docs/architecture.md); renders/ is checked room by
+# room (renders/trace, renders/ldi, ...), and the third-party libraries that make a room heavy
+# (Embree, SDL2) may be linked only where the design puts them. Prints each wrong arrow.
 cd "$1" || exit 2
+below_scene="core generator terrain templates scene"
 allowed() {
   case "$1" in
     core) echo "core" ;;
     generator | terrain | templates) echo "core $1" ;;
-    scene) echo "core generator terrain templates scene" ;;
-    exporters) echo "core generator terrain templates scene exporters" ;;
-    renders) echo "core generator terrain templates scene exporters renders" ;;
+    scene) echo "$below_scene" ;;
+    exporters) echo "$below_scene exporters" ;;
+    renders/trace) echo "$below_scene renders/trace" ;;
+    renders/ldi) echo "$below_scene exporters renders/trace renders/ldi" ;;
+    renders/external) echo "core templates exporters renders/external" ;;
+    renders/view) echo "$below_scene exporters renders/trace renders/ldi renders/external renders/view" ;;
+    renders/window) echo "core exporters renders/view renders/window" ;;
+    renders/batch) echo "$below_scene exporters renders/external renders/batch" ;;
+    renders) echo "$below_scene exporters renders/trace renders/ldi renders/external renders" ;;
+  esac
+}
+# The unit an include or a file belongs to: its folder, or its room of renders/.
+unit_of() {
+  case "$1" in
+    renders/*/*) echo "$1" | cut -d/ -f1-2 ;;
+    *) echo "$1" | cut -d/ -f1 ;;
   esac
 }
 status=0
-for folder in core generator terrain templates scene exporters renders; do
+for file in $(find core generator terrain templates scene exporters renders -name '*.h' -o -name '*.cpp'); do
+  folder=$(unit_of "$file")
   ok=$(allowed "$folder")
-  for file in $(find "$folder" -name '*.h' -o -name '*.cpp'); do
-    for target in $(sed -n 's/^#include "\([a-z_]*\)\/.*/\1/p' "$file" | sort -u); do
-      case " $ok " in
-        *" $target "*) ;;
-        *) echo "$file includes $target/: $folder/ may use only: $ok"; status=1 ;;
-      esac
-    done
+  [ -n "$ok" ] || { echo "$file: $folder is not a folder or room of docs/architecture.md"; status=1; continue; }
+  for included in $(sed -n 's/^#include "\([a-z_]*\/[a-z_/]*\)\.h".*/\1/p' "$file" | sort -u); do
+    target=$(unit_of "$included")
+    case " $ok " in
+      *" $target "*) ;;
+      *) echo "$file includes $target/: $folder/ may use only: $ok"; status=1 ;;
+    esac
   done
 done
-[ "$status" -eq 0 ] && echo "architecture: every include follows docs/architecture.md"
+# The pack format reads and writes bytes: no Embree, nothing of renders/ but the pack itself.
+for file in renders/ldi/ldi.h renders/ldi/ldi_pack.h renders/ldi/ldi_pack.cpp renders/ldi/ldi_info.h renders/ldi/ldi_info.cpp; do
+  if grep -q '^#include <embree\|^#include "renders/trace\|^#include "exporters' "$file"; then
+    echo "$file: the LDI pack format uses only core/ (no Embree, no exporters)"; status=1
+  fi
+done
+# SDL2 only in the window; Embree only in trace, ldi and view.
+for cmake in $(find core generator terrain templates scene exporters renders cli -name CMakeLists.txt); do
+  case "$cmake" in renders/window/*) ;; *)
+    grep -q 'SDL2::' "$cmake" && { echo "$cmake links SDL2: only renders/window/ may"; status=1; } ;;
+  esac
+  case "$cmake" in renders/trace/* | renders/ldi/* | renders/view/*) ;; *)
+    grep -q '[ (]embree[ )]' "$cmake" && { echo "$cmake links Embree: only renders/trace, ldi and view may"; status=1; } ;;
+  esac
+done
+[ "$status" -eq 0 ] && echo "architecture: every include and link follows docs/architecture.md"
 exit "$status"

@@ -1,6 +1,6 @@
-// The batch file and its expansion (renders/batch_file.h): viewpoints from the ground, suns,
+// The batch file and its expansion (renders/batch/batch_file.h): viewpoints from the ground, suns,
 // input hashes, errors with file and line. The CLI runs are in tests/cli/batch.cmake.
-#include "renders/batch_file.h"
+#include "renders/batch/batch_file.h"
 
 #include <gtest/gtest.h>
 

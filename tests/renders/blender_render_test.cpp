@@ -1,7 +1,7 @@
 // The real Blender: the add-on imports an exported scene (checked inside Blender by
 // tests/blender/check_import.py), and `render_blender` renders it with Cycles to a PNG that
 // is not blank. Errors name what is missing.
-#include "renders/blender_render.h"
+#include "renders/external/blender_render.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -11,7 +11,7 @@
 
 #include "core/atomic_file.h"
 #include "exporters/blender_export.h"
-#include "renders/child_process.h"
+#include "renders/external/child_process.h"
 #include "tests/blender/test_scene.h"
 
 namespace wangscape {

@@ -11,8 +11,8 @@
 
 #include "core/error.h"
 #include "core/text_file.h"
-#include "renders/embree_reference.h"
-#include "renders/image_compare.h"
+#include "renders/trace/embree_reference.h"
+#include "renders/trace/image_compare.h"
 
 namespace wangscape {
 namespace {

@@ -6,7 +6,7 @@
 #include <random>
 
 #include "core/error.h"
-#include "renders/image_compare.h"
+#include "renders/trace/image_compare.h"
 
 namespace wangscape {
 namespace {

@@ -15,10 +15,10 @@
 
 #include "generator/poisson_tiles.h"
 #include "generator/tileset.h"
-#include "renders/ldi_build.h"
-#include "renders/ldi_info.h"
-#include "renders/ldi_pack.h"
-#include "renders/ldi_sheet.h"
+#include "renders/ldi/ldi_build.h"
+#include "renders/ldi/ldi_info.h"
+#include "renders/ldi/ldi_pack.h"
+#include "renders/ldi/ldi_sheet.h"
 
 namespace wangscape {
 namespace {

@@ -12,8 +12,8 @@
 #include <numbers>
 #include <string>
 
-#include "renders/ldi_scene.h"
-#include "renders/ldi_view.h"
+#include "renders/ldi/ldi_scene.h"
+#include "renders/view/view_frames.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
 

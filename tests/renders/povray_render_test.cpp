@@ -13,7 +13,7 @@
 #include <string>
 
 #include "exporters/povray_writer.h"
-#include "renders/povray_render.h"
+#include "renders/external/povray_render.h"
 
 namespace wangscape {
 namespace {

@@ -1,0 +1,525 @@
+// Parsing a batch file and expanding it into tasks (see batch_file.h, docs/batch-file.md).
+#include "renders/batch/batch_file.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include "scene/ground.h"
+#include "scene/sun.h"
+#include "terrain/georef.h"
+
+namespace wangscape {
+
+extern const char* const kExampleBatchToml;  // generated from templates/batches/example.toml
+
+namespace {
+
+int line_of(const toml::node& node) { return static_cast<int>(node.source().begin.line); }
+
+// Reads one TOML table; finish() fails on the keys nothing read (naming the file and the line).
+class Table {
+ public:
+  Table(const toml::table& table, const std::filesystem::path& file, std::string name)
+      : table_(table), file_(file), name_(std::move(name)) {}
+  void finish() const {
+    for (const auto& [key, node] : table_)
+      if (!used_.count(std::string(key.str())))
+        throw Error(file_, std::to_string(line_of(node)), "unknown key '" + name_ + std::string(key.str()) + "'");
+  }
+  const toml::node* node(const std::string& key) {
+    used_.insert(key);
+    return table_.get(key);
+  }
+  [[noreturn]] void fail(const toml::node& node, const std::string& key, const std::string& what) const {
+    throw Error(file_, std::to_string(line_of(node)), "'" + name_ + key + "' " + what);
+  }
+  double number(const std::string& key, double fallback) {
+    const auto* n = node(key);
+    if (!n) return fallback;
+    if (auto v = n->value<double>(); v && std::isfinite(*v)) return *v;
+    fail(*n, key, "must be a number");
+  }
+  int integer(const std::string& key, int fallback, int min, int max) {
+    const auto* n = node(key);
+    if (!n) return fallback;
+    const auto v = n->value<std::int64_t>();
+    if (!v || *v < min || *v > max)
+      fail(*n, key, "must be an integer from " + std::to_string(min) + " to " + std::to_string(max));
+    return static_cast<int>(*v);
+  }
+  std::vector<std::string> strings(const std::string& key) {
+    std::vector<std::string> out;
+    const auto* n = node(key);
+    if (!n) return out;
+    const auto* array = n->as_array();
+    if (!array) fail(*n, key, "must be a list of strings");
+    for (const auto& item : *array) {
+      const auto v = item.value<std::string>();
+      if (!v) fail(item, key, "must be a list of strings");
+      out.push_back(*v);
+    }
+    return out;
+  }
+  std::vector<std::array<double, 2>> pairs(const std::string& key) {
+    std::vector<std::array<double, 2>> out;
+    const auto* n = node(key);
+    if (!n) return out;
+    const auto* array = n->as_array();
+    if (!array) fail(*n, key, "must be a list of [a, b] number pairs");
+    for (const auto& item : *array) {
+      const auto* pair = item.as_array();
+      const auto a = pair && pair->size() == 2 ? (*pair)[0].value<double>() : std::nullopt;
+      const auto b = pair && pair->size() == 2 ? (*pair)[1].value<double>() : std::nullopt;
+      if (!a || !b) fail(item, key, "must be a list of [a, b] number pairs");
+      out.push_back({*a, *b});
+    }
+    return out;
+  }
+  const std::filesystem::path& file() const { return file_; }
+
+ private:
+  const toml::table& table_;
+  std::filesystem::path file_;
+  std::string name_;
+  std::set<std::string> used_;
+};
+
+std::int64_t unix_seconds(const toml::node& node, Table& sun, const std::string& key) {
+  const auto* dt = node.as_date_time();
+  if (!dt || !dt->get().offset)
+    sun.fail(node, key, "must be TOML date-times with a UTC offset, e.g. 2024-07-15T09:00:00-07:00");
+  const auto& v = dt->get();
+  return unix_seconds_utc(v.date.year, v.date.month, v.date.day, v.time.hour, v.time.minute, v.time.second,
+                          v.offset->minutes);
+}
+
+// A date-time as written (its TOML form), for labels.
+std::string text_of(const toml::node& node) {
+  std::ostringstream out;
+  if (const auto* dt = node.as_date_time()) out << dt->get();
+  return out.str();
+}
+
+// "2024-07-15T11:00:00-07:00": a moment as local time at a UTC offset (labels of from-to-step suns).
+std::string local_time_text(std::int64_t unix, int offset_minutes) {
+  using namespace std::chrono;
+  const sys_seconds local{seconds{unix + std::int64_t{offset_minutes} * 60}};
+  const auto day = floor<days>(local);
+  const year_month_day ymd{day};
+  const hh_mm_ss hms{local - day};
+  toml::date_time dt{};  // value-initialized: no stray nanoseconds
+  dt.date.year = static_cast<std::uint16_t>(static_cast<int>(ymd.year()));
+  dt.date.month = static_cast<std::uint8_t>(static_cast<unsigned>(ymd.month()));
+  dt.date.day = static_cast<std::uint8_t>(static_cast<unsigned>(ymd.day()));
+  dt.time.hour = static_cast<std::uint8_t>(hms.hours().count());
+  dt.time.minute = static_cast<std::uint8_t>(hms.minutes().count());
+  dt.time.second = static_cast<std::uint8_t>(hms.seconds().count());
+  dt.offset = toml::time_offset{};
+  dt.offset->minutes = static_cast<std::int16_t>(offset_minutes);
+  std::ostringstream out;
+  out << dt;
+  return out.str();
+}
+
+void read_suns(Table& sun, BatchConfig& config) {
+  if (const auto* n = sun.node("times")) {
+    const auto* array = n->as_array();
+    if (!array) sun.fail(*n, "times", "must be a list of date-times");
+    for (const auto& item : *array) config.suns.push_back({unix_seconds(item, sun, "times"), text_of(item)});
+  }
+  const auto* from = sun.node("from");
+  const auto* to = sun.node("to");
+  if ((from != nullptr) != (to != nullptr))
+    sun.fail(from ? *from : *to, from ? "from" : "to", "needs both from and to");
+  if (from) {
+    const double step = sun.number("step_minutes", 60);
+    if (!(step >= 1)) sun.fail(*from, "step_minutes", "must be at least 1");
+    const auto t0 = unix_seconds(*from, sun, "from"), t1 = unix_seconds(*to, sun, "to");
+    if (t1 < t0) sun.fail(*to, "to", "is before 'from'");
+    const int offset = from->as_date_time()->get().offset->minutes;
+    for (std::int64_t t = t0, k = 0; t <= t1 && k < 10000; ++k, t = t0 + static_cast<std::int64_t>(k * step * 60))
+      config.suns.push_back({t, local_time_text(t, offset)});
+  }
+  for (const auto& [az, el] : sun.pairs("angles")) {
+    if (!(el > 0 && el <= 90)) throw Error(sun.file(), "", "'sun.angles' elevations must be in (0, 90]");
+    BatchSun s;
+    s.azimuth = az;
+    s.elevation = el;
+    s.label = "az " + std::to_string(static_cast<int>(std::lround(az))) + " el " +
+              std::to_string(static_cast<int>(std::lround(el)));
+    config.suns.push_back(s);
+  }
+}
+
+ViewpointRule read_viewpoint(Table& v, int line) {
+  ViewpointRule rule;
+  rule.line = line;
+  if (const auto* n = v.node("kind")) {
+    rule.kind = n->value_or(std::string());
+    if (rule.kind != "flowers" && rule.kind != "summits" && rule.kind != "grid" && rule.kind != "path")
+      v.fail(*n, "kind", "must be flowers, summits, grid or path");
+  }
+  rule.count = v.integer("count", rule.count, 1, 10000);
+  rule.eye_height = v.number("eye_height", rule.eye_height);
+  rule.min_height = v.number("min_height", rule.min_height);
+  rule.fov = v.number("fov", 0);
+  if (const auto* n = v.node("grid")) {
+    const auto* a = n->as_array();
+    const auto c = a && a->size() == 2 ? (*a)[0].value<std::int64_t>() : std::nullopt;
+    const auto r = a && a->size() == 2 ? (*a)[1].value<std::int64_t>() : std::nullopt;
+    if (!c || !r || *c < 1 || *r < 1 || *c * *r > 10000) v.fail(*n, "grid", "must be [columns, rows], each >= 1");
+    rule.grid = {static_cast<int>(*c), static_cast<int>(*r)};
+  }
+  rule.path_enu = v.pairs("enu");
+  rule.path_latlon = v.pairs("latlon");
+  if (rule.kind == "path" && rule.path_enu.size() + rule.path_latlon.size() < 2)
+    throw Error(v.file(), std::to_string(line), "a path viewpoint needs 'enu' or 'latlon' with at least 2 points");
+  return rule;
+}
+
+// ---- numbers and hashes -------------------------------------------------------------------------
+
+std::string num(double v) {
+  char buffer[32];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
+  return std::string(buffer, end);
+}
+
+std::string pad4(int index) {
+  std::string s = std::to_string(index);
+  return std::string(s.size() < 4 ? 4 - s.size() : 0, '0') + s;
+}
+
+// What the scene folder depends on: the scene text, the DEM and its size and time.
+std::string scene_key(const SceneConfig& scene, const std::filesystem::path& dem) {
+  std::string key = std::string("wangscape ") + scene.text + "\n" + scene.source.string() + "\n" + dem.string();
+  std::error_code ec;
+  if (!dem.empty()) {
+    key += " " + std::to_string(std::filesystem::file_size(dem, ec));
+    key += " " + std::to_string(std::filesystem::last_write_time(dem, ec).time_since_epoch().count());
+  }
+  return hash_hex(key);
+}
+
+// ---- viewpoints ---------------------------------------------------------------------------------
+
+// The ground of one DEM with what viewpoints need of it.
+struct Site {
+  const SceneConfig& scene;
+  const SceneGround& ground;
+  Extent field;
+
+  // Flowers may grow here: inside the field, over the ground, within the height/slope masks.
+  bool has_flowers(double x, double y) const {
+    if (!field.contains(x, y)) return false;
+    const auto h = ground.height(x, y);
+    if (!h) return false;
+    const auto& m = scene.masks;
+    if ((m.max_height && *h > *m.max_height) || (m.min_height && *h < *m.min_height)) return false;
+    const auto slope = ground.slope_degrees(x, y);
+    return !m.max_slope || (slope && *slope <= *m.max_slope);
+  }
+  // Samples of the ground on a regular n x n grid (x, y, height), off-ground ones dropped.
+  std::vector<std::array<double, 3>> samples(int n) const {
+    std::vector<std::array<double, 3>> out;
+    const Extent e = ground.extent();
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const double x = e.min_x + (i + 0.5) * e.width() / n, y = e.min_y + (j + 0.5) * e.height() / n;
+        if (const auto h = ground.height(x, y)) out.push_back({x, y, *h});
+      }
+    return out;
+  }
+  // True when the straight line from `eye` to `p` stays above the ground.
+  bool visible(const std::array<double, 3>& eye, const std::array<double, 3>& p) const {
+    constexpr int kSteps = 24;
+    for (int s = 1; s < kSteps; ++s) {
+      const double t = static_cast<double>(s) / kSteps;
+      const double x = eye[0] + (p[0] - eye[0]) * t, y = eye[1] + (p[1] - eye[1]) * t;
+      const auto h = ground.height(x, y);
+      if (h && *h > eye[2] + (p[2] - eye[2]) * t + 0.01) return false;
+    }
+    return true;
+  }
+  // The highest ground point visible from `eye` (ties: the one nearest the field's center).
+  std::array<double, 3> highest_in_view(const std::array<double, 3>& eye) const {
+    const double cx = (field.min_x + field.max_x) / 2, cy = (field.min_y + field.max_y) / 2;
+    std::optional<std::array<double, 3>> best;
+    double best_center = 0;
+    for (const auto& p : samples(48)) {
+      if (std::hypot(p[0] - eye[0], p[1] - eye[1]) < 5.0 || !visible(eye, p)) continue;
+      const double center = std::hypot(p[0] - cx, p[1] - cy);
+      if (!best || p[2] > (*best)[2] + 1e-9 || (std::abs(p[2] - (*best)[2]) <= 1e-9 && center < best_center)) {
+        best = p;
+        best_center = center;
+      }
+    }
+    if (!best) return {cx, cy, ground.height(cx, cy).value_or(eye[2] - 1.0)};
+    return *best;
+  }
+  std::array<double, 3> eye_at(double x, double y, double eye_height) const {
+    return {x, y, ground.height(x, y).value_or(0) + eye_height};
+  }
+};
+
+double halton(int index, int base) {
+  double f = 1, r = 0;
+  for (int i = index; i > 0; i /= base) {
+    f /= base;
+    r += f * (i % base);
+  }
+  return r;
+}
+
+struct View {
+  std::string name;
+  Camera camera;
+};
+
+std::vector<View> expand_viewpoint(const ViewpointRule& rule, const Site& site, const std::filesystem::path& file) {
+  std::vector<View> views;
+  auto add = [&](const std::string& name, const std::array<double, 3>& eye, const std::array<double, 3>& target) {
+    View v{name, {}};
+    v.camera.position = eye;
+    v.camera.target = target;
+    v.camera.fov_degrees = rule.fov > 0 ? rule.fov : site.scene.camera.fov;
+    views.push_back(v);
+  };
+  const Extent& f = site.field;
+  if (rule.kind == "flowers") {
+    for (int k = 1; k < 20000 && static_cast<int>(views.size()) < rule.count; ++k) {
+      const double x = f.min_x + halton(k, 2) * f.width(), y = f.min_y + halton(k, 3) * f.height();
+      if (!site.has_flowers(x, y)) continue;
+      const auto eye = site.eye_at(x, y, rule.eye_height);
+      add("flowers " + std::to_string(views.size() + 1), eye, site.highest_in_view(eye));
+    }
+  } else if (rule.kind == "summits") {
+    const int n = 48;
+    const auto s = site.samples(n);
+    std::vector<std::array<double, 3>> peaks;
+    for (const auto& p : s) {
+      if (p[2] < rule.min_height) continue;
+      bool top = true;
+      const Extent e = site.ground.extent();
+      const double dx = e.width() / n, dy = e.height() / n;
+      for (int j = -1; j <= 1 && top; ++j)
+        for (int i = -1; i <= 1 && top; ++i)
+          if (i || j) top = site.ground.height(p[0] + i * dx, p[1] + j * dy).value_or(-1e300) < p[2];
+      if (top) peaks.push_back(p);
+    }
+    std::stable_sort(peaks.begin(), peaks.end(), [](const auto& a, const auto& b) { return a[2] > b[2]; });
+    const std::array<double, 3> center = site.eye_at((f.min_x + f.max_x) / 2, (f.min_y + f.max_y) / 2, 0);
+    for (const auto& p : peaks) {
+      if (static_cast<int>(views.size()) >= rule.count) break;
+      add("summit " + std::to_string(views.size() + 1), {p[0], p[1], p[2] + rule.eye_height}, center);
+    }
+  } else if (rule.kind == "grid") {
+    for (int j = 0; j < rule.grid[1]; ++j)
+      for (int i = 0; i < rule.grid[0]; ++i) {
+        const double x = f.min_x + (i + 0.5) * f.width() / rule.grid[0];
+        const double y = f.min_y + (j + 0.5) * f.height() / rule.grid[1];
+        if (!site.ground.height(x, y)) continue;
+        const auto eye = site.eye_at(x, y, rule.eye_height);
+        add("grid " + std::to_string(i) + "," + std::to_string(j), eye, site.highest_in_view(eye));
+      }
+  } else {
+    auto points = rule.path_enu;
+    for (const auto& [lat, lon] : rule.path_latlon) points.push_back(site.ground.to_enu(lat, lon));
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const auto& [x, y] = points[k];
+      if (!site.ground.height(x, y))
+        throw Error(file, std::to_string(rule.line),
+                    "path point " + std::to_string(k + 1) + " (east " + num(x) + " m, north " + num(y) +
+                        " m) is not over the ground (" + site.ground.description() + ")");
+      // Look along the path: towards the next point, the last one onwards from the one before.
+      const auto& a = points[k + 1 < points.size() ? k : k - 1];
+      const auto& b = points[k + 1 < points.size() ? k + 1 : k];
+      const auto eye = site.eye_at(x, y, rule.eye_height);
+      add("path " + std::to_string(k + 1), eye, {x + b[0] - a[0], y + b[1] - a[1], eye[2]});
+    }
+  }
+  if (views.empty())
+    throw Error(file, std::to_string(rule.line),
+                "no " + rule.kind + " viewpoint fits the ground " + site.ground.description());
+  return views;
+}
+
+}  // namespace
+
+std::string hash_hex(std::string_view text) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+  static const char* digits = "0123456789abcdef";
+  std::string out(16, '0');
+  for (int i = 15; i >= 0; --i, h >>= 4) out[i] = digits[h & 15];
+  return out;
+}
+
+BatchConfig parse_batch_config(std::string_view toml_text, const std::filesystem::path& source,
+                               const std::filesystem::path& base_dir) {
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, source.string());
+  } catch (const toml::parse_error& e) {
+    throw Error(source, std::to_string(e.source().begin.line), std::string(e.description()));
+  }
+  BatchConfig config;
+  config.source = source;
+  Table top(root, source, "");
+  const auto resolve = [&](const std::string& p) {
+    return std::filesystem::path(p).is_absolute() ? std::filesystem::path(p) : base_dir / p;
+  };
+  const auto* scene = top.node("scene");
+  if (!scene || !scene->is_string())
+    throw Error(source, scene ? std::to_string(line_of(*scene)) : "",
+                "'scene' must name the base scene file (or \"default\" for the embedded one)");
+  const std::string scene_name = scene->value_or(std::string());
+  config.scene = scene_name == "default" ? default_scene_config() : load_scene_config(resolve(scene_name));
+  for (const auto& dem : top.strings("dems")) config.dems.push_back(resolve(dem));
+  if (const auto* dems = root.get("dems")) config.dems_line = line_of(*dems);
+  if (const auto* folder = top.node("dem_folder")) {
+    const auto dir = resolve(folder->value_or(std::string()));
+    std::error_code ec;
+    std::vector<std::filesystem::path> found;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+      const auto ext = entry.path().extension().string();
+      if (ext == ".dem" || ext == ".tif" || ext == ".asc" || ext == ".DEM") found.push_back(entry.path());
+    }
+    if (ec || found.empty())
+      top.fail(*folder, "dem_folder", "'" + dir.string() + "' has no DEM (.dem, .tif, .asc) or cannot be read");
+    std::sort(found.begin(), found.end());
+    config.dems.insert(config.dems.end(), found.begin(), found.end());
+  }
+  if (const auto* n = top.node("engines")) {
+    config.engines = top.strings("engines");
+    for (const auto& e : config.engines)
+      if (e != "povray" && e != "blender")
+        top.fail(*n, "engines", "'" + e + "' is not an engine of this wangscape (known: povray, blender)");
+    if (config.engines.empty()) top.fail(*n, "engines", "must name at least one engine");
+  }
+  config.width = top.integer("width", 0, 1, 32768);
+  config.height = top.integer("height", 0, 1, 32768);
+  if (const auto* n = top.node("viewpoints")) {
+    const auto* array = n->as_array();
+    if (!array || !array->is_array_of_tables()) top.fail(*n, "viewpoints", "must be [[viewpoints]] tables");
+    for (const auto& item : *array) {
+      Table v(*item.as_table(), source, "viewpoints.");
+      config.viewpoints.push_back(read_viewpoint(v, line_of(item)));
+      v.finish();
+    }
+  }
+  if (const auto* n = top.node("sun")) {
+    if (!n->as_table()) top.fail(*n, "sun", "must be a [sun] table");
+    Table sun(*n->as_table(), source, "sun.");
+    read_suns(sun, config);
+    sun.finish();
+  }
+  top.finish();
+  if (config.viewpoints.empty()) config.viewpoints.push_back({});
+  return config;
+}
+
+BatchConfig load_batch_config(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw Error(file, "", "cannot read the batch file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_batch_config(text.str(), file, file.parent_path());
+}
+
+std::string_view example_batch_text() { return kExampleBatchToml; }
+
+SceneConfig task_scene_config(const SceneConfig& base, const BatchTask& task) {
+  SceneConfig scene = base;
+  if (!task.dem.empty()) scene.terrain.dem = task.dem;
+  scene.camera = {};
+  scene.camera.position.enu = task.camera.position;
+  scene.camera.target.enu = task.camera.target;
+  scene.camera.fov = task.camera.fov_degrees;
+  scene.sun.time_unix.reset();
+  scene.sun.azimuth = task.sun.azimuth;
+  scene.sun.elevation = task.sun.elevation;
+  scene.image.width = task.width;
+  scene.image.height = task.height;
+  scene.image.threads = 1;  // parallelism comes from running tasks side by side
+  return scene;
+}
+
+std::vector<BatchTask> expand_batch(const BatchConfig& config) {
+  // Every DEM is checked before anything is loaded, so a typo fails at once.
+  for (const auto& dem : config.dems)
+    if (!std::filesystem::is_regular_file(dem))
+      throw Error(config.source, config.dems_line ? std::to_string(config.dems_line) : "",
+                  "DEM '" + dem.string() + "' does not exist (or is not a file)");
+  std::vector<std::filesystem::path> dems = config.dems;
+  if (dems.empty()) dems.push_back(config.scene.terrain.dem);
+  std::vector<BatchTask> tasks;
+  for (const auto& dem : dems) {
+    SceneConfig scene = config.scene;
+    scene.terrain.dem = dem;
+    const auto ground = SceneGround::load(scene.terrain, scene.masks);
+    Site site{scene, ground,
+              scene.tiles.area ? Extent{(*scene.tiles.area)[0], (*scene.tiles.area)[1], (*scene.tiles.area)[2],
+                                        (*scene.tiles.area)[3]}
+                               : ground.extent()};
+    site.field = site.field.intersected(ground.extent());
+    const EnuFrame frame(LatLon{ground.origin()[0], ground.origin()[1]});
+    std::vector<BatchSun> suns = config.suns;
+    if (suns.empty()) {
+      BatchSun s;
+      s.time_unix = config.scene.sun.time_unix;
+      s.azimuth = config.scene.sun.azimuth;
+      s.elevation = config.scene.sun.elevation;
+      s.label = s.time_unix ? config.scene.sun.time_text : "the scene's sun";
+      suns.push_back(s);
+    }
+    for (auto& s : suns) {
+      if (!s.time_unix) continue;
+      const auto p = solar_position(ground.origin()[0], ground.origin()[1], *s.time_unix);
+      if (p.elevation_degrees <= 0)
+        throw Error(config.source, "", "sun time " + s.label + " is night at the origin of " + ground.description());
+      s.azimuth = p.azimuth_degrees;
+      s.elevation = p.elevation_degrees;
+    }
+    const std::string key = scene_key(scene, dem);
+    for (const auto& rule : config.viewpoints)
+      for (const auto& view : expand_viewpoint(rule, site, config.source))
+        for (const auto& sun : suns)
+          for (const auto& engine : config.engines) {
+            BatchTask t;
+            t.index = static_cast<int>(tasks.size());
+            t.id = pad4(t.index);
+            t.dem = dem;
+            t.scene_key = key;
+            t.viewpoint = view.name;
+            t.camera = view.camera;
+            const auto ll = frame.to_lat_lon(view.camera.position[0], view.camera.position[1]);
+            t.camera_latlon = {ll.lat, ll.lon};
+            t.sun = sun;
+            t.engine = engine;
+            t.width = config.width ? config.width : config.scene.image.width;
+            t.height = config.height ? config.height : config.scene.image.height;
+            // The input hash: the scene, then every number of the still, shortest round-trip form.
+            std::string h = key + ' ' + engine + ' ' + std::to_string(t.width) + 'x' + std::to_string(t.height);
+            const auto& c = view.camera;
+            for (double v : {c.position[0], c.position[1], c.position[2], c.target[0], c.target[1], c.target[2],
+                             c.fov_degrees, sun.azimuth, sun.elevation, config.scene.sun.strength}) {
+              h += ' ';
+              h += num(v);
+            }
+            t.input_hash = hash_hex(h);
+            tasks.push_back(t);
+          }
+  }
+  return tasks;
+}
+
+}  // namespace wangscape

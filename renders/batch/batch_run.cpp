@@ -1,0 +1,627 @@
+// Batch runs: tasks that can be run twice, the local and Slurm executors, status from the
+// files and the gallery (see batch_run.h).
+#include "renders/batch/batch_run.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <unistd.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "core/atomic_file.h"
+#include "exporters/povray_writer.h"
+#include "exporters/scene_folder.h"
+#include "renders/external/blender_render.h"
+#include "renders/external/child_process.h"
+#include "renders/external/povray_render.h"
+
+namespace wangscape {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// ---- plan.json ----------------------------------------------------------------------------------
+
+json task_json(const BatchTask& t) {
+  return {{"index", t.index},
+          {"id", t.id},
+          {"dem", t.dem.string()},
+          {"viewpoint", t.viewpoint},
+          {"camera",
+           {{"position_enu", t.camera.position},
+            {"target_enu", t.camera.target},
+            {"fov", t.camera.fov_degrees},
+            {"latitude", t.camera_latlon[0]},
+            {"longitude", t.camera_latlon[1]}}},
+          {"sun",
+           {{"label", t.sun.label},
+            {"azimuth", t.sun.azimuth},
+            {"elevation", t.sun.elevation},
+            {"time_unix", t.sun.time_unix ? json(*t.sun.time_unix) : json(nullptr)}}},
+          {"engine", t.engine},
+          {"width", t.width},
+          {"height", t.height},
+          {"scene_key", t.scene_key},
+          {"input_hash", t.input_hash}};
+}
+
+BatchTask task_from_json(const json& j) {
+  BatchTask t;
+  t.index = j.at("index");
+  t.id = j.at("id");
+  t.dem = j.at("dem").get<std::string>();
+  t.viewpoint = j.at("viewpoint");
+  const auto& c = j.at("camera");
+  t.camera.position = c.at("position_enu");
+  t.camera.target = c.at("target_enu");
+  t.camera.fov_degrees = c.at("fov");
+  t.camera_latlon = {c.at("latitude"), c.at("longitude")};
+  const auto& s = j.at("sun");
+  t.sun.label = s.at("label");
+  t.sun.azimuth = s.at("azimuth");
+  t.sun.elevation = s.at("elevation");
+  if (!s.at("time_unix").is_null()) t.sun.time_unix = s.at("time_unix").get<std::int64_t>();
+  t.engine = j.at("engine");
+  t.width = j.at("width");
+  t.height = j.at("height");
+  t.scene_key = j.at("scene_key");
+  t.input_hash = j.at("input_hash");
+  return t;
+}
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return {};
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+json read_json(const fs::path& file) {
+  const std::string text = read_text(file);
+  if (text.empty()) return json();
+  try {
+    return json::parse(text);
+  } catch (const json::exception&) {
+    return json();  // a torn or foreign file counts as absent
+  }
+}
+
+struct Plan {
+  SceneConfig scene;
+  std::vector<BatchTask> tasks;
+};
+
+Plan load_plan(const fs::path& dir) {
+  const fs::path file = dir / "plan.json";
+  const json j = read_json(file);
+  if (!j.is_object()) throw Error(file, "", "is missing or not a batch plan (run `wangscape batch run` first)");
+  try {
+    Plan plan;
+    const auto& s = j.at("scene");
+    plan.scene = parse_scene_config(s.at("text").get<std::string>(), s.at("source").get<std::string>(),
+                                    s.at("base_dir").get<std::string>());
+    plan.scene.terrain.dem = s.at("dem").get<std::string>();
+    for (const auto& t : j.at("tasks")) plan.tasks.push_back(task_from_json(t));
+    return plan;
+  } catch (const json::exception& e) {
+    throw Error(file, "", std::string("is not a batch plan: ") + e.what());
+  }
+}
+
+void write_plan(const fs::path& dir, const BatchConfig& config, const std::vector<BatchTask>& tasks) {
+  json j;
+  j["batch_file"] = config.source.string();
+  j["scene"] = {{"text", config.scene.text},
+                {"source", config.scene.source.string()},
+                {"base_dir", config.scene.base_dir.string()},
+                {"dem", config.scene.terrain.dem.string()}};
+  j["tasks"] = json::array();
+  for (const auto& t : tasks) j["tasks"].push_back(task_json(t));
+  write_file_atomically(dir / "plan.json", j.dump(1) + "\n");
+}
+
+// ---- one task -----------------------------------------------------------------------------------
+
+fs::path still_of(const fs::path& dir, const BatchTask& t) { return dir / "stills" / (t.id + ".png"); }
+fs::path record_of(const fs::path& dir, const BatchTask& t, const char* ext) { return dir / "tasks" / (t.id + ext); }
+
+bool task_done(const fs::path& dir, const BatchTask& t) {
+  const json r = read_json(record_of(dir, t, ".json"));
+  return r.is_object() && r.value("input_hash", "") == t.input_hash && fs::exists(still_of(dir, t));
+}
+
+// The first task of `t`'s scene: it alone decides the shared folder, whichever worker builds it.
+const BatchTask& scene_owner(const Plan& plan, const BatchTask& t) {
+  return *std::find_if(plan.tasks.begin(), plan.tasks.end(),
+                       [&](const BatchTask& o) { return o.scene_key == t.scene_key; });
+}
+
+// An exclusive lock on a file, released when it goes out of scope (workers of other processes
+// and other Slurm nodes over a shared folder wait here).
+class FileLock {
+ public:
+  explicit FileLock(const fs::path& file) : fd_(::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644)) {
+    if (fd_ < 0 || ::flock(fd_, LOCK_EX) != 0) throw Error(file, "", "cannot be locked");
+  }
+  ~FileLock() { ::close(fd_); }
+  FileLock(const FileLock&) = delete;
+  FileLock& operator=(const FileLock&) = delete;
+
+ private:
+  int fd_;
+};
+
+// Builds the shared scene folder of `t` unless it is there (write_scene_folder publishes it
+// whole, so a folder with scene.toml is complete).
+fs::path shared_scene(const fs::path& dir, const Plan& plan, const BatchTask& t) {
+  const fs::path folder = fs::absolute(dir / "scenes" / t.scene_key);
+  FileLock lock(dir / "scenes" / (t.scene_key + ".lock"));
+  if (!fs::exists(folder / "scene.toml")) {
+    SceneConfig scene = task_scene_config(plan.scene, scene_owner(plan, t));
+    scene.exports = {};
+    scene.exports.povray = true;
+    build_scene_folder(scene, folder);
+  }
+  return folder;
+}
+
+// POV-Ray over the shared folder: scene.pov with this task's camera and sun, includes and
+// Library_Path pointing at the shared folder.
+fs::path render_povray_task(const fs::path& dir, const Plan& plan, const BatchTask& t) {
+  const fs::path scene = shared_scene(dir, plan, t);
+  const fs::path work = dir / "work" / t.id;
+  fs::create_directories(work);
+  std::string pov = read_text(scene / "scene.pov");
+  const auto begin = pov.find("camera {\n"), end = pov.find("sky_sphere {");
+  if (begin == std::string::npos || end == std::string::npos || end < begin)
+    throw Error(scene / "scene.pov", "", "has no camera and sky_sphere blocks to replace");
+  Sun sun;
+  sun.azimuth_degrees = t.sun.azimuth;
+  sun.elevation_degrees = t.sun.elevation;
+  sun.strength = plan.scene.sun.strength;
+  pov.replace(begin, end - begin, povray_camera_and_sun(t.camera, sun) + "\n");
+  write_file_atomically(work / "scene.pov", pov);
+  std::string ini;
+  std::istringstream lines(read_text(scene / "scene.ini"));
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("Library_Path=", 0) != 0 && line.rfind("Work_Threads=", 0) != 0) ini += line + "\n";
+  ini += "Work_Threads=1\nLibrary_Path=" + povray_quoted_path(scene) + "\n";
+  write_file_atomically(work / "scene.ini", ini);
+  PovrayRenderOptions options;
+  options.width = t.width;
+  options.height = t.height;
+  return render_povray(work, options).image;
+}
+
+// Blender reads the camera from the folder's manifest, so each Blender still builds its own.
+fs::path render_blender_task(const fs::path& dir, const Plan& plan, const BatchTask& t) {
+  SceneConfig scene = task_scene_config(plan.scene, t);
+  scene.exports = {};
+  scene.exports.blender = true;
+  const fs::path work = fs::absolute(dir / "work" / t.id);
+  build_scene_folder(scene, work);
+  BlenderRenderOptions options;
+  options.width = t.width;
+  options.height = t.height;
+  return render_blender(work, options).image;
+}
+
+// Publishes a rendered PNG as the task's still without the chunks that record when it was
+// rendered (POV-Ray writes tIME and a "Render Date" comment), so a still is a function of its
+// inputs: reruns and executors give the same bytes.
+void publish_still(const fs::path& image, const fs::path& still) {
+  const std::string png = read_text(image);
+  static constexpr std::string_view kSignature = "\x89PNG\r\n\x1a\n";
+  if (png.compare(0, kSignature.size(), kSignature) != 0) throw Error(image, "", "is not a PNG image");
+  std::string out(kSignature);
+  for (std::size_t at = kSignature.size(); at + 12 <= png.size();) {
+    const auto byte = [&](std::size_t k) {
+      return static_cast<std::uint32_t>(static_cast<unsigned char>(png[at + k]));
+    };
+    const std::size_t length = (byte(0) << 24) | (byte(1) << 16) | (byte(2) << 8) | byte(3);
+    const std::string_view type(png.data() + at + 4, 4);
+    if (at + 12 + length > png.size()) throw Error(image, "", "is a truncated PNG image");
+    const bool dated = type == "tIME" || (type == "tEXt" && png.compare(at + 8, 8, "Comment\0", 8) == 0);
+    if (!dated) out.append(png, at, 12 + length);
+    at += 12 + length;
+  }
+  write_file_atomically(still, out);
+  fs::remove(image);
+}
+
+// Runs one task unless it is done. Returns true when its still is done.
+bool run_task(const fs::path& dir, const Plan& plan, const BatchTask& t) {
+  if (task_done(dir, t)) {
+    std::printf("task %s: done already, skipped\n", t.id.c_str());
+    return true;
+  }
+  const json previous = read_json(record_of(dir, t, ".json"));
+  fs::create_directories(dir / "stills");
+  char host[256] = {};
+  ::gethostname(host, sizeof host - 1);
+  write_file_atomically(record_of(dir, t, ".running"), std::to_string(::getpid()) + " " + host + "\n");
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    const fs::path image = t.engine == "blender" ? render_blender_task(dir, plan, t) : render_povray_task(dir, plan, t);
+    publish_still(image, still_of(dir, t));
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const json record = {{"input_hash", t.input_hash},
+                         {"seconds", std::round(seconds * 1000) / 1000},
+                         {"renders", (previous.is_object() ? previous.value("renders", 0) : 0) + 1},
+                         {"finished_unix", static_cast<std::int64_t>(std::time(nullptr))},
+                         {"host", host}};
+    write_file_atomically(record_of(dir, t, ".json"), record.dump(1) + "\n");
+    fs::remove(record_of(dir, t, ".failed"));
+    fs::remove(record_of(dir, t, ".running"));
+    std::printf("task %s: rendered in %.2f s\n", t.id.c_str(), seconds);
+    return true;
+  } catch (const std::exception& e) {
+    const fs::path log =
+        t.engine == "blender" ? dir / "work" / t.id / "blender.log" : dir / "work" / t.id / "povray.log";
+    write_file_atomically(record_of(dir, t, ".failed"), json{{"error", e.what()}, {"log", log.string()}}.dump(1));
+    fs::remove(record_of(dir, t, ".running"));
+    std::fprintf(stderr, "task %s failed: %s\n", t.id.c_str(), e.what());
+    return false;
+  }
+}
+
+// ---- status -------------------------------------------------------------------------------------
+
+enum class State { done, running, failed, pending };
+const char* state_name(State s) {
+  return s == State::done ? "done" : s == State::running ? "running" : s == State::failed ? "failed" : "pending";
+}
+
+State task_state(const fs::path& dir, const BatchTask& t) {
+  if (task_done(dir, t)) return State::done;
+  const std::string running = read_text(record_of(dir, t, ".running"));
+  if (!running.empty()) {
+    // A worker of this machine that is gone (killed) left its marker: the task is pending.
+    char host[256] = {};
+    ::gethostname(host, sizeof host - 1);
+    std::istringstream in(running);
+    long pid = 0;
+    std::string on;
+    in >> pid >> on;
+    if (on != host || (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) == 0)) return State::running;
+  }
+  return fs::exists(record_of(dir, t, ".failed")) ? State::failed : State::pending;
+}
+
+// ---- executors ----------------------------------------------------------------------------------
+
+fs::path self_program() { return fs::read_symlink("/proc/self/exe"); }
+
+int default_workers() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
+
+void report_failures(const fs::path& dir, const Plan& plan) {
+  for (const auto& t : plan.tasks)
+    if (task_state(dir, t) == State::failed) {
+      const json f = read_json(record_of(dir, t, ".failed"));
+      std::fprintf(stderr, "wangscape: task %s (%s, %s, %s) failed: %s (log: %s)\n", t.id.c_str(), t.viewpoint.c_str(),
+                   t.sun.label.c_str(), t.engine.c_str(), f.is_object() ? f.value("error", "?").c_str() : "?",
+                   f.is_object() ? f.value("log", "?").c_str() : "?");
+    }
+}
+
+// Local: N worker processes (`wangscape batch run-task`), each task its own process.
+void run_local(const BatchRunSettings& s, const Plan& plan) {
+  const fs::path program = self_program();
+  const int workers = s.workers > 0 ? s.workers : default_workers();
+  std::atomic<int> next{0}, finished{0};
+  std::mutex report;
+  const int total = static_cast<int>(plan.tasks.size());
+  auto worker = [&] {
+    for (int k = next++; k < total; k = next++) {
+      const auto& t = plan.tasks[k];
+      if (!task_done(s.out_dir, t)) {
+        const std::vector<std::string> argv{program.string(), "--quiet",          "batch",
+                                            "run-task",       s.out_dir.string(), std::to_string(k)};
+        run_logged(argv, s.out_dir / "logs" / (t.id + ".log"));
+      }
+      const int f = ++finished;
+      std::lock_guard lock(report);
+      if (s.on_progress) s.on_progress(f, total);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int i = 0; i < std::min(workers, std::max(total, 1)); ++i) pool.emplace_back(worker);
+  for (auto& th : pool) th.join();
+}
+
+// Runs a Slurm tool and returns its stdout (Error naming the command when it fails).
+std::string slurm(const fs::path& dir, std::vector<std::string> argv) {
+  const std::string tool = argv[0];
+  const fs::path program = find_program(tool);
+  if (program.empty()) throw Error("slurm executor: '" + tool + "' is not installed (apt install slurm-client)");
+  argv[0] = program.string();
+  const fs::path out = dir / "logs" / ("." + tool + "-" + std::to_string(::getpid()) + ".out");
+  fs::remove(out);
+  const auto exit = run_logged(argv, out);
+  std::string text = read_text(out);
+  fs::remove(out);
+  if (!exit.exited || exit.status != 0) {
+    if (tool == "squeue") return {};  // jobs that left the queue are unknown to it
+    throw Error("slurm executor: " + tool + " " + exit.describe() + ": " + text);
+  }
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  return text.substr(0, text.find(';'));  // sbatch --parsable: "job[;cluster]"
+}
+
+bool in_queue(const fs::path& dir, const std::string& job) {
+  return !slurm(dir, {"squeue", "-h", "-j", job, "-o", "%i"}).empty();
+}
+
+std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// Slurm: one job array (chunks of tasks per element, throttled with %), failed elements
+// resubmitted up to `retries` times, and a final job (afterok) that assembles the results.
+void run_slurm(const BatchRunSettings& s, const Plan& plan) {
+  const fs::path dir = fs::absolute(s.out_dir);
+  const int total = static_cast<int>(plan.tasks.size());
+  const int chunk = s.chunk > 0 ? s.chunk : std::max(1, (total + 255) / 256);
+  const fs::path script = dir / "logs" / "element.sh";
+  write_file_atomically(script, "#!/bin/sh\n# One Slurm array element: tasks [id * chunk, id * chunk + chunk).\nexec " +
+                                    quoted(self_program().string()) + " --quiet batch run-task " +
+                                    quoted(dir.string()) + " $((SLURM_ARRAY_TASK_ID * " + std::to_string(chunk) +
+                                    ")) " + std::to_string(chunk) + "\n");
+  fs::permissions(script, fs::perms::owner_all | fs::perms::group_read | fs::perms::others_read);
+  for (int attempt = 0;; ++attempt) {
+    std::string elements;
+    for (int e = 0; e * chunk < total; ++e) {
+      bool done = true;
+      for (int k = e * chunk; k < std::min(total, (e + 1) * chunk); ++k) done = done && task_done(dir, plan.tasks[k]);
+      if (done) continue;
+      if (!elements.empty()) elements += ',';
+      elements += std::to_string(e);
+    }
+    std::vector<std::string> sbatch{"sbatch", "--parsable", "--requeue", "--job-name=wangscape-batch",
+                                    "--chdir=" + dir.string()};
+    std::string after;
+    if (!elements.empty()) {
+      auto array = sbatch;
+      array.push_back("--array=" + elements + (s.throttle > 0 ? "%" + std::to_string(s.throttle) : ""));
+      array.push_back("--output=" + (dir / "logs" / "slurm-%A_%a.log").string());
+      array.push_back(script.string());
+      after = slurm(dir, array);
+      if (s.chatty)
+        std::fprintf(stderr, "wangscape: submitted job array %s (elements %s)\n", after.c_str(), elements.c_str());
+    }
+    auto final_job = sbatch;
+    if (!after.empty()) final_job.push_back("--dependency=afterok:" + after);
+    final_job.push_back("--output=" + (dir / "logs" / "slurm-assemble-%j.log").string());
+    final_job.push_back("--wrap=" + quoted(self_program().string()) + " --quiet batch run-task " +
+                        quoted(dir.string()));
+    const std::string assemble = slurm(dir, final_job);
+    while (!after.empty() && in_queue(dir, after)) {
+      if (s.on_progress) s.on_progress(batch_status(dir).done, total);
+      std::this_thread::sleep_for(std::chrono::milliseconds(250));
+    }
+    const auto counts = batch_status(dir);
+    if (counts.done == total || attempt >= s.retries) {
+      if (counts.done != total) slurm(dir, {"scancel", assemble});  // afterok never fires
+      while (in_queue(dir, assemble)) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      return;
+    }
+    slurm(dir, {"scancel", assemble});
+    if (s.chatty) std::fprintf(stderr, "wangscape: %d tasks failed; resubmitting them\n", total - counts.done);
+  }
+}
+
+// ---- results ------------------------------------------------------------------------------------
+
+std::string html_escape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else if (c == '"')
+      out += "&quot;";
+    else
+      out += c;
+  }
+  return out;
+}
+
+std::string fixed(double v, int decimals) {
+  char buffer[64];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::fixed, decimals).ptr;
+  return std::string(buffer, end);
+}
+
+void write_contact_sheet(const fs::path& dir, const Plan& plan) {
+  constexpr int kThumb = 160;
+  const int n = static_cast<int>(plan.tasks.size());
+  const int columns = std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n)))));
+  const int rows = std::max(1, (n + columns - 1) / columns);
+  int thumb_h = kThumb * 9 / 16;
+  if (!plan.tasks.empty() && plan.tasks[0].width > 0)
+    thumb_h = std::max(1, kThumb * plan.tasks[0].height / plan.tasks[0].width);
+  const float grey[3] = {0.2f, 0.2f, 0.2f};
+  OIIO::ImageBuf sheet(OIIO::ImageSpec(columns * (kThumb + 4) + 4, rows * (thumb_h + 4) + 4, 3, OIIO::TypeDesc::UINT8));
+  OIIO::ImageBufAlgo::fill(sheet, grey);
+  for (int k = 0; k < n; ++k) {
+    const fs::path still = still_of(dir, plan.tasks[k]);
+    if (!task_done(dir, plan.tasks[k])) continue;
+    OIIO::ImageBuf image(still.string());
+    const int x = 4 + (k % columns) * (kThumb + 4), y = 4 + (k / columns) * (thumb_h + 4);
+    OIIO::ImageBuf thumb = OIIO::ImageBufAlgo::resize(image, "", 0, OIIO::ROI(0, kThumb, 0, thumb_h, 0, 1, 0, 3));
+    OIIO::ImageBufAlgo::paste(sheet, x, y, 0, 0, thumb);
+  }
+  AtomicPath out(dir / "contact-sheet.png");
+  if (!sheet.write(out.temp_path().string(), OIIO::TypeDesc::UINT8, "png"))
+    throw Error(dir / "contact-sheet.png", "", "cannot be written: " + sheet.geterror());
+  out.commit();
+}
+
+}  // namespace
+
+std::string batch_plan_text(const fs::path& batch_file, bool as_json) {
+  const auto config = load_batch_config(batch_file);
+  const auto tasks = expand_batch(config);
+  if (as_json) {
+    json j = json::array();
+    for (const auto& t : tasks) j.push_back(task_json(t));
+    return j.dump(2) + "\n";
+  }
+  std::string out;
+  for (const auto& t : tasks) {
+    const auto& p = t.camera.position;
+    out += t.id + "  " + (t.dem.empty() ? std::string("flat ground") : t.dem.filename().string()) + "  " + t.viewpoint +
+           " at ENU (" + fixed(p[0], 1) + ", " + fixed(p[1], 1) + ", " + fixed(p[2], 1) + ")  sun " + t.sun.label +
+           "  " + t.engine + " " + std::to_string(t.width) + "x" + std::to_string(t.height) + "\n";
+  }
+  return out + std::to_string(tasks.size()) + " tasks\n";
+}
+
+void run_batch_tasks(const fs::path& dir, int first, int count) {
+  const Plan plan = load_plan(dir);
+  const int total = static_cast<int>(plan.tasks.size());
+  if (first < 0 || first >= total) throw Error(dir / "plan.json", "", "has no task " + std::to_string(first));
+  std::string failed;
+  for (int k = first; k < std::min(total, first + count); ++k)
+    if (!run_task(dir, plan, plan.tasks[k])) failed += " " + plan.tasks[k].id;
+  if (!failed.empty()) throw Error(dir / "tasks", "", "task(s)" + failed + " failed (see the .failed files)");
+}
+
+void run_batch_tasks(const BatchRunSettings& settings) {
+  if (settings.task_range.empty()) return assemble_batch(settings.out_dir);
+  run_batch_tasks(settings.out_dir, settings.task_range[0],
+                  settings.task_range.size() > 1 ? settings.task_range[1] : 1);
+}
+
+std::string batch_status_text(const BatchRunSettings& settings) {
+  std::string report;
+  for (auto counts = batch_status(settings.out_dir); settings.watch && settings.on_progress;
+       counts = batch_status(settings.out_dir)) {
+    const int total = counts.done + counts.running + counts.failed + counts.pending;
+    settings.on_progress(counts.running > 0 ? counts.done + counts.failed : total, total);
+    if (counts.running == 0) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  }
+  batch_status(settings.out_dir, &report);
+  return report;
+}
+
+BatchCounts batch_status(const fs::path& dir, std::string* report) {
+  const Plan plan = load_plan(dir);
+  BatchCounts counts;
+  for (const auto& t : plan.tasks) {
+    const State s = task_state(dir, t);
+    (s == State::done      ? counts.done
+     : s == State::running ? counts.running
+     : s == State::failed  ? counts.failed
+                           : counts.pending)++;
+    if (report)
+      *report += t.id + "  " + state_name(s) + "  " + t.viewpoint + ", sun " + t.sun.label + ", " + t.engine + "\n";
+  }
+  if (report)
+    *report += "done " + std::to_string(counts.done) + ", running " + std::to_string(counts.running) + ", failed " +
+               std::to_string(counts.failed) + ", pending " + std::to_string(counts.pending) + "\n";
+  return counts;
+}
+
+void assemble_batch(const fs::path& dir) {
+  const Plan plan = load_plan(dir);
+  json all = json::array();
+  std::string html =
+      "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>Wangscape batch</title><style>"
+      "body{font-family:sans-serif;background:#222;color:#ddd}figure{display:inline-block;margin:6px;"
+      "vertical-align:top;width:330px}img{width:320px}figcaption{font-size:12px}</style></head><body>\n"
+      "<h1>Wangscape batch</h1>\n<p><img src=\"contact-sheet.png\" alt=\"contact sheet\" style=\"width:auto\"></p>\n";
+  int renders = 0;
+  BatchCounts counts;
+  for (const auto& t : plan.tasks) {
+    json j = task_json(t);
+    const State s = task_state(dir, t);
+    (s == State::done      ? counts.done
+     : s == State::running ? counts.running
+     : s == State::failed  ? counts.failed
+                           : counts.pending)++;
+    j["status"] = state_name(s);
+    const json record = read_json(record_of(dir, t, ".json"));
+    const double seconds = record.is_object() ? record.value("seconds", 0.0) : 0.0;
+    j["seconds"] = seconds;
+    j["renders"] = record.is_object() ? record.value("renders", 0) : 0;
+    renders += j["renders"].get<int>();
+    j["image"] = s == State::done ? "stills/" + t.id + ".png" : "";
+    if (s == State::failed) j["failure"] = read_json(record_of(dir, t, ".failed"));
+    const auto& p = t.camera.position;
+    html += "<figure>" +
+            (s == State::done ? "<img src=\"stills/" + t.id + ".png\" alt=\"still " + t.id + "\">"
+                              : "<p>" + std::string(state_name(s)) + "</p>") +
+            "<figcaption>" + t.id + " " + html_escape(t.viewpoint) +
+            "<br>DEM: " + html_escape(t.dem.empty() ? std::string("flat ground") : t.dem.filename().string()) +
+            "<br>camera ENU (" + fixed(p[0], 1) + ", " + fixed(p[1], 1) + ", " + fixed(p[2], 1) + ") m, lat/lon " +
+            fixed(t.camera_latlon[0], 6) + ", " + fixed(t.camera_latlon[1], 6) + "<br>sun " + html_escape(t.sun.label) +
+            " (az " + fixed(t.sun.azimuth, 1) + ", el " + fixed(t.sun.elevation, 1) + ")<br>" + t.engine + ", " +
+            fixed(seconds, 2) + " s</figcaption></figure>\n";
+    all.push_back(j);
+  }
+  html += "</body></html>\n";
+  write_contact_sheet(dir, plan);
+  write_file_atomically(dir / "index.html", html);
+  const json batch = {{"tasks", all},
+                      {"done", counts.done},
+                      {"failed", counts.failed},
+                      {"pending", counts.pending},
+                      {"running", counts.running},
+                      {"renders_total", renders}};
+  write_file_atomically(dir / "batch.json", batch.dump(1) + "\n");
+}
+
+void run_batch(const BatchRunSettings& s) {
+  const auto config = load_batch_config(s.batch_file);
+  const auto tasks = expand_batch(config);
+  for (const char* sub : {"scenes", "work", "stills", "tasks", "logs"}) fs::create_directories(s.out_dir / sub);
+  write_plan(s.out_dir, config, tasks);
+  const Plan plan = load_plan(s.out_dir);
+  if (s.chatty)
+    std::fprintf(stderr, "wangscape: %zu tasks, executor %s, into %s\n", tasks.size(), s.executor.c_str(),
+                 s.out_dir.string().c_str());
+  if (s.executor == "slurm") {
+    run_slurm(s, plan);
+  } else if (s.executor == "local") {
+    run_local(s, plan);
+  } else {
+    throw Error("batch run: executor '" + s.executor + "' is not known (local, slurm)");
+  }
+  // The Slurm final job assembled already; assembling again is cheap and covers failures.
+  assemble_batch(s.out_dir);
+  const auto counts = batch_status(s.out_dir);
+  if (s.on_progress) s.on_progress(static_cast<int>(tasks.size()), static_cast<int>(tasks.size()));
+  report_failures(s.out_dir, plan);
+  if (counts.done != static_cast<int>(tasks.size()))
+    throw Error(s.out_dir / "index.html", "",
+                std::to_string(counts.done) + " of " + std::to_string(tasks.size()) + " stills done, " +
+                    std::to_string(counts.failed) + " failed, " + std::to_string(counts.pending) + " pending");
+  if (s.chatty)
+    std::fprintf(stderr, "wangscape: %d of %zu stills done; gallery %s\n", counts.done, tasks.size(),
+                 (s.out_dir / "index.html").string().c_str());
+}
+
+}  // namespace wangscape

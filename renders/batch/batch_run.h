@@ -1,0 +1,66 @@
+// Running a batch (renders/batch/batch_file.h) into an output folder, on a local pool of worker
+// processes or as a Slurm job array, so that a run can be repeated: each task records the hash
+// of its inputs and is skipped when its still exists with that hash. The folder:
+//   plan.json            the batch as tasks (written by `batch run`, read by every worker)
+//   scenes/<key>/        one scene folder per distinct scene (DEM + scene text), shared by the
+//                        tasks that differ only in camera, sun, engine or size
+//   work/<id>/           per task: scene.pov with the task's camera and sun over the shared
+//                        folder (Library_Path), POV-Ray's log
+//   stills/<id>.png      the stills, renamed into place when complete
+//   tasks/<id>.json      done record (input hash, seconds, times rendered); .running, .failed
+//   logs/                worker and Slurm logs
+//   index.html, contact-sheet.png, batch.json   the results (assembled at the end)
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "renders/batch/batch_file.h"
+
+namespace wangscape {
+
+struct BatchRunSettings {
+  std::filesystem::path batch_file;
+  std::filesystem::path out_dir;
+  std::string executor = "local";  // local or slurm
+  int workers = 0;                 // local: worker processes, 0 = the cores
+  int chunk = 0;                   // slurm: tasks per array element, 0 = 1 up to 256 tasks, then more
+  int throttle = 0;                // slurm: array elements running at once (%), 0 = no limit
+  int retries = 1;                 // slurm: times failed elements are resubmitted (sbatch reads
+                                   // SBATCH_PARTITION, SBATCH_ACCOUNT, ... from the environment)
+  bool chatty = false;             // messages on stderr
+  bool json = false;               // plan: a JSON list of tasks
+  bool watch = false;              // status: report progress until no task is running
+  std::vector<int> task_range;     // run-task: first [count]; empty = assemble the gallery
+  std::function<void(int finished, int total)> on_progress;  // tasks done or failed so far
+};
+
+// Expands the batch, writes plan.json, runs every task not yet done and assembles the results.
+// Throws Error for a bad batch file before any task starts, and after the run when some task
+// failed (each one named on stderr with its error and log).
+void run_batch(const BatchRunSettings& settings);
+
+// The plan as text (one line per task) or as JSON (a list of tasks), without running anything.
+std::string batch_plan_text(const std::filesystem::path& batch_file, bool json);
+
+// Runs tasks [first, first + count) of DIR/plan.json in this process (what a worker or a
+// Slurm array element does). Throws Error naming the tasks that failed.
+void run_batch_tasks(const std::filesystem::path& dir, int first, int count);
+// `batch run-task`: settings.task_range of settings.out_dir, or assemble_batch when it is empty.
+void run_batch_tasks(const BatchRunSettings& settings);
+
+struct BatchCounts {
+  int done = 0, running = 0, failed = 0, pending = 0;
+};
+// Each task's state from the files (whichever executor ran it); `report` gets one line per task.
+BatchCounts batch_status(const std::filesystem::path& dir, std::string* report = nullptr);
+// `batch status`: the report of settings.out_dir; with settings.watch, on_progress is called
+// until no task is running first.
+std::string batch_status_text(const BatchRunSettings& settings);
+
+// Writes DIR/index.html, DIR/contact-sheet.png and DIR/batch.json from the files.
+void assemble_batch(const std::filesystem::path& dir);
+
+}  // namespace wangscape

@@ -1,0 +1,408 @@
+#include "renders/ldi/ldi_pack.h"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+#include "core/atomic_file.h"
+
+namespace wangscape {
+
+static_assert(std::endian::native == std::endian::little, "the pack is little endian and read in place");
+
+namespace {
+
+// The fixed header at offset 0 (64 bytes).
+struct PackHeader {
+  char magic[8];
+  std::uint32_t version, header_bytes;
+  std::uint32_t tiles, levels, directions, image_width;
+  float tile_size, head_height, prism_top, fov_degrees;
+  std::uint64_t file_bytes;    // the whole file: a shorter file was truncated
+  std::uint64_t index_offset;  // the index: (tile, level, direction) -> IndexEntry
+};
+static_assert(sizeof(PackHeader) == 64);
+
+struct IndexEntry {
+  std::uint64_t offset, bytes;
+};
+static_assert(sizeof(IndexEntry) == 16);
+
+// Sanity bounds, so that a corrupt header cannot ask for absurd allocations.
+constexpr std::uint32_t kMaxTiles = 65536, kMaxLevels = 64, kMaxDirections = 64;
+
+constexpr std::uint64_t align8(std::uint64_t x) { return (x + 7) & ~std::uint64_t{7}; }
+
+// Per-level and per-direction arrays right after the header.
+std::uint64_t arrays_bytes(std::uint64_t levels, std::uint64_t directions) {
+  return levels * 4 * 3 + directions * 4;  // resolutions, distances, elevations; azimuths
+}
+
+// Where the sections of an LDI block sit, from its frame.
+struct BlockLayout {
+  std::uint64_t row_spans, spans, counts, depth_pixels, total;
+  explicit BlockLayout(const LdiFrame& f) {
+    row_spans = sizeof(LdiFrame);
+    spans = align8(row_spans + (std::uint64_t{f.height} + 1) * 4);
+    counts = align8(spans + std::uint64_t{f.span_count} * sizeof(LdiSpan));
+    depth_pixels = align8(counts + f.pixel_count);
+    total = depth_pixels + std::uint64_t{f.depth_pixel_count} * sizeof(DepthPixel);
+  }
+};
+
+std::size_t entry_index(const LdiPackInfo& info, std::uint32_t tile, std::uint32_t level, std::uint32_t direction) {
+  return (std::size_t{tile} * info.levels + level) * info.directions + direction;
+}
+
+}  // namespace
+
+// ---- views ----------------------------------------------------------------------------------
+
+std::span<const DepthPixel> LdiView::pixel(int x, int y) const {
+  if (x < 0 || y < 0 || std::uint32_t(x) >= frame->width || std::uint32_t(y) >= frame->height) return {};
+  const auto first = spans.begin() + row_spans[std::size_t(y)], last = spans.begin() + row_spans[std::size_t(y) + 1];
+  // The last span starting at or before x.
+  auto it = std::upper_bound(first, last, x, [](int v, const LdiSpan& s) { return v < int(s.x); });
+  if (it == first) return {};
+  --it;
+  if (x >= int(it->x) + int(it->length)) return {};
+  std::uint32_t depth = it->first_depth;
+  for (int k = it->x; k < x; ++k) depth += counts[it->first_pixel + std::uint32_t(k - it->x)];
+  return depth_pixels.subspan(depth, counts[it->first_pixel + std::uint32_t(x - it->x)]);
+}
+
+std::array<float, 3> LdiView::position(int x, int y, const DepthPixel& p) const {
+  const LdiFrame& f = *frame;
+  const float a = (float(x) + 0.5f) * f.pixel_size, b = (float(y) + 0.5f) * f.pixel_size, d = depth_meters(p);
+  std::array<float, 3> out{};
+  for (int c = 0; c < 3; ++c) out[c] = f.origin[c] + a * f.right[c] - b * f.up[c] + d * f.forward[c];
+  return out;
+}
+
+std::uint16_t encode_octahedral(const std::array<float, 3>& n) {
+  const float l1 = std::abs(n[0]) + std::abs(n[1]) + std::abs(n[2]);
+  float u = n[0] / l1, v = n[1] / l1;
+  if (n[2] < 0) {
+    const float fu = (1.0f - std::abs(v)) * std::copysign(1.0f, u), fv = (1.0f - std::abs(u)) * std::copysign(1.0f, v);
+    u = fu;
+    v = fv;
+  }
+  auto q = [](float c) { return std::uint16_t(std::lround((std::clamp(c, -1.0f, 1.0f) * 0.5f + 0.5f) * 255.0f)); };
+  return std::uint16_t(q(u) | (q(v) << 8));
+}
+
+std::array<float, 3> decode_octahedral(std::uint16_t code) {
+  float u = float(code & 0xff) / 255.0f * 2.0f - 1.0f, v = float(code >> 8) / 255.0f * 2.0f - 1.0f;
+  const float z = 1.0f - std::abs(u) - std::abs(v);
+  if (z < 0) {
+    const float fu = (1.0f - std::abs(v)) * std::copysign(1.0f, u), fv = (1.0f - std::abs(u)) * std::copysign(1.0f, v);
+    u = fu;
+    v = fv;
+  }
+  const float len = std::sqrt(u * u + v * v + z * z);
+  return {u / len, v / len, z / len};
+}
+
+// ---- writing --------------------------------------------------------------------------------
+
+namespace {
+
+template <class T>
+void put(std::ostream& out, const T& value) {
+  out.write(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+template <class T>
+void put_all(std::ostream& out, std::span<const T> values) {
+  out.write(reinterpret_cast<const char*>(values.data()), static_cast<std::streamsize>(values.size_bytes()));
+}
+// Writes zeros from `at` up to `target` (alignment padding, and the room the header and index
+// take until commit() writes them).
+void pad_to(std::ostream& out, std::uint64_t& at, std::uint64_t target) {
+  static constexpr char zeros[64] = {};
+  while (at < target) {
+    const std::uint64_t n = std::min<std::uint64_t>(sizeof(zeros), target - at);
+    out.write(zeros, static_cast<std::streamsize>(n));
+    at += n;
+  }
+}
+
+std::uint64_t index_offset_of(const LdiPackInfo& info) {
+  return align8(sizeof(PackHeader) + arrays_bytes(info.levels, info.directions));
+}
+
+}  // namespace
+
+LdiPackWriter::LdiPackWriter(std::filesystem::path path, LdiPackInfo info)
+    : path_(std::move(path)), info_(std::move(info)) {
+  if (info_.tiles == 0 || info_.levels == 0 || info_.directions == 0 || info_.tiles > kMaxTiles ||
+      info_.levels > kMaxLevels || info_.directions > kMaxDirections || info_.resolutions.size() != info_.levels ||
+      info_.level_distances.size() != info_.levels || info_.elevations.size() != info_.levels ||
+      info_.azimuths.size() != info_.directions)
+    throw Error(path_, "",
+                "cannot write a pack of " + std::to_string(info_.tiles) + " tiles x " + std::to_string(info_.levels) +
+                    " levels x " + std::to_string(info_.directions) +
+                    " directions (or with per-level arrays of the wrong length)");
+  file_ = std::make_unique<AtomicFile>(path_);
+  const std::size_t n = std::size_t{info_.tiles} * info_.levels * info_.directions;
+  offsets_.assign(n, 0);
+  sizes_.assign(n, 0);
+  // Header, arrays and index are rewritten by commit(); reserve their room now.
+  end_ = index_offset_of(info_) + n * sizeof(IndexEntry);
+  std::uint64_t at = 0;
+  pad_to(file_->stream(), at, end_);
+}
+
+LdiPackWriter::~LdiPackWriter() = default;
+
+void LdiPackWriter::add(const LdiImage& ldi) {
+  LdiFrame frame = ldi.frame;
+  frame.span_count = std::uint32_t(ldi.spans.size());
+  frame.pixel_count = std::uint32_t(ldi.counts.size());
+  frame.depth_pixel_count = std::uint32_t(ldi.depth_pixels.size());
+  if (frame.tile >= info_.tiles || frame.level >= info_.levels || frame.direction >= info_.directions ||
+      ldi.row_spans.size() != std::size_t{frame.height} + 1)
+    throw Error(path_, "",
+                "LDI (tile " + std::to_string(frame.tile) + ", level " + std::to_string(frame.level) + ", direction " +
+                    std::to_string(frame.direction) + ") does not fit the pack");
+  const std::size_t e = entry_index(info_, frame.tile, frame.level, frame.direction);
+  if (sizes_[e] != 0) throw Error(path_, "", "an LDI was added twice");
+  const BlockLayout layout(frame);
+  std::ostream& out = file_->stream();
+  offsets_[e] = end_;
+  std::uint64_t at = 0;  // relative to the block
+  put(out, frame);
+  at += sizeof(LdiFrame);
+  put_all(out, std::span<const std::uint32_t>(ldi.row_spans));
+  at += ldi.row_spans.size() * 4;
+  pad_to(out, at, layout.spans);
+  put_all(out, std::span<const LdiSpan>(ldi.spans));
+  at += ldi.spans.size() * sizeof(LdiSpan);
+  pad_to(out, at, layout.counts);
+  put_all(out, std::span<const std::uint8_t>(ldi.counts));
+  at += ldi.counts.size();
+  pad_to(out, at, layout.depth_pixels);
+  put_all(out, std::span<const DepthPixel>(ldi.depth_pixels));
+  at += ldi.depth_pixels.size() * sizeof(DepthPixel);
+  pad_to(out, at, align8(layout.total));  // the next block starts on 8 bytes too
+  sizes_[e] = layout.total;
+  end_ += at;
+}
+
+void LdiPackWriter::commit() {
+  for (std::uint64_t s : sizes_)
+    if (s == 0) throw Error(path_, "", "not every (tile, level, direction) LDI was added");
+  PackHeader h{};
+  std::memcpy(h.magic, kLdiPackMagic, sizeof(h.magic));
+  h.version = kLdiPackVersion;
+  h.header_bytes = sizeof(PackHeader);
+  h.tiles = info_.tiles;
+  h.levels = info_.levels;
+  h.directions = info_.directions;
+  h.image_width = info_.image_width;
+  h.tile_size = info_.tile_size;
+  h.head_height = info_.head_height;
+  h.prism_top = info_.prism_top;
+  h.fov_degrees = info_.fov_degrees;
+  h.file_bytes = end_;
+  h.index_offset = index_offset_of(info_);
+  std::ostream& out = file_->stream();
+  out.seekp(0);
+  put(out, h);
+  put_all(out, std::span<const std::uint32_t>(info_.resolutions));
+  put_all(out, std::span<const float>(info_.level_distances));
+  put_all(out, std::span<const float>(info_.elevations));
+  put_all(out, std::span<const float>(info_.azimuths));
+  std::uint64_t at = sizeof(PackHeader) + arrays_bytes(info_.levels, info_.directions);
+  pad_to(out, at, h.index_offset);
+  for (std::size_t e = 0; e < sizes_.size(); ++e) put(out, IndexEntry{offsets_[e], sizes_[e]});
+  file_->commit();
+}
+
+void write_ldi_pack(const std::filesystem::path& path, const LdiPackInfo& info, std::span<const LdiImage> ldis) {
+  LdiPackWriter writer(path, info);
+  for (const LdiImage& ldi : ldis) writer.add(ldi);
+  writer.commit();
+}
+
+// ---- reading --------------------------------------------------------------------------------
+
+namespace {
+
+// Checks of one block, in the order a reader needs them; `fail` throws.
+template <class Fail>
+LdiView validate_block(const std::uint8_t* block, std::uint64_t bytes, std::uint32_t tile, std::uint32_t level,
+                       std::uint32_t direction, Fail&& fail) {
+  if (bytes < sizeof(LdiFrame)) fail("its block is " + std::to_string(bytes) + " bytes, shorter than its frame");
+  const auto* f = reinterpret_cast<const LdiFrame*>(block);
+  if (f->tile != tile || f->level != level || f->direction != direction)
+    fail("its frame says tile " + std::to_string(f->tile) + ", level " + std::to_string(f->level) + ", direction " +
+         std::to_string(f->direction));
+  if (f->width == 0 || f->height == 0 || f->width > 65535 || f->height > 65535)
+    fail("its size " + std::to_string(f->width) + " x " + std::to_string(f->height) + " is out of range");
+  if (std::uint64_t{f->pixel_count} > std::uint64_t{f->width} * f->height)
+    fail("it claims more non-empty pixels than it has pixels");
+  if (!(std::isfinite(f->pixel_size) && f->pixel_size > 0 && std::isfinite(f->depth_range) && f->depth_range > 0))
+    fail("its pixel size or depth range is not a positive number");
+  const BlockLayout layout(*f);
+  if (layout.total > bytes)
+    fail("its sections need " + std::to_string(layout.total) + " bytes, its block has " + std::to_string(bytes));
+  LdiView v;
+  v.frame = f;
+  v.row_spans = {reinterpret_cast<const std::uint32_t*>(block + layout.row_spans), std::size_t{f->height} + 1};
+  v.spans = {reinterpret_cast<const LdiSpan*>(block + layout.spans), f->span_count};
+  v.counts = {block + layout.counts, f->pixel_count};
+  v.depth_pixels = {reinterpret_cast<const DepthPixel*>(block + layout.depth_pixels), f->depth_pixel_count};
+  if (v.row_spans.front() != 0 || v.row_spans.back() != f->span_count) fail("its row table does not cover its spans");
+  std::uint64_t pixel = 0, depth = 0;
+  for (std::uint32_t y = 0; y < f->height; ++y) {
+    if (v.row_spans[y + 1] < v.row_spans[y]) fail("its row table goes backwards at row " + std::to_string(y));
+    std::uint32_t row_end = 0;
+    for (std::uint32_t s = v.row_spans[y]; s < v.row_spans[y + 1]; ++s) {
+      const LdiSpan& span = v.spans[s];
+      if (span.length == 0 || span.x < row_end || std::uint32_t{span.x} + span.length > f->width)
+        fail("span " + std::to_string(s) + " of row " + std::to_string(y) + " is out of its row or overlaps");
+      if (span.first_pixel != pixel || span.first_depth != depth)
+        fail("span " + std::to_string(s) + " points at pixel " + std::to_string(span.first_pixel) + " / depth pixel " +
+             std::to_string(span.first_depth) + " instead of " + std::to_string(pixel) + " / " + std::to_string(depth));
+      if (pixel + span.length > f->pixel_count) fail("its spans hold more pixels than its count table");
+      for (std::uint32_t k = 0; k < span.length; ++k) {
+        depth += v.counts[pixel + k];
+      }
+      pixel += span.length;
+      row_end = std::uint32_t{span.x} + span.length;
+    }
+  }
+  if (pixel != f->pixel_count || depth != f->depth_pixel_count)
+    fail("its spans cover " + std::to_string(pixel) + " pixels and " + std::to_string(depth) +
+         " depth pixels, its frame says " + std::to_string(f->pixel_count) + " and " +
+         std::to_string(f->depth_pixel_count));
+  return v;
+}
+
+}  // namespace
+
+LdiPack::LdiPack(const std::filesystem::path& path) : path_(path) {
+  auto fail = [&](const std::string& what) -> void { throw Error(path_, "", what); };
+  const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) fail(std::string("cannot open: ") + std::strerror(errno));
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    fail("not a regular file");
+  }
+  size_ = std::uint64_t(st.st_size);
+  if (size_ < sizeof(PackHeader)) {
+    ::close(fd);
+    fail("truncated: " + std::to_string(size_) + " bytes, shorter than the " + std::to_string(sizeof(PackHeader)) +
+         "-byte header (not an LDI pack?)");
+  }
+  void* map = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
+  ::close(fd);
+  if (map == MAP_FAILED) fail(std::string("cannot map: ") + std::strerror(errno));
+  data_ = static_cast<const std::uint8_t*>(map);
+  try {
+    PackHeader h;
+    std::memcpy(&h, data_, sizeof(h));
+    if (std::memcmp(h.magic, kLdiPackMagic, sizeof(h.magic)) != 0) fail("bad magic: not a Wangscape LDI pack");
+    if (h.version != kLdiPackVersion)
+      fail("version " + std::to_string(h.version) + "; this build reads version " + std::to_string(kLdiPackVersion));
+    if (h.header_bytes != sizeof(PackHeader)) fail("header size " + std::to_string(h.header_bytes) + " is wrong");
+    if (h.file_bytes != size_)
+      fail((size_ < h.file_bytes ? "truncated: " : "trailing bytes: ") + std::string("the header says ") +
+           std::to_string(h.file_bytes) + " bytes, the file has " + std::to_string(size_));
+    if (h.tiles == 0 || h.levels == 0 || h.directions == 0 || h.tiles > kMaxTiles || h.levels > kMaxLevels ||
+        h.directions > kMaxDirections)
+      fail(std::to_string(h.tiles) + " tiles x " + std::to_string(h.levels) + " levels x " +
+           std::to_string(h.directions) + " directions is out of range");
+    info_.tiles = h.tiles;
+    info_.levels = h.levels;
+    info_.directions = h.directions;
+    info_.tile_size = h.tile_size;
+    info_.head_height = h.head_height;
+    info_.prism_top = h.prism_top;
+    info_.image_width = h.image_width;
+    info_.fov_degrees = h.fov_degrees;
+    const std::size_t n = std::size_t{h.tiles} * h.levels * h.directions;
+    if (h.index_offset != index_offset_of(info_) || h.index_offset + n * sizeof(IndexEntry) > size_)
+      fail("the index (at " + std::to_string(h.index_offset) + ", " + std::to_string(n) +
+           " entries) is misplaced or runs past the end of the file");
+    const std::uint8_t* arrays = data_ + sizeof(PackHeader);
+    auto read_array = [&](auto& out, std::size_t count, std::size_t at) {
+      out.resize(count);
+      std::memcpy(out.data(), arrays + at, count * 4);
+    };
+    read_array(info_.resolutions, h.levels, 0);
+    read_array(info_.level_distances, h.levels, h.levels * 4u);
+    read_array(info_.elevations, h.levels, h.levels * 8u);
+    read_array(info_.azimuths, h.directions, h.levels * 12u);
+
+    const auto* index = reinterpret_cast<const IndexEntry*>(data_ + h.index_offset);
+    const std::uint64_t data_start = h.index_offset + n * sizeof(IndexEntry);
+    views_.resize(n);
+    block_bytes_.resize(n);
+    for (std::uint32_t t = 0; t < h.tiles; ++t)
+      for (std::uint32_t l = 0; l < h.levels; ++l)
+        for (std::uint32_t d = 0; d < h.directions; ++d) {
+          const std::size_t e = entry_index(info_, t, l, d);
+          const IndexEntry entry = index[e];
+          const std::string which = "LDI (tile " + std::to_string(t) + ", level " + std::to_string(l) + ", direction " +
+                                    std::to_string(d) + ")";
+          auto block_fail = [&](const std::string& what) { throw Error(path_, which, what); };
+          if (entry.offset % 8 != 0 || entry.offset < data_start || entry.offset > size_ ||
+              entry.bytes > size_ - entry.offset)
+            block_fail("offset " + std::to_string(entry.offset) + " + " + std::to_string(entry.bytes) +
+                       " bytes is outside the data (" + std::to_string(data_start) + " .. " + std::to_string(size_) +
+                       ")");
+          views_[e] = validate_block(data_ + entry.offset, entry.bytes, t, l, d, block_fail);
+          block_bytes_[e] = entry.bytes;
+        }
+  } catch (...) {
+    ::munmap(const_cast<std::uint8_t*>(data_), size_);
+    throw;
+  }
+}
+
+LdiPack::~LdiPack() { ::munmap(const_cast<std::uint8_t*>(data_), size_); }
+
+LdiView LdiPack::ldi(std::uint32_t tile, std::uint32_t level, std::uint32_t direction) const {
+  if (tile >= info_.tiles || level >= info_.levels || direction >= info_.directions)
+    throw Error(path_, "",
+                "no LDI (tile " + std::to_string(tile) + ", level " + std::to_string(level) + ", direction " +
+                    std::to_string(direction) + ")");
+  return views_[entry_index(info_, tile, level, direction)];
+}
+
+std::uint64_t LdiPack::ldi_bytes(std::uint32_t tile, std::uint32_t level, std::uint32_t direction) const {
+  ldi(tile, level, direction);  // range check
+  return block_bytes_[entry_index(info_, tile, level, direction)];
+}
+
+LdiPackStats ldi_pack_stats(const LdiPack& pack) {
+  const LdiPackInfo& info = pack.info();
+  LdiPackStats s;
+  s.depth_pixels_per_level.assign(info.levels, 0);
+  s.bytes_per_level.assign(info.levels, 0);
+  s.layer_histogram.assign(256, 0);
+  for (std::uint32_t t = 0; t < info.tiles; ++t)
+    for (std::uint32_t l = 0; l < info.levels; ++l)
+      for (std::uint32_t d = 0; d < info.directions; ++d) {
+        const LdiView v = pack.ldi(t, l, d);
+        const std::uint64_t pixels = std::uint64_t{v.frame->width} * v.frame->height;
+        s.pixels += pixels;
+        s.depth_pixels += v.depth_pixels.size();
+        s.depth_pixels_per_level[l] += v.depth_pixels.size();
+        s.bytes_per_level[l] += pack.ldi_bytes(t, l, d);
+        s.layer_histogram[0] += pixels - v.counts.size();  // outside spans; zero counts inside add below
+        for (std::uint8_t c : v.counts) ++s.layer_histogram[c];
+      }
+  while (s.layer_histogram.size() > 1 && s.layer_histogram.back() == 0) s.layer_histogram.pop_back();
+  return s;
+}
+
+}  // namespace wangscape

@@ -1,0 +1,63 @@
+#include "renders/trace/embree_device.h"
+
+#include <cstring>
+
+#include "core/error.h"
+
+namespace wangscape {
+
+EmbreeDevice::EmbreeDevice() {
+  device_ = rtcNewDevice(nullptr);
+  if (!device_)
+    throw Error("Embree: cannot create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+  rtcSetDeviceErrorFunction(device_, &EmbreeDevice::on_error, this);
+}
+
+EmbreeDevice::~EmbreeDevice() { rtcReleaseDevice(device_); }
+
+void EmbreeDevice::check(const std::string& doing) {
+  std::lock_guard lock(mutex_);
+  if (!error_.empty()) throw Error("Embree error while " + doing + ": " + error_);
+}
+
+void EmbreeDevice::on_error(void* user, RTCError code, const char* message) {
+  auto* self = static_cast<EmbreeDevice*>(user);
+  std::lock_guard lock(self->mutex_);
+  if (self->error_.empty())
+    self->error_ = std::string(message ? message : "?") + " (code " + std::to_string(int(code)) + ")";
+}
+
+RTCGeometry triangle_geometry(RTCDevice device, std::span<const std::array<float, 3>> positions,
+                              std::span<const std::array<std::uint32_t, 3>> triangles, RTCFilterFunctionN filter) {
+  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<float*>(
+      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), positions.size()));
+  auto* t = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                3 * sizeof(std::uint32_t), triangles.size()));
+  if (v) std::memcpy(v, positions.data(), positions.size_bytes());
+  if (t) std::memcpy(t, triangles.data(), triangles.size_bytes());
+  if (filter) rtcSetGeometryIntersectFilterFunction(g, filter);
+  rtcCommitGeometry(g);
+  return g;
+}
+
+std::vector<EmbreeScene> model_scenes(EmbreeDevice& device, std::span<const Mesh> models, RTCFilterFunctionN filter) {
+  std::vector<EmbreeScene> scenes;
+  scenes.reserve(models.size());
+  for (const Mesh& m : models) {
+    EmbreeScene scene(device.get());
+    // Single-level instancing: the prototypes hold triangles only.
+    rtcSetSceneBuildQuality(scene.get(), RTC_BUILD_QUALITY_HIGH);
+    if (!m.triangles.empty()) {
+      RTCGeometry g = triangle_geometry(device.get(), m.positions, m.triangles, filter);
+      rtcAttachGeometryByID(scene.get(), g, 0);
+      rtcReleaseGeometry(g);
+    }
+    rtcCommitScene(scene.get());
+    scenes.push_back(std::move(scene));
+  }
+  device.check("building the model scenes");
+  return scenes;
+}
+
+}  // namespace wangscape

@@ -1,0 +1,328 @@
+#include "renders/trace/embree_reference.h"
+
+#include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <mutex>
+#include <numbers>
+#include <string>
+
+#include "core/error.h"
+#include "renders/trace/embree_device.h"
+#include "renders/trace/ground_colors.h"
+
+namespace wangscape {
+
+namespace {
+
+using V3 = std::array<double, 3>;
+using Clock = std::chrono::steady_clock;
+
+double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 cross(const V3& a, const V3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+bool finite(const V3& a) { return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]); }
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+constexpr int kTile = 16;  // pixels: the unit of parallel work
+constexpr unsigned kTerrainId = 0;
+
+// The flowers as structure of arrays, indexed by Embree instance id - 1.
+struct Flowers {
+  std::vector<std::uint16_t> variant;
+  std::vector<float> cos_yaw, sin_yaw;
+};
+
+// The whole scene in Embree, in a frame shifted by `origin` (ENU meters, near the camera) so
+// that floats keep millimetres where the rays start.
+struct TracedScene {
+  EmbreeDevice device;
+  std::vector<EmbreeScene> models;
+  std::unique_ptr<EmbreeScene> top;
+  Flowers flowers;
+  V3 origin{};
+};
+
+void add_flowers(TracedScene& t, const Scene& scene, const InstanceBatch& batch) {
+  for (std::size_t i = 0; i < batch.size(); ++i) {
+    const std::uint16_t variant = batch.variant[i];
+    if (variant >= scene.models.size())
+      throw Error("reference render: an instance of variant " + std::to_string(variant) + " but the scene has " +
+                  std::to_string(scene.models.size()) + " models");
+    const float c = std::cos(batch.yaw[i]), s = std::sin(batch.yaw[i]), k = batch.scale[i];
+    // Column-major 3 x 4: rotation about z by yaw, uniform scale, translation (as POV-Ray's
+    // rotate, scale, translate of the same instance).
+    const float xfm[12] = {c * k,
+                           s * k,
+                           0,
+                           -s * k,
+                           c * k,
+                           0,
+                           0,
+                           0,
+                           k,
+                           float(batch.x[i] - t.origin[0]),
+                           float(batch.y[i] - t.origin[1]),
+                           float(batch.z[i] - t.origin[2])};
+    RTCGeometry g = rtcNewGeometry(t.device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(g, t.models[variant].get());
+    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(t.top->get(), g, unsigned(t.flowers.variant.size()) + 1);
+    rtcReleaseGeometry(g);
+    t.flowers.variant.push_back(variant);
+    t.flowers.cos_yaw.push_back(c);
+    t.flowers.sin_yaw.push_back(s);
+  }
+}
+
+void build(TracedScene& t, const Scene& scene, const V3& origin) {
+  t.origin = {std::round(origin[0]), std::round(origin[1]), std::round(origin[2])};
+  t.models = model_scenes(t.device, scene.models);
+  t.top = std::make_unique<EmbreeScene>(t.device.get());
+  if (!scene.terrain.triangles.empty()) {
+    std::vector<std::array<float, 3>> shifted(scene.terrain.positions.size());
+    for (std::size_t v = 0; v < shifted.size(); ++v)
+      for (std::size_t c = 0; c < 3; ++c) shifted[v][c] = float(double(scene.terrain.positions[v][c]) - t.origin[c]);
+    RTCGeometry g = triangle_geometry(t.device.get(), shifted, scene.terrain.triangles);
+    rtcAttachGeometryByID(t.top->get(), g, kTerrainId);
+    rtcReleaseGeometry(g);
+  }
+  if (scene.instances && !scene.models.empty())
+    scene.instances([&](const InstanceBatch& batch) { add_flowers(t, scene, batch); });
+  t.device.check("adding the terrain and the flowers");
+  rtcCommitScene(t.top->get());
+  t.device.check("building the scene");
+}
+
+void check_options(const Scene& scene, int width, int height, int spp) {
+  const auto fail = [](const std::string& what) { throw Error("reference render: " + what); };
+  if (width < 1 || height < 1 || width > kMaxReferenceSide || height > kMaxReferenceSide)
+    fail("image " + std::to_string(width) + " x " + std::to_string(height) + " pixels; expected 1.." +
+         std::to_string(kMaxReferenceSide) + " on each side");
+  if (std::uint64_t(width) * std::uint64_t(height) > kMaxReferencePixels)
+    fail("image " + std::to_string(width) + " x " + std::to_string(height) + " pixels; expected at most " +
+         std::to_string(kMaxReferencePixels) + " pixels");
+  if (spp < 1 || spp > kMaxReferenceSamples)
+    fail(std::to_string(spp) + " samples per pixel; expected 1.." + std::to_string(kMaxReferenceSamples));
+  for (const Mesh& m : scene.models)
+    if (m.triangle_material.size() != m.triangles.size() ||
+        (!m.normals.empty() && m.normals.size() != m.positions.size()))
+      fail("model '" + m.name + "' has per-triangle materials or normals that do not match its triangles / vertices");
+  if (!scene.terrain.normals.empty() && scene.terrain.normals.size() != scene.terrain.positions.size())
+    fail("the terrain mesh has " + std::to_string(scene.terrain.normals.size()) + " normals for " +
+         std::to_string(scene.terrain.positions.size()) + " vertices");
+}
+
+// What one tile of pixels needs.
+struct Tracer {
+  const Scene& scene;
+  const TracedScene& traced;
+  const ShadingSettings& shading;
+  const GroundColors& ground;
+  CameraFrame frame;  // origin relative to traced.origin
+  int width, height, spp, grid;
+  std::uint64_t seed;
+
+  struct Pixel {
+    Vec3f color{};
+    float coverage = 0, depth = std::numeric_limits<float>::infinity();
+    std::uint64_t secondary = 0;
+  };
+
+  Pixel trace(int px, int py) const {
+    Pixel out;
+    const std::uint64_t pixel_key = mix64(seed ^ (std::uint64_t(std::uint32_t(py)) << 32 | std::uint32_t(px)));
+    int hits = 0;
+    for (int k = 0; k < spp; ++k) {
+      const std::uint64_t h = mix64(pixel_key + std::uint64_t(k) * 0x9e3779b97f4a7c15ull);
+      // Stratified: one jittered sample per cell of a grid x grid lattice over the pixel; a single
+      // sample looks through the pixel's centre.
+      float sx = 0.5f, sy = 0.5f;
+      if (spp > 1) {
+        sx = (float(k % grid) + unit_float(h)) / float(grid);
+        sy = (float(k / grid) + unit_float(mix64(h))) / float(grid);
+      }
+      const double nx = 2.0 * (px + sx) / width - 1.0, ny = 1.0 - 2.0 * (py + sy) / height;
+      V3 d{};
+      for (std::size_t c = 0; c < 3; ++c) d[c] = frame.forward[c] + nx * frame.right[c] + ny * frame.up[c];
+      const double len = std::sqrt(dot(d, d));
+      for (double& c : d) c /= len;
+      Vec3f color{};
+      if (const auto hit = intersect(d)) {
+        ++hits;
+        out.depth = std::min(out.depth, hit->t);
+        int rays = 0;
+        color = shade(traced.top->get(), shading, surface(*hit, d), mix64(h ^ 0x5851f42d4c957f2dull), &rays);
+        out.secondary += std::uint64_t(rays);
+      } else {
+        color = sky_radiance(shading, {float(d[0]), float(d[1]), float(d[2])});
+      }
+      for (std::size_t c = 0; c < 3; ++c) out.color[c] += color[c];
+    }
+    for (float& c : out.color) c /= float(spp);
+    out.coverage = float(hits) / float(spp);
+    return out;
+  }
+
+ private:
+  struct Hit {
+    float t, u, v;
+    unsigned geom, inst, prim;
+  };
+
+  std::optional<Hit> intersect(const V3& d) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    RTCRayHit rh{};
+    rh.ray.org_x = float(frame.origin[0]);
+    rh.ray.org_y = float(frame.origin[1]);
+    rh.ray.org_z = float(frame.origin[2]);
+    rh.ray.dir_x = float(d[0]);
+    rh.ray.dir_y = float(d[1]);
+    rh.ray.dir_z = float(d[2]);
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.ray.mask = 0xffffffffu;
+    rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(traced.top->get(), &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+    return Hit{rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.geomID, rh.hit.instID[0], rh.hit.primID};
+  }
+
+  SurfaceSample surface(const Hit& h, const V3& d) const {
+    SurfaceSample s;
+    for (std::size_t c = 0; c < 3; ++c) s.position[c] = float(frame.origin[c] + h.t * d[c]);
+    if (h.inst != RTC_INVALID_GEOMETRY_ID) {
+      const unsigned f = h.inst - 1;
+      model_surface(scene.models[traced.flowers.variant[f]], h.prim, h.u, h.v, traced.flowers.cos_yaw[f],
+                    traced.flowers.sin_yaw[f], s);
+    } else {
+      model_surface(scene.terrain, h.prim, h.u, h.v, 1.0f, 0.0f, s);
+      s.base_color = ground.at(double(s.position[0]) + traced.origin[0], double(s.position[1]) + traced.origin[1]);
+      s.translucency = 0;
+    }
+    // Two-sided: turn the normal towards the viewer.
+    if (s.normal[0] * d[0] + s.normal[1] * d[1] + s.normal[2] * d[2] > 0)
+      for (float& v : s.normal) v = -v;
+    return s;
+  }
+};
+
+}  // namespace
+
+CameraFrame reference_camera_frame(const Camera& camera, int width, int height) {
+  const auto fail = [](const std::string& what) { throw Error("reference render: camera " + what); };
+  const V3 p = camera.position, t = camera.target;
+  if (!finite(p) || !finite(t)) fail("position and target must be finite");
+  if (!(camera.fov_degrees > 0 && camera.fov_degrees < 180))
+    fail("field of view " + std::to_string(camera.fov_degrees) + " degrees; expected 0..180");
+  if (width < 1 || height < 1) fail("image must have at least one pixel");
+  V3 f{t[0] - p[0], t[1] - p[1], t[2] - p[2]};
+  const double len = std::sqrt(dot(f, f));
+  if (!(len > 0)) fail("target is its position");
+  for (double& c : f) c /= len;
+  V3 r = cross(f, V3{0, 0, 1});
+  const double rl = std::sqrt(dot(r, r));
+  if (!(rl > 1e-9)) fail("looks straight up or down (no horizon to frame)");
+  for (double& c : r) c /= rl;
+  const V3 u = cross(r, f);
+  const double half = std::tan(camera.fov_degrees * std::numbers::pi / 360.0);
+  const double aspect = double(height) / double(width);
+  CameraFrame frame;
+  frame.origin = p;
+  frame.forward = f;
+  for (std::size_t c = 0; c < 3; ++c) {
+    frame.right[c] = r[c] * half;
+    frame.up[c] = u[c] * half * aspect;
+  }
+  return frame;
+}
+
+int reference_samples(const RenderSettings& render, int requested) {
+  if (requested != 0) return requested;
+  const int a = std::clamp(render.antialias_samples, 1, 32);
+  return a * a;
+}
+
+ReferenceImage render_reference(const Scene& scene, const ReferenceOptions& options) {
+  const auto start = Clock::now();
+  if (options.width < 0 || options.height < 0)
+    throw Error("reference render: image " + std::to_string(options.width) + " x " + std::to_string(options.height) +
+                " pixels; expected sizes >= 1 (or 0 for the scene's)");
+  const int width = options.width > 0 ? options.width : scene.render.width;
+  const int height = options.height > 0 ? options.height : scene.render.height;
+  const int spp = reference_samples(scene.render, options.samples_per_pixel);
+  check_options(scene, width, height, spp);
+  const Camera camera = options.camera.value_or(scene.camera);
+  CameraFrame frame = reference_camera_frame(camera, width, height);
+  const int threads = options.threads.value_or(scene.render.threads);
+  if (threads < 0) throw Error("reference render: " + std::to_string(threads) + " threads; expected >= 0 (0 = all)");
+  std::unique_ptr<tbb::global_control> limit;
+  if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+
+  ReferenceImage out;
+  TracedScene traced;
+  build(traced, scene, frame.origin);
+  for (std::size_t c = 0; c < 3; ++c) frame.origin[c] -= traced.origin[c];
+  out.stats.build_seconds = seconds_since(start);
+  out.stats.instances = traced.flowers.variant.size();
+  out.stats.triangles = scene.terrain.triangles.size();
+  for (const Mesh& m : scene.models) out.stats.triangles += m.triangles.size();
+
+  const ShadingSettings shading = with_sun(options.shading, scene.sun);
+  const GroundColors ground(scene.ground_texture.get(), shading.ground_color);
+  const int grid = int(std::ceil(std::sqrt(double(spp))));
+  const Tracer tracer{scene, traced, shading, ground, frame, width, height, spp, grid, options.seed};
+
+  out.image = ImageRgb8(width, height);
+  const std::size_t pixels = std::size_t(width) * std::size_t(height);
+  out.coverage.assign(pixels, 0.0f);
+  out.depth.assign(pixels, std::numeric_limits<float>::infinity());
+  const int tiles_x = (width + kTile - 1) / kTile, tiles_y = (height + kTile - 1) / kTile;
+  std::atomic<std::uint64_t> secondary{0}, done{0};
+  std::mutex progress_mutex;
+  const auto render_start = Clock::now();
+  tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y), [&](const tbb::blocked_range<int>& range) {
+    std::uint64_t rays = 0;
+    for (int tile = range.begin(); tile != range.end(); ++tile) {
+      const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
+      const int x1 = std::min(width, x0 + kTile), y1 = std::min(height, y0 + kTile);
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+          const Tracer::Pixel p = tracer.trace(x, y);
+          const auto rgb = to_srgb8(p.color);
+          out.image.set(x, y, {rgb[0], rgb[1], rgb[2]});
+          const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
+          out.coverage[i] = p.coverage;
+          out.depth[i] = p.depth;
+          rays += p.secondary;
+        }
+      const std::uint64_t d = done += std::uint64_t((x1 - x0) * (y1 - y0));
+      if (options.progress) {
+        std::lock_guard lock(progress_mutex);
+        options.progress(d, pixels);
+      }
+    }
+    secondary += rays;
+  });
+  traced.device.check("tracing");
+  out.stats.render_seconds = seconds_since(render_start);
+  out.stats.primary_rays = std::uint64_t(pixels) * std::uint64_t(spp);
+  out.stats.secondary_rays = secondary.load();
+  out.stats.samples_per_pixel = spp;
+  out.stats.threads = int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+  out.stats.seconds = seconds_since(start);
+  return out;
+}
+
+}  // namespace wangscape

@@ -1,0 +1,174 @@
+#include "renders/trace/shading.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "scene/sun.h"
+
+namespace wangscape {
+
+namespace {
+
+float dot(const Vec3f& a, const Vec3f& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// Whether the segment from p along unit d up to `far` meters hits anything.
+bool occluded(RTCScene scene, const Vec3f& p, const Vec3f& d, float far) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray{};
+  ray.org_x = p[0];
+  ray.org_y = p[1];
+  ray.org_z = p[2];
+  ray.dir_x = d[0];
+  ray.dir_y = d[1];
+  ray.dir_z = d[2];
+  ray.tnear = 0.0f;
+  ray.tfar = far;
+  ray.mask = 0xffffffffu;
+  rtcOccluded1(scene, &context, &ray);
+  return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+Vec3f offset_along(const Vec3f& p, const Vec3f& n, float distance) {
+  return {p[0] + n[0] * distance, p[1] + n[1] * distance, p[2] + n[2] * distance};
+}
+
+}  // namespace
+
+Vec3f sun_direction_from_degrees(double azimuth_degrees, double elevation_degrees) {
+  const double az = azimuth_degrees * std::numbers::pi / 180, el = elevation_degrees * std::numbers::pi / 180;
+  return {static_cast<float>(std::sin(az) * std::cos(el)), static_cast<float>(std::cos(az) * std::cos(el)),
+          static_cast<float>(std::sin(el))};
+}
+
+ShadingSettings with_sun(ShadingSettings base, const Sun& sun) {
+  const auto d = sun.direction();
+  base.sun_direction = {float(d[0]), float(d[1]), float(d[2])};
+  for (float& c : base.sun_color) c *= float(sun.strength);
+  return base;
+}
+
+Vec3f sky_radiance(const ShadingSettings& s, const Vec3f& direction) {
+  const float length = std::sqrt(dot(direction, direction));
+  const float up = length > 0 ? std::clamp(direction[2] / length, 0.0f, 1.0f) : 0.0f;
+  // The horizon halfway between sky_color and a pale haze; the zenith a deeper sky_color.
+  constexpr Vec3f kHaze{0.80f, 0.85f, 0.90f};
+  const float toward_zenith = std::sqrt(up);
+  Vec3f out;
+  for (int c = 0; c < 3; ++c) {
+    const float horizon = 0.5f * (s.sky_color[c] + kHaze[c]), zenith = 0.7f * s.sky_color[c];
+    out[c] = (horizon + (zenith - horizon) * toward_zenith) * s.exposure;
+  }
+  return out;
+}
+
+void model_surface(const Mesh& mesh, unsigned prim, float u, float v, float cos_yaw, float sin_yaw,
+                   SurfaceSample& out) {
+  const auto& tri = mesh.triangles[prim];
+  Vec3f n{};
+  if (!mesh.normals.empty()) {
+    const float w0 = 1 - u - v;
+    for (std::size_t c = 0; c < 3; ++c)
+      n[c] = w0 * mesh.normals[tri[0]][c] + u * mesh.normals[tri[1]][c] + v * mesh.normals[tri[2]][c];
+  } else {
+    const auto& p0 = mesh.positions[tri[0]];
+    const auto& p1 = mesh.positions[tri[1]];
+    const auto& p2 = mesh.positions[tri[2]];
+    const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+    const double e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+    n = {float(e1[1] * e2[2] - e1[2] * e2[1]), float(e1[2] * e2[0] - e1[0] * e2[2]),
+         float(e1[0] * e2[1] - e1[1] * e2[0])};
+  }
+  const Vec3f r{cos_yaw * n[0] - sin_yaw * n[1], sin_yaw * n[0] + cos_yaw * n[1], n[2]};
+  const float len = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+  out.normal = len > 0 ? Vec3f{r[0] / len, r[1] / len, r[2] / len} : Vec3f{0, 0, 1};
+  if (prim < mesh.triangle_material.size()) {
+    const std::uint16_t slot = mesh.triangle_material[prim];
+    if (slot < mesh.materials.size()) {
+      out.base_color = mesh.materials[slot].base_color;
+      out.translucency = mesh.materials[slot].translucency;
+    }
+  }
+}
+
+Vec3f shade(RTCSceneTy* scene, const ShadingSettings& s, const SurfaceSample& sample, std::uint64_t random,
+            int* rays_cast) {
+  int rays = 0;
+  const Vec3f& n = sample.normal;
+  const Vec3f& p = sample.position;
+
+  // Sun: the front is lit by cos; a translucent part passes that share of the light on its back.
+  const float cos_sun = dot(n, s.sun_direction);
+  float sun = cos_sun > 0 ? cos_sun : -cos_sun * sample.translucency;
+  if (sun > 0 && s.shadows) {
+    const Vec3f from = offset_along(p, n, cos_sun > 0 ? s.ray_offset : -s.ray_offset);
+    ++rays;
+    if (occluded(scene, from, s.sun_direction, std::numeric_limits<float>::infinity())) sun = 0;
+  }
+
+  // Sky: cosine-weighted directions over the hemisphere of n, so the unoccluded fraction is the
+  // irradiance share of a uniform sky. Frame from Duff et al. 2017 (no branch on n's axis).
+  float sky = 1.0f;
+  if (s.ao_rays > 0) {
+    const float sign = std::copysign(1.0f, n[2]);
+    const float a = -1.0f / (sign + n[2]), b = n[0] * n[1] * a;
+    const Vec3f t{1.0f + sign * n[0] * n[0] * a, sign * b, -sign * n[0]};
+    const Vec3f bt{b, sign + n[1] * n[1] * a, -n[1]};
+    const Vec3f from = offset_along(p, n, s.ray_offset);
+    // Eight rays from one point at a time: one rtcOccluded8 packet (measured faster than singles).
+    int open = 0;
+    for (int k0 = 0; k0 < s.ao_rays; k0 += 8) {
+      alignas(32) RTCRay8 packet{};
+      alignas(32) int valid[8];
+      for (int l = 0; l < 8; ++l) {
+        const int k = k0 + l;
+        valid[l] = k < s.ao_rays ? -1 : 0;
+        if (k >= s.ao_rays) continue;
+        const std::uint64_t h = mix64(random + static_cast<std::uint64_t>(k) * 0x632be59bd9b4e019ull);
+        // Stratified in the first coordinate so few rays still cover the hemisphere.
+        const float u1 = (static_cast<float>(k) + unit_float(h)) / static_cast<float>(s.ao_rays);
+        const float u2 = unit_float(mix64(h));
+        const float r = std::sqrt(u1), phi = 2.0f * std::numbers::pi_v<float> * u2;
+        const float x = r * std::cos(phi), y = r * std::sin(phi), z = std::sqrt(std::max(0.0f, 1.0f - u1));
+        packet.org_x[l] = from[0];
+        packet.org_y[l] = from[1];
+        packet.org_z[l] = from[2];
+        packet.dir_x[l] = x * t[0] + y * bt[0] + z * n[0];
+        packet.dir_y[l] = x * t[1] + y * bt[1] + z * n[1];
+        packet.dir_z[l] = x * t[2] + y * bt[2] + z * n[2];
+        packet.tnear[l] = 0.0f;
+        packet.tfar[l] = s.ao_distance;
+        packet.mask[l] = 0xffffffffu;
+      }
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      rtcOccluded8(valid, scene, &context, &packet);
+      for (int l = 0; l < 8; ++l)
+        if (valid[l] != 0 && packet.tfar[l] >= 0.0f) ++open;  // tfar becomes -inf on a hit
+    }
+    sky = static_cast<float>(open) / static_cast<float>(s.ao_rays);
+    rays += s.ao_rays;
+  }
+
+  Vec3f out;
+  for (int c = 0; c < 3; ++c) out[c] = sample.base_color[c] * (s.sun_color[c] * sun + s.sky_color[c] * sky);
+  for (float& c : out) c *= s.exposure;
+  if (rays_cast) *rays_cast = rays;
+  return out;
+}
+
+std::array<std::uint8_t, 3> to_srgb8(const Vec3f& linear) {
+  std::array<std::uint8_t, 3> out{};
+  for (int c = 0; c < 3; ++c) {
+    const float v = std::clamp(linear[c], 0.0f, 1.0f);
+    const float e = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+    out[c] = static_cast<std::uint8_t>(std::lround(e * 255.0f));
+  }
+  return out;
+}
+
+}  // namespace wangscape

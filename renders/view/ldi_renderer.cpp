@@ -1,0 +1,701 @@
+#include "renders/view/ldi_renderer.h"
+
+#include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "core/error.h"
+#include "exporters/scene_folder.h"
+#include "generator/placement.h"
+#include "renders/ldi/ldi_scene.h"
+#include "renders/trace/embree_device.h"
+#include "renders/trace/shading.h"
+
+#include "renders/view/view_samples.h"
+
+namespace wangscape {
+
+using namespace view_detail;
+
+namespace {
+
+constexpr float kNear = 0.05f;             // meters: the near plane
+constexpr float kSplatScale = 1.5f;        // splat side over the projected depth-pixel size (measured: no holes)
+constexpr int kMaxSplat = 24;              // pixels
+constexpr float kLevelBlendStart = 0.75f;  // of a level's range: where dithering into the next level starts
+constexpr float kDirectionBand = 0.08f;    // of the angle between two directions: dithered either side of the bisector
+constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+
+std::uint64_t pack_entry(float depth, std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+  return std::uint64_t(std::bit_cast<std::uint32_t>(depth)) << 32 | std::uint64_t(r) << 16 | std::uint64_t(g) << 8 | b;
+}
+// Keeps the nearest entry (ties: the smaller color), so the result does not depend on the order.
+void depth_write(std::uint64_t& slot, std::uint64_t value) {
+  std::atomic_ref<std::uint64_t> a(slot);
+  std::uint64_t current = a.load(std::memory_order_relaxed);
+  while (value < current && !a.compare_exchange_weak(current, value, std::memory_order_relaxed)) {
+  }
+}
+
+using V3 = std::array<double, 3>;
+double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 cross(const V3& a, const V3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+V3 normalized(const V3& a) {
+  const double n = std::sqrt(dot(a, a));
+  return {a[0] / n, a[1] / n, a[2] / n};
+}
+
+}  // namespace
+
+// ---- the renderer --------------------------------------------------------------------------
+
+namespace {
+
+// Bit k set: the thresholds (k + 0.5) / 16 in [from, to), the Bayer cells a dithered LDI owns.
+std::uint16_t owned_thresholds(float from, float to) {
+  std::uint16_t mask = 0;
+  for (int k = 0; k < 16; ++k) {
+    const float th = (float(k) + 0.5f) / 16;
+    if (th >= from && th < to) mask = std::uint16_t(mask | 1u << k);
+  }
+  return mask;
+}
+
+// Splats are written straight into a z-buffer of the warping thread's own (no atomic write, no
+// cache line shared between cores); the frame's z-buffer is then the per-pixel smallest entry
+// of the threads' buffers, which is what any order of writes into one buffer leaves.
+// Whether a dithered LDI owning the Bayer cells `owned` (owned_thresholds) draws pixel (x, y).
+bool owns(std::uint16_t owned, int x, int y) { return owned == 0xffff || (owned >> bayer_index(x, y) & 1); }
+
+struct ThreadDepths {
+  int width = 0;
+  bool written = false;                // this frame: merged (and reset) only then
+  std::vector<std::uint64_t> entries;  // kEmpty where nothing was written (the merge resets them)
+  void reset(int frame_width, int frame_height) {
+    width = frame_width;
+    entries.assign(std::size_t(frame_width) * std::size_t(frame_height), kEmpty);
+  }
+  // One pixel (most splats), inside the frame.
+  void write_pixel(int x, int y, std::uint64_t entry) {
+    std::uint64_t& slot = entries[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+    if (entry < slot) slot = entry;
+  }
+  // The pixels [xa, xb) x [ya, yb) that `owned` holds, not empty and inside the frame.
+  void write(int xa, int xb, int ya, int yb, std::uint64_t entry, std::uint16_t owned) {
+    for (int y = ya; y < yb; ++y) {
+      std::uint64_t* row = entries.data() + std::size_t(y) * std::size_t(width);
+      for (int x = xa; x < xb; ++x)
+        if (owns(owned, x, y) && entry < row[x]) row[x] = entry;
+    }
+  }
+};
+
+}  // namespace
+
+struct LdiRenderer::Impl {
+  int width = 0, height = 0;
+  std::vector<std::uint64_t> zbuffer;
+  // The frame's camera: eye, axes (ENU), pixels per unit of tan, screen centre.
+  V3 eye{}, forward{}, right{}, up{};
+  float focal = 1, cx = 0, cy = 0, tan_x = 1, tan_y = 1;
+  // Per placed tile, this frame (structure of arrays).
+  std::vector<float> distance, far_from, far_r, far_g, far_b, far_cover;
+  std::vector<std::uint8_t> level_a, level_b, dir_a, dir_b;
+  std::vector<float> level_b_weight, dir_b_weight;
+  std::vector<double> direction_east, direction_north;  // the pack's ray directions, horizontal unit
+  // Terrain vertices in camera space; the chunks drawn, nearest first, and their distances.
+  std::vector<float> vx, vy, vz;
+  std::vector<std::uint32_t> chunk_order;
+  std::vector<float> chunk_distance;
+  std::atomic<std::uint64_t> depth_pixels{0};
+  tbb::enumerable_thread_specific<ThreadDepths> thread_depths;  // per thread, kept across frames
+
+  std::array<float, 3> to_camera(double x, double y, double z) const {
+    const V3 d{x - eye[0], y - eye[1], z - eye[2]};
+    return {float(dot(d, right)), float(dot(d, up)), float(dot(d, forward))};
+  }
+  std::array<float, 3> direction_to_camera(double x, double y, double z) const {
+    const V3 d{x, y, z};
+    return {float(dot(d, right)), float(dot(d, up)), float(dot(d, forward))};
+  }
+  // True when all eight corners of the box lie outside one plane of the view frustum.
+  bool box_outside_frustum(const std::array<double, 3>& low, const std::array<double, 3>& high) const {
+    int outside[5] = {0, 0, 0, 0, 0};
+    for (int k = 0; k < 8; ++k) {
+      const auto c = to_camera(k & 1 ? high[0] : low[0], k & 2 ? high[1] : low[1], k & 4 ? high[2] : low[2]);
+      outside[0] += c[2] < kNear;
+      outside[1] += c[0] > c[2] * tan_x;
+      outside[2] += c[0] < -c[2] * tan_x;
+      outside[3] += c[1] > c[2] * tan_y;
+      outside[4] += c[1] < -c[2] * tan_y;
+    }
+    return std::any_of(std::begin(outside), std::end(outside), [](int n) { return n == 8; });
+  }
+};
+
+LdiRenderer::LdiRenderer(std::shared_ptr<const ViewWorld> world, int width, int height)
+    : world_(std::move(world)), impl_(std::make_unique<Impl>()) {
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw Error("view: size " + std::to_string(width) + "x" + std::to_string(height) +
+                " pixels; expected 1 .. 16384 per side");
+  Impl& m = *impl_;
+  m.width = width;
+  m.height = height;
+  m.zbuffer.assign(std::size_t(width) * std::size_t(height), kEmpty);
+  image_ = ImageRgb8(width, height);
+  const std::size_t n = world_->tiles().size();
+  for (auto* v :
+       {&m.distance, &m.far_from, &m.far_r, &m.far_g, &m.far_b, &m.far_cover, &m.level_b_weight, &m.dir_b_weight})
+    v->assign(n, 0);
+  for (auto* v : {&m.level_a, &m.level_b, &m.dir_a, &m.dir_b}) v->assign(n, 0);
+  order_.reserve(n);
+  const std::size_t vertices = world_->terrain().x.size();
+  m.vx.assign(vertices, 0);
+  m.vy.assign(vertices, 0);
+  m.vz.assign(vertices, 0);
+  m.chunk_order.reserve(world_->terrain().chunks.size());
+  m.chunk_distance.assign(world_->terrain().chunks.size(), 0);
+  stats_.levels.assign(world_->pack().info().levels + 1, 0);
+}
+
+LdiRenderer::~LdiRenderer() = default;
+
+bool LdiRenderer::sky_at(int x, int y) const {
+  return impl_->zbuffer[std::size_t(y) * std::size_t(impl_->width) + std::size_t(x)] == kEmpty;
+}
+
+float LdiRenderer::depth_at(int x, int y) const {
+  const std::uint64_t e = impl_->zbuffer[std::size_t(y) * std::size_t(impl_->width) + std::size_t(x)];
+  return e == kEmpty ? std::numeric_limits<float>::infinity() : std::bit_cast<float>(std::uint32_t(e >> 32));
+}
+
+double LdiRenderer::tile_distance(std::uint32_t t) const { return impl_->distance[t]; }
+
+void LdiRenderer::set_detail(double detail) {
+  if (!(detail >= kMinViewDetail && detail <= kMaxViewDetail))
+    throw Error("view: detail " + std::to_string(detail) + "; expected " + std::to_string(kMinViewDetail) + " .. " +
+                std::to_string(kMaxViewDetail) + " (1: the pack's levels at their own distances)");
+  detail_ = detail;
+}
+
+namespace {
+
+// One LDI of one tile warped into the z-buffer: what stays fixed over its depth pixels.
+struct Warp {
+  std::array<float, 3> base{}, step_x{}, step_y{}, step_d{},
+      lift{};  // camera space: pixel (0, 0), per x, per y, per meter of depth, per meter of shear
+  std::array<float, 3> local_base{}, local_x{}, local_y{}, local_d{};  // tile-local position, likewise
+  float h00 = 0, h10 = 0, h01 = 0, h11 = 0, inverse_tile = 1;
+  float depth_scale = 0, splat = 0;  // meters per depth step; splat side times depth (pixels x meters)
+  std::uint16_t owned = 0xffff;      // the dither thresholds this LDI owns (owned_thresholds)
+  float ground_below = 0;            // meters: a last layer lower than this is the ground plane
+  bool reverse_layers = false;
+  int epipole_x = 0, epipole_y = 0;
+};
+
+void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, int width, int height,
+              ThreadDepths& out, std::uint64_t& depth_pixels) {
+  // What one pixel of the LDI contributes before its layers' depths: tile-local and camera space.
+  struct PixelBase {
+    float lx, ly, lz, cx, cy, cz;
+  };
+  auto splat_pixel = [&](const PixelBase& b, const DepthPixel& p, bool last) {
+    const float d = float(p.depth()) * w.depth_scale;
+    const float lz = b.lz + d * w.local_d[2];
+    if (last && lz < w.ground_below) return;  // the ground plane: the terrain draws it
+    const float lx = b.lx + d * w.local_d[0], ly = b.ly + d * w.local_d[1];
+    // The shear onto the tile's two terrain triangles (split along the SW-NE diagonal).
+    const float u = std::clamp(lx * w.inverse_tile, 0.0f, 1.0f), t = std::clamp(ly * w.inverse_tile, 0.0f, 1.0f);
+    const float h =
+        u >= t ? w.h00 + u * (w.h10 - w.h00) + t * (w.h11 - w.h10) : w.h00 + t * (w.h01 - w.h00) + u * (w.h11 - w.h01);
+    const float camera_z = b.cz + d * w.step_d[2] + h * w.lift[2];
+    if (camera_z < kNear) return;
+    const float camera_x = b.cx + d * w.step_d[0] + h * w.lift[0];
+    const float camera_y = b.cy + d * w.step_d[1] + h * w.lift[1];
+    const float inv = 1.0f / camera_z;
+    const float sx = cx + focal * camera_x * inv, sy = cy - focal * camera_y * inv;
+    const std::uint64_t entry = pack_entry(camera_z, p.r, p.g, p.b);
+    const float size = w.splat * inv;
+    if (size <= 1.0f) {  // most splats: one pixel (truncation is the floor of a coordinate >= 0)
+      if (!(sx >= 0 && sy >= 0 && sx < float(width) && sy < float(height))) return;
+      const int px = std::min(int(sx), width - 1), py = std::min(int(sy), height - 1);
+      if (!owns(w.owned, px, py)) return;  // another LDI's pixel
+      out.write_pixel(px, py, entry);
+      return;
+    }
+    // The pixels whose centres the splat's square covers: about size^2 of them, not ceil(size)^2.
+    const float half = 0.5f * std::min(size, float(kMaxSplat));
+    const int xa = std::max(int(std::ceil(sx - half - 0.5f)), 0),
+              xb = std::min(int(std::ceil(sx + half - 0.5f)), width);
+    const int ya = std::max(int(std::ceil(sy - half - 0.5f)), 0),
+              yb = std::min(int(std::ceil(sy + half - 0.5f)), height);
+    if (xa < xb && ya < yb) out.write(xa, xb, ya, yb, entry, w.owned);
+  };
+  auto visit = [&](int x, int y, std::uint32_t first, std::uint32_t count) {
+    depth_pixels += count;
+    const float fx = float(x), fy = float(y);
+    const PixelBase b{w.local_base[0] + fx * w.local_x[0] + fy * w.local_y[0],
+                      w.local_base[1] + fx * w.local_x[1] + fy * w.local_y[1],
+                      w.local_base[2] + fx * w.local_x[2] + fy * w.local_y[2],
+                      w.base[0] + fx * w.step_x[0] + fy * w.step_y[0],
+                      w.base[1] + fx * w.step_x[1] + fy * w.step_y[1],
+                      w.base[2] + fx * w.step_x[2] + fy * w.step_y[2]};
+    if (w.reverse_layers)
+      for (std::uint32_t k = count; k-- > 0;) splat_pixel(b, v.depth_pixels[first + k], k + 1 == count);
+    else
+      for (std::uint32_t k = 0; k < count; ++k) splat_pixel(b, v.depth_pixels[first + k], k + 1 == count);
+  };
+  // McMillan's occlusion-compatible order: rows and columns from the image's edges towards the
+  // eye's epipole, so that a sample is drawn before every sample that can hide it.
+  const int rows = int(v.frame->height);
+  const std::uint32_t span_total = v.frame->span_count, depth_total = v.frame->depth_pixel_count;
+  auto do_row = [&](int y) {
+    const std::uint32_t s0 = v.row_spans[std::size_t(y)], s1 = v.row_spans[std::size_t(y) + 1];
+    for (std::uint32_t s = s0; s < s1; ++s) {  // left of the epipole, left to right
+      const LdiSpan& span = v.spans[s];
+      if (int(span.x) > w.epipole_x) break;
+      std::uint32_t depth = span.first_depth;
+      const int last = std::min(int(span.x) + int(span.length) - 1, w.epipole_x);
+      for (int x = span.x; x <= last; ++x) {
+        const std::uint8_t count = v.counts[span.first_pixel + std::uint32_t(x - span.x)];
+        if (count) visit(x, y, depth, count);
+        depth += count;
+      }
+    }
+    for (std::uint32_t s = s1; s-- > s0;) {  // right of it, right to left
+      const LdiSpan& span = v.spans[s];
+      const int last = int(span.x) + int(span.length) - 1;
+      if (last <= w.epipole_x) break;
+      std::uint32_t depth = s + 1 < span_total ? v.spans[s + 1].first_depth : depth_total;
+      const int first = std::max(int(span.x), w.epipole_x + 1);
+      for (int x = last; x >= first; --x) {
+        const std::uint8_t count = v.counts[span.first_pixel + std::uint32_t(x - span.x)];
+        depth -= count;
+        if (count) visit(x, y, depth, count);
+      }
+    }
+  };
+  const int split = std::clamp(w.epipole_y, -1, rows - 1);
+  for (int y = 0; y <= split; ++y) do_row(y);
+  for (int y = rows - 1; y > split; --y) do_row(y);
+}
+
+}  // namespace
+
+const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
+  const auto start = std::chrono::steady_clock::now();
+  Impl& m = *impl_;
+  const ViewWorld& world = *world_;
+  const LdiPack& pack = world.pack();
+  const LdiPackInfo& info = pack.info();
+  const ViewWorld::Tiles& tiles = world.tiles();
+  const double s = world.tile_size();
+
+  if (!(camera.fov_degrees > 0 && camera.fov_degrees < 179))
+    throw Error("view: field of view " + std::to_string(camera.fov_degrees) + " degrees; expected 0 .. 179");
+  const V3 look{camera.target[0] - camera.position[0], camera.target[1] - camera.position[1],
+                camera.target[2] - camera.position[2]};
+  if (!(std::hypot(look[0], look[1]) > 1e-9) || !std::isfinite(dot(look, look)))
+    throw Error("view: the camera must look somewhere sideways (its target is straight above, below or at it)");
+  m.eye = camera.position;
+  m.forward = normalized(look);
+  m.right = normalized(cross(m.forward, {0, 0, 1}));
+  m.up = cross(m.right, m.forward);
+  m.tan_x = float(std::tan(camera.fov_degrees * std::numbers::pi / 360));
+  m.focal = float(m.width) / 2 / m.tan_x;
+  m.tan_y = float(m.height) / 2 / m.focal;
+  m.cx = float(m.width) / 2;
+  m.cy = float(m.height) / 2;
+
+  std::fill(m.zbuffer.begin(), m.zbuffer.end(), kEmpty);
+  m.depth_pixels = 0;
+  stats_.depth_pixels = 0;
+  stats_.tiles_drawn = stats_.tiles_culled = 0;
+  std::fill(stats_.levels.begin(), stats_.levels.end(), 0);
+  order_.clear();
+
+  // ---- tiles: distance, level, direction, frustum ----
+  const std::uint32_t levels = info.levels, directions = info.directions;
+  // The pack's levels were sized for its own view; this view's pixels per radian rescale the distances.
+  const double pack_focal = double(info.image_width) / 2 / std::tan(double(info.fov_degrees) * std::numbers::pi / 360);
+  const double distance_scale = pack_focal / double(m.focal);
+  const double far_start = double(info.level_distances[levels - 1]) + s;
+  // The pack's levels, then the far steps: where (in the pack view's distances) level a starts.
+  const std::uint32_t drawn_levels = levels + world.far_steps();
+  const auto level_start = [&](std::uint32_t a) {
+    if (a == 0) return 0.0;
+    if (a < levels) return double(info.level_distances[a]);
+    return far_start * double(1u << (a - levels));
+  };
+  const float top = info.prism_top;
+  if (m.direction_east.size() != directions)
+    for (std::uint32_t k = 0; k < directions; ++k) {
+      const double az = double(info.azimuths[k]) * std::numbers::pi / 180;
+      m.direction_east.push_back(std::sin(az));
+      m.direction_north.push_back(std::cos(az));
+    }
+  for (std::size_t t = 0; t < tiles.size(); ++t) {
+    const double x0 = tiles.x0[t], y0 = tiles.y0[t];
+    const double dx = std::max({x0 - m.eye[0], m.eye[0] - (x0 + s), 0.0});
+    const double dy = std::max({y0 - m.eye[1], m.eye[1] - (y0 + s), 0.0});
+    const double ground = 0.25 * (tiles.h[0][t] + tiles.h[1][t] + tiles.h[2][t] + tiles.h[3][t]);
+    const double dz = std::max(0.0, m.eye[2] - ground - info.head_height);
+    const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+    m.distance[t] = float(d);
+    const double e = d * distance_scale / detail_;  // the distance at which the pack's view sees the tile this large
+
+    // Level: the finest whose near distance the tile has passed; the last half of its range
+    // dithers into the next (or into the far field after the last).
+    std::uint32_t a = 0;
+    while (a < drawn_levels && e >= level_start(a + 1)) ++a;
+    float wb = 0;
+    if (a < drawn_levels) {
+      const double lo = level_start(a), hi = level_start(a + 1);
+      const double f = (e - lo) / (hi - lo);
+      wb = float(std::clamp((f - kLevelBlendStart) / (1 - kLevelBlendStart), 0.0, 1.0));
+    }
+    m.level_a[t] = std::uint8_t(a);
+    m.level_b[t] = std::uint8_t(std::min(a + 1, drawn_levels));
+    m.level_b_weight[t] = wb;
+    m.far_from[t] = a >= drawn_levels ? 0.0f : (a + 1 == drawn_levels ? 1.0f - wb : 2.0f);
+
+    // Direction: the two whose rays are closest to the view ray (largest dot products).
+    const double vx = x0 + s / 2 - m.eye[0], vy = y0 + s / 2 - m.eye[1], vn = std::hypot(vx, vy);
+    const double ux = vn > 1e-9 ? vx / vn : m.forward[0], uy = vn > 1e-9 ? vy / vn : m.forward[1];
+    std::uint32_t best = 0, second = 0;
+    double best_dot = -2, second_dot = -2;
+    for (std::uint32_t k = 0; k < directions; ++k) {
+      const double c = m.direction_east[k] * ux + m.direction_north[k] * uy;
+      if (c > best_dot) {
+        second = best;
+        second_dot = best_dot;
+        best = k;
+        best_dot = c;
+      } else if (c > second_dot) {
+        second = k;
+        second_dot = c;
+      }
+    }
+    float w2 = 0;
+    if (directions > 1) {
+      const double a1 = std::acos(std::clamp(best_dot, -1.0, 1.0)), a2 = std::acos(std::clamp(second_dot, -1.0, 1.0));
+      const double f = a1 + a2 > 0 ? a1 / (a1 + a2) : 0;  // 0 on the best direction, 0.5 on the bisector
+      w2 = float(0.5 * std::clamp((f - (0.5 - kDirectionBand)) / kDirectionBand, 0.0, 1.0));
+    }
+    m.dir_a[t] = std::uint8_t(best);
+    m.dir_b[t] = std::uint8_t(second);
+    m.dir_b_weight[t] = w2;
+    const auto& fa = world.far_colors()[std::size_t(tiles.tile[t]) * directions + best];
+    const auto& fb = world.far_colors()[std::size_t(tiles.tile[t]) * directions + second];
+    m.far_r[t] = fa[0] * (1 - w2) + fb[0] * w2;
+    m.far_g[t] = fa[1] * (1 - w2) + fb[1] * w2;
+    m.far_b[t] = fa[2] * (1 - w2) + fb[2] * w2;
+    m.far_cover[t] = fa[3] * (1 - w2) + fb[3] * w2;
+
+    // The frustum: culled when all eight corners of the tile's box are outside one plane.
+    if (m.box_outside_frustum({x0, y0, double(tiles.z_min[t]) - 0.01},
+                              {x0 + s, y0 + s, double(tiles.z_max[t]) + top})) {
+      ++stats_.tiles_culled;
+      continue;
+    }
+    ++stats_.tiles_drawn;
+    ++stats_.levels[std::min(a, levels)];
+    if (a < drawn_levels && (mask_.empty() || (t < mask_.size() && mask_[t]))) order_.push_back(std::uint32_t(t));
+  }
+  // Back to front (the farthest first; ties by index).
+  std::sort(order_.begin(), order_.end(), [&](std::uint32_t p, std::uint32_t q) {
+    return m.distance[p] != m.distance[q] ? m.distance[p] > m.distance[q] : p < q;
+  });
+
+  const auto tiles_done = std::chrono::steady_clock::now();
+  // ---- the LDIs: tiles in parallel into the one z-buffer ----
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, order_.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        std::uint64_t counted = 0;
+        ThreadDepths& depths = m.thread_depths.local();
+        if (depths.entries.size() != m.zbuffer.size()) depths.reset(m.width, m.height);
+        depths.written = true;
+        for (std::size_t o = r.begin(); o != r.end(); ++o) {
+          const std::uint32_t t = order_[o];
+          // Up to two levels x two directions, each owning a slice of the dither thresholds.
+          const float wl = m.level_b_weight[t], wd = m.dir_b_weight[t];
+          struct Part {
+            std::uint32_t level, direction;
+            float from, to;
+          };
+          const std::uint32_t la = m.level_a[t], lb = m.level_b[t];
+          const float split = 1 - wl;
+          const Part parts[4] = {{la, m.dir_a[t], 0, split * (1 - wd)},
+                                 {la, m.dir_b[t], split * (1 - wd), split},
+                                 {lb, m.dir_a[t], split, split + wl * (1 - wd)},
+                                 {lb, m.dir_b[t], split + wl * (1 - wd), 1}};
+          for (const Part& part : parts) {
+            if (!(part.to > part.from) || part.level >= drawn_levels) continue;
+            const bool far = part.level >= levels;
+            const LdiView v = far ? world.far_ldi(tiles.tile[t], part.direction, part.level - levels)
+                                  : pack.ldi(tiles.tile[t], part.level, part.direction);
+            const LdiFrame& f = *v.frame;
+            Warp w;
+            const double p = f.pixel_size;
+            // Tile-local position of pixel (x, y) at depth d: origin + (x + .5) p right - (y + .5) p up + d forward.
+            for (std::size_t k = 0; k < 3; ++k) {
+              w.local_base[k] = float(f.origin[k] + 0.5 * p * f.right[k] - 0.5 * p * f.up[k]);
+              w.local_x[k] = float(p * f.right[k]);
+              w.local_y[k] = float(-p * f.up[k]);
+              w.local_d[k] = f.forward[k];
+            }
+            w.base = m.to_camera(tiles.x0[t] + w.local_base[0], tiles.y0[t] + w.local_base[1], w.local_base[2]);
+            w.step_x = m.direction_to_camera(w.local_x[0], w.local_x[1], w.local_x[2]);
+            w.step_y = m.direction_to_camera(w.local_y[0], w.local_y[1], w.local_y[2]);
+            w.step_d = m.direction_to_camera(w.local_d[0], w.local_d[1], w.local_d[2]);
+            w.lift = m.direction_to_camera(0, 0, 1);
+            w.h00 = tiles.h[0][t];
+            w.h10 = tiles.h[1][t];
+            w.h01 = tiles.h[2][t];
+            w.h11 = tiles.h[3][t];
+            w.inverse_tile = float(1 / s);
+            w.depth_scale = f.depth_range / 65535.0f;
+            // (A far LDI holds no ground samples: its low samples are flowers.)
+            w.ground_below = far ? -std::numeric_limits<float>::infinity() : kGroundEpsilon + 0.75f * f.pixel_size;
+            w.splat = float(p) * m.focal * kSplatScale;
+            w.owned = owned_thresholds(part.from, part.to);
+            // The eye in the LDI's frame (unsheared: the shear moves samples, not the order).
+            const V3 eye_local{m.eye[0] - tiles.x0[t] - f.origin[0], m.eye[1] - tiles.y0[t] - f.origin[1],
+                               m.eye[2] - double(w.h00 + w.h10 + w.h01 + w.h11) / 4 - f.origin[2]};
+            const double ex = dot(eye_local, {f.right[0], f.right[1], f.right[2]}) / p - 0.5;
+            const double ey = -dot(eye_local, {f.up[0], f.up[1], f.up[2]}) / p - 0.5;
+            w.epipole_x = int(std::floor(std::clamp(ex, -2.0, double(f.width) + 1)));
+            w.epipole_y = int(std::floor(std::clamp(ey, -2.0, double(f.height) + 1)));
+            // The eye before the image plane: deeper layers are farther, so they go first.
+            w.reverse_layers = dot(eye_local, {f.forward[0], f.forward[1], f.forward[2]}) < f.depth_range * 0.5;
+            warp_ldi(v, w, m.focal, m.cx, m.cy, m.width, m.height, depths, counted);
+          }
+        }
+        m.depth_pixels += counted;
+      });
+  // The threads' buffers merged into the frame's, row by row, and emptied for the next frame.
+  tbb::parallel_for(tbb::blocked_range<int>(0, m.height, 8), [&](const tbb::blocked_range<int>& r) {
+    const std::size_t begin = std::size_t(r.begin()) * std::size_t(m.width);
+    const std::size_t end = std::size_t(r.end()) * std::size_t(m.width);
+    for (ThreadDepths& depths : m.thread_depths) {
+      if (!depths.written) continue;
+      std::uint64_t* own = depths.entries.data();
+      for (std::size_t i = begin; i < end; ++i) {
+        m.zbuffer[i] = std::min(m.zbuffer[i], own[i]);
+        own[i] = kEmpty;
+      }
+    }
+  });
+  for (ThreadDepths& depths : m.thread_depths) depths.written = false;
+
+  const auto ldis_done = std::chrono::steady_clock::now();
+  // ---- the terrain: chunks in the frustum, their vertices to camera space, their triangles
+  // rasterized, in parallel ----
+  const ViewWorld::Terrain& terrain = world.terrain();
+  const Luts& lut = luts();
+  const float ex = float(m.eye[0]), ey = float(m.eye[1]);
+  const float inv_s = float(1 / s);
+  // A vertex of a clipped triangle: camera space, world x, y relative to the eye, light.
+  struct Vertex {
+    float x, y, z, wx, wy, lr, lg, lb;
+  };
+  auto shade_pixel = [&](int px, int py, float depth, float wx, float wy, float lr, float lg, float lb) {
+    const double gx = double(wx) + m.eye[0], gy = double(wy) + m.eye[1];
+    const auto base = world.ground_color(gx, gy);
+    float r = base[0] * lr, g = base[1] * lg, b = base[2] * lb;
+    // Beyond the LDIs: the tile's directional average color over the ground, by its cover.
+    const std::int64_t ci = std::int64_t(std::floor(gx * inv_s)) - world.grid_i0();
+    const std::int64_t cj = std::int64_t(std::floor(gy * inv_s)) - world.grid_j0();
+    if (ci >= 0 && cj >= 0 && ci < world.grid_width() && cj < world.grid_height()) {
+      const std::int32_t t = world.grid()[std::size_t(cj * world.grid_width() + ci)];
+      if (t >= 0 && threshold(px, py) >= m.far_from[std::size_t(t)]) {
+        const float k = m.far_cover[std::size_t(t)];
+        r += (m.far_r[std::size_t(t)] - r) * k;
+        g += (m.far_g[std::size_t(t)] - g) * k;
+        b += (m.far_b[std::size_t(t)] - b) * k;
+      }
+    }
+    depth_write(m.zbuffer[std::size_t(py) * std::size_t(m.width) + std::size_t(px)],
+                pack_entry(depth, lut.encode(r), lut.encode(g), lut.encode(b)));
+  };
+  auto raster = [&](const Vertex& a, const Vertex& b, const Vertex& c) {
+    const float ax = m.cx + m.focal * a.x / a.z, ay = m.cy - m.focal * a.y / a.z;
+    const float bx = m.cx + m.focal * b.x / b.z, by = m.cy - m.focal * b.y / b.z;
+    const float cx = m.cx + m.focal * c.x / c.z, cy = m.cy - m.focal * c.y / c.z;
+    const float area = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+    if (!(std::abs(area) > 1e-12f)) return;
+    const int x0 = std::max(0, int(std::floor(std::min({ax, bx, cx})))),
+              x1 = std::min(m.width - 1, int(std::ceil(std::max({ax, bx, cx}))));
+    const int y0 = std::max(0, int(std::floor(std::min({ay, by, cy})))),
+              y1 = std::min(m.height - 1, int(std::ceil(std::max({ay, by, cy}))));
+    if (x0 > x1 || y0 > y1) return;
+    const float inv_area = 1.0f / area;
+    const float iza = 1 / a.z, izb = 1 / b.z, izc = 1 / c.z;
+    // Per row, the span where the three weights are >= 0 (each is linear in x), widened by a
+    // pixel: the exact test below decides, the span only skips what surely fails (thin far
+    // triangles have bounding boxes many times their area).
+    const float slope_a = (by - cy) * inv_area, slope_b = (cy - ay) * inv_area, slope_c = -slope_a - slope_b;
+    for (int py = y0; py <= y1; ++py) {
+      const float fy = float(py) + 0.5f;
+      const float wa0 = (bx * (cy - fy) - (by - fy) * cx) * inv_area,
+                  wb0 = (cx * (ay - fy) - (cy - fy) * ax) * inv_area;
+      float lo = float(x0) + 0.5f, hi = float(x1) + 0.5f;
+      bool empty = false;
+      for (const auto& [w0, slope] :
+           {std::pair{wa0, slope_a}, std::pair{wb0, slope_b}, std::pair{1 - wa0 - wb0, slope_c}}) {
+        if (slope > 0)
+          lo = std::max(lo, -w0 / slope);
+        else if (slope < 0)
+          hi = std::min(hi, -w0 / slope);
+        else
+          empty |= w0 < 0;
+      }
+      if (empty || !(lo <= hi + 2)) continue;
+      const int span_x0 = std::max(x0, int(std::ceil(lo - 0.5f)) - 1),
+                span_x1 = std::min(x1, int(std::floor(hi - 0.5f)) + 1);
+      for (int px = span_x0; px <= span_x1; ++px) {
+        const float fx = float(px) + 0.5f;
+        // Barycentric weights (either winding), a pixel on a shared edge goes to one side only.
+        float wa = ((bx - fx) * (cy - fy) - (by - fy) * (cx - fx)) * inv_area;
+        float wb = ((cx - fx) * (ay - fy) - (cy - fy) * (ax - fx)) * inv_area;
+        float wc = 1 - wa - wb;
+        if (wa < 0 || wb < 0 || wc < 0) continue;
+        const float iz = wa * iza + wb * izb + wc * izc;
+        const float z = 1 / iz;
+        // Early depth test: most ground under the field is hidden by flowers drawn before it.
+        const std::uint64_t drawn =
+            std::atomic_ref<std::uint64_t>(m.zbuffer[std::size_t(py) * std::size_t(m.width) + std::size_t(px)])
+                .load(std::memory_order_relaxed);
+        if (pack_entry(z, 0, 0, 0) > drawn) continue;
+        wa *= iza * z;
+        wb *= izb * z;
+        wc *= izc * z;
+        shade_pixel(px, py, z, wa * a.wx + wb * b.wx + wc * c.wx, wa * a.wy + wb * b.wy + wc * c.wy,
+                    wa * a.lr + wb * b.lr + wc * c.lr, wa * a.lg + wb * b.lg + wc * c.lg,
+                    wa * a.lb + wb * b.lb + wc * c.lb);
+      }
+    }
+  };
+  auto draw_triangle = [&](const std::array<std::uint32_t, 3>& ids) {
+    Vertex v[3];
+    int behind = 0;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t i = ids[std::size_t(k)];
+      v[k] = {m.vx[i],
+              m.vy[i],
+              m.vz[i],
+              terrain.x[i] - ex,
+              terrain.y[i] - ey,
+              terrain.light_r[i],
+              terrain.light_g[i],
+              terrain.light_b[i]};
+      behind += v[k].z < kNear;
+    }
+    if (behind == 3) return;
+    // A quick reject: all three beyond one side plane.
+    auto out = [&](auto&& side) { return side(v[0]) && side(v[1]) && side(v[2]); };
+    if (out([&](const Vertex& q) { return q.x > q.z * m.tan_x; }) ||
+        out([&](const Vertex& q) { return q.x < -q.z * m.tan_x; }) ||
+        out([&](const Vertex& q) { return q.y > q.z * m.tan_y; }) ||
+        out([&](const Vertex& q) { return q.y < -q.z * m.tan_y; }))
+      return;
+    if (behind == 0) {
+      raster(v[0], v[1], v[2]);
+      return;
+    }
+    // Clip against the near plane (Sutherland-Hodgman): 3 or 4 vertices, drawn as a fan.
+    Vertex poly[4];
+    int n = 0;
+    for (int k = 0; k < 3; ++k) {
+      const Vertex& p = v[k];
+      const Vertex& q = v[(k + 1) % 3];
+      const bool pin = p.z >= kNear, qin = q.z >= kNear;
+      if (pin) poly[n++] = p;
+      if (pin != qin) {
+        const float f = (kNear - p.z) / (q.z - p.z);
+        auto lerp = [f](float a, float b) { return a + (b - a) * f; };
+        poly[n++] = {lerp(p.x, q.x),   lerp(p.y, q.y),   kNear,           lerp(p.wx, q.wx), lerp(p.wy, q.wy),
+                     lerp(p.lr, q.lr), lerp(p.lg, q.lg), lerp(p.lb, q.lb)};
+      }
+    }
+    for (int k = 1; k + 1 < n; ++k) raster(poly[0], poly[k], poly[k + 1]);
+  };
+  // The chunks in the frustum, nearest first: the early depth test then skips the shading of
+  // ground that nearer ground hides.
+  m.chunk_order.clear();
+  for (std::uint32_t k = 0; k < terrain.chunks.size(); ++k) {
+    const ViewWorld::Terrain::Chunk& chunk = terrain.chunks[k];
+    const V3 low{chunk.low[0], chunk.low[1], chunk.low[2]}, high{chunk.high[0], chunk.high[1], chunk.high[2]};
+    if (m.box_outside_frustum(low, high)) continue;
+    double squared = 0;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double d = std::max({low[c] - m.eye[c], m.eye[c] - high[c], 0.0});
+      squared += d * d;
+    }
+    m.chunk_distance[k] = float(squared);
+    m.chunk_order.push_back(k);
+  }
+  std::sort(m.chunk_order.begin(), m.chunk_order.end(), [&](std::uint32_t p, std::uint32_t q) {
+    return m.chunk_distance[p] != m.chunk_distance[q] ? m.chunk_distance[p] < m.chunk_distance[q] : p < q;
+  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.chunk_order.size(), 1), [&](const auto& r) {
+    for (std::size_t o = r.begin(); o != r.end(); ++o) {
+      const ViewWorld::Terrain::Chunk& chunk = terrain.chunks[m.chunk_order[o]];
+      for (std::uint32_t v = chunk.first_vertex; v < chunk.first_vertex + chunk.vertex_count; ++v) {
+        const auto c = m.to_camera(terrain.x[v], terrain.y[v], terrain.z[v]);
+        m.vx[v] = c[0];
+        m.vy[v] = c[1];
+        m.vz[v] = c[2];
+      }
+      for (std::uint32_t t = chunk.first_triangle; t < chunk.first_triangle + chunk.triangle_count; ++t)
+        draw_triangle(terrain.triangles[t]);
+    }
+  });
+
+  const auto terrain_done = std::chrono::steady_clock::now();
+  // ---- resolve: the z-buffer's colors, the sky where nothing was drawn ----
+  tbb::parallel_for(tbb::blocked_range<int>(0, m.height, 8), [&](const tbb::blocked_range<int>& r) {
+    for (int py = r.begin(); py != r.end(); ++py) {
+      const float ray_up = -(float(py) + 0.5f - m.cy) / m.focal;
+      std::uint8_t* out = image_.pixels.data() + image_.offset(0, py);
+      const std::uint64_t* row = m.zbuffer.data() + std::size_t(py) * std::size_t(m.width);
+      for (int px = 0; px < m.width; ++px, out += 3) {
+        const std::uint64_t e = row[px];
+        if (e == kEmpty) {  // the sky of the shading model (as the Embree reference draws it)
+          const float ray_right = (float(px) + 0.5f - m.cx) / m.focal;
+          Vec3f d;
+          for (std::size_t c = 0; c < 3; ++c)
+            d[c] = float(m.forward[c]) + ray_right * float(m.right[c]) + ray_up * float(m.up[c]);
+          const Vec3f sky = sky_radiance(world.shading(), d);
+          out[0] = lut.encode(sky[0]);
+          out[1] = lut.encode(sky[1]);
+          out[2] = lut.encode(sky[2]);
+        } else {
+          out[0] = std::uint8_t(e >> 16);
+          out[1] = std::uint8_t(e >> 8);
+          out[2] = std::uint8_t(e);
+        }
+      }
+    }
+  });
+  const auto end = std::chrono::steady_clock::now();
+  const auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
+  stats_.phase_ms = {ms(start, tiles_done), ms(tiles_done, ldis_done), ms(ldis_done, terrain_done),
+                     ms(terrain_done, end)};
+  stats_.depth_pixels = m.depth_pixels;
+  stats_.frame_ms = ms(start, end);
+  return stats_;
+}
+
+}  // namespace wangscape

@@ -1,0 +1,97 @@
+// The real-time view of a scene folder (seed 003 section 5): the folder's Scene (terrain, sun,
+// the field's tiling and masks) and its mmap'ed LDI pack, drawn in software per frame:
+//  - the tiles `wangscape build` placed (same tiling, same masks, same tile indices), each
+//    frustum-culled by its box and sorted back to front;
+//  - per tile a level by its projected size (distance scaled by the view's pixels per radian
+//    against the pack's) and a direction by the dot product of the view ray with each
+//    direction; across a level's last half and near the bisector of two directions the two
+//    LDIs are screen-door dithered (an ordered 4 x 4 threshold), so nothing pops;
+//  - each LDI warped in McMillan's occlusion-compatible order (pixels far from the eye's
+//    epipole first, layers back to front), sheared onto the tile's two terrain triangles,
+//    each depth pixel splatted as a square as large as its projected footprint;
+//  - the terrain mesh rasterized (perspective-correct), shaded with the sun and sky of
+//    renders/trace/shading.h and colored by Scene::ground_texture;
+//  - beyond the last level, one-layer LDIs made once from the coarsest level at 1/2, 1/4, ...
+//    of its resolution, warped like the others over doubling distances, so the heads stand out
+//    to the horizon; beyond those, each tile's directional average color over the ground;
+//  - a software z-buffer: depth and color packed in 64 bits, the smallest kept (tiles warped
+//    into one buffer per thread, merged; terrain triangles with an atomic minimum), so tiles and
+//    triangles run in parallel (TBB) and the frame is the same on any thread count;
+//  - the sky where nothing was drawn.
+// Buffers are sized once per renderer: a frame allocates nothing.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "generator/image.h"
+#include "renders/view/view_world.h"
+
+namespace wangscape {
+
+// Where the eye is and where it looks (ENU meters), and its horizontal field of view.
+struct ViewCamera {
+  std::array<double, 3> position{0, 0, 2};
+  std::array<double, 3> target{10, 0, 2};
+  double fov_degrees = 50;
+};
+
+inline constexpr double kMinViewDetail = 0.1, kMaxViewDetail = 10;
+
+// What one frame drew.
+struct ViewFrameStats {
+  double frame_ms = 0;
+  // Of it: choosing and culling tiles, warping LDIs, rasterizing the terrain, resolving (sky).
+  std::array<double, 4> phase_ms{};
+  std::uint64_t depth_pixels = 0;  // depth pixels warped
+  std::uint64_t tiles_drawn = 0;   // in the frustum: drawn as LDIs or as far-field color
+  std::uint64_t tiles_culled = 0;  // outside the frustum
+  // Tiles drawn per level (each at its nearer level when two are dithered); the last entry
+  // counts those beyond the last level, drawn as the far-field color.
+  std::vector<std::uint64_t> levels;
+};
+
+class LdiRenderer {
+ public:
+  // Throws Error when the size is not 1 .. 16384 per side.
+  LdiRenderer(std::shared_ptr<const ViewWorld> world, int width, int height);
+  ~LdiRenderer();
+  LdiRenderer(const LdiRenderer&) = delete;
+  LdiRenderer& operator=(const LdiRenderer&) = delete;
+
+  // Draws one frame into image(). Throws Error for a camera with no direction or a field of
+  // view outside (0, 179) degrees.
+  const ViewFrameStats& render(const ViewCamera& camera);
+  const ImageRgb8& image() const { return image_; }
+  // Per pixel of the last frame: true where the sky shows (nothing was drawn), and the camera
+  // depth (meters along the view axis; infinity for the sky).
+  bool sky_at(int x, int y) const;
+  float depth_at(int x, int y) const;
+  // Level-of-detail scale: each level is used up to `detail` times its own distance (1: as the
+  // pack was built for; 0.5: coarser levels at half the distance, fewer depth pixels, a faster
+  // and blockier frame; 2: finer). Throws Error outside kMinViewDetail .. kMaxViewDetail.
+  void set_detail(double detail);
+  // Draws only the placed tiles whose entry is nonzero (the terrain and sky as always); empty:
+  // every tile. For tests and for looking at single tiles.
+  void set_tile_mask(std::vector<std::uint8_t> mask) { mask_ = std::move(mask); }
+  // The placed-tile indices warped as LDIs in the last frame, back to front.
+  const std::vector<std::uint32_t>& draw_order() const { return order_; }
+  // Distance (meters) from the last frame's eye to placed tile `t`'s nearest ground point.
+  double tile_distance(std::uint32_t t) const;
+  int width() const { return image_.width; }
+  int height() const { return image_.height; }
+
+ private:
+  struct Impl;
+  std::shared_ptr<const ViewWorld> world_;
+  std::unique_ptr<Impl> impl_;
+  ImageRgb8 image_;
+  std::vector<std::uint32_t> order_;
+  std::vector<std::uint8_t> mask_;
+  ViewFrameStats stats_;
+  double detail_ = 1;
+};
+
+}  // namespace wangscape

@@ -1,0 +1,282 @@
+// `wangscape view` without a window: offline frames, frame statistics, path playback and the
+// comparison with the Embree reference, on top of the renderer of renders/view/ldi_renderer.h.
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "core/error.h"
+#include "exporters/image_io.h"
+#include "renders/external/child_process.h"
+#include "renders/trace/embree_reference.h"
+#include "renders/trace/image_compare.h"
+#include "renders/view/view_frames.h"
+
+namespace wangscape {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string number(double value) {
+  char text[32];
+  const auto result = std::to_chars(text, text + sizeof text, value);
+  return std::string(text, result.ptr);
+}
+
+struct Keyframe {
+  double time = 0;
+  std::array<double, 3> position{}, look_at{};
+};
+
+std::array<double, 3> read_point(const nlohmann::json& j, const fs::path& file, const std::string& where) {
+  if (!j.is_array() || j.size() != 3) throw Error(file, where, "expected [E, N, H] in meters");
+  std::array<double, 3> p{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (!j[k].is_number() || !std::isfinite(j[k].get<double>())) throw Error(file, where, "expected finite numbers");
+    p[k] = j[k].get<double>();
+  }
+  return p;
+}
+
+// {"keyframes": [{"time": s, "position": [E, N, H], "look_at": [E, N, H]}, ...]}, times ascending.
+std::vector<Keyframe> read_path(const fs::path& file) {
+  std::ifstream in(file);
+  if (!in) throw Error(file, "", "cannot open the path file");
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(in, nullptr, true, false);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(file, "", std::string("not JSON: ") + e.what());
+  }
+  if (!doc.is_object() || !doc.contains("keyframes") || !doc["keyframes"].is_array() || doc["keyframes"].size() < 2)
+    throw Error(file, "", "expected {\"keyframes\": [...]} with at least two keyframes");
+  std::vector<Keyframe> keys;
+  for (std::size_t k = 0; k < doc["keyframes"].size(); ++k) {
+    const auto& j = doc["keyframes"][k];
+    const std::string where = "keyframes[" + std::to_string(k) + "]";
+    if (!j.is_object() || !j.contains("time") || !j["time"].is_number() || !j.contains("position") ||
+        !j.contains("look_at"))
+      throw Error(file, where, "expected {\"time\": seconds, \"position\": [E, N, H], \"look_at\": [E, N, H]}");
+    Keyframe key{j["time"].get<double>(), read_point(j["position"], file, where + ".position"),
+                 read_point(j["look_at"], file, where + ".look_at")};
+    if (!std::isfinite(key.time) || (!keys.empty() && !(key.time > keys.back().time)))
+      throw Error(file, where + ".time", "times must be finite and ascending");
+    keys.push_back(key);
+  }
+  if (keys.back().time - keys.front().time > 3600) throw Error(file, "", "the path lasts more than an hour");
+  return keys;
+}
+
+// Catmull-Rom through the keyframes (a smooth walk, no kinks at the keys).
+std::array<double, 3> along(const std::vector<Keyframe>& keys, double time, bool look) {
+  std::size_t i = 0;
+  while (i + 2 < keys.size() && time > keys[i + 1].time) ++i;
+  const double f = std::clamp((time - keys[i].time) / (keys[i + 1].time - keys[i].time), 0.0, 1.0);
+  auto at = [&](std::size_t k) { return look ? keys[k].look_at : keys[k].position; };
+  const auto p1 = at(i), p2 = at(i + 1);
+  const auto p0 = i > 0 ? at(i - 1) : p1, p3 = i + 2 < keys.size() ? at(i + 2) : p2;
+  std::array<double, 3> out{};
+  for (std::size_t c = 0; c < 3; ++c)
+    out[c] = 0.5 * (2 * p1[c] + (p2[c] - p0[c]) * f + (2 * p0[c] - 5 * p1[c] + 4 * p2[c] - p3[c]) * f * f +
+                    (3 * p1[c] - p0[c] - 3 * p2[c] + p3[c]) * f * f * f);
+  return out;
+}
+
+void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest& request, int width, int height,
+               double fov) {
+  const std::vector<Keyframe> keys = read_path(request.path);
+  std::error_code ec;
+  fs::create_directories(request.frames_dir, ec);
+  if (!fs::is_directory(request.frames_dir, ec)) throw Error(request.frames_dir, "", "cannot make the frames folder");
+  LdiRenderer renderer(world, width, height);
+  renderer.set_detail(request.detail);
+  const double fps = request.path_fps;
+  const int frames = int(std::floor((keys.back().time - keys.front().time) * fps)) + 1;
+  for (int k = 0; k < frames; ++k) {
+    const double t = keys.front().time + k / fps;
+    ViewCamera camera{along(keys, t, false), along(keys, t, true), fov};
+    renderer.render(camera);
+    char name[32];
+    std::snprintf(name, sizeof name, "frame-%05d.png", k);
+    write_image(request.frames_dir / name, renderer.image());
+    if (!request.quiet) std::fprintf(stderr, "\rwangscape: frame %d / %d", k + 1, frames);
+  }
+  if (!request.quiet) std::fprintf(stderr, "\n");
+  const fs::path ffmpeg = find_program("ffmpeg");
+  if (ffmpeg.empty()) {
+    if (!request.quiet) std::fprintf(stderr, "wangscape: ffmpeg not found: PNG frames only\n");
+    return;
+  }
+  const fs::path movie = request.frames_dir / "path.mp4", log = request.frames_dir / "ffmpeg.log";
+  const ChildExit exit = run_logged({ffmpeg.string(), "-y", "-loglevel", "error", "-framerate", number(fps), "-i",
+                                     (request.frames_dir / "frame-%05d.png").string(), "-pix_fmt", "yuv420p", "-vf",
+                                     "pad=ceil(iw/2)*2:ceil(ih/2)*2", movie.string()},
+                                    log);
+  if (!exit.exited || exit.status != 0) throw Error(movie, "", "ffmpeg " + exit.describe() + last_log_lines(log, 3));
+  fs::remove(log, ec);
+  if (!request.quiet) std::printf("%s\n", movie.string().c_str());
+}
+
+// --compare: the same camera ray traced by the Embree reference, and the figures.
+void print_comparison(const ViewWorld& world, const LdiRenderer& renderer, const ViewCamera& camera,
+                      const ViewRequest& request) {
+  const ViewComparison v = compare_with_reference(world, renderer, camera, request.reference_samples);
+  const ImageComparison& c = v.comparison;
+  if (!request.diff.empty()) write_image(request.diff, c.difference);
+  if (request.json)
+    std::printf("{\"psnr_db\": %s, \"ssim\": %s, \"hole_share\": %s, \"holes\": %llu, \"reference_seconds\": %s}\n",
+                number(c.psnr_db).c_str(), number(c.ssim).c_str(), number(c.holes.share).c_str(),
+                static_cast<unsigned long long>(c.holes.holes), number(v.reference.seconds).c_str());
+  else
+    std::printf(
+        "PSNR: %.2f dB\nSSIM: %.4f\nholes: %.4f %% of the pixels (%llu; %.4f %% of the reference's covered)\n"
+        "reference: %d samples per pixel, %.2f s\n",
+        c.psnr_db, c.ssim, 100 * c.holes.share, static_cast<unsigned long long>(c.holes.holes),
+        100 * c.holes.share_of_covered, v.reference.samples_per_pixel, v.reference.seconds);
+}
+
+}  // namespace
+
+ViewComparison compare_with_reference(const ViewWorld& world, const LdiRenderer& renderer, const ViewCamera& camera,
+                                      int samples_per_pixel) {
+  ReferenceOptions options;
+  options.camera = Camera{camera.position, camera.target, camera.fov_degrees};
+  options.width = renderer.width();
+  options.height = renderer.height();
+  options.samples_per_pixel = samples_per_pixel;
+  options.shading = world.shading();
+  const ReferenceImage reference = render_reference(world.scene(), options);
+  const CoverageMask reference_mask = coverage_mask(reference.coverage, renderer.width(), renderer.height());
+  CoverageMask view_mask{renderer.width(), renderer.height(), {}};
+  view_mask.covered.resize(std::size_t(renderer.width()) * std::size_t(renderer.height()));
+  for (int y = 0; y < renderer.height(); ++y)
+    for (int x = 0; x < renderer.width(); ++x)
+      view_mask.covered[std::size_t(y) * std::size_t(renderer.width()) + std::size_t(x)] = !renderer.sky_at(x, y);
+  return {compare_images(renderer.image(), reference.image, &view_mask, &reference_mask), reference.stats};
+}
+
+ViewCamera view_camera(const ViewWorld& world, const ViewRequest& request) {
+  ViewCamera camera;
+  const Camera& scene = world.scene().camera;
+  camera.position = scene.position;
+  camera.target = scene.target;
+  camera.fov_degrees = request.fov_degrees.value_or(scene.fov_degrees);
+  if (!(camera.fov_degrees > 0 && camera.fov_degrees < 179))
+    throw Error("--fov " + number(camera.fov_degrees) + ": expected degrees in (0, 179)");
+  if (request.camera) {
+    camera.position = *request.camera;
+    if (std::isnan(camera.position[2])) {
+      const auto h = world.scene().field->ground.height(camera.position[0], camera.position[1]);
+      if (!h)
+        throw Error("--camera " + number(camera.position[0]) + "," + number(camera.position[1]) +
+                    ": not over the ground; give the height too (E,N,H)");
+      camera.position[2] = *h + world.pack().info().head_height;
+    }
+  }
+  if (request.look_at) camera.target = *request.look_at;
+  if (std::hypot(camera.target[0] - camera.position[0], camera.target[1] - camera.position[1]) < 1e-6)
+    throw Error("--look-at: must lie sideways of the camera (not straight above, below or at it)");
+  return camera;
+}
+
+ViewFrameStats measure_view(LdiRenderer& renderer, const ViewCamera& camera, int frames) {
+  // The frame time and each phase's: medians of their own.
+  std::array<std::vector<double>, 5> times;
+  ViewFrameStats stats;
+  for (int k = 0; k < std::max(frames, 1); ++k) {
+    stats = renderer.render(camera);
+    times[0].push_back(stats.frame_ms);
+    for (std::size_t p = 0; p < 4; ++p) times[p + 1].push_back(stats.phase_ms[p]);
+  }
+  const auto median = [](std::vector<double>& v) {
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  stats.frame_ms = median(times[0]);
+  for (std::size_t p = 0; p < 4; ++p) stats.phase_ms[p] = median(times[p + 1]);
+  return stats;
+}
+
+std::string view_stats_json(const ViewFrameStats& stats) {
+  std::string levels;
+  for (std::uint64_t n : stats.levels) levels += (levels.empty() ? "" : ", ") + std::to_string(n);
+  const double fps = stats.frame_ms > 0 ? 1000.0 / stats.frame_ms : 0;
+  return "{\"frame_ms\": " + number(stats.frame_ms) + ", \"fps\": " + number(fps) +
+         ", \"depth_pixels\": " + std::to_string(stats.depth_pixels) +
+         ", \"tiles\": {\"drawn\": " + std::to_string(stats.tiles_drawn) +
+         ", \"culled\": " + std::to_string(stats.tiles_culled) + "}, \"levels\": [" + levels + "]}";
+}
+
+void check_view_request(const ViewRequest& request) {
+  if ((request.width != 0 || request.height != 0) &&
+      (request.width < 1 || request.height < 1 || request.width > 16384 || request.height > 16384))
+    throw Error("--size " + std::to_string(request.width) + "x" + std::to_string(request.height) +
+                ": expected WIDTHxHEIGHT, each 1 .. 16384 pixels");
+  if (request.fov_degrees && !(*request.fov_degrees > 0 && *request.fov_degrees < 179))
+    throw Error("--fov " + number(*request.fov_degrees) + ": expected degrees in (0, 179)");
+  if (!request.path.empty() && request.frames_dir.empty()) throw Error("--path: needs --frames OUTDIR");
+  if (!(request.path_fps > 0 && request.path_fps <= 240)) throw Error("--fps: expected 0 .. 240 frames per second");
+  if (request.repeat < 0 || request.repeat > 100000) throw Error("--repeat: expected 0 .. 100000 frames");
+  if (!(request.detail >= kMinViewDetail && request.detail <= kMaxViewDetail))
+    throw Error("--detail " + number(request.detail) + ": expected " + number(kMinViewDetail) + " .. " +
+                number(kMaxViewDetail) + " (1: the pack's levels at their own distances)");
+  if (!request.diff.empty() && !request.compare) throw Error("--diff: needs --compare");
+  if (request.reference_samples < 0 || request.reference_samples > 1024) throw Error("--spp: expected 1 .. 1024");
+}
+
+bool wants_window(const ViewRequest& request) {
+  return request.out.empty() && request.path.empty() && !request.stats && !request.compare;
+}
+
+std::shared_ptr<const ViewWorld> load_view_world(const ViewRequest& request) {
+  return ViewWorld::load(request.dir, [&](const std::string& message) {
+    if (!request.quiet) std::fprintf(stderr, "wangscape: %s\n", message.c_str());
+  });
+}
+
+int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewRequest& request) {
+  const ViewCamera camera = view_camera(*world, request);
+  const int width = request.width ? request.width : world->scene().render.width;
+  const int height = request.height ? request.height : world->scene().render.height;
+
+  if (!request.path.empty()) {
+    play_path(world, request, width, height, camera.fov_degrees);
+    return 0;
+  }
+  LdiRenderer renderer(world, width, height);
+  renderer.set_detail(request.detail);
+  const ViewFrameStats stats =
+      request.stats ? measure_view(renderer, camera, request.repeat ? request.repeat : 200) : renderer.render(camera);
+  if (!request.out.empty()) write_image(request.out, renderer.image());
+  if (request.compare) {
+    print_comparison(*world, renderer, camera, request);
+    return 0;
+  }
+  if (request.stats) {
+    if (request.json) {
+      std::printf("%s\n", view_stats_json(stats).c_str());
+    } else {
+      std::printf("eye: %.2f %.2f %.2f (ENU m), looking at %.2f %.2f %.2f, fov %.1f degrees, %dx%d\n",
+                  camera.position[0], camera.position[1], camera.position[2], camera.target[0], camera.target[1],
+                  camera.target[2], camera.fov_degrees, width, height);
+      std::printf("frame: %.2f ms (%.1f frames/s, median of %d)\n", stats.frame_ms,
+                  stats.frame_ms > 0 ? 1000 / stats.frame_ms : 0.0, request.repeat ? request.repeat : 200);
+      std::printf("of it: tiles %.2f ms, LDIs %.2f ms, terrain %.2f ms, sky and resolve %.2f ms\n", stats.phase_ms[0],
+                  stats.phase_ms[1], stats.phase_ms[2], stats.phase_ms[3]);
+      std::printf("depth pixels: %llu (%.1f M/s)\n", static_cast<unsigned long long>(stats.depth_pixels),
+                  stats.frame_ms > 0 ? double(stats.depth_pixels) / stats.frame_ms / 1e3 : 0.0);
+      std::printf("tiles: %llu drawn, %llu culled\n", static_cast<unsigned long long>(stats.tiles_drawn),
+                  static_cast<unsigned long long>(stats.tiles_culled));
+      std::string levels;
+      for (std::uint64_t n : stats.levels) levels += (levels.empty() ? "" : ", ") + std::to_string(n);
+      std::printf("tiles per level (last: far field): %s\n", levels.c_str());
+    }
+  }
+  return 0;
+}
+
+}  // namespace wangscape

@@ -1,0 +1,70 @@
+// `wangscape view` without a window: the request's flags, offline frames, statistics, path
+// playback and the comparison with the Embree reference (renders/trace/embree_reference.h).
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "renders/trace/embree_reference.h"
+#include "renders/trace/image_compare.h"
+#include "renders/view/ldi_view.h"
+
+namespace wangscape {
+
+struct ViewRequest {
+  std::filesystem::path dir;
+  std::optional<std::array<double, 3>> camera;   // E, N, H; H absent (NaN) = head height above the ground
+  std::optional<std::array<double, 3>> look_at;  // E, N, H
+  std::optional<double> fov_degrees;
+  int width = 0, height = 0;  // 0 = the scene's image size
+  std::filesystem::path out;  // one offline frame
+  bool stats = false, json = false;
+  int repeat = 0;                    // frames timed for --stats (0: 200)
+  std::filesystem::path path;        // keyframes JSON
+  std::filesystem::path frames_dir;  // where the path's frames go
+  double path_fps = 24;
+  std::string script;          // window: scripted input (docs/viewer.md)
+  bool compare = false;        // also ray trace the frame with Embree and compare
+  std::filesystem::path diff;  // with compare: the difference image
+  int reference_samples = 0;   // with compare: samples per pixel (0: the scene's)
+  int threads = 0;             // 0 = all cores
+  double detail = 1;           // LdiRenderer::set_detail
+  bool quiet = false;
+};
+
+// The camera of the request: its flags, or the scene's own camera. Throws Error naming the
+// flag at fault (--fov outside (0, 179), a camera off the ground without a height, ...).
+ViewCamera view_camera(const ViewWorld& world, const ViewRequest& request);
+
+// Refuses a request's flags out of range (sizes, --fov, --fps, --repeat, --detail, --spp) and
+// flags that need another (--path without --frames, --diff without --compare), before anything
+// is read. Throws Error naming the flag.
+void check_view_request(const ViewRequest& request);
+// True when the request asks for no file and no figures: the window.
+bool wants_window(const ViewRequest& request);
+// The folder's world (ViewWorld::load), stages on stderr unless quiet.
+std::shared_ptr<const ViewWorld> load_view_world(const ViewRequest& request);
+// Offline frame(s), statistics, comparison or path playback, as the request says; prints
+// figures to stdout. Returns the exit code (0). Throws Error for bad input.
+int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewRequest& request);
+
+// The renderer's last frame (drawn from `camera`) against the Embree reference of the same
+// camera and size, ray traced with the light the pack was shaded with at `samples_per_pixel`
+// (0: the scene's): PSNR, SSIM, holes (sky in the frame where the reference has geometry) and
+// the difference image; `reference` holds the reference's own figures (its time).
+struct ViewComparison {
+  ImageComparison comparison;
+  ReferenceStats reference;
+};
+ViewComparison compare_with_reference(const ViewWorld& world, const LdiRenderer& renderer, const ViewCamera& camera,
+                                      int samples_per_pixel);
+
+// Median frame statistics over `frames` renders of one camera.
+ViewFrameStats measure_view(LdiRenderer& renderer, const ViewCamera& camera, int frames);
+// {"frame_ms": ..., "fps": ..., "depth_pixels": ..., "tiles": {...}, "levels": [...]}
+std::string view_stats_json(const ViewFrameStats& stats);
+
+}  // namespace wangscape

@@ -1,0 +1,347 @@
+#include "renders/view/view_world.h"
+
+#include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "exporters/scene_folder.h"
+#include "generator/placement.h"
+#include "renders/ldi/ldi_scene.h"
+#include "renders/trace/embree_device.h"
+#include "renders/trace/shading.h"
+#include "renders/view/view_samples.h"
+
+namespace wangscape {
+
+namespace fs = std::filesystem;
+using namespace view_detail;
+
+namespace {
+
+constexpr float kCanopyShare = 0.55f;  // of the prism top: the far field's color comes from samples above it
+// Far-field steps after the pack's levels: one-layer LDIs of 1/2, 1/4, ... of the coarsest
+// level's resolution, each over twice the distance of the one before.
+constexpr std::uint32_t kFarSteps = 5;
+
+// itself), kept where an ordered threshold of the block is below their share of the block, so
+// that the tile's cover is kept on average. Each sample sits at its block's centre.
+LdiImage one_layer_ldi(const LdiView& v, int factor) {
+  const LdiFrame& f = *v.frame;
+  LdiImage out;
+  out.frame = f;
+  out.frame.width = (f.width + std::uint32_t(factor) - 1) / std::uint32_t(factor);
+  out.frame.height = (f.height + std::uint32_t(factor) - 1) / std::uint32_t(factor);
+  out.frame.pixel_size = f.pixel_size * float(factor);
+  const std::uint32_t w = out.frame.width, h = out.frame.height;
+  struct Block {
+    double r = 0, g = 0, b = 0, depth = 0;
+    std::uint32_t flowers = 0;
+    std::uint16_t normal = 0;
+  };
+  std::vector<Block> blocks(std::size_t(w) * h);
+  const Luts& lut = luts();
+  for_each_front_sample(v, [&](int x, int y, const DepthPixel& front, bool is_ground) {
+    if (is_ground) return;
+    Block& b = blocks[std::size_t(y / factor) * w + std::uint32_t(x / factor)];
+    b.r += lut.to_linear[front.r];
+    b.g += lut.to_linear[front.g];
+    b.b += lut.to_linear[front.b];
+    b.depth += front.depth();
+    if (b.flowers++ == 0) b.normal = front.normal();
+  });
+  const double area = double(factor) * double(factor);
+  out.row_spans.push_back(0);
+  for (std::uint32_t y = 0; y < h; ++y) {
+    std::uint32_t first = w, last = 0;
+    for (std::uint32_t x = 0; x < w; ++x) {
+      const Block& b = blocks[std::size_t(y) * w + x];
+      if (b.flowers == 0 || double(b.flowers) / area <= threshold(int(x), int(y))) continue;
+      first = std::min(first, x);
+      last = x;
+    }
+    if (first < w) {
+      out.spans.push_back({std::uint16_t(first), std::uint16_t(last - first + 1), std::uint32_t(out.counts.size()),
+                           std::uint32_t(out.depth_pixels.size())});
+      for (std::uint32_t x = first; x <= last; ++x) {
+        const Block& b = blocks[std::size_t(y) * w + x];
+        const bool kept = b.flowers > 0 && double(b.flowers) / area > threshold(int(x), int(y));
+        out.counts.push_back(kept ? 1 : 0);
+        if (!kept) continue;
+        const double n = double(b.flowers);
+        out.depth_pixels.push_back(DepthPixel::make(lut.encode(float(b.r / n)), lut.encode(float(b.g / n)),
+                                                    lut.encode(float(b.b / n)), std::uint16_t(std::lround(b.depth / n)),
+                                                    b.normal));
+      }
+    }
+    out.row_spans.push_back(std::uint32_t(out.spans.size()));
+  }
+  out.frame.span_count = std::uint32_t(out.spans.size());
+  out.frame.pixel_count = std::uint32_t(out.counts.size());
+  out.frame.depth_pixel_count = std::uint32_t(out.depth_pixels.size());
+  return out;
+}
+
+bool files_resolve(const SceneConfig& c) {
+  std::error_code ec;
+  for (const fs::path& p : {c.terrain.dem, c.masks.mask, c.models.mesh})
+    if (!p.empty() && !fs::exists(p, ec)) return false;
+  return true;
+}
+
+// The terrain's shadows on itself, as the reference's shadow rays see them, per vertex: 1 where
+// the sun is seen past the terrain from just above the vertex, else 0 (interpolated over the
+// triangles, so a shadow's edge is as soft as the mesh is coarse).
+std::vector<float> terrain_sun_visibility(const Mesh& mesh, const std::array<float, 3>& sun) {
+  std::vector<float> visible(mesh.positions.size(), sun[2] > 0 ? 1.0f : 0.0f);
+  if (sun[2] <= 0 || mesh.triangles.empty()) return visible;
+  EmbreeDevice device;
+  EmbreeScene scene(device.get());
+  RTCGeometry geometry = triangle_geometry(device.get(), mesh.positions, mesh.triangles);
+  rtcAttachGeometry(scene.get(), geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(scene.get());
+  device.check("building the terrain's shadow scene");
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, visible.size(), 2048), [&](const auto& r) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    for (std::size_t v = r.begin(); v != r.end(); ++v) {
+      const auto& p = mesh.positions[v];
+      RTCRay ray{};
+      ray.org_x = p[0];
+      ray.org_y = p[1];
+      ray.org_z = p[2] + 0.05f;  // above the vertex's own triangles
+      ray.dir_x = sun[0];
+      ray.dir_y = sun[1];
+      ray.dir_z = sun[2];
+      ray.tnear = 0.01f;
+      ray.tfar = std::numeric_limits<float>::infinity();
+      ray.mask = ~0u;
+      rtcOccluded1(scene.get(), &context, &ray);
+      if (ray.tfar < 0) visible[v] = 0;  // Embree's mark of an occluded ray
+    }
+  });
+  device.check("tracing the terrain's shadows");
+  return visible;
+}
+
+constexpr std::size_t kTerrainChunkTriangles = 1024;
+
+// The mesh cut into a square grid of chunks by triangle centroid (about kTerrainChunkTriangles
+// each); a vertex shared by chunks is copied into each, with its light.
+ViewWorld::Terrain chunked_terrain(const Mesh& mesh, const std::vector<std::array<float, 3>>& light) {
+  ViewWorld::Terrain out;
+  if (mesh.triangles.empty()) return out;
+  std::array<float, 2> low{std::numeric_limits<float>::max(), std::numeric_limits<float>::max()};
+  std::array<float, 2> high{-low[0], -low[1]};
+  for (const auto& p : mesh.positions)
+    for (std::size_t k = 0; k < 2; ++k) {
+      low[k] = std::min(low[k], p[k]);
+      high[k] = std::max(high[k], p[k]);
+    }
+  const int side =
+      std::max(1, int(std::lround(std::sqrt(double(mesh.triangles.size()) / double(kTerrainChunkTriangles)))));
+  const auto cell = [&](float v, std::size_t k) {
+    const float f = (v - low[k]) / std::max(high[k] - low[k], 1e-6f);
+    return std::clamp(int(f * float(side)), 0, side - 1);
+  };
+  std::vector<std::vector<std::uint32_t>> members(std::size_t(side) * std::size_t(side));
+  for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& ids = mesh.triangles[t];
+    float cx = 0, cy = 0;
+    for (const std::uint32_t i : ids) {
+      cx += mesh.positions[i][0] / 3;
+      cy += mesh.positions[i][1] / 3;
+    }
+    members[std::size_t(cell(cy, 1)) * std::size_t(side) + std::size_t(cell(cx, 0))].push_back(t);
+  }
+  std::vector<std::uint32_t> local(mesh.positions.size(), ~0u);  // this chunk's copy of a vertex
+  for (const auto& chunk_triangles : members) {
+    if (chunk_triangles.empty()) continue;
+    ViewWorld::Terrain::Chunk chunk;
+    chunk.first_vertex = std::uint32_t(out.x.size());
+    chunk.first_triangle = std::uint32_t(out.triangles.size());
+    chunk.low = {std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
+                 std::numeric_limits<float>::max()};
+    chunk.high = {-chunk.low[0], -chunk.low[1], -chunk.low[2]};
+    for (const std::uint32_t t : chunk_triangles) {
+      std::array<std::uint32_t, 3> remapped{};
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::uint32_t i = mesh.triangles[t][k];
+        if (local[i] == ~0u || local[i] < chunk.first_vertex) {
+          local[i] = std::uint32_t(out.x.size());
+          const auto& p = mesh.positions[i];
+          out.x.push_back(p[0]);
+          out.y.push_back(p[1]);
+          out.z.push_back(p[2]);
+          out.light_r.push_back(light[i][0]);
+          out.light_g.push_back(light[i][1]);
+          out.light_b.push_back(light[i][2]);
+          for (std::size_t c = 0; c < 3; ++c) {
+            chunk.low[c] = std::min(chunk.low[c], p[c]);
+            chunk.high[c] = std::max(chunk.high[c], p[c]);
+          }
+        }
+        remapped[k] = local[i];
+      }
+      out.triangles.push_back(remapped);
+    }
+    chunk.vertex_count = std::uint32_t(out.x.size()) - chunk.first_vertex;
+    chunk.triangle_count = std::uint32_t(out.triangles.size()) - chunk.first_triangle;
+    out.chunks.push_back(chunk);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::shared_ptr<const ViewWorld> ViewWorld::load(const fs::path& dir, const StageObserver& stage) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw Error(dir, "", "no such scene folder (make one with wangscape build)");
+  const fs::path scene_file = dir / "scene.toml", pack_file = dir / "tiles.ldi";
+  if (!fs::is_regular_file(scene_file, ec))
+    throw Error(scene_file, "", "missing: the folder was not written by wangscape build");
+  if (!fs::is_regular_file(pack_file, ec))
+    throw Error(pack_file, "", "missing: build the folder from a scene with [exports] ldi = true");
+  { const LdiPack check(pack_file); }  // a corrupt pack is refused before the scene is assembled
+  SceneConfig config = load_scene_folder_config(dir);
+  // A folder from before scene_base.txt: its relative paths may name the data folder's files
+  // (the default scene's data/...).
+  if (!files_resolve(config)) {
+    SceneConfig from_data = parse_scene_config(config.text, scene_file, data_root());
+    if (files_resolve(from_data)) config = std::move(from_data);
+  }
+  return std::make_shared<const ViewWorld>(make_scene(config, stage), pack_file, ldi_options(config).shading);
+}
+
+ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettings& shading_settings)
+    : scene_(std::move(scene)),
+      pack_(std::make_unique<LdiPack>(pack_path)),
+      shading_(shading_settings),
+      ground_colors_(scene_.ground_texture.get(), shading_.ground_color) {
+  if (!scene_.field) throw Error("scene '" + scene_.name + "': no field of flowers to view");
+  const SceneField& field = *scene_.field;
+  const LdiPackInfo& info = pack_->info();
+  tile_size_ = field.placement.tile_size;
+  if (info.tiles != field.filled.tiles.size() || std::abs(info.tile_size - tile_size_) > 1e-4)
+    throw Error(pack_path, "",
+                "was built for another tile set (" + std::to_string(info.tiles) + " tiles of " +
+                    std::to_string(info.tile_size) + " m; the scene has " + std::to_string(field.filled.tiles.size()) +
+                    " of " + std::to_string(tile_size_) + " m)");
+
+  // The tiles placement keeps: the tiling's cells over the area that received a flower.
+  const TileRange range = tile_range(*field.placement.area, tile_size_);
+  grid_i0_ = range.i0;
+  grid_j0_ = range.j0;
+  grid_width_ = std::max(0, range.width());
+  grid_height_ = std::max(0, range.height());
+  grid_.assign(std::size_t(grid_width_) * std::size_t(grid_height_), -1);
+  std::vector<std::uint8_t> kept(grid_.size(), 0);
+  field.place([&](const InstanceBatch& batch) {
+    for (std::size_t k = 0; k < batch.size(); ++k) {
+      const std::int64_t i = std::int64_t(std::floor(double(batch.x[k]) / tile_size_)) - grid_i0_;
+      const std::int64_t j = std::int64_t(std::floor(double(batch.y[k]) / tile_size_)) - grid_j0_;
+      if (i >= 0 && j >= 0 && i < grid_width_ && j < grid_height_) kept[std::size_t(j * grid_width_ + i)] = 1;
+    }
+  });
+  const RowTiles rows(field.filled.set, range, field.placement);
+  std::vector<std::uint16_t> row(static_cast<std::size_t>(grid_width_));
+  for (int r = 0; r < grid_height_; ++r) {
+    rows.row(r, row);
+    for (int c = 0; c < grid_width_; ++c) {
+      const std::size_t cell = std::size_t(r) * std::size_t(grid_width_) + std::size_t(c);
+      if (!kept[cell]) continue;
+      const double x0 = double(grid_i0_ + c) * tile_size_, y0 = double(grid_j0_ + r) * tile_size_;
+      grid_[cell] = std::int32_t(tiles_.size());
+      tiles_.x0.push_back(x0);
+      tiles_.y0.push_back(y0);
+      tiles_.tile.push_back(row[std::size_t(c)]);
+      tiles_.cell.push_back(std::int32_t(cell));
+      const double corners[4][2] = {
+          {x0, y0}, {x0 + tile_size_, y0}, {x0, y0 + tile_size_}, {x0 + tile_size_, y0 + tile_size_}};
+      const double centre = field.ground.height(x0 + tile_size_ / 2, y0 + tile_size_ / 2).value_or(0.0);
+      float lo = 1e30f, hi = -1e30f;
+      for (int k = 0; k < 4; ++k) {
+        const float h = float(field.ground.height(corners[k][0], corners[k][1]).value_or(centre));
+        tiles_.h[std::size_t(k)].push_back(h);
+        lo = std::min(lo, h);
+        hi = std::max(hi, h);
+      }
+      tiles_.z_min.push_back(lo);
+      tiles_.z_max.push_back(hi);
+    }
+  }
+
+  // Light as the LDI build's: the scene's sun (scaled by its strength, where the terrain does not
+  // shadow it) and the open sky.
+  const ShadingSettings& shading = shading_;
+  const auto sun = scene_.sun.direction();
+  sun_ = {float(sun[0]), float(sun[1]), float(sun[2])};
+  const Mesh& mesh = scene_.terrain;
+  const std::vector<float> sunlit = terrain_sun_visibility(mesh, sun_);
+  std::vector<std::array<float, 3>> light(mesh.positions.size());
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const std::array<float, 3> n = v < mesh.normals.size() ? mesh.normals[v] : std::array<float, 3>{0, 0, 1};
+    const float cos_sun = sunlit[v] * std::max(0.0f, n[0] * sun_[0] + n[1] * sun_[1] + n[2] * sun_[2]);
+    const float strength = float(scene_.sun.strength);
+    auto light_of = [&](int c) {
+      return (shading.sun_color[std::size_t(c)] * strength * cos_sun + shading.sky_color[std::size_t(c)]) *
+             shading.exposure;
+    };
+    light[v] = {light_of(0), light_of(1), light_of(2)};
+  }
+  terrain_ = chunked_terrain(mesh, light);
+
+  // The far field: per tile and direction, the coarsest LDI's front flower samples averaged —
+  // those in the canopy's upper part: seen from afar at a grazing angle, the tiles in front hide
+  // the rest (stems and leaves low down); without any there, all of them.
+  const std::uint32_t level = info.levels - 1;
+  const float canopy = kCanopyShare * info.prism_top;
+  far_.assign(std::size_t(info.tiles) * info.directions, {0, 0, 0, 0});
+  const Luts& lut = luts();
+  for (std::uint32_t t = 0; t < info.tiles; ++t)
+    for (std::uint32_t d = 0; d < info.directions; ++d) {
+      const LdiView v = pack_->ldi(t, level, d);
+      double sum[3] = {0, 0, 0}, top_sum[3] = {0, 0, 0};
+      std::uint64_t flowers = 0, ground = 0, top = 0;
+      for_each_front_sample(v, [&](int x, int y, const DepthPixel& front, bool is_ground) {
+        if (is_ground) {
+          ++ground;
+          return;
+        }
+        ++flowers;
+        const double rgb[3] = {lut.to_linear[front.r], lut.to_linear[front.g], lut.to_linear[front.b]};
+        for (int c = 0; c < 3; ++c) sum[c] += rgb[c];
+        if (v.position(x, y, front)[2] >= canopy) {
+          ++top;
+          for (int c = 0; c < 3; ++c) top_sum[c] += rgb[c];
+        }
+      });
+      if (flowers == 0) continue;
+      auto& out = far_[std::size_t(t) * info.directions + d];
+      for (int c = 0; c < 3; ++c)
+        out[std::size_t(c)] = float(top ? top_sum[c] / double(top) : sum[c] / double(flowers));
+      out[3] = float(double(flowers) / double(flowers + ground));
+    }
+
+  // The one-layer far LDIs, while the coarsest level's resolution allows a step.
+  while (far_steps_ < kFarSteps && (pack_->ldi(0, level, 0).frame->width >> (far_steps_ + 1)) >= 1) ++far_steps_;
+  far_ldis_.reserve(std::size_t(info.tiles) * info.directions * far_steps_);
+  for (std::uint32_t t = 0; t < info.tiles; ++t)
+    for (std::uint32_t d = 0; d < info.directions; ++d)
+      for (std::uint32_t k = 0; k < far_steps_; ++k)
+        far_ldis_.push_back(one_layer_ldi(pack_->ldi(t, level, d), 2 << k));
+}
+
+LdiView ViewWorld::far_ldi(std::uint32_t tile, std::uint32_t direction, std::uint32_t step) const {
+  return far_ldis_[(std::size_t(tile) * pack_->info().directions + direction) * far_steps_ + step].view();
+}
+
+double ViewWorld::ground_height(double x, double y, double fallback) const {
+  return scene_.field->ground.height(x, y).value_or(fallback);
+}
+
+}  // namespace wangscape

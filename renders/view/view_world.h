@@ -1,0 +1,103 @@
+// The scene folder as the real-time view reads it (renders/view/ldi_renderer.h draws it): the
+// Scene, the mmap'ed LDI pack, the placed tiles with their terrain corners, the terrain mesh in
+// chunks with its lighting, and the far field beyond the pack's levels.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "generator/image.h"
+#include "renders/ldi/ldi_pack.h"
+#include "renders/trace/ground_colors.h"
+#include "renders/trace/shading.h"
+#include "scene/scene.h"
+
+namespace wangscape {
+
+// The scene folder as the view needs it: the Scene, the pack, the placed tiles with their
+// terrain corners, the terrain mesh with its lighting and the far-field colors. Immutable.
+class ViewWorld {
+ public:
+  // Reads DIR/scene.toml (load_scene_folder_config; where its files are not found, relative
+  // paths resolve against the data folder, data_root(), as for the default scene) and
+  // DIR/tiles.ldi. Throws Error naming the file
+  // at fault: a missing folder, scene or pack, a corrupt pack, a pack of another tile set.
+  static std::shared_ptr<const ViewWorld> load(const std::filesystem::path& dir, const StageObserver& stage = {});
+  // The same from a Scene already made and a pack file (tests).
+  ViewWorld(Scene scene, const std::filesystem::path& pack_path, const ShadingSettings& shading = {});
+
+  struct Tiles {                          // structure of arrays, one entry per placed tile, rows south to north
+    std::vector<double> x0, y0;           // the tile's south-west corner, meters
+    std::vector<std::uint32_t> tile;      // index into the set (and the pack)
+    std::vector<std::int32_t> cell;       // index into the tile grid
+    std::array<std::vector<float>, 4> h;  // ground height at the corners: SW, SE, NW, NE
+    std::vector<float> z_min, z_max;      // of the corners
+    std::size_t size() const { return tile.size(); }
+  };
+  // The terrain mesh in square chunks of about kTerrainChunkTriangles triangles, each with its
+  // own copy of its vertices (contiguous), so a frame culls whole chunks by their box and
+  // transforms only the vertices of those it draws, with no two tasks writing one vertex.
+  struct Terrain {                                        // structure of arrays
+    std::vector<float> x, y, z;                           // ENU meters
+    std::vector<float> light_r, light_g, light_b;         // sun + sky irradiance (linear) at the vertex
+    std::vector<std::array<std::uint32_t, 3>> triangles;  // chunk by chunk
+    struct Chunk {
+      std::uint32_t first_vertex = 0, vertex_count = 0, first_triangle = 0, triangle_count = 0;
+      std::array<float, 3> low{}, high{};  // the box of its vertices, ENU meters
+    };
+    std::vector<Chunk> chunks;
+  };
+
+  const Scene& scene() const { return scene_; }
+  const LdiPack& pack() const { return *pack_; }
+  const Tiles& tiles() const { return tiles_; }
+  const Terrain& terrain() const { return terrain_; }
+  double tile_size() const { return tile_size_; }
+  // The grid of tile cells over the field's area (-1 where no tile was placed).
+  std::int64_t grid_i0() const { return grid_i0_; }
+  std::int64_t grid_j0() const { return grid_j0_; }
+  int grid_width() const { return grid_width_; }
+  int grid_height() const { return grid_height_; }
+  const std::vector<std::int32_t>& grid() const { return grid_; }
+  // Per (set tile, direction): the linear average color of the coarsest LDI's front flower
+  // samples and the share of its front samples that are flowers (not ground).
+  const std::vector<std::array<float, 4>>& far_colors() const { return far_; }
+  // Beyond the pack's levels, the field goes on as one-layer LDIs (seed 003's future work), per
+  // (set tile, direction) and step: step k has 1 / 2^(k+1) of the coarsest level's resolution
+  // and is drawn over twice the distance of step k - 1; beyond the last step, the far colors.
+  std::uint32_t far_steps() const { return far_steps_; }
+  LdiView far_ldi(std::uint32_t tile, std::uint32_t direction, std::uint32_t step) const;
+  // The ground's height (meters) at (x, y), or `fallback` off the ground.
+  double ground_height(double x, double y, double fallback) const;
+  // Linear base color of the ground at (x, y): the baked ground texture (bilinear), or the
+  // shading model's ground color without [ground]; the Embree reference's (GroundColors).
+  std::array<float, 3> ground_color(double x, double y) const { return ground_colors_.at(x, y); }
+  const std::array<float, 3>& sun_direction() const { return sun_; }
+  // The light the pack was shaded with (the scene's [ldi] sky rays; the Embree reference of
+  // --compare uses it too).
+  const ShadingSettings& shading() const { return shading_; }
+
+ private:
+  Scene scene_;
+  std::unique_ptr<LdiPack> pack_;
+  Tiles tiles_;
+  Terrain terrain_;
+  double tile_size_ = 4;
+  std::int64_t grid_i0_ = 0, grid_j0_ = 0;
+  int grid_width_ = 0, grid_height_ = 0;
+  std::vector<std::int32_t> grid_;
+  std::vector<std::array<float, 4>> far_;
+  std::uint32_t far_steps_ = 0;
+  std::vector<LdiImage> far_ldis_;  // (tile * directions + direction) * far_steps_ + step
+  std::array<float, 3> sun_{0, 0, 1};
+  ShadingSettings shading_;
+  GroundColors ground_colors_;  // of scene_'s bake, shading_'s plain ground
+};
+
+}  // namespace wangscape

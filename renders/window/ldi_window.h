@@ -1,0 +1,34 @@
+// The window of `wangscape view DIR` (SDL2): walk at head height over the terrain or fly,
+// mouse look, speed keys, an on-screen frame time and depth-pixel rate, screenshots. A script
+// of key presses (docs/viewer.md) is pushed into SDL's own event queue, so tests drive the
+// same event path a user does (under Xvfb).
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "renders/view/ldi_renderer.h"
+
+namespace wangscape {
+
+struct ViewWindowOptions {
+  int width = 640, height = 360;
+  double detail = 1;  // LdiRenderer::set_detail
+  // "W*30,mouse:40:0,screenshot,Escape": KEY*N holds KEY for N frames, KEY alone one frame,
+  // mouse:DX:DY moves the mouse, screenshot presses F12, wait*N waits N frames. Scripted
+  // frames advance time by 1/30 s each, so a script gives the same frames on any machine.
+  std::string script;
+  std::filesystem::path screenshot_dir = ".";  // F12 writes view-0001.png, view-0002.png, ...
+  bool quiet = false;
+};
+
+// Opens the window at `start` and runs until Escape, the window's close button or the end of
+// the script. Throws Error when SDL cannot open a window (no display) or the script is bad.
+void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& start, const ViewWindowOptions& options);
+
+// The moves a script asks for, checked without a display (tests, the CLI's early refusal).
+// Throws Error naming the token at fault.
+void check_view_script(const std::string& script);
+
+}  // namespace wangscape

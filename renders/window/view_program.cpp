@@ -1,0 +1,31 @@
+#include "renders/window/view_program.h"
+
+#include <tbb/global_control.h>
+
+#include <optional>
+
+#include "renders/window/ldi_window.h"
+
+namespace wangscape {
+
+int run_view(const ViewRequest& request) {
+  check_view_request(request);
+  const bool window = wants_window(request);
+  if (window) check_view_script(request.script);  // refused before the scene is assembled
+  std::optional<tbb::global_control> threads;
+  if (request.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(request.threads));
+
+  const auto world = load_view_world(request);
+  if (!window) return run_view_frames(world, request);
+  const ViewCamera camera = view_camera(*world, request);
+  ViewWindowOptions options;
+  options.width = request.width ? request.width : world->scene().render.width;
+  options.height = request.height ? request.height : world->scene().render.height;
+  options.script = request.script;
+  options.quiet = request.quiet;
+  options.detail = request.detail;
+  run_view_window(world, camera, options);
+  return 0;
+}
+
+}  // namespace wangscape
