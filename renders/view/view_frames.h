@@ -10,7 +10,7 @@
 
 #include "renders/trace/embree_reference.h"
 #include "renders/trace/image_compare.h"
-#include "renders/view/ldi_view.h"
+#include "renders/view/ldi_renderer.h"
 
 namespace wangscape {
 
