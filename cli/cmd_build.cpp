@@ -7,8 +7,7 @@
 #include "cli/command.h"
 #include "cli/progress.h"
 #include "cli/scene_commands.h"
-#include "exporters/scene_folder.h"
-#include "renders/ldi/ldi_scene.h"
+#include "renders/scene_build.h"
 
 namespace wangscape::cli {
 
@@ -28,12 +27,10 @@ void run_build(const SceneConfig& config, const std::filesystem::path& out_dir, 
       progress->update(static_cast<std::uint64_t>(fraction * kSteps));
     };
   }
-  check_scene_folder_target(out_dir);  // before the scene is assembled
-  const Scene scene = make_scene(config, observer.stage);
-  const auto summary = write_scene_folder(scene, config.exports, config.text, out_dir, observer, config.base_dir);
+  std::unique_ptr<Progress> ldi_progress;
+  const auto summary = build_scene(config, out_dir, {observer, ldi_terminal_observer(global, ldi_progress)});
   progress.reset();
-  // The LDIs are sampled from the tile set, not from the placed field: a pass of their own.
-  if (config.exports.ldi) build_scene_ldi_pack(scene, out_dir / "tiles.ldi", ldi_options(config));
+  ldi_progress.reset();
   if (chatty(global))
     std::fprintf(stderr, "wangscape: wrote %s (%llu flowers, %.1f MB of POV-Ray files, %.1f s)\n",
                  out_dir.string().c_str(), static_cast<unsigned long long>(summary.instances),

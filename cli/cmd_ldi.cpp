@@ -15,6 +15,19 @@
 
 namespace wangscape::cli {
 
+LdiSceneObserver ldi_terminal_observer(const GlobalOptions& global, std::unique_ptr<Progress>& progress) {
+  LdiSceneObserver observer;
+  if (!chatty(global)) return observer;
+  const auto start = std::chrono::steady_clock::now();
+  observer.stage = [](const std::string& message) { std::fprintf(stderr, "wangscape: %s\n", message.c_str()); };
+  observer.progress = [&progress, &global, start](std::uint64_t done, std::uint64_t total, std::uint64_t rays) {
+    if (!progress) progress = std::make_unique<Progress>("LDIs", total, global.quiet);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    progress->update(done, fmt::format("{} / {} LDIs, {:.1f} M rays/s", done, total, double(rays) / 1e6 / seconds));
+  };
+  return observer;
+}
+
 namespace {
 
 // The view flags override the scene file's [ldi] section.
@@ -35,17 +48,8 @@ void run_ldi_build(const LdiBuildArgs& args, const GlobalOptions& global) {
   options.ground = args.ground == "none"     ? LdiGround::none
                    : args.ground == "always" ? LdiGround::always
                                              : LdiGround::visible;
-  LdiSceneObserver observer;
   std::unique_ptr<Progress> progress;
-  const auto start = std::chrono::steady_clock::now();
-  if (chatty(global)) {
-    observer.stage = [&](const std::string& message) { std::fprintf(stderr, "wangscape: %s\n", message.c_str()); };
-    observer.progress = [&](std::uint64_t done, std::uint64_t total, std::uint64_t rays) {
-      if (!progress) progress = std::make_unique<Progress>("LDIs", total, global.quiet);
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      progress->update(done, fmt::format("{} / {} LDIs, {:.1f} M rays/s", done, total, double(rays) / 1e6 / seconds));
-    };
-  }
+  const LdiSceneObserver observer = ldi_terminal_observer(global, progress);
   const LdiBuildReport report = build_scene_ldi_pack(config, args.out, options, observer);
   progress.reset();
   if (chatty(global))

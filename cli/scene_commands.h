@@ -3,12 +3,19 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "cli/command.h"
+#include "cli/progress.h"
+#include "renders/ldi/ldi_scene.h"
 #include "scene/scene_file.h"
 
 namespace wangscape::cli {
+
+// The LDI build's stages and a progress bar on a terminal (cmd_ldi.cpp); `progress` holds the
+// bar and must outlive the build.
+LdiSceneObserver ldi_terminal_observer(const GlobalOptions& global, std::unique_ptr<Progress>& progress);
 
 // Builds `config` into `out_dir` (cmd_build.cpp).
 void run_build(const SceneConfig& config, const std::filesystem::path& out_dir, const GlobalOptions& global);

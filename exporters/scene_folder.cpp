@@ -1,5 +1,7 @@
 #include "exporters/scene_folder.h"
 
+#include "exporters/folder_state.h"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -10,6 +12,7 @@
 #include "core/run_cleanup.h"
 #include "core/text_file.h"
 #include "exporters/blender_export.h"
+#include "exporters/folder_state.h"
 #include "exporters/gltf_writer.h"
 #include "exporters/povray_writer.h"
 #include "exporters/scene_writer.h"
@@ -83,7 +86,7 @@ void check_scene_folder_target(const fs::path& out_dir_in) {
 
 SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& exports, const std::string& scene_text,
                                       const fs::path& out_dir_in, const SceneFolderObserver& observer,
-                                      const fs::path& scene_base_dir) {
+                                      const fs::path& scene_base_dir, const StagedWriter& also_write) {
   const auto start = std::chrono::steady_clock::now();
   check_scene_folder_target(out_dir_in);
   auto out_dir = fs::absolute(out_dir_in).lexically_normal();
@@ -124,12 +127,17 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
       writers.push_back(gltf.get());
       names.emplace_back("glTF");
     }
+    // The tiles that receive flowers, for the folder's readers (folder_state.h): collected from
+    // the writers' pass, or from a pass of their own when nothing else places the field.
+    std::optional<PlacedTileCollector> placed;
+    if (scene.field) placed.emplace(*scene.field);
     if (!writers.empty()) {
       std::string list;
       for (const auto& name : names) list += (list.empty() ? "" : ", ") + name;
       say(observer, "placing flowers and writing " + list);
       const Extent& area = scene.field_area;
       const auto on_batch = [&](const InstanceBatch& batch) {
+        if (placed) placed->add(batch);
         if (!observer.placing || batch.empty() || !(area.height() > 0)) return;
         observer.placing(std::clamp((batch.y.back() - area.min_y) / area.height(), 0.0, 1.0));
       };
@@ -140,6 +148,11 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
       if (observer.placing) observer.placing(1.0);
     }
     if (povray) summary.povray_bytes = povray->stats().total_bytes;
+    if (scene.field) {
+      const PlacedTiles tiles = writers.empty() ? place_tiles(*scene.field) : placed->result();
+      write_folder_state(staging, scene_text, scene, tiles);
+    }
+    if (also_write) also_write(staging);
     write_file_atomically(staging / "scene.toml", scene_text);
     if (!scene_base_dir.empty())
       write_file_atomically(staging / kSceneBaseFile, fs::absolute(scene_base_dir).lexically_normal().string() + "\n");

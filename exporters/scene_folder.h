@@ -28,7 +28,13 @@ struct SceneFolderSummary {
   double seconds = 0;
 };
 
-// Writes the exports `exports` enables plus `scene_text` as DIR/scene.toml into `out_dir`.
+// Writes more files into the staging folder (its path) before it is published: what a stage
+// above the exporters adds to a folder (the LDI pack), so that it is published with the rest.
+using StagedWriter = std::function<void(const std::filesystem::path& staging_dir)>;
+
+// Writes the exports `exports` enables plus `scene_text` as DIR/scene.toml into `out_dir`, and
+// what the folder's readers need to open it fast (exporters/folder_state.h), then `also_write`'s
+// files.
 // The folder is staged as ".<name>.partial-<pid>" beside it; an existing `out_dir` must be a
 // scene folder (it holds scene.toml) or empty, and is replaced whole, so no file of an earlier
 // build stays behind. Throws Error naming the folder or file at fault; on failure `out_dir`
@@ -38,7 +44,8 @@ struct SceneFolderSummary {
 // finds the DEM and the masks again.
 SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& exports, const std::string& scene_text,
                                       const std::filesystem::path& out_dir, const SceneFolderObserver& observer = {},
-                                      const std::filesystem::path& scene_base_dir = {});
+                                      const std::filesystem::path& scene_base_dir = {},
+                                      const StagedWriter& also_write = {});
 
 // The scene file of a folder written by write_scene_folder (DIR/scene.toml), its relative paths
 // resolved against the folder DIR/scene_base.txt names (the scene file's own folder at build

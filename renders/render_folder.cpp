@@ -5,12 +5,13 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "exporters/folder_state.h"
 #include "exporters/image_io.h"
 #include "exporters/scene_folder.h"
 #include "renders/external/blender_render.h"
-#include "renders/trace/embree_reference.h"
-#include "renders/ldi/ldi_scene.h"
 #include "renders/external/povray_render.h"
+#include "renders/ldi/ldi_scene.h"
+#include "renders/trace/embree_reference.h"
 
 namespace wangscape {
 
@@ -18,7 +19,7 @@ namespace {
 
 FolderRenderResult render_embree(const std::filesystem::path& dir, const FolderRenderRequest& request) {
   const SceneConfig config = load_scene_folder_config(dir);
-  const Scene scene = make_scene(config);
+  const Scene scene = make_folder_scene(dir, config);
   ReferenceOptions options;
   options.width = request.width;
   options.height = request.height;

@@ -58,8 +58,22 @@ std::vector<Mesh> make_models(const ModelsConfig& config) {
 // Camera-aware export is on by default for a field over the whole ground (no [tiles] area).
 bool camera_aware(const SceneConfig& config) { return config.camera_aware.enabled.value_or(!config.tiles.area); }
 
+// The Poisson fill of the field's tile set (its cost told first: it can take a minute).
+void fill_field_tiles(SceneField& field, const SceneConfig& config, const TileSet& set, const PoissonFillOptions& fill,
+                      const StageObserver& stage) {
+  const auto fill_cost = estimate_poisson_fill(set, fill);
+  say(stage, "filling tile set " + config.tiles.set + " with " + std::to_string(config.tiles.points_per_tile) +
+                 " points per tile (" + std::to_string(std::llround(fill_cost.points)) + " points, about " +
+                 std::to_string(std::llround(std::ceil(fill_cost.seconds))) + " s)");
+  try {
+    field.filled = fill_poisson_tiles(set, fill);
+  } catch (const Error& e) {
+    throw config.error_at("tiles.points_per_tile", e.what());
+  }
+}
+
 std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGround& ground, std::size_t model_count,
-                                       const StageObserver& stage) {
+                                       const StageObserver& stage, const FilledTileSet* prefilled) {
   auto field = std::make_shared<SceneField>();
   field->ground = ground;
   Extent area = ground.extent();
@@ -97,14 +111,10 @@ std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGro
   } catch (const Error& e) {
     throw config.error_at("tiles.set", e.what());
   }
-  const auto fill_cost = estimate_poisson_fill(set, fill);
-  say(stage, "filling tile set " + config.tiles.set + " with " + std::to_string(config.tiles.points_per_tile) +
-                 " points per tile (" + std::to_string(std::llround(fill_cost.points)) + " points, about " +
-                 std::to_string(std::llround(std::ceil(fill_cost.seconds))) + " s)");
-  try {
-    field->filled = fill_poisson_tiles(set, fill);
-  } catch (const Error& e) {
-    throw config.error_at("tiles.points_per_tile", e.what());
+  if (prefilled) {
+    field->filled = *prefilled;
+  } else {
+    fill_field_tiles(*field, config, set, fill, stage);
   }
   if (config.tiles.interior_variation)
     field->placement.world_attributes =
@@ -326,7 +336,7 @@ FieldReport SceneField::place(const InstanceSink& sink) const {
   return report;
 }
 
-Scene make_scene(const SceneConfig& config, const StageObserver& stage) {
+Scene make_scene(const SceneConfig& config, const StageObserver& stage, const ScenePrebuilt* prebuilt) {
   Scene scene;
   scene.name = config.name;
   say(stage, config.terrain.dem.empty() ? "making flat ground" : "loading terrain " + config.terrain.dem.string());
@@ -347,7 +357,7 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage) {
                  : "loading model " + config.models.mesh.string());
   scene.models = make_models(config.models);
 
-  const auto field = make_field(config, ground, scene.models.size(), stage);
+  const auto field = make_field(config, ground, scene.models.size(), stage, prebuilt ? &prebuilt->filled : nullptr);
   scene.field = field;
   scene.field_area = *field->placement.area;
   scene.camera = make_camera(config, ground, scene.field_area);
@@ -372,7 +382,9 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage) {
   scene.instances = [field, report](const InstanceSink& sink) { *report = field->place(sink); };
 
   const bool far_texture = field->view && config.camera_aware.far_texture;
-  if (config.ground || far_texture) {
+  if (prebuilt) {
+    scene.ground_texture = prebuilt->ground_texture;
+  } else if (config.ground || far_texture) {
     // The far field lives in the bake: camera-aware export bakes [ground]'s defaults without one.
     const GroundConfig ground_config = config.ground.value_or(GroundConfig{});
     SceneConfig with_ground = config;

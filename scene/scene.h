@@ -106,9 +106,18 @@ inline constexpr double kMaxFieldInstances = 50e6;
 // Stage messages while a scene is assembled (a program shows them, e.g. on a terminal).
 using StageObserver = std::function<void(const std::string& message)>;
 
+// What a scene folder's build already made (exporters/scene_folder.h keeps it in the folder), so
+// that a reader of the folder need not make it again: the filled tile set (the Poisson fill and
+// its relaxation) and the baked ground (the look, and the far field painted into it).
+struct ScenePrebuilt {
+  FilledTileSet filled;
+  std::shared_ptr<const GroundBake> ground_texture;  // null: the build baked no ground
+};
+
 // Assembles the Scene a scene file describes: ground and masks, terrain mesh, models, the
 // filled tile set, camera above the ground, sun. Places nothing: the stream does that when run.
-// Throws Error naming the file and the line of the key at fault.
-Scene make_scene(const SceneConfig& config, const StageObserver& stage = {});
+// With `prebuilt` (of this same config), the tile set and the ground bake are taken from it and
+// Scene::ground_look stays empty. Throws Error naming the file and the line of the key at fault.
+Scene make_scene(const SceneConfig& config, const StageObserver& stage = {}, const ScenePrebuilt* prebuilt = nullptr);
 
 }  // namespace wangscape

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "exporters/folder_state.h"
 #include "exporters/scene_folder.h"
 #include "generator/placement.h"
 #include "renders/ldi/ldi_scene.h"
@@ -214,10 +215,13 @@ std::shared_ptr<const ViewWorld> ViewWorld::load(const fs::path& dir, const Stag
     SceneConfig from_data = parse_scene_config(config.text, scene_file, data_root());
     if (files_resolve(from_data)) config = std::move(from_data);
   }
-  return std::make_shared<const ViewWorld>(make_scene(config, stage), pack_file, ldi_options(config).shading);
+  PlacedTiles placed;
+  Scene scene = make_folder_scene(dir, config, stage, &placed);
+  return std::make_shared<const ViewWorld>(std::move(scene), pack_file, ldi_options(config).shading, &placed);
 }
 
-ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettings& shading_settings)
+ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettings& shading_settings,
+                     const PlacedTiles* placed_tiles)
     : scene_(std::move(scene)),
       pack_(std::make_unique<LdiPack>(pack_path)),
       shading_(shading_settings),
@@ -232,21 +236,20 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
                     std::to_string(info.tile_size) + " m; the scene has " + std::to_string(field.filled.tiles.size()) +
                     " of " + std::to_string(tile_size_) + " m)");
 
-  // The tiles placement keeps: the tiling's cells over the area that received a flower.
+  // The tiles placement keeps: the tiling's cells over the area that received a flower, as the
+  // build found them (or by a placement pass of our own).
+  const PlacedTiles placed = placed_tiles ? *placed_tiles : place_tiles(field);
   const TileRange range = tile_range(*field.placement.area, tile_size_);
+  if (placed.i0 != range.i0 || placed.j0 != range.j0 || placed.width != std::max(0, range.width()) ||
+      placed.height != std::max(0, range.height()))
+    throw Error(pack_path.parent_path() / kFolderStateFile, "", "its tile grid is not the scene's field");
   grid_i0_ = range.i0;
   grid_j0_ = range.j0;
-  grid_width_ = std::max(0, range.width());
-  grid_height_ = std::max(0, range.height());
+  grid_width_ = placed.width;
+  grid_height_ = placed.height;
   grid_.assign(std::size_t(grid_width_) * std::size_t(grid_height_), -1);
   std::vector<std::uint8_t> kept(grid_.size(), 0);
-  field.place([&](const InstanceBatch& batch) {
-    for (std::size_t k = 0; k < batch.size(); ++k) {
-      const std::int64_t i = std::int64_t(std::floor(double(batch.x[k]) / tile_size_)) - grid_i0_;
-      const std::int64_t j = std::int64_t(std::floor(double(batch.y[k]) / tile_size_)) - grid_j0_;
-      if (i >= 0 && j >= 0 && i < grid_width_ && j < grid_height_) kept[std::size_t(j * grid_width_ + i)] = 1;
-    }
-  });
+  for (const std::uint32_t cell : placed.cells) kept[cell] = 1;
   const RowTiles rows(field.filled.set, range, field.placement);
   std::vector<std::uint16_t> row(static_cast<std::size_t>(grid_width_));
   for (int r = 0; r < grid_height_; ++r) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "exporters/folder_state.h"
 #include "generator/image.h"
 #include "renders/ldi/ldi_pack.h"
 #include "renders/trace/ground_colors.h"
@@ -29,8 +30,10 @@ class ViewWorld {
   // DIR/tiles.ldi. Throws Error naming the file
   // at fault: a missing folder, scene or pack, a corrupt pack, a pack of another tile set.
   static std::shared_ptr<const ViewWorld> load(const std::filesystem::path& dir, const StageObserver& stage = {});
-  // The same from a Scene already made and a pack file (tests).
-  ViewWorld(Scene scene, const std::filesystem::path& pack_path, const ShadingSettings& shading = {});
+  // The same from a Scene already made and a pack file (tests), with the field's placed tiles
+  // as its folder keeps them (exporters/folder_state.h) or, without them, found by a placement pass.
+  ViewWorld(Scene scene, const std::filesystem::path& pack_path, const ShadingSettings& shading = {},
+            const PlacedTiles* placed = nullptr);
 
   struct Tiles {                          // structure of arrays, one entry per placed tile, rows south to north
     std::vector<double> x0, y0;           // the tile's south-west corner, meters
