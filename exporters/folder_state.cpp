@@ -160,8 +160,8 @@ FolderState read_folder_state(const fs::path& dir, const std::string& scene_text
   if (placed.width < 0 || placed.height < 0) r.fail("a tile grid of negative size");
   const auto count = r.get<std::uint64_t>("the placed tiles' count");
   const std::uint64_t cells = std::uint64_t(placed.width) * std::uint64_t(placed.height);
-  if (count > cells || count > r.left() / sizeof(std::uint32_t))
-    r.fail(std::to_string(count) + " placed tiles in a grid of " + std::to_string(cells) + " cells");
+  if (count > cells) r.fail(std::to_string(count) + " placed tiles in a grid of " + std::to_string(cells) + " cells");
+  if (count > r.left() / sizeof(std::uint32_t)) r.fail("truncated: the placed tiles go past the end");
   placed.cells.resize(count);
   std::memcpy(placed.cells.data(), r.take(count * sizeof(std::uint32_t), "the placed tiles"),
               count * sizeof(std::uint32_t));

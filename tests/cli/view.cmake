@@ -80,3 +80,23 @@ view_sh_test(compare "^ok"
   "rm -f \"$1.diff.png\" && \"$0\" --quiet view \"$1\" --size 320x240 --compare --json --spp 4 --diff \"$1.diff.png\" | \"$2\" \"$3\" 18.5 0.6 0.03 && test -s \"$1.diff.png\""
   "${CMAKE_CURRENT_LIST_DIR}/view_compare_check.py")
 view_test(diff_needs_compare ${cli_expect} 1 "--diff: needs --compare" "${WANGSCAPE_BIN}" view "${view_folder}" --diff "${view_dir}/d.png" --out "${view_dir}/x.png")
+
+# A folder from an older build (no scene.cache) and one whose scene.toml was edited after the
+# build are refused with what to do, not re-derived.
+view_test(older_folder ${cli_expect} 1 "old/scene\\.cache: missing: the folder was written by an older wangscape. build the folder again"
+  sh -c "rm -rf \"$1\" && cp -r \"$2\" \"$1\" && rm \"$1/scene.cache\" && \"$0\" view \"$1\" --out \"$1/x.png\" || test ! -e \"$1/x.png\" && exit 1"
+  "${WANGSCAPE_BIN}" "${view_dir}/old" "${view_folder}")
+view_test(edited_scene ${cli_expect} 1 "edited/scene\\.toml: was changed after the build. build the folder again"
+  sh -c "rm -rf \"$1\" && cp -r \"$2\" \"$1\" && echo '# edited' >> \"$1/scene.toml\" && \"$0\" view \"$1\" --out \"$1/x.png\""
+  "${WANGSCAPE_BIN}" "${view_dir}/edited" "${view_folder}")
+view_test(truncated_cache ${cli_expect} 1 "cut/scene\\.cache:byte [0-9]+: truncated"
+  sh -c "rm -rf \"$1\" && cp -r \"$2\" \"$1\" && head -c 60 \"$2/scene.cache\" > \"$1/scene.cache\" && \"$0\" view \"$1\" --out \"$1/x.png\""
+  "${WANGSCAPE_BIN}" "${view_dir}/cut" "${view_folder}")
+
+# A build killed while it samples its LDI pack leaves the folder as the previous build made it.
+tiny_scene("${view_dir}/kill.toml" EXPORTS "povray = true\nldi = true\n[ldi]\nlevels = 3\ndirections = 4\nsky_rays = 8")
+foreach(signal KILL TERM)
+  add_test(NAME cli_view_build_killed_in_ldi_stage_${signal}
+    COMMAND sh "${CMAKE_CURRENT_LIST_DIR}/kill_during_ldi.sh" "${WANGSCAPE_BIN}" "${view_dir}/kill.toml" ${signal})
+  set_tests_properties(cli_view_build_killed_in_ldi_stage_${signal} PROPERTIES LABELS "cli;view" TIMEOUT 300)
+endforeach()
