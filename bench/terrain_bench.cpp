@@ -66,7 +66,7 @@ void BM_HeightLookup(benchmark::State& state) {
 BENCHMARK(BM_HeightLookup);
 
 // Scatter over a window of the terrain, z from the DEM, below a 1500 m threshold when
-// state.range(0) is 1 (the tile table and the point compare of seed 003).
+// state.range(0) is 1 (the tile table and the point compare of Shade 2002).
 void BM_ScatterWithHeight(benchmark::State& state) {
   const Terrain& terrain = helens();
   const FilledTileSet& filled = sunflower_tiles();

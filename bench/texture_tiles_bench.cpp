@@ -1,5 +1,5 @@
 // Texture tiles: seconds to build the 8- and 18-tile sets of 256 x 256 pixels with the default
-// sample search (seed 000: about 3 s and 15 s at 2 GHz; the goal here: < 1 s and < 3 s), and the
+// sample search (Cohen 2003: about 3 s and 15 s at 2 GHz; the goal here: < 1 s and < 3 s), and the
 // 64 corner-marked tiles from two exemplars. Noise tiles: samples per second of the O(1)
 // evaluator over an unbounded hashed tiling, what renderers call per sample.
 #include <benchmark/benchmark.h>

@@ -1,4 +1,4 @@
-// Tiles per second for 10,000 x 10,000-tile tilings (seed 003 made tilings "ten thousand tiles
+// Tiles per second for 10,000 x 10,000-tile tilings (Shade 2002 made tilings "ten thousand tiles
 // on a side"). Streamed row by row, so memory stays O(row): the sink only folds each row into a
 // checksum so the work cannot be optimised away.
 #include <benchmark/benchmark.h>

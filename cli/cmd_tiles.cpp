@@ -15,18 +15,23 @@ static CLI::App* add_tiles(CLI::App& app, const char* name, const char* help, st
   sub->add_option("--set", job->set, "Built-in tile set or tile-set JSON")->capture_default_str();
   sub->add_option("--out", job->out, "Folder for the tile PNGs and JSON")->required();
   const auto preview = [job](const std::vector<std::string>& v) { job->preview_size = v[0], job->preview = v[1]; };
-  sub->add_option_function<std::vector<std::string>>("--preview", preview, "WxH FILE: a preview tiling")->expected(2);
+  sub->add_option_function<std::vector<std::string>>("--preview", preview,
+                                                     "Also write a WxH-pixel image FILE of the tiles laid in a tiling")
+      ->type_size(2)  // one value of two words: the help shows "WxH FILE", not "TEXT x 2"
+      ->expected(1)
+      ->type_name("WxH FILE");
   sub->callback([job] { fmt::print("{}\n", run_tiles_job(*job)); });
   return sub;
 }
 
 void register_tiles_commands(CLI::App& app, const GlobalOptions&) {
   auto noise = std::make_shared<NoiseTilesJob>();
-  auto* n = add_tiles(app, "noise", "Perlin-noise Wang tiles (seed 001)", noise);
+  auto* n = add_tiles(app, "noise", "Perlin-noise Wang tiles: noise that joins without seams across tile edges", noise);
   n->add_option("--lattice", noise->options.lattice, "Cells per tile side (power of two)")->capture_default_str();
   n->add_option("--octaves", noise->options.octaves, "Mip levels (0 = all)")->check(CLI::Range(0, 12));
   auto texture = std::make_shared<TextureTilesJob>();
-  auto* t = add_tiles(app, "texture", "Quilted texture Wang tiles (seed 000)", texture);
+  auto* t = add_tiles(app, "texture", "Texture Wang tiles quilted from an exemplar image, seamless across tile edges",
+                      texture);
   const auto slot = [texture](std::size_t k) {  // whatever order CLI11 runs the two options in
     return [texture, k](const std::string& file) {
       texture->exemplars.resize(std::max<std::size_t>(texture->exemplars.size(), k + 1)), texture->exemplars[k] = file;

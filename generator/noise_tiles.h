@@ -1,4 +1,4 @@
-// Perlin-noise Wang tiles (seed 001): tiles that hold only lattice gradients, so the noise is
+// Perlin-noise Wang tiles (Maung 2012): tiles that hold only lattice gradients, so the noise is
 // evaluated on the fly at any point of an unbounded tiling and no image is ever stored.
 //
 // A tile covers an n x n cell lattice ((n + 1)^2 gradients, n a power of two). The gradients on
@@ -6,10 +6,10 @@
 // color and the colors of its two end corners, a corner's gradient by its corner color (one
 // shared gradient for every corner when the set has no corner colors). Perlin noise on a lattice
 // line depends only on the gradients on that line, so two tiles that agree on an edge key agree
-// in value and in gradient all along that edge: seamless by construction (seed 001 section III).
-// Corner-colored sets are seed 001's "corner tiling method": n^2 edge keys from n corner colors.
+// in value and in gradient all along that edge: seamless by construction (Maung 2012, section III).
+// Corner-colored sets are Maung 2012's "corner tiling method": n^2 edge keys from n corner colors.
 //
-// Turbulence (seed 001 section V): each octave has its own gradients, stored as mip levels;
+// Turbulence (Maung 2012, section V): each octave has its own gradients, stored as mip levels;
 // level l has lattice >> l cells per tile side, down to 4 x 4 (128 cells: 6 levels). Octave k
 // (k = 0 coarsest, amplitude 2^-k) reads level levels - 1 - k.
 //
@@ -78,7 +78,7 @@ class NoiseTileSet {
   // Sum over octaves k = 0..levels-1 of 2^-k * octave(log2_frequency + k), normalised by
   // sum 2^-k; |octave| when `absolute` (turbulence). octave(t), t = log2 of the frequency over
   // the coarsest level's, reads level levels-1-t, interpolated linearly in t between the two
-  // levels around it (seed 001 section VI); octaves above the finest level fade out over one
+  // levels around it (Maung 2012, section VI); octaves above the finest level fade out over one
   // octave, t < 0 is clamped to 0. With log2_frequency = 0 this is plain fbm / turbulence.
   float fractal(std::uint32_t tile, float u, float v, bool absolute, float log2_frequency = 0) const;
 
@@ -167,7 +167,7 @@ class TiledNoise {
     const Location at = locate(x, y);
     return tiles_.fractal(at.tile, at.u, at.v, true, log2_frequency);
   }
-  // Seed 001 section X: stripes bent by the difference of two turbulence layers read from
+  // Maung 2012, section X: stripes bent by the difference of two turbulence layers read from
   // different tiles of the tiling (offset by whole tiles).
   float marble(double x, double y, const MarbleParams& p = {}) const {
     const double offset = kLayerOffsetTiles * tile_size_;
@@ -175,7 +175,7 @@ class TiledNoise {
     const double phase = p.stripes * (x + y) / tile_size_ + p.distortion * t;
     return static_cast<float>(0.5 + 0.5 * std::sin(2 * std::numbers::pi * phase));
   }
-  // Seed 001 section XI: three layers; rings bent by the coarsest octave, a middle octave for
+  // Maung 2012, section XI: three layers; rings bent by the coarsest octave, a middle octave for
   // color variation, the finest for a sanded grain.
   float wood(double x, double y, const WoodParams& p = {}) const {
     const Location at = locate(x, y);

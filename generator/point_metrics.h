@@ -1,4 +1,4 @@
-// Quality figures of a 2-D point set (seed 000 section 3.3; the issue-3 goals): minimum and
+// Quality figures of a 2-D point set (Cohen 2003, section 3.3; the issue-3 goals): minimum and
 // nearest-neighbour distances over the hexagonal spacing, pairs closer than the packing
 // diameter, density near tile edges and corners relative to tile interiors, and the radially
 // averaged power spectrum with its anisotropy. Measured over whole tilings, across tile borders.
@@ -39,7 +39,7 @@ struct RadialSpectrum {
   double noise_floor_db = 0;      // anisotropy of averaged white-noise periodograms: -10 log10(windows)
   double mean_anisotropy_db = 0;  // mean over annuli between 0.5 and 3 peak frequencies
   // The same without the frequencies of the tile grid (multiples of 1 / grid_period in both
-  // axes), where tilings of a few tiles have spikes (seed 000 Fig. 10b): the anisotropy of
+  // axes), where tilings of a few tiles have spikes (Cohen 2003, Fig. 10b): the anisotropy of
   // the point process itself.
   double mean_anisotropy_off_grid_db = 0;
   // The averaged periodogram over the full frequency plane, image_size x image_size, row 0 =

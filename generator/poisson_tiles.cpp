@@ -374,7 +374,7 @@ std::vector<Pair> meeting_pairs(const ContentModel& model, const Content& conten
   return pairs;
 }
 
-// ---- dart throwing (seed 003) ----
+// ---- dart throwing (Shade 2002) ----
 
 // Per class, the most points the capped dart passes may put in it: no cap for interiors; for
 // shared classes their area's share of the target count, rounded at random. Every holder's darts
@@ -402,12 +402,12 @@ struct DartPass {
   bool capped = true;
 };
 
-// Round-robin dart throwing (seed 003): tiles are visited in turn, each visit throws up to
+// Round-robin dart throwing (Shade 2002): tiles are visited in turn, each visit throws up to
 // darts_per_visit darts until one lands (keeps distance d in every configuration); a tile is
 // done with a pass when it holds its share of the target count in the pass's regions (by area)
 // or a visit lands nothing. The passes go from the most shared regions to everywhere: shared
 // points must avoid the interiors of every tile that holds them, so thrown together with the
-// interiors they would starve (seed 000 Fig. 9); thrown first, they do not.
+// interiors they would starve (Cohen 2003, Fig. 9); thrown first, they do not.
 void throw_darts(const ContentModel& model, const PoissonFillOptions& options, double d,
                  std::span<const DartPass> passes, std::span<const double> quota, PointSet& points, Content& content) {
   Rng rng{hash_combine(options.seed, 0xda27)};
@@ -453,7 +453,7 @@ void throw_darts(const ContentModel& model, const PoissonFillOptions& options, d
   }
 }
 
-// ---- relaxation in context (seed 000 section 3.3) ----
+// ---- relaxation in context (Cohen 2003, section 3.3) ----
 
 // A random valid 3 x 3 neighbourhood around `center`: tiles by block_index, -1 where no tile fits.
 std::array<int, 9> random_context(const TileAdjacency& adjacency, std::size_t center, Rng& rng) {

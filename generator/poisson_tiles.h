@@ -1,4 +1,4 @@
-// Poisson-disk tile contents (seed 003 section 3, seed 000 sections 3.3-3.4): points in every
+// Poisson-disk tile contents (Shade 2002, section 3; Cohen 2003, sections 3.3-3.4): points in every
 // tile of a set such that, in EVERY valid tiling, the union of the tiles' points keeps one
 // minimum distance across every tile edge and corner.
 //
@@ -7,11 +7,11 @@
 //  - the strip of width w on each side of an edge belongs to the edge: its key is the edge
 //    color (plus the colors of the edge's two end corners in corner-coded sets), and every tile
 //    with that key on that side holds the same points there, the tile across holds the other half
-//    (seed 003's replication across same-colored edges, written as one two-sided strip);
+//    (Shade 2002's replication across same-colored edges, written as one two-sided strip);
 //  - the w x w corner squares: in sets with corner colors the square around a vertex belongs to
 //    the corner color and is shared by the four tiles that meet there (consistent by
 //    construction); in plain edge sets each corner square belongs to the pair of edge colors
-//    that meet at it, and the tight radius of a flower may never cross the tile corner (seed 003).
+//    that meet at it, and the tight radius of a flower may never cross the tile corner (Shade 2002).
 // Every candidate position is checked against every tile that can sit across each edge AND
 // across each corner in some valid tiling, so the distance bound holds in all of them.
 #pragma once
@@ -29,14 +29,14 @@ struct PoissonFillOptions {
   // Target number of points whose centre lies in each tile.
   int points_per_tile = 20;
   std::uint64_t seed = 1;
-  // Round-robin dart throwing (seed 003): up to this many darts per visit of a tile.
+  // Round-robin dart throwing (Shade 2002): up to this many darts per visit of a tile.
   int darts_per_visit = 10000;
   // Packing diameter of the dart phase as a fraction of the hexagonal spacing
   // sqrt(2 A / (sqrt(3) N)) for N = points_per_tile in A = 1 tile (the figure rho measures).
   double dart_rho = 0.75;
   // Tight radius (the flower's extent) as a fraction of the dart-phase packing radius.
   double tight_fraction = 0.8;
-  // Relaxation rounds in context (seed 000 section 3.3): Lloyd step, then the distance bound
+  // Relaxation rounds in context (Cohen 2003, section 3.3): Lloyd step, then the distance bound
   // enforced against every neighbour configuration, then a raised bound. 0 = darts only.
   int relax_rounds = 0;
   // Relaxation never raises the packing diameter beyond this rho (also sets the shared width).

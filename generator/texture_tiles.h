@@ -1,4 +1,4 @@
-// Quilted texture Wang tiles (seed 000 sections 3.2 and 3.5): every edge key owns one diamond
+// Quilted texture Wang tiles (Cohen 2003, sections 3.2 and 3.5): every edge key owns one diamond
 // sample of an exemplar image, and every tile is quilted from its four diamonds along its two
 // diagonals with minimum-error boundary cuts (dynamic programming, as in image quilting).
 //
@@ -12,7 +12,7 @@
 // edge's diamond. The corner pixel of a tile lies on two edges; it takes the N or S diamond, so
 // only the 2 x 2 pixels around a tiling vertex can differ across a vertical edge.
 //
-// Corner-colored sets (seed 000 sections 3.4-3.5): windows are keyed by (edge color, corner
+// Corner-colored sets (Cohen 2003, sections 3.4-3.5): windows are keyed by (edge color, corner
 // mark), and each half of an edge's diamond is read from the window of the mark at that end (a
 // horizontal edge's west half from its west corner's mark), the two halves joined by one more
 // cut across the edge, shared by both tiles. Mark m reads exemplar m mod exemplars.size(): with
@@ -38,7 +38,7 @@ namespace wangscape {
 struct TextureTileOptions {
   int tile_size = 128;  // pixels per tile side: even, >= 16, at most every exemplar's width and height
   int band = 0;         // cuts stay within this many pixels of the straight seam; 0 = tile_size / 16 (>= 2)
-  // The sample search (seed 000 section 3.2): `rounds` passes over all windows; each pass tries
+  // The sample search (Cohen 2003, section 3.2): `rounds` passes over all windows; each pass tries
   // `candidates` random positions per window and keeps the one that lowers the summed cut cost.
   int rounds = 3;
   int candidates = 24;

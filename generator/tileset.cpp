@@ -60,7 +60,7 @@ TileSet complete_corner_tileset(int k) {
   return make_tileset(name, std::move(tiles), name);
 }
 
-// The 12-tile set of seed 004, NESW digits exactly as printed there.
+// The 12-tile set of the Owen write-up, NESW digits exactly as printed there.
 TileSet owen12_tileset() {
   constexpr std::array<const char*, 12> kTable = {"0312", "1302", "0203", "1013", "0310", "1200",
                                                   "0012", "0002", "1003", "0213", "1210", "1300"};
@@ -70,7 +70,7 @@ TileSet owen12_tileset() {
   return make_tileset("owen12", std::move(tiles), "owen12");
 }
 
-// Seed 000 section 3.4: the cohen8 edge tiles with their corners coded marked (1) or
+// Cohen 2003, section 3.4: the cohen8 edge tiles with their corners coded marked (1) or
 // unmarked (0). The full set has all 16 codings per tile (128 tiles). Scanline tiling
 // from the north-west constrains only NW, NE and SW, so the reduced set keeps, for each
 // edge tile and each of the 8 (NE, SW, NW) codings, one SE mark; the two tiles sharing an

@@ -1,11 +1,11 @@
 // Wang tilings: windows of the plane covered with tiles of a TileSet so that every shared
 // edge (and corner, for corner-coded sets) matches. Coordinates: tile (i, j), i grows east,
 // j grows north. Three algorithms:
-//  - scanline (seed 000 steps 1-5): rows from north to south, each row west to east; every
+//  - scanline (Cohen 2003, steps 1-5): rows from north to south, each row west to east; every
 //    tile is drawn at random among those matching its northern and western neighbours;
-//  - bottom_left (seed 003): the same from the south-west corner, rows south to north, each
+//  - bottom_left (Shade 2002): the same from the south-west corner, rows south to north, each
 //    tile matching its southern and western neighbours;
-//  - hash (seed 002): edge (or corner) colors are hashed from their position, so any tile
+//  - hash (Wang tiles blog): edge (or corner) colors are hashed from their position, so any tile
 //    is known in O(1) without its neighbours; needs a complete set.
 #pragma once
 
@@ -29,7 +29,7 @@ TilingAlgorithm parse_tiling_algorithm(std::string_view text);
 struct TilingOptions {
   TilingAlgorithm algorithm = TilingAlgorithm::scanline;
   std::uint64_t seed = 1;
-  // Seed 004: no tile equals its western or northern (southern for bottom_left) neighbour.
+  // As in Owen: no tile equals its western or northern (southern for bottom_left) neighbour.
   // For hash tilings, no tile equals any of its four neighbours (re-hashing the colors).
   bool forbid_identical_neighbours = false;
   // Tile coordinates of the window's south-west tile. Only hash tilings depend on it (other
@@ -71,7 +71,7 @@ void stream_tiling(const TileSet& set, int width, int height, const TilingOption
 Tiling make_tiling(const TileSet& set, int width, int height, const TilingOptions& options,
                    const std::function<void(int rows_done)>& rows_done);
 
-// O(1) random access for complete edge sets (edge colors hashed on the doubled grid, seed 002:
+// O(1) random access for complete edge sets (edge colors hashed on the doubled grid, Wang tiles blog:
 // N of tile (i,j) at (2i+1, 2j+2), S at (2i+1, 2j), E at (2i+2, 2j+1), W at (2i, 2j+1)) and
 // complete corner sets (corner colors hashed on lattice vertices). Deterministic from seed, any int64 i, j.
 // A set is complete when it holds every combination of its alphabets (K^4 tiles, or

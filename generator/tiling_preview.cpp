@@ -42,7 +42,7 @@ Rgb8 from_hsv(double hue, double saturation, double value) {
   return {byte(r), byte(g), byte(b)};
 }
 
-// Edge and corner colors in the spirit of seed 000 Fig. 1: N/S edges red/green, E/W edges
+// Edge and corner colors in the spirit of Cohen 2003, Fig. 1: N/S edges red/green, E/W edges
 // blue/yellow, corners white (unmarked) / black (marked); further colors from a hue wheel.
 Rgb8 horizontal_edge_color(int c) {
   static constexpr Rgb8 kFirst[] = {{220, 50, 47}, {80, 175, 60}, {240, 140, 30}};

@@ -1,4 +1,4 @@
-// Previews drawn into an ImageRgb8: a tiling as one pseudo-colored block per tile (seed 000
+// Previews drawn into an ImageRgb8: a tiling as one pseudo-colored block per tile (Cohen 2003,
 // Fig. 2), and a tile set as a sheet showing each tile's edge and corner colors.
 #pragma once
 

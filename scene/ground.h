@@ -49,7 +49,7 @@ class SceneGround {
   // Lays the filled tiles over the ground (placement.h) and streams the instances that pass
   // the masks: with fair edges, every tile that may pass is laid and each flower is kept only
   // if its own ground passes (the border follows the contour); without, only tiles whose whole
-  // ground passes (seed 003, a staircase along the contour). Thread-safe.
+  // ground passes (Shade 2002, a staircase along the contour). Thread-safe.
   // `also` (optional) is asked first about every tile: a tile it refuses is never laid.
   PlacementStats place(const FilledTileSet& filled, const PlacementOptions& options,
                        const std::function<void(const InstanceBatch&)>& sink,

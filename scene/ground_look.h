@@ -10,7 +10,7 @@
 // the materials ("texture") or adds its detail over them ("both"). With exemplar2_above, the
 // tiles are corner-4 and each vertex's color is 2 * (a hashed bit) + (its mark: 1 where the
 // terrain at the vertex is above that height): the texture changes from one exemplar to the
-// other along the contour (seed 000 section 3.5) and stays stochastic on either side.
+// other along the contour (Cohen 2003, section 3.5) and stays stochastic on either side.
 #pragma once
 
 #include <filesystem>

@@ -1,5 +1,5 @@
-// Procedural sunflowers: the eleven model variants the field is planted with (seed 000 section 4,
-// seed 003 section 6). Each is a Mesh in model space (meters, z up, stem base at the origin, head
+// Procedural sunflowers: the eleven model variants the field is planted with (Cohen 2003, section 4;
+// Shade 2002, section 6). Each is a Mesh in model space (meters, z up, stem base at the origin, head
 // facing roughly +x before yaw) with four materials: petal, disk, stem, leaf.
 #pragma once
 

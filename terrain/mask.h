@@ -1,4 +1,4 @@
-// Where flowers may grow on a terrain (seed 003, section 5.1): tiles are instantiated only
+// Where flowers may grow on a terrain (Shade 2002, section 5.1): tiles are instantiated only
 // where the ground is low enough, and optionally not too steep and painted white in a
 // mask image stretched over the terrain. The predicates here are what placement calls
 // per tile and per point.
@@ -72,7 +72,7 @@ class TerrainFilter {
   TerrainFilter(const Terrain& terrain, TerrainFilterOptions options);
 
   // All of the tile's ground passes: every DEM cell the rectangle touches passes, and
-  // every mask pixel it touches allows flowers. (Seed 003: instantiate only these tiles.)
+  // every mask pixel it touches allows flowers. (Shade 2002: instantiate only these tiles.)
   bool tile_passes(const Extent& tile) const;
   // Some of the tile's ground may pass (a cheap superset, for fair edges, where each
   // point is then tested with point_passes).

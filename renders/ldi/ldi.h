@@ -1,4 +1,4 @@
-// One orthographic Layered Depth Image of a tile (seed 003 section 4): a grid of pixels, each with
+// One orthographic Layered Depth Image of a tile (Shade 2002, section 4): a grid of pixels, each with
 // the pre-shaded depth pixels its ray met inside the tile's prism, front to back. Stored in
 // compressed-row form: per row, spans of pixels (runs of non-empty pixels, short empty gaps
 // included); per pixel of a span its layer count; the depth pixels of a pixel contiguous. These structs are also the

@@ -1,4 +1,4 @@
-// The LDI build (seed 003 section 4, seed 000 section 4.1): every tile of a filled tile set, with
+// The LDI build (Shade 2002, section 4; Cohen 2003, section 4.1): every tile of a filled tile set, with
 // its models, sampled by Embree into multiresolution, view-dependent, pre-shaded Layered Depth
 // Images. Per tile, level (1..L tiles from the viewer) and direction (8 compass azimuths), one
 // orthographic LDI of the tile's prism, sampled in a 3 x 3 context of matching neighbours:
@@ -31,10 +31,10 @@ struct LdiViewSettings {
   int levels = 7;            // level k (1-based) = the tile whose near edge is k tiles from the viewer
   int directions = 8;        // azimuths 0, 360/D, ... (compass degrees the rays travel towards)
   double head_height = 1.7;  // meters: the viewer's eye above the ground
-  // The view the resolutions are derived for (seed 003: "a splat of one pixel"). With 512 pixels
+  // The view the resolutions are derived for (Shade 2002: "a splat of one pixel"). With 512 pixels
   // and 60 degrees, the default scene's set (4 m tiles, prism top 2.92 m) gets 427, 220, 148, 111,
-  // 89, 74, 64 against seed 003's 468, 232, 151, 111, 88, 73, 62 (its view size is not given):
-  // levels 3-7 within 3 %, level 1 9 % lower (seed 003's flowers and box height are not given;
+  // 89, 74, 64 against Shade 2002's 468, 232, 151, 111, 88, 73, 62 (its view size is not given):
+  // levels 3-7 within 3 %, level 1 9 % lower (Shade 2002's flowers and box height are not given;
   // here the box top is 1.2 m above the eye and the near edge 4 m away).
   int image_width = 512;    // pixels
   double fov_degrees = 60;  // horizontal
@@ -91,7 +91,7 @@ struct LdiLevels {
   std::vector<double> distances;           // meters from the viewer to the tile's near edge
   std::vector<double> elevations;          // degrees below the horizon, per level
 };
-// Seed 003's derivation: the tile's bounding box (side tile_size, height prism_top) is put with its
+// Shade 2002's derivation: the tile's bounding box (side tile_size, height prism_top) is put with its
 // near edge level x tile_size ahead of a viewer at head height, the camera turned to look at the
 // centre of the box's top, and the box top projected; its larger screen dimension (pixels of a
 // image_width-wide view with a fov_degrees horizontal field of view) is the resolution. The

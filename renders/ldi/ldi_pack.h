@@ -32,7 +32,7 @@ struct LdiPackInfo {
   float prism_top = 0;                     // meters, the top of every tile's prism (the bottom is the ground)
   std::uint32_t image_width = 0;           // pixels, of the view the resolutions were derived for
   float fov_degrees = 0;                   // horizontal, of that view
-  std::vector<std::uint32_t> resolutions;  // per level: pixels across a tile side (seed 003's figure)
+  std::vector<std::uint32_t> resolutions;  // per level: pixels across a tile side (Shade 2002's figure)
   std::vector<float> level_distances;      // per level: meters from the viewer to the tile's near edge
   std::vector<float> elevations;           // per level: degrees below the horizon the rays point
   std::vector<float> azimuths;             // per direction: compass degrees the rays travel towards

@@ -25,7 +25,7 @@ struct Case {
   TilingAlgorithm algorithm;
 };
 // Shared corner gradient (cohen8), corner-coded edges (cohen8-corners), complete sets under
-// scanline and hash, corner colors (corner-2: seed 001's corner method).
+// scanline and hash, corner colors (corner-2: Maung 2012's corner method).
 constexpr Case kCases[] = {{"cohen8", TilingAlgorithm::scanline},
                            {"cohen18", TilingAlgorithm::bottom_left},
                            {"cohen8-corners", TilingAlgorithm::scanline},

@@ -107,7 +107,7 @@ TEST(PoissonTiles, ReplicatedPointsAreIdenticalEverywhere) {
 
 TEST(PoissonTiles, TilesSharingAnEdgeColorShareTheEdgeStrip) {
   // Points within half the shared width of the south edge (away from the corners) are strip
-  // points: every tile with the same south color holds the same ones (seed 003's replication).
+  // points: every tile with the same south color holds the same ones (Shade 2002's replication).
   std::size_t compared = 0;
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
     PoissonFillOptions options;

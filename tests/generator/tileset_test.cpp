@@ -47,7 +47,7 @@ TEST(TileSet, Cohen8IsTheEvenParitySetWithTwoTilesPerNorthWestAndSouthEastPair) 
   for (const auto& [pair, count] : south_east) EXPECT_EQ(count, 2);
 }
 
-TEST(TileSet, Owen12IsTheTableOfSeed004) {
+TEST(TileSet, Owen12IsTheTableOfTheOwenWriteUp) {
   const TileSet set = builtin_tileset("owen12");
   const char* table[] = {"0312", "1302", "0203", "1013", "0310", "1200",
                          "0012", "0002", "1003", "0213", "1210", "1300"};
