@@ -234,11 +234,59 @@ Json camera_node(const Camera& camera, const RenderSettings& render, Json& camer
   return Json{{"name", "camera"}, {"camera", cameras.size() - 1}, {"translation", position}, {"rotation", q}};
 }
 
+// The materials: model materials are thin (petals, leaves), so double-sided.
+Json material_list(const MaterialTable& table) {
+  std::vector<bool> double_sided(table.materials.size(), false);
+  for (const auto& slots : table.model_slots) {
+    for (const auto slot : slots) double_sided[slot] = true;
+  }
+  Json materials = Json::array();
+  for (std::size_t i = 0; i < table.materials.size(); ++i) {
+    const Material& m = table.materials[i];
+    materials.push_back(Json{{"name", m.name},
+                             {"pbrMetallicRoughness",
+                              {{"baseColorFactor", {m.base_color[0], m.base_color[1], m.base_color[2], 1.0f}},
+                               {"metallicFactor", 0.0},
+                               {"roughnessFactor", m.roughness}}},
+                             {"doubleSided", bool(double_sided[i])},
+                             {"extras", {{"translucency", m.translucency}}}});
+  }
+  return materials;
+}
+
+// The baked ground as the glTF image, sampler and texture of the terrain's materials (all null
+// without a baked ground).
+struct GroundImage {
+  Json images, textures, samplers;
+};
+
+GroundImage ground_image(int image_view, const MaterialTable& table, Json& materials) {
+  GroundImage ground;
+  if (image_view < 0) return ground;
+  ground.images = Json::array({Json{{"name", "ground"}, {"bufferView", image_view}, {"mimeType", "image/png"}}});
+  // Linear magnification, trilinear minification, clamped: the image covers the terrain once.
+  ground.samplers = Json::array({Json{{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 33071}, {"wrapT", 33071}}});
+  ground.textures = Json::array({Json{{"sampler", 0}, {"source", 0}}});
+  for (const auto slot : table.terrain_slots) {
+    auto& pbr = materials[slot]["pbrMetallicRoughness"];
+    pbr["baseColorTexture"] = Json{{"index", 0}};
+    pbr["baseColorFactor"] = {1.0, 1.0, 1.0, 1.0};
+  }
+  return ground;
+}
+
 }  // namespace
 
 struct GltfWriter::Impl {
   Impl(const Scene& s, const std::filesystem::path& p, const GltfOptions& o)
       : scene(s), path(p), options(o), table(build_material_table(s)) {}
+
+  // finish(), step by step: the instanced nodes, the camera, the JSON document, the .glb file.
+  void add_instanced_nodes();
+  void add_camera(Json& cameras);
+  Json document(std::uint64_t count, Json cameras, Json materials, GroundImage ground, std::uint64_t bin_size) const;
+  std::uint64_t write_glb(std::string json, std::uint64_t bin_size) const;
+
   const Scene& scene;
   std::filesystem::path path;
   GltfOptions options;
@@ -302,81 +350,44 @@ void GltfWriter::append(const InstanceBatch& batch) {
   }
 }
 
-void GltfWriter::finish(const StreamTotals& totals) {
-  Impl& impl = *impl_;
-  const Scene& scene = impl.scene;
-  const auto& path = impl.path;
-  const auto& options = impl.options;
-  const MaterialTable& table = impl.table;
-  GltfBuilder& builder = impl.builder;
-  Json& meshes = impl.meshes;
-  Json& nodes = impl.nodes;
-  Json& root_children = impl.root_children;
-  auto& spill = impl.spill;
-  auto& per_variant = impl.per_variant;
-  const std::size_t first_model_mesh = impl.first_model_mesh;
-  const std::uint64_t count = totals.instances;
-  if (spill) {
-    spill->close(path);
-    std::uint64_t offset = builder.bin.size();
-    for (std::size_t v = 0; v < scene.models.size(); ++v) {
-      const auto& variant = spill->variants_[v];
-      per_variant[v] = variant.count;
-      if (variant.count == 0) continue;  // accessors cannot be empty
-      const std::uint64_t n = variant.count;
-      const int translation = builder.add_accessor(builder.add_view_at(offset, n * 12, 0), kFloat, n, "VEC3",
-                                                   variant.bounds.min, variant.bounds.max);
-      const int rotation = builder.add_accessor(builder.add_view_at(offset + n * 12, n * 16, 0), kFloat, n, "VEC4");
-      const int scale = builder.add_accessor(builder.add_view_at(offset + n * 28, n * 12, 0), kFloat, n, "VEC3");
-      offset += n * 40;
-      nodes.push_back(
-          Json{{"name", scene.models[v].name + " instances"},
-               {"mesh", first_model_mesh + v},
-               {"extensions",
-                {{"EXT_mesh_gpu_instancing",
-                  {{"attributes", {{"TRANSLATION", translation}, {"ROTATION", rotation}, {"SCALE", scale}}}}}}}});
-      root_children.push_back(nodes.size() - 1);
-    }
+// With GPU instancing, one node per variant whose instances are the spilled attributes: the
+// accessors point into the binary chunk after the meshes, where write_glb() copies the files.
+void GltfWriter::Impl::add_instanced_nodes() {
+  spill->close(path);
+  std::uint64_t offset = builder.bin.size();
+  for (std::size_t v = 0; v < scene.models.size(); ++v) {
+    const auto& variant = spill->variants_[v];
+    per_variant[v] = variant.count;
+    if (variant.count == 0) continue;  // accessors cannot be empty
+    const std::uint64_t n = variant.count;
+    const int translation = builder.add_accessor(builder.add_view_at(offset, n * 12, 0), kFloat, n, "VEC3",
+                                                 variant.bounds.min, variant.bounds.max);
+    const int rotation = builder.add_accessor(builder.add_view_at(offset + n * 12, n * 16, 0), kFloat, n, "VEC4");
+    const int scale = builder.add_accessor(builder.add_view_at(offset + n * 28, n * 12, 0), kFloat, n, "VEC3");
+    offset += n * 40;
+    nodes.push_back(
+        Json{{"name", scene.models[v].name + " instances"},
+             {"mesh", first_model_mesh + v},
+             {"extensions",
+              {{"EXT_mesh_gpu_instancing",
+                {{"attributes", {{"TRANSLATION", translation}, {"ROTATION", rotation}, {"SCALE", scale}}}}}}}});
+    root_children.push_back(nodes.size() - 1);
   }
+}
 
-  Json cameras = Json::array();
+// The camera node, the last child of the root, which gets its children here.
+void GltfWriter::Impl::add_camera(Json& cameras) {
   nodes.push_back(camera_node(scene.camera, scene.render, cameras));
   root_children.push_back(nodes.size() - 1);
   nodes[0]["children"] = root_children;
+}
 
-  // Materials: model materials are thin (petals, leaves): double-sided.
-  std::vector<bool> double_sided(table.materials.size(), false);
-  for (const auto& slots : table.model_slots) {
-    for (const auto slot : slots) double_sided[slot] = true;
-  }
-  Json materials = Json::array();
-  for (std::size_t i = 0; i < table.materials.size(); ++i) {
-    const Material& m = table.materials[i];
-    materials.push_back(Json{{"name", m.name},
-                             {"pbrMetallicRoughness",
-                              {{"baseColorFactor", {m.base_color[0], m.base_color[1], m.base_color[2], 1.0f}},
-                               {"metallicFactor", 0.0},
-                               {"roughnessFactor", m.roughness}}},
-                             {"doubleSided", bool(double_sided[i])},
-                             {"extras", {{"translucency", m.translucency}}}});
-  }
-  Json images, textures, samplers;
-  if (impl.ground_image_view >= 0) {
-    images = Json::array({Json{{"name", "ground"}, {"bufferView", impl.ground_image_view}, {"mimeType", "image/png"}}});
-    // Linear magnification, trilinear minification, clamped: the image covers the terrain once.
-    samplers = Json::array({Json{{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 33071}, {"wrapT", 33071}}});
-    textures = Json::array({Json{{"sampler", 0}, {"source", 0}}});
-    for (const auto slot : table.terrain_slots) {
-      auto& pbr = materials[slot]["pbrMetallicRoughness"];
-      pbr["baseColorTexture"] = Json{{"index", 0}};
-      pbr["baseColorFactor"] = {1.0, 1.0, 1.0, 1.0};
-    }
-  }
-
+// The glTF JSON: asset, the scene with its extras (georeference, counts, sun), nodes, cameras,
+// meshes, materials, the ground image, accessors, views and the one buffer.
+Json GltfWriter::Impl::document(std::uint64_t count, Json cameras, Json materials, GroundImage ground,
+                                std::uint64_t bin_size) const {
   Json georeference = Json::object();
   for (const auto& [key, value] : scene.georeference) georeference[key] = value;
-  const std::uint64_t instance_bytes = options.instancing == GltfInstancing::gpu_instancing ? count * 40 : 0;
-  const std::uint64_t bin_size = builder.bin.size() + instance_bytes;
 
   Json gltf;
   gltf["asset"] = Json{{"version", "2.0"}, {"generator", "wangscape"}};
@@ -398,16 +409,20 @@ void GltfWriter::finish(const StreamTotals& totals) {
   gltf["cameras"] = cameras;
   if (!meshes.empty()) gltf["meshes"] = meshes;
   if (!materials.empty()) gltf["materials"] = materials;
-  if (!images.is_null()) {
-    gltf["images"] = images;
-    gltf["samplers"] = samplers;
-    gltf["textures"] = textures;
+  if (!ground.images.is_null()) {
+    gltf["images"] = ground.images;
+    gltf["samplers"] = ground.samplers;
+    gltf["textures"] = ground.textures;
   }
   if (!builder.accessors.empty()) gltf["accessors"] = builder.accessors;
   if (!builder.buffer_views.empty()) gltf["bufferViews"] = builder.buffer_views;
   if (bin_size > 0) gltf["buffers"] = Json::array({Json{{"byteLength", bin_size}}});
+  return gltf;
+}
 
-  std::string json = gltf.dump();
+// The .glb: header, the JSON chunk padded with spaces, the binary chunk (meshes, the ground PNG,
+// then the spilled instance files). Returns the file's size; refuses files over glTF's 4 GiB.
+std::uint64_t GltfWriter::Impl::write_glb(std::string json, std::uint64_t bin_size) const {
   json.resize((json.size() + 3) & ~std::size_t(3), ' ');
   const std::uint64_t total = 12 + 8 + json.size() + (bin_size > 0 ? 8 + bin_size : 0);
   if (total > 0xffffffffull) {
@@ -434,8 +449,23 @@ void GltfWriter::finish(const StreamTotals& totals) {
     }
   }
   out.commit();
-  spill.reset();  // its temporary files go now, before the folder they are in is published
-  impl.summary = GltfSummary{path, count, total};
+  return total;
+}
+
+void GltfWriter::finish(const StreamTotals& totals) {
+  Impl& impl = *impl_;
+  const std::uint64_t count = totals.instances;
+  if (impl.spill) impl.add_instanced_nodes();
+  Json cameras = Json::array();
+  impl.add_camera(cameras);
+  Json materials = material_list(impl.table);
+  GroundImage ground = ground_image(impl.ground_image_view, impl.table, materials);
+  const std::uint64_t instance_bytes = impl.options.instancing == GltfInstancing::gpu_instancing ? count * 40 : 0;
+  const std::uint64_t bin_size = impl.builder.bin.size() + instance_bytes;
+  const Json gltf = impl.document(count, std::move(cameras), std::move(materials), std::move(ground), bin_size);
+  const std::uint64_t total = impl.write_glb(gltf.dump(), bin_size);
+  impl.spill.reset();  // its temporary files go now, before the folder they are in is published
+  impl.summary = GltfSummary{impl.path, count, total};
 }
 
 const GltfSummary& GltfWriter::summary() const { return impl_->summary; }

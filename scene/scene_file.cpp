@@ -203,6 +203,198 @@ void read_camera_point(Section& camera, const std::string& prefix, CameraPoint& 
   camera.read(height_key, point.height_above_ground);
 }
 
+// [terrain]: the DEM (or a flat plane), its geographic origin and crop.
+void read_terrain(Section s, SceneConfig& config) {
+  std::string dem;
+  if (s.read("dem", dem)) config.terrain.dem = resolve(config.base_dir, dem);
+  s.read("origin_latitude", config.terrain.origin_latitude);
+  s.read("origin_longitude", config.terrain.origin_longitude);
+  if (config.terrain.origin_latitude) s.check_range("origin_latitude", *config.terrain.origin_latitude, -90, 90);
+  if (config.terrain.origin_longitude) s.check_range("origin_longitude", *config.terrain.origin_longitude, -180, 360);
+  if (config.terrain.origin_latitude.has_value() != config.terrain.origin_longitude.has_value())
+    s.fail(*s.node(config.terrain.origin_latitude ? "origin_latitude" : "origin_longitude"),
+           config.terrain.origin_latitude ? "origin_latitude" : "origin_longitude",
+           "needs both origin_latitude and origin_longitude");
+  if (s.read("crop", config.terrain.crop)) {
+    const auto& c = *config.terrain.crop;
+    if (!(c[2] > c[0] && c[3] > c[1]))
+      s.fail(*s.node("crop"), "crop", "must be [min_east, min_north, max_east, max_north] with max > min");
+  }
+  if (s.read("flat_size", config.terrain.flat_size)) s.check_range("flat_size", config.terrain.flat_size, 1, 1e6);
+  s.reject_unknown();
+}
+
+// [tiles]: the tile set, its fill (points, relaxation, seed) and the tiling over the field area.
+void read_tiles(Section s, SceneConfig& config) {
+  std::string set;
+  if (s.read("set", set)) {
+    // A built-in name, or a JSON file relative to the scene file.
+    config.tiles.set =
+        set.find('/') != std::string::npos || set.ends_with(".json") ? resolve(config.base_dir, set).string() : set;
+  }
+  if (s.read("tile_size", config.tiles.tile_size)) s.check_range("tile_size", config.tiles.tile_size, 0.1, 10000);
+  s.read_int("points_per_tile", config.tiles.points_per_tile, 1, kMaxPointsPerTile);
+  s.read_int("relaxation_rounds", config.tiles.relaxation_rounds, 0, 1000);
+  s.read_int("seed", config.tiles.seed, 0, std::numeric_limits<std::int64_t>::max());
+  if (s.read("algorithm", config.tiles.algorithm)) {
+    const auto& a = config.tiles.algorithm;
+    if (a != "scanline" && a != "bottom-left" && a != "hash")
+      s.fail(*s.node("algorithm"), "algorithm", "must be \"scanline\", \"bottom-left\" or \"hash\"");
+  }
+  if (s.read("area", config.tiles.area)) {
+    const auto& c = *config.tiles.area;
+    if (!(c[2] > c[0] && c[3] > c[1]))
+      s.fail(*s.node("area"), "area", "must be [min_east, min_north, max_east, max_north] with max > min");
+  }
+  s.read("interior_variation", config.tiles.interior_variation);
+  s.reject_unknown();
+}
+
+// [masks]: where flowers may grow (heights, slope, a mask image, fair edges).
+void read_masks(Section s, SceneConfig& config) {
+  s.read("max_height", config.masks.max_height);
+  s.read("min_height", config.masks.min_height);
+  if (s.read("max_slope", config.masks.max_slope)) s.check_range("max_slope", *config.masks.max_slope, 0, 90);
+  if (config.masks.min_height && config.masks.max_height && *config.masks.min_height > *config.masks.max_height)
+    s.fail(*s.node("min_height"), "min_height", "must not be above max_height");
+  std::string mask;
+  if (s.read("mask", mask)) config.masks.mask = resolve(config.base_dir, mask);
+  s.read("fair_edges", config.masks.fair_edges);
+  s.reject_unknown();
+}
+
+// [models]: the sunflower variants or a user mesh, their size and facing.
+void read_models(Section s, SceneConfig& config) {
+  s.read_int("variants", config.models.variants, 1, 1000);
+  s.read_int("triangle_budget", config.models.triangle_budget, kSunflowerMinimumTriangleBudget,
+             kSunflowerMaximumTriangleBudget);
+  s.read_int("seed", config.models.seed, 0, std::numeric_limits<std::int64_t>::max());
+  std::string mesh;
+  if (s.read("mesh", mesh)) config.models.mesh = resolve(config.base_dir, mesh);
+  std::string up_axis;
+  if (s.read("up_axis", up_axis)) {
+    if (up_axis != "z" && up_axis != "y") s.fail(*s.node("up_axis"), "up_axis", "must be \"z\" or \"y\"");
+    if (config.models.mesh.empty()) s.fail(*s.node("up_axis"), "up_axis", "needs models.mesh");
+    config.models.mesh_y_up = up_axis == "y";
+  }
+  if (s.read("scale", config.models.scale)) s.check_range("scale", config.models.scale, 1e-6, 1e6);
+  if (s.read("scale_jitter", config.models.scale_jitter))
+    s.check_range("scale_jitter", config.models.scale_jitter, 0, 0.9);
+  if (s.read("facing", config.models.facing)) s.check_range("facing", *config.models.facing, -360, 360);
+  if (s.read("facing_jitter", config.models.facing_jitter))
+    s.check_range("facing_jitter", config.models.facing_jitter, 0, 180);
+  s.reject_unknown();
+}
+
+// [camera]: position and target (ENU or latitude/longitude), heading, pitch, field of view.
+void read_camera(Section s, SceneConfig& config) {
+  read_camera_point(s, "position", config.camera.position, s);
+  read_camera_point(s, "target", config.camera.target, s);
+  if (s.read("heading", config.camera.heading)) s.check_range("heading", *config.camera.heading, -360, 360);
+  if (s.read("pitch", config.camera.pitch)) s.check_range("pitch", config.camera.pitch, -89.9, 89.9);
+  const bool has_target = config.camera.target.enu || config.camera.target.enu_ground || config.camera.target.latitude;
+  if (config.camera.heading && has_target)
+    s.fail(*s.node("heading"), "heading", "cannot be given together with a target");
+  if (s.read("fov", config.camera.fov)) s.check_range("fov", config.camera.fov, 1, 179);
+  s.reject_unknown();
+}
+
+// [sun]: fixed angles or a time of day, and the strength.
+void read_sun(Section s, SceneConfig& config) {
+  const bool has_azimuth = s.read("azimuth", config.sun.azimuth);  // both read: each marks its key used
+  const bool has_angles = s.read("elevation", config.sun.elevation) || has_azimuth;
+  s.check_range("elevation", config.sun.elevation, -90, 90);
+  if (const auto* node = s.node("time")) {
+    const auto* when = node->as_date_time();
+    if (!when || !when->get().offset)
+      s.fail(*node, "time", "must be a TOML date-time with a UTC offset, e.g. 2024-07-15T18:30:00-07:00");
+    if (has_angles) s.fail(*node, "time", "cannot be given together with azimuth/elevation");
+    const auto& dt = when->get();
+    config.sun.time_unix = unix_seconds(dt);
+    std::ostringstream text;
+    text << dt;
+    config.sun.time_text = text.str();
+  }
+  if (s.read("strength", config.sun.strength)) s.check_range("strength", config.sun.strength, 0, 100);
+  s.reject_unknown();
+}
+
+// [image]: the render size, antialiasing, threads, radiosity.
+void read_image(Section s, SceneConfig& config) {
+  s.read_int("width", config.image.width, 1, 32768);
+  s.read_int("height", config.image.height, 1, 32768);
+  s.read_int("antialias", config.image.antialias, 1, 9);
+  s.read_int("threads", config.image.threads, 0, 1024);
+  s.read("radiosity", config.image.radiosity);
+  s.reject_unknown();
+}
+
+// [ground] (only when the table is there): the ground look, its noise and texture tiles, the bake.
+void read_ground(Section s, SceneConfig& config) {
+  GroundConfig& g = config.ground.emplace();
+  if (s.read("look", g.look) && g.look != "materials" && g.look != "texture" && g.look != "both")
+    s.fail(*s.node("look"), "look", "must be \"materials\", \"texture\" or \"both\"");
+  if (s.read("noise_scale", g.noise_scale)) s.check_range("noise_scale", g.noise_scale, 0.01, 1e6);
+  if (s.read_int("noise_lattice", g.noise_lattice, 8, 1024) && (g.noise_lattice & (g.noise_lattice - 1)) != 0)
+    s.fail(*s.node("noise_lattice"), "noise_lattice", "must be a power of two");
+  s.read_int("seed", g.seed, 0, std::numeric_limits<std::int64_t>::max());
+  if (s.read("pumice_above", g.pumice_above)) s.check_range("pumice_above", g.pumice_above, -1000, 10000);
+  if (s.read("snow_above", g.snow_above)) s.check_range("snow_above", g.snow_above, -1000, 10000);
+  if (s.read("height_blend", g.height_blend)) s.check_range("height_blend", g.height_blend, 0, 10000);
+  if (s.read("rock_slope", g.rock_slope)) s.check_range("rock_slope", g.rock_slope, 0, 90);
+  if (s.read("slope_blend", g.slope_blend)) s.check_range("slope_blend", g.slope_blend, 0, 90);
+  // A shipped exemplar's name, or an image file relative to the scene file.
+  const auto exemplar = [&](const char* key, std::string& out) {
+    if (s.read(key, out) && out.empty()) s.fail(*s.node(key), key, "must name an exemplar or an image file");
+    if (out.find('/') != std::string::npos || out.find('.') != std::string::npos)
+      out = resolve(config.base_dir, out).string();
+  };
+  exemplar("exemplar", g.exemplar);
+  exemplar("exemplar2", g.exemplar2);
+  if (s.read("exemplar2_above", g.exemplar2_above)) {
+    s.check_range("exemplar2_above", *g.exemplar2_above, -1000, 10000);
+    if (g.exemplar2.empty()) s.fail(*s.node("exemplar2_above"), "exemplar2_above", "needs an exemplar2 to switch to");
+  }
+  if (s.read("texture_scale", g.texture_scale)) s.check_range("texture_scale", g.texture_scale, 0.01, 1e6);
+  if (s.read_int("texture_pixels", g.texture_pixels, 16, 512) && g.texture_pixels % 2 != 0)
+    s.fail(*s.node("texture_pixels"), "texture_pixels", "must be even");
+  if (s.read("texture_strength", g.texture_strength)) s.check_range("texture_strength", g.texture_strength, 0, 1);
+  s.read_int("bake_pixels", g.bake_pixels, 16, 8192);
+  s.reject_unknown();
+}
+
+// [camera_aware]: full models near the camera, proxies to `far`, the field painted beyond.
+void read_camera_aware(Section s, SceneConfig& config) {
+  CameraAwareConfig& c = config.camera_aware;
+  bool enabled = false;
+  if (s.read("enabled", enabled)) c.enabled = enabled;
+  if (s.read("near", c.near)) s.check_range("near", *c.near, 0, 1e6);
+  if (s.read("far", c.far)) s.check_range("far", *c.far, 0.1, 1e6);
+  if (c.near && c.far && *c.near > *c.far) s.fail(*s.node("near"), "near", "must not be beyond far");
+  if (s.read("sun_margin", c.sun_margin)) s.check_range("sun_margin", *c.sun_margin, 0, 1e4);
+  s.read_int("proxy_triangles", c.proxy_triangles, kSunflowerMinimumTriangleBudget, kSunflowerMaximumTriangleBudget);
+  s.read("far_texture", c.far_texture);
+  s.reject_unknown();
+}
+
+// [exports]: which writers a build runs.
+void read_exports(Section s, SceneConfig& config) {
+  s.read("povray", config.exports.povray);
+  s.read("blender", config.exports.blender);
+  s.read("gltf", config.exports.gltf);
+  s.read("ldi", config.exports.ldi);
+  s.reject_unknown();
+}
+
+// [ldi]: the LDI pack: head height, levels, directions, sky rays.
+void read_ldi(Section s, SceneConfig& config) {
+  if (s.read("head_height", config.ldi.head_height)) s.check_range("head_height", config.ldi.head_height, 0.1, 100);
+  s.read_int("levels", config.ldi.levels, 1, 64);
+  s.read_int("directions", config.ldi.directions, 1, 64);
+  s.read_int("sky_rays", config.ldi.sky_rays, 0, 1024);
+  s.reject_unknown();
+}
+
 }  // namespace
 
 std::int64_t unix_seconds_utc(int year, int month, int day, int hour, int minute, int second, int offset_minutes) {
@@ -231,189 +423,20 @@ SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem
 
   Section top(&root, "", source, config.key_lines);
   top.read("name", config.name);
+  // One reader per table; each reports the keys it does not know.
+  const auto section = [&](const char* name) { return Section(top.table(name), name, source, config.key_lines); };
 
-  {
-    Section s(top.table("terrain"), "terrain", source, config.key_lines);
-    std::string dem;
-    if (s.read("dem", dem)) config.terrain.dem = resolve(base_dir, dem);
-    s.read("origin_latitude", config.terrain.origin_latitude);
-    s.read("origin_longitude", config.terrain.origin_longitude);
-    if (config.terrain.origin_latitude) s.check_range("origin_latitude", *config.terrain.origin_latitude, -90, 90);
-    if (config.terrain.origin_longitude) s.check_range("origin_longitude", *config.terrain.origin_longitude, -180, 360);
-    if (config.terrain.origin_latitude.has_value() != config.terrain.origin_longitude.has_value())
-      s.fail(*s.node(config.terrain.origin_latitude ? "origin_latitude" : "origin_longitude"),
-             config.terrain.origin_latitude ? "origin_latitude" : "origin_longitude",
-             "needs both origin_latitude and origin_longitude");
-    if (s.read("crop", config.terrain.crop)) {
-      const auto& c = *config.terrain.crop;
-      if (!(c[2] > c[0] && c[3] > c[1]))
-        s.fail(*s.node("crop"), "crop", "must be [min_east, min_north, max_east, max_north] with max > min");
-    }
-    if (s.read("flat_size", config.terrain.flat_size)) s.check_range("flat_size", config.terrain.flat_size, 1, 1e6);
-    s.reject_unknown();
-  }
-  {
-    Section s(top.table("tiles"), "tiles", source, config.key_lines);
-    std::string set;
-    if (s.read("set", set)) {
-      // A built-in name, or a JSON file relative to the scene file.
-      config.tiles.set =
-          set.find('/') != std::string::npos || set.ends_with(".json") ? resolve(base_dir, set).string() : set;
-    }
-    if (s.read("tile_size", config.tiles.tile_size)) s.check_range("tile_size", config.tiles.tile_size, 0.1, 10000);
-    s.read_int("points_per_tile", config.tiles.points_per_tile, 1, kMaxPointsPerTile);
-    s.read_int("relaxation_rounds", config.tiles.relaxation_rounds, 0, 1000);
-    s.read_int("seed", config.tiles.seed, 0, std::numeric_limits<std::int64_t>::max());
-    if (s.read("algorithm", config.tiles.algorithm)) {
-      const auto& a = config.tiles.algorithm;
-      if (a != "scanline" && a != "bottom-left" && a != "hash")
-        s.fail(*s.node("algorithm"), "algorithm", "must be \"scanline\", \"bottom-left\" or \"hash\"");
-    }
-    if (s.read("area", config.tiles.area)) {
-      const auto& c = *config.tiles.area;
-      if (!(c[2] > c[0] && c[3] > c[1]))
-        s.fail(*s.node("area"), "area", "must be [min_east, min_north, max_east, max_north] with max > min");
-    }
-    s.read("interior_variation", config.tiles.interior_variation);
-    s.reject_unknown();
-  }
-  {
-    Section s(top.table("masks"), "masks", source, config.key_lines);
-    s.read("max_height", config.masks.max_height);
-    s.read("min_height", config.masks.min_height);
-    if (s.read("max_slope", config.masks.max_slope)) s.check_range("max_slope", *config.masks.max_slope, 0, 90);
-    if (config.masks.min_height && config.masks.max_height && *config.masks.min_height > *config.masks.max_height)
-      s.fail(*s.node("min_height"), "min_height", "must not be above max_height");
-    std::string mask;
-    if (s.read("mask", mask)) config.masks.mask = resolve(base_dir, mask);
-    s.read("fair_edges", config.masks.fair_edges);
-    s.reject_unknown();
-  }
-  {
-    Section s(top.table("models"), "models", source, config.key_lines);
-    s.read_int("variants", config.models.variants, 1, 1000);
-    s.read_int("triangle_budget", config.models.triangle_budget, kSunflowerMinimumTriangleBudget,
-               kSunflowerMaximumTriangleBudget);
-    s.read_int("seed", config.models.seed, 0, std::numeric_limits<std::int64_t>::max());
-    std::string mesh;
-    if (s.read("mesh", mesh)) config.models.mesh = resolve(base_dir, mesh);
-    std::string up_axis;
-    if (s.read("up_axis", up_axis)) {
-      if (up_axis != "z" && up_axis != "y") s.fail(*s.node("up_axis"), "up_axis", "must be \"z\" or \"y\"");
-      if (config.models.mesh.empty()) s.fail(*s.node("up_axis"), "up_axis", "needs models.mesh");
-      config.models.mesh_y_up = up_axis == "y";
-    }
-    if (s.read("scale", config.models.scale)) s.check_range("scale", config.models.scale, 1e-6, 1e6);
-    if (s.read("scale_jitter", config.models.scale_jitter))
-      s.check_range("scale_jitter", config.models.scale_jitter, 0, 0.9);
-    if (s.read("facing", config.models.facing)) s.check_range("facing", *config.models.facing, -360, 360);
-    if (s.read("facing_jitter", config.models.facing_jitter))
-      s.check_range("facing_jitter", config.models.facing_jitter, 0, 180);
-    s.reject_unknown();
-  }
-  {
-    Section s(top.table("camera"), "camera", source, config.key_lines);
-    read_camera_point(s, "position", config.camera.position, s);
-    read_camera_point(s, "target", config.camera.target, s);
-    if (s.read("heading", config.camera.heading)) s.check_range("heading", *config.camera.heading, -360, 360);
-    if (s.read("pitch", config.camera.pitch)) s.check_range("pitch", config.camera.pitch, -89.9, 89.9);
-    const bool has_target =
-        config.camera.target.enu || config.camera.target.enu_ground || config.camera.target.latitude;
-    if (config.camera.heading && has_target)
-      s.fail(*s.node("heading"), "heading", "cannot be given together with a target");
-    if (s.read("fov", config.camera.fov)) s.check_range("fov", config.camera.fov, 1, 179);
-    s.reject_unknown();
-  }
-  {
-    Section s(top.table("sun"), "sun", source, config.key_lines);
-    const bool has_azimuth = s.read("azimuth", config.sun.azimuth);  // both read: each marks its key used
-    const bool has_angles = s.read("elevation", config.sun.elevation) || has_azimuth;
-    s.check_range("elevation", config.sun.elevation, -90, 90);
-    if (const auto* node = s.node("time")) {
-      const auto* when = node->as_date_time();
-      if (!when || !when->get().offset)
-        s.fail(*node, "time", "must be a TOML date-time with a UTC offset, e.g. 2024-07-15T18:30:00-07:00");
-      if (has_angles) s.fail(*node, "time", "cannot be given together with azimuth/elevation");
-      const auto& dt = when->get();
-      config.sun.time_unix = unix_seconds(dt);
-      std::ostringstream text;
-      text << dt;
-      config.sun.time_text = text.str();
-    }
-    if (s.read("strength", config.sun.strength)) s.check_range("strength", config.sun.strength, 0, 100);
-    s.reject_unknown();
-  }
-  {
-    Section s(top.table("image"), "image", source, config.key_lines);
-    s.read_int("width", config.image.width, 1, 32768);
-    s.read_int("height", config.image.height, 1, 32768);
-    s.read_int("antialias", config.image.antialias, 1, 9);
-    s.read_int("threads", config.image.threads, 0, 1024);
-    s.read("radiosity", config.image.radiosity);
-    s.reject_unknown();
-  }
-  if (const auto* table = top.table("ground")) {
-    Section s(table, "ground", source, config.key_lines);
-    GroundConfig& g = config.ground.emplace();
-    if (s.read("look", g.look) && g.look != "materials" && g.look != "texture" && g.look != "both")
-      s.fail(*s.node("look"), "look", "must be \"materials\", \"texture\" or \"both\"");
-    if (s.read("noise_scale", g.noise_scale)) s.check_range("noise_scale", g.noise_scale, 0.01, 1e6);
-    if (s.read_int("noise_lattice", g.noise_lattice, 8, 1024) && (g.noise_lattice & (g.noise_lattice - 1)) != 0)
-      s.fail(*s.node("noise_lattice"), "noise_lattice", "must be a power of two");
-    s.read_int("seed", g.seed, 0, std::numeric_limits<std::int64_t>::max());
-    if (s.read("pumice_above", g.pumice_above)) s.check_range("pumice_above", g.pumice_above, -1000, 10000);
-    if (s.read("snow_above", g.snow_above)) s.check_range("snow_above", g.snow_above, -1000, 10000);
-    if (s.read("height_blend", g.height_blend)) s.check_range("height_blend", g.height_blend, 0, 10000);
-    if (s.read("rock_slope", g.rock_slope)) s.check_range("rock_slope", g.rock_slope, 0, 90);
-    if (s.read("slope_blend", g.slope_blend)) s.check_range("slope_blend", g.slope_blend, 0, 90);
-    // A shipped exemplar's name, or an image file relative to the scene file.
-    const auto exemplar = [&](const char* key, std::string& out) {
-      if (s.read(key, out) && out.empty()) s.fail(*s.node(key), key, "must name an exemplar or an image file");
-      if (out.find('/') != std::string::npos || out.find('.') != std::string::npos)
-        out = resolve(base_dir, out).string();
-    };
-    exemplar("exemplar", g.exemplar);
-    exemplar("exemplar2", g.exemplar2);
-    if (s.read("exemplar2_above", g.exemplar2_above)) {
-      s.check_range("exemplar2_above", *g.exemplar2_above, -1000, 10000);
-      if (g.exemplar2.empty()) s.fail(*s.node("exemplar2_above"), "exemplar2_above", "needs an exemplar2 to switch to");
-    }
-    if (s.read("texture_scale", g.texture_scale)) s.check_range("texture_scale", g.texture_scale, 0.01, 1e6);
-    if (s.read_int("texture_pixels", g.texture_pixels, 16, 512) && g.texture_pixels % 2 != 0)
-      s.fail(*s.node("texture_pixels"), "texture_pixels", "must be even");
-    if (s.read("texture_strength", g.texture_strength)) s.check_range("texture_strength", g.texture_strength, 0, 1);
-    s.read_int("bake_pixels", g.bake_pixels, 16, 8192);
-    s.reject_unknown();
-  }
-  {
-    Section s(top.table("camera_aware"), "camera_aware", source, config.key_lines);
-    CameraAwareConfig& c = config.camera_aware;
-    bool enabled = false;
-    if (s.read("enabled", enabled)) c.enabled = enabled;
-    if (s.read("near", c.near)) s.check_range("near", *c.near, 0, 1e6);
-    if (s.read("far", c.far)) s.check_range("far", *c.far, 0.1, 1e6);
-    if (c.near && c.far && *c.near > *c.far) s.fail(*s.node("near"), "near", "must not be beyond far");
-    if (s.read("sun_margin", c.sun_margin)) s.check_range("sun_margin", *c.sun_margin, 0, 1e4);
-    s.read_int("proxy_triangles", c.proxy_triangles, kSunflowerMinimumTriangleBudget, kSunflowerMaximumTriangleBudget);
-    s.read("far_texture", c.far_texture);
-    s.reject_unknown();
-  }
-  {
-    Section s(top.table("exports"), "exports", source, config.key_lines);
-    s.read("povray", config.exports.povray);
-    s.read("blender", config.exports.blender);
-    s.read("gltf", config.exports.gltf);
-    s.read("ldi", config.exports.ldi);
-    s.reject_unknown();
-  }
-  {
-    Section s(top.table("ldi"), "ldi", source, config.key_lines);
-    if (s.read("head_height", config.ldi.head_height)) s.check_range("head_height", config.ldi.head_height, 0.1, 100);
-    s.read_int("levels", config.ldi.levels, 1, 64);
-    s.read_int("directions", config.ldi.directions, 1, 64);
-    s.read_int("sky_rays", config.ldi.sky_rays, 0, 1024);
-    s.reject_unknown();
-  }
+  read_terrain(section("terrain"), config);
+  read_tiles(section("tiles"), config);
+  read_masks(section("masks"), config);
+  read_models(section("models"), config);
+  read_camera(section("camera"), config);
+  read_sun(section("sun"), config);
+  read_image(section("image"), config);
+  if (const auto* table = top.table("ground")) read_ground(Section(table, "ground", source, config.key_lines), config);
+  read_camera_aware(section("camera_aware"), config);
+  read_exports(section("exports"), config);
+  read_ldi(section("ldi"), config);
   top.reject_unknown();
   return config;
 }
