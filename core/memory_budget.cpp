@@ -5,18 +5,14 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cstdio>
 
 #include "core/error.h"
+#include "core/number_text.h"
 
 namespace wangscape {
 
 namespace {
-std::string gigabytes(double bytes) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2f GB", bytes / 1e9);
-  return text;
-}
+std::string gigabytes(double bytes) { return fixed_text(bytes / 1e9, 2) + " GB"; }
 
 std::atomic<std::uint64_t> process_limit_bytes{0};
 

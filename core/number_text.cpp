@@ -4,6 +4,16 @@
 
 namespace wangscape {
 
+std::string fixed_text(double value, int decimals) {
+  char text[512];  // 1e308 in full and 30 decimals
+  return std::string(text, std::to_chars(text, text + sizeof text, value, std::chars_format::fixed, decimals).ptr);
+}
+
+std::string significant_text(double value, int digits) {
+  char text[64];
+  return std::string(text, std::to_chars(text, text + sizeof text, value, std::chars_format::general, digits).ptr);
+}
+
 std::optional<std::vector<double>> parse_number_list(const std::string& text, char separator, std::size_t min_count,
                                                      std::size_t max_count) {
   std::vector<double> values;

@@ -8,6 +8,7 @@
 #include <GeographicLib/UTMUPS.hpp>
 
 #include "core/atomic_file.h"
+#include "core/number_text.h"
 #include "exporters/image_io.h"
 
 namespace wangscape {
@@ -86,14 +87,9 @@ void add_utm_properties(const Georeference& georeference,
   }
   // UTMUPS::Forward uses the false northing of the point's own hemisphere; follow the zone's.
   if (north_used != north) y += north ? -10000000.0 : 10000000.0;
-  const auto number = [](double value) {
-    char text[32];
-    const auto result = std::to_chars(text, text + sizeof text, value);
-    return std::string(text, result.ptr);
-  };
   properties.insert(properties.begin(), {"SRID", "EPSG:" + std::to_string((north ? 32600 : 32700) + zone)});
-  if (!has_key(properties, "crs x")) properties.emplace_back("crs x", number(x));
-  if (!has_key(properties, "crs y")) properties.emplace_back("crs y", number(y));
+  if (!has_key(properties, "crs x")) properties.emplace_back("crs x", number_text(x));
+  if (!has_key(properties, "crs y")) properties.emplace_back("crs y", number_text(y));
 }
 
 }  // namespace

@@ -6,18 +6,13 @@
 #include <charconv>
 #include <cstring>
 
+#include "core/number_text.h"
+
 namespace wangscape {
 
 namespace {
 
 constexpr int kCountWidth = 20;  // digits reserved for the PLY vertex count (fits any uint64)
-
-template <class T>
-void append_number(std::string& out, T value) {
-  char buf[32];
-  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, value);
-  out.append(buf, end);
-}
 
 template <class T>
 void append_le(std::string& out, T value) {

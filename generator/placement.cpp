@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
+
+#include "core/number_text.h"
 
 namespace wangscape {
 
@@ -33,24 +34,17 @@ void resize_batch(InstanceBatch& batch, std::size_t n) {
   batch.tile.resize(n);
 }
 
-namespace {
-std::string number_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-}  // namespace
-
 TileRange tile_range(const Extent& area, double tile_size) {
   if (!(tile_size > 0) || !std::isfinite(tile_size))
-    throw Error("placement: tile size " + number_text(tile_size) + " m; expected a finite number of meters > 0");
+    throw Error("placement: tile size " + significant_text(tile_size, 6) +
+                " m; expected a finite number of meters > 0");
   // Checked as doubles first: a tiny tile or a huge area must not overflow the conversion.
   const double bounds[4] = {std::floor(area.min_x / tile_size), std::floor(area.min_y / tile_size),
                             std::ceil(area.max_x / tile_size), std::ceil(area.max_y / tile_size)};
   for (const double b : bounds)
     if (!(std::abs(b) <= static_cast<double>(kMaxTileCoordinate)))
-      throw Error("placement: an area of " + number_text(area.width()) + " x " + number_text(area.height()) +
-                  " m at tile size " + number_text(tile_size) +
+      throw Error("placement: an area of " + significant_text(area.width(), 6) + " x " +
+                  significant_text(area.height(), 6) + " m at tile size " + significant_text(tile_size, 6) +
                   " m reaches beyond tile coordinate +-2^60, the largest a tiling addresses");
   TileRange r;
   r.i0 = static_cast<std::int64_t>(bounds[0]);

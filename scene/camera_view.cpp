@@ -4,22 +4,15 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/error.h"
+#include "core/vecmath.h"
 #include "scene/scene.h"
 
 namespace wangscape {
 
 namespace {
 
-using Vec3 = std::array<double, 3>;
-
-Vec3 operator-(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3 operator+(const Vec3& a, const Vec3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-Vec3 operator*(double s, const Vec3& a) { return {s * a[0], s * a[1], s * a[2]}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Vec3 normalized(const Vec3& a) { return (1 / std::sqrt(dot(a, a))) * a; }
+using Vec3 = Vector3d;
 
 constexpr double kDegree = std::numbers::pi / 180;
 
@@ -32,9 +25,11 @@ double distance_for_pixels(double head_meters, double pixels, int width, double 
 
 CameraView::CameraView(const Camera& camera, const Sun& sun, double aspect, const CameraViewOptions& options)
     : options_(options), position_(camera.position) {
-  forward_ = normalized(camera.target - camera.position);
-  right_ = normalized(cross(forward_, {0, 0, 1}));  // make_camera refuses a camera looking straight up
-  up_ = cross(right_, forward_);
+  const auto basis = camera_basis(camera.position, camera.target);  // make_camera refuses a camera looking straight up
+  if (!basis) throw Error("camera-aware export: the camera looks straight up or down (no horizon to frame)");
+  forward_ = basis->forward;
+  right_ = basis->right;
+  up_ = basis->up;
   const double half_x = camera.fov_degrees * kDegree / 2;
   tan_half_x_ = std::tan(half_x);
   tan_half_y_ = tan_half_x_ / std::max(aspect, 1e-6);
@@ -78,7 +73,7 @@ bool CameraView::tile_visible(const Extent& tile, double z_min, double z_max) co
 }
 
 std::array<double, 3> CameraView::far_view_direction() const {
-  return normalized({forward_[0], forward_[1], std::min(forward_[2], -0.05)});
+  return normalized(Vec3{forward_[0], forward_[1], std::min(forward_[2], -0.05)});
 }
 
 Extent CameraView::window() const {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/color.h"
 #include "scene/camera_view.h"
 #include "scene/scene.h"
 
@@ -136,16 +137,6 @@ std::array<FieldSplat, kYawBins> side_colors(const Mesh& mesh, const std::array<
       out[static_cast<std::size_t>(k)] = {sum.r / sum.coverage, sum.g / sum.coverage, sum.b / sum.coverage, 1};
   }
   return out;
-}
-
-float to_linear(std::uint8_t v) {
-  const float c = static_cast<float>(v) / 255.f;
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-std::uint8_t to_srgb(float v) {
-  v = std::clamp(v, 0.f, 1.f);
-  const float c = v <= 0.0031308f ? v * 12.92f : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
-  return static_cast<std::uint8_t>(std::lround(c * 255));
 }
 
 float smoothstep(double lo, double hi, double v) {
@@ -314,9 +305,9 @@ void paint_far_field(GroundBake& bake, const SceneField& field, const FieldTextu
       const std::size_t o = bake.image.offset(col, row);
       auto& px = bake.image.pixels;
       const float r = sum.r / sum.coverage, g = sum.g / sum.coverage, b = sum.b / sum.coverage;
-      px[o] = to_srgb(to_linear(px[o]) * (1 - a) + r * a);
-      px[o + 1] = to_srgb(to_linear(px[o + 1]) * (1 - a) + g * a);
-      px[o + 2] = to_srgb(to_linear(px[o + 2]) * (1 - a) + b * a);
+      px[o] = linear_to_srgb8(srgb8_to_linear(px[o]) * (1 - a) + r * a);
+      px[o + 1] = linear_to_srgb8(srgb8_to_linear(px[o + 1]) * (1 - a) + g * a);
+      px[o + 2] = linear_to_srgb8(srgb8_to_linear(px[o + 2]) * (1 - a) + b * a);
     }
   });
 }

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <unordered_map>
 
+#include "core/number_text.h"
 #include "templates/sunflower.h"
 
 namespace wangscape {
@@ -84,18 +85,6 @@ void finish_normals(Mesh& mesh, bool file_has_normals) {
     if (all_valid) return;
   }
   compute_vertex_normals(mesh);
-}
-
-void append_number(std::string& out, float value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  out.append(buffer, result.ptr);
-}
-
-void append_number(std::string& out, std::uint64_t value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  out.append(buffer, result.ptr);
 }
 
 void require_writable(const std::ostream& out, const char* format) {

@@ -12,18 +12,12 @@
 #include <limits>
 #include <mutex>
 
+#include "core/number_text.h"
 #include "terrain/gdal_support.h"
 
 namespace wangscape {
 
 namespace {
-
-// Locale-independent fixed-point text of a number.
-std::string fixed(double value, int decimals) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, decimals);
-  return std::string(buffer, result.ptr);
-}
 
 struct TransformDeleter {
   void operator()(OGRCoordinateTransformation* t) const { OGRCoordinateTransformation::DestroyCT(t); }
@@ -63,7 +57,7 @@ bool nad27_grid_installed() {
 
 EnuFrame::EnuFrame(LatLon origin) : origin_(origin) {
   if (!(std::abs(origin.lat) <= 90.0) || !(std::abs(origin.lon) <= 180.0))
-    throw Error("origin latitude/longitude " + fixed(origin.lat, 6) + ", " + fixed(origin.lon, 6) +
+    throw Error("origin latitude/longitude " + fixed_text(origin.lat, 6) + ", " + fixed_text(origin.lon, 6) +
                 " is out of range (expected latitude in [-90, 90], longitude in [-180, 180] degrees)");
   local_.Reset(origin.lat, origin.lon, 0.0);
   double x = 0, y = 0;
@@ -203,7 +197,7 @@ void CrsToWgs84::Impl::diagnose() {
   if (unshifted && unshifted->Transform(1, &own_lon, &own_lat) && forward->Transform(1, &lon, &lat)) {
     double meters = 0;
     GeographicLib::Geodesic::WGS84().Inverse(own_lat, own_lon, lat, lon, meters);
-    shift = " (the shift moves the DEM center by " + fixed(meters, 1) + " m)";
+    shift = " (the shift moves the DEM center by " + fixed_text(meters, 1) + " m)";
   }
   const std::string how = datum + " -> WGS 84 by GDAL/PROJ" + shift;
   if (std::isnan(accuracy)) {
@@ -213,7 +207,7 @@ void CrsToWgs84::Impl::diagnose() {
     return;
   }
   note = how + ": the best transformation PROJ can run with the installed grids is accurate to about " +
-         fixed(accuracy, accuracy < 1 ? 1 : 0) + " m";
+         fixed_text(accuracy, accuracy < 1 ? 1 : 0) + " m";
   const bool nad27 = datum.find("27") != std::string::npos;
   if (nad27 && accuracy > 1 && !nad27_grid_installed())
     note +=

@@ -9,17 +9,12 @@
 #include <numbers>
 
 #include "core/memory_budget.h"
+#include "core/number_text.h"
 #include "terrain/gdal_support.h"
 
 namespace wangscape {
 
 namespace {
-
-std::string number(double value) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 6);
-  return std::string(buffer, result.ptr);
-}
 
 // Reads band `index` (1-based) as floats scaled to 0..1 by the band type's range.
 std::vector<float> read_unit_band(GDALDataset& dataset, int index, const std::string& path) {
@@ -164,14 +159,15 @@ std::size_t PaintedMask::allowed_count() const { return std::size_t(std::count(a
 TerrainFilter::TerrainFilter(const Terrain& terrain, TerrainFilterOptions options)
     : terrain_(&terrain), options_(std::move(options)) {
   if (options_.max_slope_deg && !(*options_.max_slope_deg >= 0 && *options_.max_slope_deg <= 90))
-    throw Error("maximum slope " + number(*options_.max_slope_deg) + " is not an angle in [0, 90] degrees");
+    throw Error("maximum slope " + significant_text(*options_.max_slope_deg, 6) +
+                " is not an angle in [0, 90] degrees");
   if (options_.max_height_m && !std::isfinite(*options_.max_height_m))
     throw Error("maximum height is not a finite number of meters");
   if (options_.min_height_m && !std::isfinite(*options_.min_height_m))
     throw Error("minimum height is not a finite number of meters");
   if (options_.min_height_m && options_.max_height_m && *options_.min_height_m > *options_.max_height_m)
-    throw Error("minimum height " + number(*options_.min_height_m) + " m is above the maximum height " +
-                number(*options_.max_height_m) + " m");
+    throw Error("minimum height " + significant_text(*options_.min_height_m, 6) + " m is above the maximum height " +
+                significant_text(*options_.max_height_m, 6) + " m");
   if (options_.mask_image) mask_ = PaintedMask::load(*options_.mask_image, terrain.extent());
 
   const DemRaster& dem = terrain.dem();
@@ -344,24 +340,24 @@ bool TerrainFilter::point_passes(double x, double y, double z) const {
 void TerrainFilter::check_satisfiable() const {
   const DemRaster& dem = terrain_->dem();
   std::string range(1, '(');  // appended piecewise: GCC 12 warns falsely on "(" + ...
-  range += number(dem.min_height);
+  range += significant_text(dem.min_height, 6);
   range += " .. ";
-  range += number(dem.max_height);
+  range += significant_text(dem.max_height, 6);
   range += " m)";
   if (options_.max_height_m && *options_.max_height_m < dem.min_height)
-    throw Error("maximum height " + number(*options_.max_height_m) + " m is below every height of DEM '" +
+    throw Error("maximum height " + significant_text(*options_.max_height_m, 6) + " m is below every height of DEM '" +
                 dem.path.string() + "' " + range + ": no tile would be instantiated");
   if (options_.min_height_m && *options_.min_height_m > dem.max_height)
-    throw Error("minimum height " + number(*options_.min_height_m) + " m is above every height of DEM '" +
+    throw Error("minimum height " + significant_text(*options_.min_height_m, 6) + " m is above every height of DEM '" +
                 dem.path.string() + "' " + range + ": no tile would be instantiated");
   if (mask_ && mask_->allowed_count() == 0)
     throw Error("mask image '" + options_.mask_image->string() +
                 "' allows flowers nowhere (no pixel is white): no tile would be instantiated");
   if (maybe_cells_ == 0) throw Error("no ground of DEM '" + dem.path.string() + "' passes the height test " + range);
   if (options_.max_slope_deg && passing_cells_ == 0 && *options_.max_slope_deg < min_cell_slope_deg_)
-    throw Error("maximum slope " + number(*options_.max_slope_deg) + " deg is below the slope of every cell of DEM '" +
-                dem.path.string() + "' (the flattest cell reaches " + number(min_cell_slope_deg_) +
-                " deg): no tile would be instantiated");
+    throw Error("maximum slope " + significant_text(*options_.max_slope_deg, 6) +
+                " deg is below the slope of every cell of DEM '" + dem.path.string() + "' (the flattest cell reaches " +
+                significant_text(min_cell_slope_deg_, 6) + " deg): no tile would be instantiated");
 }
 
 }  // namespace wangscape

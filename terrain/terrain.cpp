@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "core/memory_budget.h"
+#include "core/number_text.h"
 
 namespace wangscape {
 
@@ -18,12 +19,6 @@ constexpr double kLatticeStepInSamples = 8.0;
 // A regular DEM needs 1/64; a strip one or two cells wide 1/4. Found by the DEM fuzzer: 2 x 280,487
 // cells bent over 4,116 km by the frame took 2.2 million nodes (6 s) at the earlier 4 per cell.
 constexpr double kMaxLatticeNodesPerCell = 0.5;
-
-std::string degrees(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4f", value);
-  return text;
-}
 
 // The ENU frame and the sample lattice need one continuous longitude range within +-180
 // degrees: a geographic DEM past 180 (across the antimeridian, or in 0..360 longitudes) is
@@ -40,7 +35,7 @@ void check_longitudes(const DemRaster& dem) {
   if (lo >= -180.0 && hi <= 180.0) return;
   const bool crosses = (lo < -180.0 && hi > -180.0) || (lo < 180.0 && hi > 180.0);
   throw Error(dem.path, "",
-              "the DEM spans longitudes " + degrees(lo) + " to " + degrees(hi) + ", " +
+              "the DEM spans longitudes " + fixed_text(lo, 4) + " to " + fixed_text(hi, 4) + ", " +
                   (crosses ? "across the antimeridian (180 degrees)" : "beyond +-180 degrees (0..360 longitudes)") +
                   "; Wangscape needs geographic longitudes within -180..180: reproject the DEM to a projected CRS, "
                   "e.g. UTM zone 60 (gdalwarp -t_srs EPSG:32660, or EPSG:32760 south of the equator), or cut it at "

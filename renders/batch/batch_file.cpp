@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/number_text.h"
 #include "scene/ground.h"
 #include "scene/sun.h"
 #include "terrain/georef.h"
@@ -187,12 +188,6 @@ ViewpointRule read_viewpoint(Table& v, int line) {
 
 // ---- numbers and hashes -------------------------------------------------------------------------
 
-std::string num(double v) {
-  char buffer[32];
-  const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
-  return std::string(buffer, end);
-}
-
 std::string pad4(int index) {
   std::string s = std::to_string(index);
   return std::string(s.size() < 4 ? 4 - s.size() : 0, '0') + s;
@@ -337,7 +332,7 @@ std::vector<View> expand_viewpoint(const ViewpointRule& rule, const Site& site, 
       const auto& [x, y] = points[k];
       if (!site.ground.height(x, y))
         throw Error(file, std::to_string(rule.line),
-                    "path point " + std::to_string(k + 1) + " (east " + num(x) + " m, north " + num(y) +
+                    "path point " + std::to_string(k + 1) + " (east " + number_text(x) + " m, north " + number_text(y) +
                         " m) is not over the ground (" + site.ground.description() + ")");
       // Look along the path: towards the next point, the last one onwards from the one before.
       const auto& a = points[k + 1 < points.size() ? k : k - 1];
@@ -513,7 +508,7 @@ std::vector<BatchTask> expand_batch(const BatchConfig& config) {
             for (double v : {c.position[0], c.position[1], c.position[2], c.target[0], c.target[1], c.target[2],
                              c.fov_degrees, sun.azimuth, sun.elevation, config.scene.sun.strength}) {
               h += ' ';
-              h += num(v);
+              h += number_text(v);
             }
             t.input_hash = hash_hex(h);
             tasks.push_back(t);

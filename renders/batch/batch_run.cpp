@@ -22,6 +22,7 @@
 #include <thread>
 
 #include "core/atomic_file.h"
+#include "core/number_text.h"
 #include "exporters/povray_writer.h"
 #include "exporters/scene_folder.h"
 #include "renders/external/blender_render.h"
@@ -447,12 +448,6 @@ std::string html_escape(const std::string& text) {
   return out;
 }
 
-std::string fixed(double v, int decimals) {
-  char buffer[64];
-  const auto end = std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::fixed, decimals).ptr;
-  return std::string(buffer, end);
-}
-
 void write_contact_sheet(const fs::path& dir, const Plan& plan) {
   constexpr int kThumb = 160;
   const int n = static_cast<int>(plan.tasks.size());
@@ -492,8 +487,8 @@ std::string batch_plan_text(const fs::path& batch_file, bool as_json) {
   for (const auto& t : tasks) {
     const auto& p = t.camera.position;
     out += t.id + "  " + (t.dem.empty() ? std::string("flat ground") : t.dem.filename().string()) + "  " + t.viewpoint +
-           " at ENU (" + fixed(p[0], 1) + ", " + fixed(p[1], 1) + ", " + fixed(p[2], 1) + ")  sun " + t.sun.label +
-           "  " + t.engine + " " + std::to_string(t.width) + "x" + std::to_string(t.height) + "\n";
+           " at ENU (" + fixed_text(p[0], 1) + ", " + fixed_text(p[1], 1) + ", " + fixed_text(p[2], 1) + ")  sun " +
+           t.sun.label + "  " + t.engine + " " + std::to_string(t.width) + "x" + std::to_string(t.height) + "\n";
   }
   return out + std::to_string(tasks.size()) + " tasks\n";
 }
@@ -576,10 +571,11 @@ void assemble_batch(const fs::path& dir) {
                               : "<p>" + std::string(state_name(s)) + "</p>") +
             "<figcaption>" + t.id + " " + html_escape(t.viewpoint) +
             "<br>DEM: " + html_escape(t.dem.empty() ? std::string("flat ground") : t.dem.filename().string()) +
-            "<br>camera ENU (" + fixed(p[0], 1) + ", " + fixed(p[1], 1) + ", " + fixed(p[2], 1) + ") m, lat/lon " +
-            fixed(t.camera_latlon[0], 6) + ", " + fixed(t.camera_latlon[1], 6) + "<br>sun " + html_escape(t.sun.label) +
-            " (az " + fixed(t.sun.azimuth, 1) + ", el " + fixed(t.sun.elevation, 1) + ")<br>" + t.engine + ", " +
-            fixed(seconds, 2) + " s</figcaption></figure>\n";
+            "<br>camera ENU (" + fixed_text(p[0], 1) + ", " + fixed_text(p[1], 1) + ", " + fixed_text(p[2], 1) +
+            ") m, lat/lon " + fixed_text(t.camera_latlon[0], 6) + ", " + fixed_text(t.camera_latlon[1], 6) +
+            "<br>sun " + html_escape(t.sun.label) + " (az " + fixed_text(t.sun.azimuth, 1) + ", el " +
+            fixed_text(t.sun.elevation, 1) + ")<br>" + t.engine + ", " + fixed_text(seconds, 2) +
+            " s</figcaption></figure>\n";
     all.push_back(j);
   }
   html += "</body></html>\n";

@@ -19,22 +19,14 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/vecmath.h"
 #include "renders/trace/embree_device.h"
 
 namespace wangscape {
 
 namespace {
 
-using V3 = std::array<double, 3>;
-
-V3 operator+(const V3& a, const V3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-V3 operator-(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-V3 operator*(double s, const V3& a) { return {s * a[0], s * a[1], s * a[2]}; }
-double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V3 cross(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-V3 normalized(const V3& a) { return (1.0 / std::sqrt(dot(a, a))) * a; }
+using V3 = Vector3d;
 std::array<float, 3> to_float(const V3& a) { return {float(a[0]), float(a[1]), float(a[2])}; }
 
 constexpr double kPi = std::numbers::pi;
@@ -637,9 +629,8 @@ LdiLevels ldi_levels(const LdiViewSettings& view, double tile_size, double prism
   for (int k = 1; k <= view.levels; ++k) {
     const double near = k * tile_size;
     const V3 target{0, near + tile_size / 2, prism_top};
-    const V3 f = normalized(target - eye);
-    const V3 r = normalized(cross(f, V3{0, 0, 1}));
-    const V3 u = cross(r, f);
+    const CameraBasis basis = *camera_basis(eye, target);  // the target is ahead, never straight down
+    const V3 &f = basis.forward, &r = basis.right, &u = basis.up;
     double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
     for (int c = 0; c < 4; ++c) {
       const V3 q = V3{(c & 1) ? tile_size / 2 : -tile_size / 2, (c & 2) ? near + tile_size : near, prism_top} - eye;

@@ -15,6 +15,8 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/number_text.h"
+#include "core/vecmath.h"
 #include "renders/trace/embree_device.h"
 #include "renders/trace/ground_colors.h"
 
@@ -25,11 +27,6 @@ namespace {
 using V3 = std::array<double, 3>;
 using Clock = std::chrono::steady_clock;
 
-double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V3 cross(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-bool finite(const V3& a) { return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]); }
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 constexpr int kTile = 16;  // pixels: the unit of parallel work
@@ -154,8 +151,7 @@ struct Tracer {
       const double nx = 2.0 * (px + sx) / width - 1.0, ny = 1.0 - 2.0 * (py + sy) / height;
       V3 d{};
       for (std::size_t c = 0; c < 3; ++c) d[c] = frame.forward[c] + nx * frame.right[c] + ny * frame.up[c];
-      const double len = std::sqrt(dot(d, d));
-      for (double& c : d) c /= len;
+      d = normalized(d);
       Vec3f color{};
       if (const auto hit = intersect(d)) {
         ++hits;
@@ -222,20 +218,12 @@ struct Tracer {
 
 CameraFrame reference_camera_frame(const Camera& camera, int width, int height) {
   const auto fail = [](const std::string& what) { throw Error("reference render: camera " + what); };
-  const V3 p = camera.position, t = camera.target;
-  if (!finite(p) || !finite(t)) fail("position and target must be finite");
-  if (!(camera.fov_degrees > 0 && camera.fov_degrees < 180))
-    fail("field of view " + std::to_string(camera.fov_degrees) + " degrees; expected 0..180");
+  if (!valid_field_of_view(camera.fov_degrees))
+    fail("field of view " + number_text(camera.fov_degrees) + " degrees; expected degrees in (0, 179)");
   if (width < 1 || height < 1) fail("image must have at least one pixel");
-  V3 f{t[0] - p[0], t[1] - p[1], t[2] - p[2]};
-  const double len = std::sqrt(dot(f, f));
-  if (!(len > 0)) fail("target is its position");
-  for (double& c : f) c /= len;
-  V3 r = cross(f, V3{0, 0, 1});
-  const double rl = std::sqrt(dot(r, r));
-  if (!(rl > 1e-9)) fail("looks straight up or down (no horizon to frame)");
-  for (double& c : r) c /= rl;
-  const V3 u = cross(r, f);
+  const auto basis = camera_basis(camera.position, camera.target);
+  if (!basis) fail("looks straight up or down, or at its own position (no horizon to frame)");
+  const V3 &p = camera.position, &f = basis->forward, &r = basis->right, &u = basis->up;
   const double half = std::tan(camera.fov_degrees * std::numbers::pi / 360.0);
   const double aspect = double(height) / double(width);
   CameraFrame frame;

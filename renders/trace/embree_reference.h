@@ -71,7 +71,7 @@ struct CameraFrame {
   std::array<double, 3> origin{}, forward{}, right{}, up{};  // forward unit; right, up scaled
 };
 // Throws Error when the camera is not finite, its target is its position, it looks straight up
-// or down, or its field of view is outside (0, 180) degrees.
+// or down, or its field of view is outside (0, kMaxFieldOfViewDegrees) (core/vecmath.h).
 CameraFrame reference_camera_frame(const Camera& camera, int width, int height);
 
 // Renders `scene` as options say. Samples: one through each pixel's centre, or N jittered ones,

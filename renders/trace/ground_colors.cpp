@@ -3,13 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/color.h"
+
 namespace wangscape {
 
 GroundColors::GroundColors(const GroundBake* bake, const Vec3f& plain) : bake_(bake), plain_(plain) {
-  for (int i = 0; i < 256; ++i) {
-    const float e = float(i) / 255.0f;
-    linear_[std::size_t(i)] = e <= 0.04045f ? e / 12.92f : std::pow((e + 0.055f) / 1.055f, 2.4f);
-  }
+  for (int i = 0; i < 256; ++i) linear_[std::size_t(i)] = srgb8_to_linear(std::uint8_t(i));
   if (bake_ && (bake_->image.width < 1 || bake_->image.height < 1 || !(bake_->extent.width() > 0) ||
                 !(bake_->extent.height() > 0)))
     bake_ = nullptr;

@@ -7,13 +7,13 @@
 #include <limits>
 #include <numbers>
 
+#include "core/color.h"
+#include "core/vecmath.h"
 #include "scene/sun.h"
 
 namespace wangscape {
 
 namespace {
-
-float dot(const Vec3f& a, const Vec3f& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 // Whether the segment from p along unit d up to `far` meters hits anything.
 bool occluded(RTCScene scene, const Vec3f& p, const Vec3f& d, float far) {
@@ -163,11 +163,7 @@ Vec3f shade(RTCSceneTy* scene, const ShadingSettings& s, const SurfaceSample& sa
 
 std::array<std::uint8_t, 3> to_srgb8(const Vec3f& linear) {
   std::array<std::uint8_t, 3> out{};
-  for (int c = 0; c < 3; ++c) {
-    const float v = std::clamp(linear[c], 0.0f, 1.0f);
-    const float e = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-    out[c] = static_cast<std::uint8_t>(std::lround(e * 255.0f));
-  }
+  for (int c = 0; c < 3; ++c) out[c] = linear_to_srgb8(linear[c]);
   return out;
 }
 

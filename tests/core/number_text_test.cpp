@@ -30,5 +30,26 @@ TEST(NumberText, ListsAreFiniteNumbersInTheirCountRange) {
     EXPECT_FALSE(parse_number_list(bad, ',', 2, 3)) << bad;
 }
 
+TEST(NumberText, WritesTheShortestTextThatReadsBack) {
+  EXPECT_EQ(number_text(0.1), "0.1");
+  EXPECT_EQ(number_text(1e300), "1e+300");
+  EXPECT_EQ(number_text(-0.0), "-0");
+  EXPECT_EQ(number_text(0.1f), "0.1");
+  EXPECT_EQ(number_text(std::uint64_t(18446744073709551615ull)), "18446744073709551615");
+  std::string line = "x=";
+  append_number(line, 42);
+  EXPECT_EQ(line, "x=42");
+}
+
+TEST(NumberText, WritesFixedDecimalsAndSignificantDigits) {
+  EXPECT_EQ(fixed_text(12.5, 2), "12.50");
+  EXPECT_EQ(fixed_text(0.125, 2), "0.12");  // 0.125 exactly: round half to even
+  EXPECT_EQ(fixed_text(-0.04, 1), "-0.0");
+  EXPECT_EQ(fixed_text(1e20, 0), "100000000000000000000");
+  EXPECT_EQ(significant_text(1200, 6), "1200");
+  EXPECT_EQ(significant_text(0.1234567, 6), "0.123457");
+  EXPECT_EQ(significant_text(1.5e7, 2), "1.5e+07");
+}
+
 }  // namespace
 }  // namespace wangscape
