@@ -7,6 +7,10 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <string>
+
+#include "core/error.h"
+#include "core/number_text.h"
 
 namespace wangscape {
 
@@ -54,12 +58,21 @@ constexpr Vector3<T> operator*(T s, const Vector3<T>& a) {
 
 // ---- the camera ------------------------------------------------------------------------------
 
-// The widest horizontal field of view any camera takes, degrees (exclusive); the narrowest is
-// above 0. A pinhole's image plane grows as tan(fov / 2), unbounded at 180.
+// The widest horizontal field of view any camera takes (the scene file, the reference renderer,
+// the view), degrees, itself allowed; the narrowest is above 0. A pinhole's image plane grows as
+// tan(fov / 2), unbounded at 180.
 inline constexpr double kMaxFieldOfViewDegrees = 179;
 
-// Whether `degrees` is a horizontal field of view a camera takes: in (0, kMaxFieldOfViewDegrees).
-inline bool valid_field_of_view(double degrees) { return degrees > 0 && degrees < kMaxFieldOfViewDegrees; }
+// Whether `degrees` is a horizontal field of view a camera takes: in (0, kMaxFieldOfViewDegrees].
+inline bool valid_field_of_view(double degrees) { return degrees > 0 && degrees <= kMaxFieldOfViewDegrees; }
+
+// Throws Error("<what> <degrees>: expected degrees in (0, 179]") unless valid_field_of_view; `what`
+// names the value for the user ("--fov", "reference render: camera field of view").
+inline void check_field_of_view(double degrees, const std::string& what) {
+  if (!valid_field_of_view(degrees))
+    throw Error(what + " " + number_text(degrees) + ": expected degrees in (0, " + number_text(kMaxFieldOfViewDegrees) +
+                "]");
+}
 
 // Unit vectors of a camera looking from a position at a target: forward (to the target), right
 // (forward x world up, normalized) and up (right x forward). Right-handed; with world up +z

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/text_file.h"
+#include "core/vecmath.h"
 #include "generator/poisson_tiles.h"
 #include "templates/sunflower.h"
 
@@ -295,7 +296,7 @@ void read_camera(Section s, SceneConfig& config) {
   const bool has_target = config.camera.target.enu || config.camera.target.enu_ground || config.camera.target.latitude;
   if (config.camera.heading && has_target)
     s.fail(*s.node("heading"), "heading", "cannot be given together with a target");
-  if (s.read("fov", config.camera.fov)) s.check_range("fov", config.camera.fov, 1, 179);
+  if (s.read("fov", config.camera.fov)) s.check_range("fov", config.camera.fov, 1, kMaxFieldOfViewDegrees);
   s.reject_unknown();
 }
 

@@ -15,7 +15,6 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/number_text.h"
 #include "core/vecmath.h"
 #include "renders/trace/embree_device.h"
 #include "renders/trace/ground_colors.h"
@@ -218,8 +217,7 @@ struct Tracer {
 
 CameraFrame reference_camera_frame(const Camera& camera, int width, int height) {
   const auto fail = [](const std::string& what) { throw Error("reference render: camera " + what); };
-  if (!valid_field_of_view(camera.fov_degrees))
-    fail("field of view " + number_text(camera.fov_degrees) + " degrees; expected degrees in (0, 179)");
+  check_field_of_view(camera.fov_degrees, "reference render: camera field of view");
   if (width < 1 || height < 1) fail("image must have at least one pixel");
   const auto basis = camera_basis(camera.position, camera.target);
   if (!basis) fail("looks straight up or down, or at its own position (no horizon to frame)");

@@ -48,8 +48,15 @@ TEST(Vecmath, CameraBasisRefusesWhatCannotFrameAHorizon) {
   EXPECT_FALSE(camera_basis({0, 0, 0}, {inf, 0, 0}));
   EXPECT_TRUE(valid_field_of_view(50));
   EXPECT_FALSE(valid_field_of_view(0));
-  EXPECT_FALSE(valid_field_of_view(kMaxFieldOfViewDegrees));
+  EXPECT_TRUE(valid_field_of_view(kMaxFieldOfViewDegrees));
+  EXPECT_FALSE(valid_field_of_view(kMaxFieldOfViewDegrees + 0.5));
   EXPECT_FALSE(valid_field_of_view(nan));
+  try {
+    check_field_of_view(200, "--fov");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "--fov 200: expected degrees in (0, 179]");
+  }
 }
 
 TEST(Color, SrgbRoundTripsEveryCode) {
