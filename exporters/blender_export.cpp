@@ -177,7 +177,7 @@ BlenderWriter::BlenderWriter(const Scene& scene, const std::filesystem::path& fo
     if (scene.ground_texture) {
       // The scene's baked [ground] look; the add-on maps it over `extent` by vertex position.
       const Extent& e = scene.ground_texture->extent;
-      write_file_atomically(folder / "ground.png", *ground_png(scene.ground_texture));
+      write_file_atomically(folder / "ground.png", encoded_ground(scene, impl.options.ground)->png());
       impl.bytes += std::filesystem::file_size(folder / "ground.png", error);
       impl.ground_texture = Json{{"file", "ground.png"}, {"extent", {e.min_x, e.min_y, e.max_x, e.max_y}}};
       impl.files.push_back("ground.png");

@@ -13,12 +13,16 @@
 
 namespace wangscape {
 
+class EncodedGround;  // export_support.h
+
 inline constexpr std::string_view kBlenderFormatName = "wangscape-blender";
 inline constexpr int kBlenderFormatVersion = 1;
 
 struct BlenderExportOptions {
   bool write_addon_zip = true;  // wangscape_import.zip beside the manifest
   int cycles_samples = 0;       // 0: 16 x max(1, scene.render.antialias_samples)
+  // The build's encoded ground.png (export_support.h); null: this writer encodes its own.
+  std::shared_ptr<const EncodedGround> ground;
 };
 
 struct BlenderExportSummary {

@@ -167,19 +167,13 @@ std::vector<std::pair<std::string, std::string>> blendergis_properties(const Geo
   return properties;
 }
 
-std::shared_ptr<const std::string> ground_png(const std::shared_ptr<const GroundBake>& bake) {
-  // One entry: a build has one bake, and its writers ask for it one after another. The weak
-  // pointer tells a new bake at a recycled address from the one encoded.
-  static std::mutex mutex;
-  static std::weak_ptr<const GroundBake> encoded_bake;
-  static std::shared_ptr<const std::string> encoded_png;
-  const std::lock_guard lock(mutex);
-  const auto current = encoded_bake.lock();
-  if (!current || current != bake || !encoded_png) {
-    encoded_png = std::make_shared<const std::string>(encode_png(bake->image));
-    encoded_bake = bake;
-  }
-  return encoded_png;
+const std::string& EncodedGround::png() const {
+  std::call_once(encoded_, [this] { png_ = encode_png(bake_->image); });
+  return png_;
+}
+
+std::shared_ptr<const EncodedGround> encoded_ground(const Scene& scene, std::shared_ptr<const EncodedGround> given) {
+  return given ? std::move(given) : std::make_shared<const EncodedGround>(scene.ground_texture);
 }
 
 }  // namespace wangscape

@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <span>
 #include <string>
 #include <utility>
@@ -54,8 +55,22 @@ void check_mesh(const Mesh& mesh, const std::string& what);
 // Values: SRID a string ("EPSG:32632"), the others numbers.
 std::vector<std::pair<std::string, std::string>> blendergis_properties(const Georeference& georeference);
 
-// The PNG of a baked ground, encoded once however many writers of a build ask for it
-// (POV-Ray and Blender write it, glTF embeds it). Thread-safe.
-std::shared_ptr<const std::string> ground_png(const std::shared_ptr<const GroundBake>& bake);
+// A baked ground encoded as PNG once for all the writers of one build (POV-Ray and Blender write
+// it, glTF embeds it: the same bytes). The build (write_scene_folder) owns one and hands it to
+// each writer in its options; a writer made alone makes its own. Thread-safe.
+class EncodedGround {
+ public:
+  explicit EncodedGround(std::shared_ptr<const GroundBake> bake) : bake_(std::move(bake)) {}
+  // The PNG bytes, encoded on the first call; the bake must not be null.
+  const std::string& png() const;
+
+ private:
+  std::shared_ptr<const GroundBake> bake_;
+  mutable std::once_flag encoded_;
+  mutable std::string png_;
+};
+
+// `given` (the build's), or a new EncodedGround of scene.ground_texture when none was given.
+std::shared_ptr<const EncodedGround> encoded_ground(const Scene& scene, std::shared_ptr<const EncodedGround> given);
 
 }  // namespace wangscape

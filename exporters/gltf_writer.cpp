@@ -317,8 +317,8 @@ GltfWriter::GltfWriter(const Scene& scene, const std::filesystem::path& path, co
     impl.meshes.push_back(impl.builder.add_mesh(scene.terrain, impl.table.terrain_slots, texture));
     if (texture) {
       // The baked ground (the same pixels POV-Ray and Blender get), embedded as a PNG.
-      const auto png = ground_png(scene.ground_texture);
-      impl.ground_image_view = impl.builder.add_view(png->data(), png->size(), 0);
+      const auto ground = encoded_ground(scene, impl.options.ground);
+      impl.ground_image_view = impl.builder.add_view(ground->png().data(), ground->png().size(), 0);
     }
     impl.nodes.push_back(Json{{"name", "terrain"}, {"mesh", impl.meshes.size() - 1}});
     impl.root_children.push_back(impl.nodes.size() - 1);

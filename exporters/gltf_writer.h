@@ -16,6 +16,8 @@
 
 namespace wangscape {
 
+class EncodedGround;  // export_support.h
+
 enum class GltfInstancing {
   gpu_instancing,     // EXT_mesh_gpu_instancing: one node per variant, instances in accessors
   node_per_instance,  // one node per flower (for tools without the extension; JSON grows with the count)
@@ -23,6 +25,8 @@ enum class GltfInstancing {
 
 struct GltfOptions {
   GltfInstancing instancing = GltfInstancing::gpu_instancing;
+  // The build's encoded ground.png (export_support.h); null: this writer encodes its own.
+  std::shared_ptr<const EncodedGround> ground;
 };
 
 struct GltfSummary {

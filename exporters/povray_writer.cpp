@@ -469,7 +469,7 @@ void PovrayWriter::finish(const StreamTotals& totals) {
   }
   if (impl.has_terrain && impl.scene.ground_texture) {
     // Written last but one, so a failure here still leaves none of the text files.
-    write_file_atomically(impl.dir / kPovrayGroundImage, *ground_png(impl.scene.ground_texture));
+    write_file_atomically(impl.dir / kPovrayGroundImage, encoded_ground(impl.scene, impl.options.ground)->png());
     std::error_code ec;
     impl.stats.total_bytes += std::filesystem::file_size(impl.dir / kPovrayGroundImage, ec);
   }

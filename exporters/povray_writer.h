@@ -29,12 +29,16 @@
 
 namespace wangscape {
 
+class EncodedGround;  // export_support.h
+
 struct PovrayExportOptions {
   // Folder the scene will finally live in, written as the ini's Library_Path (the pipeline
   // writes into a staging folder first, then renames it). Empty: the folder written to.
   std::filesystem::path final_dir;
   // Called now and then with the number of instances written so far.
   std::function<void(std::uint64_t written)> on_instances;
+  // The build's encoded ground.png (export_support.h); null: this writer encodes its own.
+  std::shared_ptr<const EncodedGround> ground;
 };
 
 struct PovrayExportStats {

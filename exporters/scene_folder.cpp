@@ -12,6 +12,7 @@
 #include "core/run_cleanup.h"
 #include "core/text_file.h"
 #include "exporters/blender_export.h"
+#include "exporters/export_support.h"
 #include "exporters/folder_state.h"
 #include "exporters/gltf_writer.h"
 #include "exporters/povray_writer.h"
@@ -110,20 +111,27 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
     std::unique_ptr<GltfWriter> gltf;
     std::vector<SceneWriter*> writers;
     std::vector<std::string> names;
+    // The ground is encoded once, here, for every writer that writes or embeds it.
+    const auto ground = scene.ground_texture ? std::make_shared<const EncodedGround>(scene.ground_texture) : nullptr;
     if (exports.povray) {
       PovrayExportOptions options;
       options.final_dir = out_dir;
+      options.ground = ground;
       povray = std::make_unique<PovrayWriter>(scene, staging, options);
       writers.push_back(povray.get());
       names.emplace_back("POV-Ray");
     }
     if (exports.blender) {
-      blender = std::make_unique<BlenderWriter>(scene, staging / "blender");
+      BlenderExportOptions options;
+      options.ground = ground;
+      blender = std::make_unique<BlenderWriter>(scene, staging / "blender", options);
       writers.push_back(blender.get());
       names.emplace_back("Blender");
     }
     if (exports.gltf) {
-      gltf = std::make_unique<GltfWriter>(scene, staging / "scene.glb");
+      GltfOptions options;
+      options.ground = ground;
+      gltf = std::make_unique<GltfWriter>(scene, staging / "scene.glb", options);
       writers.push_back(gltf.get());
       names.emplace_back("glTF");
     }
