@@ -23,7 +23,7 @@ void BM_WholeDemPlacement(benchmark::State& state) {
   config.ground.reset();
   if (state.range(1)) {
     config.tiles.set = "complete-edge-2";
-    config.tiles.algorithm = "hash";
+    config.tiles.algorithm = TilingAlgorithm::hash;
   }
   const Scene scene = make_scene(config);
   std::uint64_t flowers = 0;

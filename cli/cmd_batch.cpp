@@ -17,12 +17,17 @@ void register_batch_command(CLI::App& app, const GlobalOptions& global) {
   auto* run = batch->add_subcommand("run", "Render every still of a batch not yet done into --out DIR");
   run->add_option("batch", s->batch_file, "Batch file")->required();
   run->add_option("--out", s->out_dir, "Output folder")->required();
-  run->add_option("--executor", s->executor, "local or slurm")->check(CLI::IsMember({"local", "slurm"}));
+  auto executor = std::make_shared<std::string>("local");
+  run->add_option("--executor", *executor, "local or slurm")->check(CLI::IsMember(batch_executor_names()));
   run->add_option("--workers", s->workers, "Local worker processes (default: the cores)")->check(CLI::PositiveNumber);
   run->add_option("--chunk", s->chunk, "Slurm: tasks per array element")->check(CLI::PositiveNumber);
   run->add_option("--throttle", s->throttle, "Slurm: array elements running at once")->check(CLI::PositiveNumber);
   run->add_option("--retries", s->retries, "Slurm: resubmissions of failed elements")->check(CLI::NonNegativeNumber);
-  run->callback([=, &global] { s->chatty = chatty(global), run_batch(*s); });
+  run->callback([=, &global] {
+    s->executor = parse_batch_executor(*executor);
+    s->chatty = chatty(global);
+    run_batch(*s);
+  });
   auto* status = batch->add_subcommand("status", "Done / running / failed / pending per task of DIR");
   status->add_option("dir", s->out_dir, "Batch output folder")->required();
   status->add_flag("--progress", s->watch, "On a terminal: a bar until no task is running");

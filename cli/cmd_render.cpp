@@ -8,13 +8,14 @@
 #include "cli/command.h"
 #include "cli/progress.h"
 #include "cli/scene_commands.h"
-#include "renders/trace/embree_reference.h"
 #include "renders/render_folder.h"
+#include "renders/trace/embree_reference.h"
 
 namespace wangscape::cli {
 
 void run_render(const std::filesystem::path& dir, const RenderRequest& request, const GlobalOptions& global) {
-  FolderRenderRequest folder{request.engine, request.width, request.height, request.out, request.spp, {}};
+  FolderRenderRequest folder{
+      parse_render_engine(request.engine), request.width, request.height, request.out, request.spp, {}};
   std::unique_ptr<Progress> progress;
   if (chatty(global)) {
     std::fprintf(stderr, "wangscape: rendering %s with %s\n", dir.string().c_str(), request.engine.c_str());

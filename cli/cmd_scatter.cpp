@@ -96,7 +96,7 @@ void register_scatter_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--out", options->out, "Instances: CSV (x,y,z,variant,yaw,scale,tile), or binary PLY for .ply");
   sub->add_option("--seed", options->seed, "Tiling seed")->check(seed_number())->capture_default_str();
   sub->add_option("--algorithm", options->algorithm, "Tiling: scanline, bottom-left or hash (complete sets)")
-      ->check(CLI::IsMember({"scanline", "bottom-left", "hash"}))
+      ->check(CLI::IsMember(tiling_algorithm_names()))
       ->capture_default_str();
   sub->add_flag("--metrics", options->metrics, "Print quality figures (rho, NN distances, densities, spectrum)");
   sub->add_flag("--json", options->json, "With --metrics: print them as JSON");

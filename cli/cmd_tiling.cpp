@@ -90,7 +90,7 @@ void register_tiling_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--algorithm", options->algorithm,
                   "scanline (north-west to south-east), bottom-left (south-west start) or hash (O(1) random access, "
                   "complete sets)")
-      ->check(CLI::IsMember({"scanline", "bottom-left", "hash"}))
+      ->check(CLI::IsMember(tiling_algorithm_names()))
       ->capture_default_str();
   sub->add_option("--origin", options->origin, "Tile coordinates I,J of the window's south-west tile (i east, j north)")
       ->check(CLI::Validator(validate_origin, "I,J", "origin"))

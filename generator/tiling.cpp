@@ -459,10 +459,21 @@ std::string_view to_string(TilingAlgorithm algorithm) {
   return "?";
 }
 
-TilingAlgorithm parse_tiling_algorithm(std::string_view text) {
-  for (const TilingAlgorithm a : {TilingAlgorithm::scanline, TilingAlgorithm::bottom_left, TilingAlgorithm::hash})
+std::optional<TilingAlgorithm> find_tiling_algorithm(std::string_view text) {
+  for (const TilingAlgorithm a : kTilingAlgorithms)
     if (text == to_string(a)) return a;
+  return std::nullopt;
+}
+
+TilingAlgorithm parse_tiling_algorithm(std::string_view text) {
+  if (const auto a = find_tiling_algorithm(text)) return *a;
   throw Error("unknown tiling algorithm '" + std::string(text) + "'; expected scanline, bottom-left or hash");
+}
+
+std::vector<std::string> tiling_algorithm_names() {
+  std::vector<std::string> names;
+  for (const TilingAlgorithm a : kTilingAlgorithms) names.emplace_back(to_string(a));
+  return names;
 }
 
 // ---------------------------------------------------------------------------------------------

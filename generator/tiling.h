@@ -12,7 +12,9 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -22,9 +24,16 @@ namespace wangscape {
 
 enum class TilingAlgorithm { scanline, bottom_left, hash };
 
+inline constexpr std::array<TilingAlgorithm, 3> kTilingAlgorithms{TilingAlgorithm::scanline,
+                                                                  TilingAlgorithm::bottom_left, TilingAlgorithm::hash};
+
 // "scanline", "bottom-left", "hash"; parse throws Error naming the value.
 std::string_view to_string(TilingAlgorithm algorithm);
 TilingAlgorithm parse_tiling_algorithm(std::string_view text);
+// The algorithm `text` names, or nothing (for readers that word their own error, with a line).
+std::optional<TilingAlgorithm> find_tiling_algorithm(std::string_view text);
+// Every algorithm's name, in kTilingAlgorithms' order (for the command line's choices).
+std::vector<std::string> tiling_algorithm_names();
 
 struct TilingOptions {
   TilingAlgorithm algorithm = TilingAlgorithm::scanline;

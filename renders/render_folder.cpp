@@ -41,14 +41,11 @@ FolderRenderResult render_embree(const std::filesystem::path& dir, const FolderR
 }  // namespace
 
 FolderRenderResult render_scene_folder(const std::filesystem::path& dir, const FolderRenderRequest& request) {
-  if (request.engine == "embree") return render_embree(dir, request);
-  if (request.engine != "povray" && request.engine != "blender")
-    throw Error("render: engine '" + request.engine +
-                "' is not available in this wangscape (known: povray, blender, embree)");
+  if (request.engine == RenderEngine::embree) return render_embree(dir, request);
   if (!request.out.empty() || request.samples_per_pixel != 0)
-    throw Error("render: --out and --spp are for --engine embree; " + request.engine +
+    throw Error("render: --out and --spp are for --engine embree; " + std::string(to_string(request.engine)) +
                 " writes its image into the folder and takes its samples from the scene");
-  if (request.engine == "blender") {
+  if (request.engine == RenderEngine::blender) {
     BlenderRenderOptions options;
     options.width = request.width;
     options.height = request.height;

@@ -7,11 +7,13 @@
 #include <functional>
 #include <string>
 
+#include "renders/external/render_engine.h"
+
 namespace wangscape {
 
 struct FolderRenderRequest {
-  std::string engine = "povray";  // povray, blender or embree
-  int width = 0, height = 0;      // 0 = as the scene says
+  RenderEngine engine = RenderEngine::povray;
+  int width = 0, height = 0;  // 0 = as the scene says
   // Embree only: the image (default DIR/render_embree.png) and samples per pixel (0 = the
   // scene's antialias setting squared). Other engines refuse them.
   std::filesystem::path out;
@@ -32,8 +34,8 @@ inline constexpr const char* kEmbreeRenderImage = "render_embree.png";
 
 // Renders DIR with the requested engine. Embree renders the Scene made again from
 // DIR/scene.toml (load_scene_folder_config), with the sky rays of its [ldi] section, so it needs
-// no export of its own. Throws Error naming an unknown engine (and the known
-// ones), a folder without that engine's export, or the renderer's own failure.
+// no export of its own. Throws Error naming a folder without that engine's export, or the
+// renderer's own failure.
 FolderRenderResult render_scene_folder(const std::filesystem::path& dir, const FolderRenderRequest& request);
 
 }  // namespace wangscape

@@ -94,7 +94,7 @@ std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGro
                                             "export what the camera sees ([camera_aware] enabled = true, far) "
                                             "(at most 50 million)");
   field->placement.tile_size = tile_size;
-  field->placement.algorithm = parse_tiling_algorithm(config.tiles.algorithm);
+  field->placement.algorithm = config.tiles.algorithm;
   field->placement.seed = config.tiles.seed;
   field->placement.area = area;
 

@@ -237,10 +237,10 @@ void read_tiles(Section s, SceneConfig& config) {
   s.read_int("points_per_tile", config.tiles.points_per_tile, 1, kMaxPointsPerTile);
   s.read_int("relaxation_rounds", config.tiles.relaxation_rounds, 0, 1000);
   s.read_int("seed", config.tiles.seed, 0, std::numeric_limits<std::int64_t>::max());
-  if (s.read("algorithm", config.tiles.algorithm)) {
-    const auto& a = config.tiles.algorithm;
-    if (a != "scanline" && a != "bottom-left" && a != "hash")
-      s.fail(*s.node("algorithm"), "algorithm", "must be \"scanline\", \"bottom-left\" or \"hash\"");
+  if (std::string name; s.read("algorithm", name)) {
+    const auto a = find_tiling_algorithm(name);
+    if (!a) s.fail(*s.node("algorithm"), "algorithm", "must be \"scanline\", \"bottom-left\" or \"hash\"");
+    config.tiles.algorithm = *a;
   }
   if (s.read("area", config.tiles.area)) {
     const auto& c = *config.tiles.area;

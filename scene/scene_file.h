@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/error.h"
+#include "generator/tiling.h"
 
 #include <array>
 #include <cstdint>
@@ -27,12 +28,12 @@ struct TerrainConfig {
 
 // [tiles]
 struct TilesConfig {
-  std::string set = "cohen8";                 // built-in tile set name or a tile-set JSON path
-  double tile_size = 4.0;                     // meters
-  int points_per_tile = 20;                   // flowers per tile
-  int relaxation_rounds = 8;                  // Lloyd-style relaxation of each tile's points
-  std::uint64_t seed = 1;                     // tiling, points and flower yaw/scale
-  std::string algorithm = "scanline";         // tiling algorithm: scanline, bottom-left, hash
+  std::string set = "cohen8";  // built-in tile set name or a tile-set JSON path
+  double tile_size = 4.0;      // meters
+  int points_per_tile = 20;    // flowers per tile
+  int relaxation_rounds = 8;   // Lloyd-style relaxation of each tile's points
+  std::uint64_t seed = 1;      // tiling, points and flower yaw/scale
+  TilingAlgorithm algorithm = TilingAlgorithm::scanline;
   std::optional<std::array<double, 4>> area;  // where flowers grow, ENU m; default: the ground's extent
   bool interior_variation = false;            // variant, yaw, scale from the world tile and index, not the tile's point
 };

@@ -164,9 +164,9 @@ ViewpointRule read_viewpoint(Table& v, int line) {
   ViewpointRule rule;
   rule.line = line;
   if (const auto* n = v.node("kind")) {
-    rule.kind = n->value_or(std::string());
-    if (rule.kind != "flowers" && rule.kind != "summits" && rule.kind != "grid" && rule.kind != "path")
-      v.fail(*n, "kind", "must be flowers, summits, grid or path");
+    const auto kind = find_viewpoint_kind(n->value_or(std::string()));
+    if (!kind) v.fail(*n, "kind", "must be flowers, summits, grid or path");
+    rule.kind = *kind;
   }
   rule.count = v.integer("count", rule.count, 1, 10000);
   rule.eye_height = v.number("eye_height", rule.eye_height);
@@ -181,7 +181,7 @@ ViewpointRule read_viewpoint(Table& v, int line) {
   }
   rule.path_enu = v.pairs("enu");
   rule.path_latlon = v.pairs("latlon");
-  if (rule.kind == "path" && rule.path_enu.size() + rule.path_latlon.size() < 2)
+  if (rule.kind == ViewpointKind::path && rule.path_enu.size() + rule.path_latlon.size() < 2)
     throw Error(v.file(), std::to_string(line), "a path viewpoint needs 'enu' or 'latlon' with at least 2 points");
   return rule;
 }
@@ -289,14 +289,14 @@ std::vector<View> expand_viewpoint(const ViewpointRule& rule, const Site& site, 
     views.push_back(v);
   };
   const Extent& f = site.field;
-  if (rule.kind == "flowers") {
+  if (rule.kind == ViewpointKind::flowers) {
     for (int k = 1; k < 20000 && static_cast<int>(views.size()) < rule.count; ++k) {
       const double x = f.min_x + halton(k, 2) * f.width(), y = f.min_y + halton(k, 3) * f.height();
       if (!site.has_flowers(x, y)) continue;
       const auto eye = site.eye_at(x, y, rule.eye_height);
       add("flowers " + std::to_string(views.size() + 1), eye, site.highest_in_view(eye));
     }
-  } else if (rule.kind == "summits") {
+  } else if (rule.kind == ViewpointKind::summits) {
     const int n = 48;
     const auto s = site.samples(n);
     std::vector<std::array<double, 3>> peaks;
@@ -316,7 +316,7 @@ std::vector<View> expand_viewpoint(const ViewpointRule& rule, const Site& site, 
       if (static_cast<int>(views.size()) >= rule.count) break;
       add("summit " + std::to_string(views.size() + 1), {p[0], p[1], p[2] + rule.eye_height}, center);
     }
-  } else if (rule.kind == "grid") {
+  } else if (rule.kind == ViewpointKind::grid) {
     for (int j = 0; j < rule.grid[1]; ++j)
       for (int i = 0; i < rule.grid[0]; ++i) {
         const double x = f.min_x + (i + 0.5) * f.width() / rule.grid[0];
@@ -343,7 +343,7 @@ std::vector<View> expand_viewpoint(const ViewpointRule& rule, const Site& site, 
   }
   if (views.empty())
     throw Error(file, std::to_string(rule.line),
-                "no " + rule.kind + " viewpoint fits the ground " + site.ground.description());
+                "no " + std::string(to_string(rule.kind)) + " viewpoint fits the ground " + site.ground.description());
   return views;
 }
 
@@ -394,10 +394,13 @@ BatchConfig parse_batch_config(std::string_view toml_text, const std::filesystem
     config.dems.insert(config.dems.end(), found.begin(), found.end());
   }
   if (const auto* n = top.node("engines")) {
-    config.engines = top.strings("engines");
-    for (const auto& e : config.engines)
-      if (e != "povray" && e != "blender")
-        top.fail(*n, "engines", "'" + e + "' is not an engine of this wangscape (known: povray, blender)");
+    config.engines.clear();
+    for (const auto& name : top.strings("engines")) {
+      const auto e = find_render_engine(name);
+      if (!e || *e == RenderEngine::embree)
+        top.fail(*n, "engines", "'" + name + "' is not an engine of this wangscape (known: povray, blender)");
+      config.engines.push_back(*e);
+    }
     if (config.engines.empty()) top.fail(*n, "engines", "must name at least one engine");
   }
   config.width = top.integer("width", 0, 1, 32768);
@@ -503,7 +506,8 @@ std::vector<BatchTask> expand_batch(const BatchConfig& config) {
             t.width = config.width ? config.width : config.scene.image.width;
             t.height = config.height ? config.height : config.scene.image.height;
             // The input hash: the scene, then every number of the still, shortest round-trip form.
-            std::string h = key + ' ' + engine + ' ' + std::to_string(t.width) + 'x' + std::to_string(t.height);
+            std::string h = key + ' ' + std::string(to_string(engine)) + ' ' + std::to_string(t.width) + 'x' +
+                            std::to_string(t.height);
             const auto& c = view.camera;
             for (double v : {c.position[0], c.position[1], c.position[2], c.target[0], c.target[1], c.target[2],
                              c.fov_degrees, sun.azimuth, sun.elevation, config.scene.sun.strength}) {
@@ -515,6 +519,27 @@ std::vector<BatchTask> expand_batch(const BatchConfig& config) {
           }
   }
   return tasks;
+}
+
+std::string_view to_string(ViewpointKind kind) {
+  switch (kind) {
+    case ViewpointKind::flowers:
+      return "flowers";
+    case ViewpointKind::summits:
+      return "summits";
+    case ViewpointKind::grid:
+      return "grid";
+    case ViewpointKind::path:
+      return "path";
+  }
+  return "?";
+}
+
+std::optional<ViewpointKind> find_viewpoint_kind(std::string_view name) {
+  for (const ViewpointKind k :
+       {ViewpointKind::flowers, ViewpointKind::summits, ViewpointKind::grid, ViewpointKind::path})
+    if (name == to_string(k)) return k;
+  return std::nullopt;
 }
 
 }  // namespace wangscape

@@ -12,14 +12,23 @@
 #include <string_view>
 #include <vector>
 
+#include "renders/external/render_engine.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
 
 namespace wangscape {
 
+// How [[viewpoints]] choose cameras: at flowers, on summits, over a grid, along a path.
+enum class ViewpointKind { flowers, summits, grid, path };
+
+// "flowers", "summits", "grid", "path": as a batch file writes them.
+std::string_view to_string(ViewpointKind kind);
+// The kind `name` names, or nothing (the batch file's reader names the line at fault).
+std::optional<ViewpointKind> find_viewpoint_kind(std::string_view name);
+
 // [[viewpoints]]: how cameras are chosen from the ground (ENU meters, heights above ground).
 struct ViewpointRule {
-  std::string kind = "flowers";                    // flowers, summits, grid, path
+  ViewpointKind kind = ViewpointKind::flowers;
   int count = 2;                                   // flowers: cameras; summits: at most this many
   double eye_height = 1.7;                         // meters above the ground
   double min_height = 0;                           // summits: meters, only summits at least this high
@@ -43,9 +52,9 @@ struct BatchConfig {
   std::vector<std::filesystem::path> dems;  // empty = the scene's own terrain
   int dems_line = 0;                        // line of `dems`, for messages
   std::vector<ViewpointRule> viewpoints;
-  std::vector<BatchSun> suns;  // empty = the scene's sun
-  std::vector<std::string> engines{"povray"};
-  int width = 0, height = 0;  // 0 = the scene's
+  std::vector<BatchSun> suns;                               // empty = the scene's sun
+  std::vector<RenderEngine> engines{RenderEngine::povray};  // povray or blender
+  int width = 0, height = 0;                                // 0 = the scene's
 };
 
 // One still: everything a worker needs, resolved (no ground lookups at run time).
@@ -58,7 +67,7 @@ struct BatchTask {
   Camera camera;                              // ENU meters
   std::array<double, 2> camera_latlon{0, 0};  // WGS 84 degrees of the camera
   BatchSun sun;
-  std::string engine;
+  RenderEngine engine = RenderEngine::povray;  // povray or blender
   int width = 0, height = 0;
   std::string input_hash;  // scene key + camera + sun + engine + size: skip when unchanged
 };

@@ -54,7 +54,7 @@ json task_json(const BatchTask& t) {
             {"azimuth", t.sun.azimuth},
             {"elevation", t.sun.elevation},
             {"time_unix", t.sun.time_unix ? json(*t.sun.time_unix) : json(nullptr)}}},
-          {"engine", t.engine},
+          {"engine", to_string(t.engine)},
           {"width", t.width},
           {"height", t.height},
           {"scene_key", t.scene_key},
@@ -77,7 +77,7 @@ BatchTask task_from_json(const json& j) {
   t.sun.azimuth = s.at("azimuth");
   t.sun.elevation = s.at("elevation");
   if (!s.at("time_unix").is_null()) t.sun.time_unix = s.at("time_unix").get<std::int64_t>();
-  t.engine = j.at("engine");
+  t.engine = parse_render_engine(j.at("engine").get<std::string>());
   t.width = j.at("width");
   t.height = j.at("height");
   t.scene_key = j.at("scene_key");
@@ -259,7 +259,8 @@ bool run_task(const fs::path& dir, const Plan& plan, const BatchTask& t) {
   write_file_atomically(record_of(dir, t, ".running"), std::to_string(::getpid()) + " " + host + "\n");
   const auto start = std::chrono::steady_clock::now();
   try {
-    const fs::path image = t.engine == "blender" ? render_blender_task(dir, plan, t) : render_povray_task(dir, plan, t);
+    const fs::path image =
+        t.engine == RenderEngine::blender ? render_blender_task(dir, plan, t) : render_povray_task(dir, plan, t);
     publish_still(image, still_of(dir, t));
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const json record = {{"input_hash", t.input_hash},
@@ -274,7 +275,7 @@ bool run_task(const fs::path& dir, const Plan& plan, const BatchTask& t) {
     return true;
   } catch (const std::exception& e) {
     const fs::path log =
-        t.engine == "blender" ? dir / "work" / t.id / "blender.log" : dir / "work" / t.id / "povray.log";
+        t.engine == RenderEngine::blender ? dir / "work" / t.id / "blender.log" : dir / "work" / t.id / "povray.log";
     write_file_atomically(record_of(dir, t, ".failed"), json{{"error", e.what()}, {"log", log.string()}}.dump(1));
     fs::remove(record_of(dir, t, ".running"));
     std::fprintf(stderr, "task %s failed: %s\n", t.id.c_str(), e.what());
@@ -316,7 +317,8 @@ void report_failures(const fs::path& dir, const Plan& plan) {
     if (task_state(dir, t) == State::failed) {
       const json f = read_json(record_of(dir, t, ".failed"));
       std::fprintf(stderr, "wangscape: task %s (%s, %s, %s) failed: %s (log: %s)\n", t.id.c_str(), t.viewpoint.c_str(),
-                   t.sun.label.c_str(), t.engine.c_str(), f.is_object() ? f.value("error", "?").c_str() : "?",
+                   t.sun.label.c_str(), std::string(to_string(t.engine)).c_str(),
+                   f.is_object() ? f.value("error", "?").c_str() : "?",
                    f.is_object() ? f.value("log", "?").c_str() : "?");
     }
 }
@@ -488,7 +490,8 @@ std::string batch_plan_text(const fs::path& batch_file, bool as_json) {
     const auto& p = t.camera.position;
     out += t.id + "  " + (t.dem.empty() ? std::string("flat ground") : t.dem.filename().string()) + "  " + t.viewpoint +
            " at ENU (" + fixed_text(p[0], 1) + ", " + fixed_text(p[1], 1) + ", " + fixed_text(p[2], 1) + ")  sun " +
-           t.sun.label + "  " + t.engine + " " + std::to_string(t.width) + "x" + std::to_string(t.height) + "\n";
+           t.sun.label + "  " + std::string(to_string(t.engine)) + " " + std::to_string(t.width) + "x" +
+           std::to_string(t.height) + "\n";
   }
   return out + std::to_string(tasks.size()) + " tasks\n";
 }
@@ -532,7 +535,8 @@ BatchCounts batch_status(const fs::path& dir, std::string* report) {
      : s == State::failed  ? counts.failed
                            : counts.pending)++;
     if (report)
-      *report += t.id + "  " + state_name(s) + "  " + t.viewpoint + ", sun " + t.sun.label + ", " + t.engine + "\n";
+      *report += t.id + "  " + state_name(s) + "  " + t.viewpoint + ", sun " + t.sun.label + ", " +
+                 std::string(to_string(t.engine)) + "\n";
   }
   if (report)
     *report += "done " + std::to_string(counts.done) + ", running " + std::to_string(counts.running) + ", failed " +
@@ -574,8 +578,8 @@ void assemble_batch(const fs::path& dir) {
             "<br>camera ENU (" + fixed_text(p[0], 1) + ", " + fixed_text(p[1], 1) + ", " + fixed_text(p[2], 1) +
             ") m, lat/lon " + fixed_text(t.camera_latlon[0], 6) + ", " + fixed_text(t.camera_latlon[1], 6) +
             "<br>sun " + html_escape(t.sun.label) + " (az " + fixed_text(t.sun.azimuth, 1) + ", el " +
-            fixed_text(t.sun.elevation, 1) + ")<br>" + t.engine + ", " + fixed_text(seconds, 2) +
-            " s</figcaption></figure>\n";
+            fixed_text(t.sun.elevation, 1) + ")<br>" + std::string(to_string(t.engine)) + ", " +
+            fixed_text(seconds, 2) + " s</figcaption></figure>\n";
     all.push_back(j);
   }
   html += "</body></html>\n";
@@ -597,15 +601,12 @@ void run_batch(const BatchRunSettings& s) {
   write_plan(s.out_dir, config, tasks);
   const Plan plan = load_plan(s.out_dir);
   if (s.chatty)
-    std::fprintf(stderr, "wangscape: %zu tasks, executor %s, into %s\n", tasks.size(), s.executor.c_str(),
-                 s.out_dir.string().c_str());
-  if (s.executor == "slurm") {
+    std::fprintf(stderr, "wangscape: %zu tasks, executor %s, into %s\n", tasks.size(),
+                 std::string(to_string(s.executor)).c_str(), s.out_dir.string().c_str());
+  if (s.executor == BatchExecutor::slurm)
     run_slurm(s, plan);
-  } else if (s.executor == "local") {
+  else
     run_local(s, plan);
-  } else {
-    throw Error("batch run: executor '" + s.executor + "' is not known (local, slurm)");
-  }
   // The Slurm final job assembled already; assembling again is cheap and covers failures.
   assemble_batch(s.out_dir);
   const auto counts = batch_status(s.out_dir);
@@ -618,6 +619,20 @@ void run_batch(const BatchRunSettings& s) {
   if (s.chatty)
     std::fprintf(stderr, "wangscape: %d of %zu stills done; gallery %s\n", counts.done, tasks.size(),
                  (s.out_dir / "index.html").string().c_str());
+}
+
+std::string_view to_string(BatchExecutor executor) { return executor == BatchExecutor::slurm ? "slurm" : "local"; }
+
+BatchExecutor parse_batch_executor(std::string_view name) {
+  for (const BatchExecutor e : kBatchExecutors)
+    if (name == to_string(e)) return e;
+  throw Error("batch run: executor '" + std::string(name) + "' is not known (local, slurm)");
+}
+
+std::vector<std::string> batch_executor_names() {
+  std::vector<std::string> names;
+  for (const BatchExecutor e : kBatchExecutors) names.emplace_back(to_string(e));
+  return names;
 }
 
 }  // namespace wangscape

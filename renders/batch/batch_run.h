@@ -12,28 +12,41 @@
 //   index.html, contact-sheet.png, batch.json   the results (assembled at the end)
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "renders/batch/batch_file.h"
 
 namespace wangscape {
 
+// Where a batch's tasks run: worker processes on this machine, or a Slurm job array.
+enum class BatchExecutor { local, slurm };
+inline constexpr std::array<BatchExecutor, 2> kBatchExecutors{BatchExecutor::local, BatchExecutor::slurm};
+
+// "local", "slurm": as `--executor` takes them.
+std::string_view to_string(BatchExecutor executor);
+// The executor `name` names; throws Error("batch run: executor 'NAME' is not known (local, slurm)").
+BatchExecutor parse_batch_executor(std::string_view name);
+// Every executor's name, in kBatchExecutors' order (for the command line's choices).
+std::vector<std::string> batch_executor_names();
+
 struct BatchRunSettings {
   std::filesystem::path batch_file;
   std::filesystem::path out_dir;
-  std::string executor = "local";  // local or slurm
-  int workers = 0;                 // local: worker processes, 0 = the cores
-  int chunk = 0;                   // slurm: tasks per array element, 0 = 1 up to 256 tasks, then more
-  int throttle = 0;                // slurm: array elements running at once (%), 0 = no limit
-  int retries = 1;                 // slurm: times failed elements are resubmitted (sbatch reads
-                                   // SBATCH_PARTITION, SBATCH_ACCOUNT, ... from the environment)
-  bool chatty = false;             // messages on stderr
-  bool json = false;               // plan: a JSON list of tasks
-  bool watch = false;              // status: report progress until no task is running
-  std::vector<int> task_range;     // run-task: first [count]; empty = assemble the gallery
+  BatchExecutor executor = BatchExecutor::local;
+  int workers = 0;              // local: worker processes, 0 = the cores
+  int chunk = 0;                // slurm: tasks per array element, 0 = 1 up to 256 tasks, then more
+  int throttle = 0;             // slurm: array elements running at once (%), 0 = no limit
+  int retries = 1;              // slurm: times failed elements are resubmitted (sbatch reads
+                                // SBATCH_PARTITION, SBATCH_ACCOUNT, ... from the environment)
+  bool chatty = false;          // messages on stderr
+  bool json = false;            // plan: a JSON list of tasks
+  bool watch = false;           // status: report progress until no task is running
+  std::vector<int> task_range;  // run-task: first [count]; empty = assemble the gallery
   std::function<void(int finished, int total)> on_progress;  // tasks done or failed so far
 };
 

@@ -48,7 +48,7 @@ TEST(BatchFile, ExpandsViewpointsTimesSunsTimesEnginesWithDistinctHashesAndOneSc
   for (const auto& t : tasks) hashes.insert(t.input_hash), scenes.insert(t.scene_key);
   EXPECT_EQ(hashes.size(), tasks.size());
   EXPECT_EQ(scenes.size(), 1u);  // camera, sun and engine never change the scene folder
-  EXPECT_EQ(tasks[1].engine, "blender");
+  EXPECT_EQ(tasks[1].engine, RenderEngine::blender);
   EXPECT_DOUBLE_EQ(tasks[2].sun.azimuth, 200.0);
   const std::string grid = "[[viewpoints]]\nkind = \"grid\"\ngrid = [2, 1]\n";
   EXPECT_EQ(expand_batch(batch(grid))[0].input_hash, expand_batch(batch(grid))[0].input_hash);  // deterministic

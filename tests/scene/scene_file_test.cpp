@@ -37,7 +37,7 @@ TEST(SceneFile, EmptyFileGivesTheDocumentedDefaults) {
   EXPECT_EQ(c.tiles.points_per_tile, 20);
   EXPECT_EQ(c.tiles.relaxation_rounds, 8);
   EXPECT_EQ(c.tiles.seed, 1u);
-  EXPECT_EQ(c.tiles.algorithm, "scanline");
+  EXPECT_EQ(c.tiles.algorithm, TilingAlgorithm::scanline);
   EXPECT_FALSE(c.tiles.area);
   EXPECT_FALSE(c.masks.max_height);
   EXPECT_FALSE(c.masks.min_height);
