@@ -9,6 +9,7 @@
 #include "core/color.h"
 #include "scene/camera_view.h"
 #include "scene/scene.h"
+#include "scene/shading.h"
 
 namespace wangscape {
 
@@ -56,14 +57,15 @@ constexpr int kYawBins = 16;
 constexpr double kTopShare = 0.25;
 
 // The mean color the camera sees of `mesh` turned by each of kYawBins yaws, seen along `view`
-// (unit ENU), each triangle lit by the sun as POV-Ray lights it (ambient plus two-sided
-// diffuse), divided by the light of flat ground, so the bake, lit as ground, shows the flower's
-// brightness.
+// (unit ENU), each triangle lit by the one shading model (scene/shading.h: its face towards the
+// camera, the sun with its translucency, the open sky, no shadows) and divided, per channel, by
+// the light of flat ground in the open, so the bake, lit as ground, shows the flower's brightness.
 std::array<FieldSplat, kYawBins> side_colors(const Mesh& mesh, const std::array<double, 3>& view, const Sun& sun) {
   constexpr int kCells = 32;
-  constexpr double kAmbient = 0.24, kDiffuse = 0.8;
-  const auto to_sun = sun.direction();
-  const double ground_light = kAmbient + kDiffuse * std::max(0.05, to_sun[2]);
+  const ShadingSettings light = with_sun(ShadingSettings{}, sun);
+  const auto& to_sun = light.sun_direction;
+  // The ground under a low sun keeps a twentieth of it, so that the ratio stays finite.
+  const Vec3f ground_light = lit(light, {1, 1, 1}, std::max(0.05f, to_sun[2]), 1);
   // A basis across the view: e1 horizontal, e2 up the picture.
   const std::array<double, 3> e1{-view[1], view[0], 0};
   const double n1 = std::max(std::hypot(e1[0], e1[1]), 1e-9);
@@ -98,11 +100,14 @@ std::array<FieldSplat, kYawBins> side_colors(const Mesh& mesh, const std::array<
                    w[3] = {qc[0] - qa[0], qc[1] - qa[1], qc[2] - qa[2]};
       const double nx0 = u[1] * w[2] - u[2] * w[1], ny0 = u[2] * w[0] - u[0] * w[2], nz = u[0] * w[1] - u[1] * w[0];
       const double nx = cs * nx0 - sn * ny0, ny = sn * nx0 + cs * ny0, nn = std::sqrt(nx * nx + ny * ny + nz * nz);
-      const double lambert = nn > 0 ? std::abs(nx * to_sun[0] + ny * to_sun[1] + nz * to_sun[2]) / nn : 0;
-      const double light = std::max(0.0, to_sun[2]) > 0 ? (kAmbient + kDiffuse * lambert) / ground_light : 1;
+      // Two-sided: the face the camera sees, whose normal points against the view.
+      const double facing = nx * view[0] + ny * view[1] + nz * view[2] > 0 ? -1 : 1;
+      const float cos_sun =
+          nn > 0 ? static_cast<float>(facing * (nx * to_sun[0] + ny * to_sun[1] + nz * to_sun[2]) / nn) : 0.0f;
       const std::size_t m = t < mesh.triangle_material.size() ? mesh.triangle_material[t] : 0;
-      const auto color =
-          m < mesh.materials.size() ? mesh.materials[m].base_color : std::array<float, 3>{0.5f, 0.5f, 0.5f};
+      const bool has_material = m < mesh.materials.size();
+      const Vec3f base = has_material ? mesh.materials[m].base_color : Vec3f{0.5f, 0.5f, 0.5f};
+      const Vec3f seen = lit(light, base, sun_share(cos_sun, has_material ? mesh.materials[m].translucency : 0), 1);
       const auto index = [&](double v, double lo) {
         return std::clamp(static_cast<int>((v - lo) / step), 0, kCells - 1);
       };
@@ -116,8 +121,7 @@ std::array<FieldSplat, kYawBins> side_colors(const Mesh& mesh, const std::array<
           const std::size_t c = static_cast<std::size_t>(cy * kCells + cx);
           if (d >= depth[c]) continue;
           depth[c] = d;
-          cell[c] = {static_cast<float>(color[0] * light), static_cast<float>(color[1] * light),
-                     static_cast<float>(color[2] * light), 1};
+          cell[c] = {seen[0] / ground_light[0], seen[1] / ground_light[1], seen[2] / ground_light[2], 1};
         }
     }
     // From afar the camera looks across the field at a grazing angle: the flowers in front hide

@@ -39,33 +39,6 @@ Vec3f offset_along(const Vec3f& p, const Vec3f& n, float distance) {
 
 }  // namespace
 
-Vec3f sun_direction_from_degrees(double azimuth_degrees, double elevation_degrees) {
-  const double az = azimuth_degrees * std::numbers::pi / 180, el = elevation_degrees * std::numbers::pi / 180;
-  return {static_cast<float>(std::sin(az) * std::cos(el)), static_cast<float>(std::cos(az) * std::cos(el)),
-          static_cast<float>(std::sin(el))};
-}
-
-ShadingSettings with_sun(ShadingSettings base, const Sun& sun) {
-  const auto d = sun.direction();
-  base.sun_direction = {float(d[0]), float(d[1]), float(d[2])};
-  for (float& c : base.sun_color) c *= float(sun.strength);
-  return base;
-}
-
-Vec3f sky_radiance(const ShadingSettings& s, const Vec3f& direction) {
-  const float length = std::sqrt(dot(direction, direction));
-  const float up = length > 0 ? std::clamp(direction[2] / length, 0.0f, 1.0f) : 0.0f;
-  // The horizon halfway between sky_color and a pale haze; the zenith a deeper sky_color.
-  constexpr Vec3f kHaze{0.80f, 0.85f, 0.90f};
-  const float toward_zenith = std::sqrt(up);
-  Vec3f out;
-  for (int c = 0; c < 3; ++c) {
-    const float horizon = 0.5f * (s.sky_color[c] + kHaze[c]), zenith = 0.7f * s.sky_color[c];
-    out[c] = (horizon + (zenith - horizon) * toward_zenith) * s.exposure;
-  }
-  return out;
-}
-
 void model_surface(const Mesh& mesh, unsigned prim, float u, float v, float cos_yaw, float sin_yaw,
                    SurfaceSample& out) {
   const auto& tri = mesh.triangles[prim];
@@ -103,7 +76,7 @@ Vec3f shade(RTCSceneTy* scene, const ShadingSettings& s, const SurfaceSample& sa
 
   // Sun: the front is lit by cos; a translucent part passes that share of the light on its back.
   const float cos_sun = dot(n, s.sun_direction);
-  float sun = cos_sun > 0 ? cos_sun : -cos_sun * sample.translucency;
+  float sun = sun_share(cos_sun, sample.translucency);
   if (sun > 0 && s.shadows) {
     const Vec3f from = offset_along(p, n, cos_sun > 0 ? s.ray_offset : -s.ray_offset);
     ++rays;
@@ -154,11 +127,8 @@ Vec3f shade(RTCSceneTy* scene, const ShadingSettings& s, const SurfaceSample& sa
     rays += s.ao_rays;
   }
 
-  Vec3f out;
-  for (int c = 0; c < 3; ++c) out[c] = sample.base_color[c] * (s.sun_color[c] * sun + s.sky_color[c] * sky);
-  for (float& c : out) c *= s.exposure;
   if (rays_cast) *rays_cast = rays;
-  return out;
+  return lit(s, sample.base_color, sun, sky);
 }
 
 std::array<std::uint8_t, 3> to_srgb8(const Vec3f& linear) {

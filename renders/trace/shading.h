@@ -1,12 +1,14 @@
-// The one shading model of renders/: the LDI build pre-shades its samples with it and the Embree
+// The one shading model, traced: the LDI build pre-shades its samples with it and the Embree
 // reference renderer shades its pixels with it, so both show the same light. Diffuse surfaces lit
 // by the sun (with Embree shadow rays) and by the sky (ambient occlusion from N hemisphere rays);
-// thin translucent parts (petals, leaves) also pass the sun that falls on their back.
+// thin translucent parts (petals, leaves) also pass the sun that falls on their back. The light
+// itself (settings, sun share, lit(), the sky) is scene/shading.h, which the far field uses too.
 #pragma once
 
 #include <array>
 #include <cstdint>
 
+#include "scene/shading.h"
 #include "templates/mesh.h"
 
 // Embree's scene handle (embree3/rtcore_scene.h: typedef struct RTCSceneTy* RTCScene), declared
@@ -14,36 +16,6 @@
 struct RTCSceneTy;
 
 namespace wangscape {
-
-struct Sun;
-
-using Vec3f = std::array<float, 3>;
-
-// Unit vector from the ground towards a sun at compass azimuth (degrees clockwise from north)
-// and elevation (degrees above the horizon), ENU (x east, y north, z up).
-Vec3f sun_direction_from_degrees(double azimuth_degrees, double elevation_degrees);
-
-struct ShadingSettings {
-  Vec3f sun_direction = sun_direction_from_degrees(135.0, 35.0);  // unit, towards the sun
-  Vec3f sun_color{2.2f, 2.0f, 1.75f};                             // linear irradiance the sun brings
-  Vec3f sky_color{0.38f, 0.45f, 0.60f};                           // linear, from an open hemisphere
-  bool shadows = true;                                            // sun shadow rays (else every point is lit)
-  int ao_rays = 8;                          // sky-light rays per sample; 0 = every point sees the open sky
-  float ao_distance = 1.5f;                 // meters: occluders further than this do not darken the sky light
-  float ray_offset = 1e-3f;                 // meters: shadow and sky rays start this far off the surface
-  float exposure = 1.0f;                    // linear scale before the sRGB encoding
-  Vec3f ground_color{0.30f, 0.24f, 0.15f};  // linear base color of the ground plane
-};
-
-// `base` lit by the scene's sun: its direction and its strength (a scale of sun_color). What
-// the LDI build and the Embree reference both do, so they show the same light.
-ShadingSettings with_sun(ShadingSettings base, const Sun& sun);
-
-// Linear RGB (times exposure) seen along a ray that meets nothing: a gradient from a pale horizon
-// to a deeper zenith around sky_color (the open sky's irradiance in shade(), so a white surface
-// under the open sky is as bright as the sky beside it). Directions below the horizon see the
-// horizon's color. `direction` need not be unit. The Embree reference draws it; so can the view.
-Vec3f sky_radiance(const ShadingSettings& settings, const Vec3f& direction);
 
 // A point to shade, in the scene space of the Embree scene given to shade().
 struct SurfaceSample {
