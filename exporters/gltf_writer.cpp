@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/vecmath.h"
 #include "exporters/export_support.h"
 #include "exporters/image_io.h"
 
@@ -200,13 +201,7 @@ Json camera_node(const Camera& camera, const RenderSettings& render, Json& camer
   const auto position = to_gltf(camera.position);
   const auto target = to_gltf(camera.target);
   std::array<double, 3> f{target[0] - position[0], target[1] - position[1], target[2] - position[2]};
-  const auto normalize = [](std::array<double, 3> v) {
-    const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    return l > 0 ? std::array<double, 3>{v[0] / l, v[1] / l, v[2] / l} : v;
-  };
-  const auto cross = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
-    return std::array<double, 3>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-  };
+  const auto normalize = [](const Vector3d& v) { return length(v) > 0 ? normalized(v) : v; };
   f = normalize(f);
   std::array<double, 3> up{0, 1, 0};
   if (std::abs(f[1]) > 0.999999) up = {0, 0, -1};  // looking straight down: north is up
