@@ -97,7 +97,9 @@ BENCHMARK(BM_CyclesRender320x240)->Arg(100'000)->Iterations(1)->UseManualTime()-
 void BM_GltfNodePerFlowerImport(benchmark::State& state) {
   const auto count = std::uint64_t(state.range(0));
   const auto path = kScratch / ("nodes_" + std::to_string(count) + ".glb");
-  write_gltf(bench_scene(count), path, {GltfInstancing::node_per_instance});
+  GltfOptions options;
+  options.instancing = GltfInstancing::node_per_instance;
+  write_gltf(bench_scene(count), path, options);
   for (auto _ : state) {
     const auto values = run_blender({"gltf", path.string()}, state);
     if (values.empty()) return;

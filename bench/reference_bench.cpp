@@ -8,8 +8,8 @@
 
 #include <algorithm>
 
-#include "renders/trace/embree_reference.h"
 #include "renders/ldi/ldi_scene.h"
+#include "renders/trace/embree_reference.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
 

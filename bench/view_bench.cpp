@@ -1,17 +1,26 @@
-// The real-time LDI view on the default scene (its field on Mount St. Helens, the pack built once
-// per run into a temporary file: about 25 s), from three cameras at 640 x 360 and 1280 x 720:
+// The real-time view on the default scene (its field on Mount St. Helens, the pack built once per
+// run into a temporary file: about 25 s), from four cameras at 640 x 360 and 1280 x 720:
 //  - camera 0, the scene's own: at the field's northern edge, looking south across it;
 //  - camera 1, in the field: 300 m inside, at head height, looking the same way;
-//  - camera 2, above the field: 25 m up, looking down into it.
-// BM_ViewFrame/CAMERA/W/H: one LdiRenderer::render per iteration. Counters: fps, depth pixels
-//   per second (M), the tiles drawn and the median milliseconds of each phase (tiles, LDIs,
-//   terrain, resolve), which say what limits the frame.
-// BM_ViewAgainstReference/CAMERA/W/H: one Embree reference frame of the same view (the scene's
-//   4 samples per pixel, the pack's light); counters: its seconds, the LDI frame's (median of
-//   20), their ratio, PSNR (dB), SSIM and the share of hole pixels.
+//  - camera 2, above the field: 25 m up, looking down into it;
+//  - camera 3, a close-up: 1.5 m east of a flower at head height, looking at it (west).
+// Each frame with the near field at the default distance (kDefaultNearField: tiles that close
+// ray traced from their real flowers) unless the benchmark's name says near 0 (LDIs only).
+// BM_ViewFrame/CAMERA/W/H/NEAR_CM: one LdiRenderer::render per iteration. Counters: fps (wall),
+//   process CPU seconds per frame (all threads: getrusage), depth pixels per second (M), the
+//   tiles drawn, the near field's tiles and rays, and the median milliseconds of each phase
+//   (tiles, LDIs, terrain, near field, resolve), which say what limits the frame.
+// BM_ViewAgainstTruth/CAMERA/W/H/NEAR_CM: the frame against the truth (the Embree reference at
+//   64 samples per pixel), beside the exact geometry at one sample per pixel: PSNR, SSIM, holes
+//   and the gaps (exact minus view).
+// BM_EmbreeOneSample/CAMERA/W/H: the anchor, Embree ray casting the same frame at one sample per
+//   pixel with the same shading as the near field (a primary and a sun-shadow ray per pixel, the
+//   open sky; single rays, both threads): its trace seconds (the scene built once, not counted).
 // bench/view_bench.sh runs the same views through `wangscape view --stats`.
 #include <benchmark/benchmark.h>
 #include <unistd.h>
+
+#include <sys/resource.h>
 
 #include <cmath>
 #include <filesystem>
@@ -50,60 +59,105 @@ ViewCamera bench_camera(const ViewWorld& world, int which) {
   } else if (which == 2) {
     request.camera = {0, 6640, 1150};
     request.look_at = {0, 6450, 1125};
+  } else if (which == 3) {
+    request.camera = {1.0, 6291.3, 1131.6};
+    request.look_at = {-0.5, 6291.3, 1131.5};
   }
   return view_camera(world, request);
+}
+
+double process_cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) / 1e6;
 }
 
 void BM_ViewFrame(benchmark::State& state) {
   const auto world = default_world();
   LdiRenderer renderer(world, int(state.range(1)), int(state.range(2)));
+  renderer.set_near_field(double(state.range(3)) / 100);
   const ViewCamera camera = bench_camera(*world, int(state.range(0)));
-  std::uint64_t depth_pixels = 0, tiles = 0;
-  std::array<std::vector<double>, 4> phases;
+  renderer.render(camera);  // the near field's scene is made on the first frame
+  std::uint64_t depth_pixels = 0, tiles = 0, near_tiles = 0, near_rays = 0;
+  std::array<std::vector<double>, 5> phases;
+  const double cpu_start = process_cpu_seconds();
   for (auto _ : state) {
     const ViewFrameStats& s = renderer.render(camera);
     depth_pixels += s.depth_pixels;
     tiles = s.tiles_drawn;
-    for (std::size_t p = 0; p < 4; ++p) phases[p].push_back(s.phase_ms[p]);
+    near_tiles = s.near_tiles;
+    near_rays = s.near_rays;
+    for (std::size_t p = 0; p < phases.size(); ++p) phases[p].push_back(s.phase_ms[p]);
   }
+  state.counters["cpu_s_per_frame"] = (process_cpu_seconds() - cpu_start) / double(state.iterations());
   state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["Mdepth_px_per_s"] = benchmark::Counter(double(depth_pixels) / 1e6, benchmark::Counter::kIsRate);
   state.counters["tiles_drawn"] = double(tiles);
-  const char* names[4] = {"tiles_ms", "ldis_ms", "terrain_ms", "resolve_ms"};
-  for (std::size_t p = 0; p < 4; ++p) {
+  state.counters["near_tiles"] = double(near_tiles);
+  state.counters["near_rays"] = double(near_rays);
+  const char* names[5] = {"tiles_ms", "ldis_ms", "terrain_ms", "near_ms", "resolve_ms"};
+  for (std::size_t p = 0; p < phases.size(); ++p) {
     auto& v = phases[p];
     std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
     state.counters[names[p]] = v.empty() ? 0.0 : v[v.size() / 2];
   }
 }
 
-void BM_ViewAgainstReference(benchmark::State& state) {
+void BM_ViewAgainstTruth(benchmark::State& state) {
   const auto world = default_world();
   LdiRenderer renderer(world, int(state.range(1)), int(state.range(2)));
+  renderer.set_near_field(double(state.range(3)) / 100);
   const ViewCamera camera = bench_camera(*world, int(state.range(0)));
   for (auto _ : state) {
-    const double frame_ms = measure_view(renderer, camera, 20).frame_ms;
     renderer.render(camera);
-    const ViewComparison v = compare_with_reference(*world, renderer, camera, 0);
-    state.counters["reference_s"] = v.reference.seconds;
-    state.counters["ldi_frame_s"] = frame_ms / 1e3;
-    state.counters["speedup"] = v.reference.seconds / (frame_ms / 1e3);
+    const ViewComparison v = compare_with_reference(*world, renderer, camera, kDefaultTruthSamples);
     state.counters["psnr_db"] = v.comparison.psnr_db;
     state.counters["ssim"] = v.comparison.ssim;
     state.counters["hole_share"] = v.comparison.holes.share;
+    state.counters["exact_psnr_db"] = v.exact.psnr_db;
+    state.counters["exact_ssim"] = v.exact.ssim;
+    state.counters["psnr_gap_db"] = v.exact.psnr_db - v.comparison.psnr_db;
+    state.counters["ssim_gap"] = v.exact.ssim - v.comparison.ssim;
+  }
+}
+
+void BM_EmbreeOneSample(benchmark::State& state) {
+  const auto world = default_world();
+  const ViewCamera camera = bench_camera(*world, int(state.range(0)));
+  ReferenceOptions options;
+  options.camera = Camera{camera.position, camera.target, camera.fov_degrees};
+  options.width = int(state.range(1));
+  options.height = int(state.range(2));
+  options.samples_per_pixel = 1;
+  options.shading = world->shading();
+  options.shading.ao_rays = 0;  // a primary and a sun-shadow ray per pixel, as the near field
+  for (auto _ : state) {
+    const ReferenceImage r = render_reference(world->scene(), options);
+    state.SetIterationTime(r.stats.render_seconds);
+    state.counters["trace_s"] = r.stats.render_seconds;
+    state.counters["rays"] = double(r.stats.primary_rays + r.stats.secondary_rays);
   }
 }
 
 void views(benchmark::internal::Benchmark* b) {
-  for (int camera = 0; camera < 3; ++camera) {
-    b->Args({camera, 640, 360});
-    b->Args({camera, 1280, 720});
-  }
+  for (int camera = 0; camera < 4; ++camera)
+    for (const auto& [w, h] : {std::pair{640, 360}, std::pair{1280, 720}}) {
+      b->Args({camera, w, h, std::lround(kDefaultNearField * 100)});
+      b->Args({camera, w, h, 0});
+    }
+  b->ArgNames({"camera", "width", "height", "near_cm"});
+}
+
+void anchor_views(benchmark::internal::Benchmark* b) {
+  for (int camera = 0; camera < 4; ++camera)
+    for (const auto& [w, h] : {std::pair{640, 360}, std::pair{1280, 720}}) b->Args({camera, w, h});
   b->ArgNames({"camera", "width", "height"});
 }
 
 BENCHMARK(BM_ViewFrame)->Apply(views)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
-BENCHMARK(BM_ViewAgainstReference)->Apply(views)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_ViewAgainstTruth)->Apply(views)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_EmbreeOneSample)->Apply(anchor_views)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(3);
 
 }  // namespace
 

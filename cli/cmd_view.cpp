@@ -38,12 +38,20 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--frames", o->request.frames_dir, "Folder for the path's frames (and path.mp4 with ffmpeg)");
   sub->add_option("--fps", o->request.path_fps, "Frames per second of the path")->check(finite_number());
   sub->add_option("--script", o->request.script, "Window: scripted input, e.g. \"W*30,screenshot,Escape\"");
-  sub->add_flag("--compare", o->request.compare, "Also ray trace the frame (Embree) and print PSNR, SSIM, holes");
-  sub->add_option("--diff", o->request.diff, "With --compare: write the difference image");
-  sub->add_option("--spp", o->request.reference_samples, "With --compare: reference samples per pixel");
+  sub->add_flag("--compare", o->request.compare,
+                "Also ray trace the frame with Embree (the truth, and the exact geometry at one sample per pixel) "
+                "and print PSNR, SSIM and holes of both against the truth");
+  sub->add_option("--diff", o->request.diff, "With --compare: write the frame's difference from the truth (PNG)");
+  sub->add_option("--truth-spp", o->request.truth_samples,
+                  "With --compare: the truth's samples per pixel (default 64: converged for one-sample frames)");
+  sub->add_option("--truth", o->request.truth_out, "With --compare: write the truth image (PNG)");
   sub->add_option("--threads", o->request.threads, "Threads (default: all cores)")->check(CLI::Range(0, 1024));
   sub->add_option("--detail", o->request.detail,
                   "Level-of-detail scale: 1 the pack's levels, 0.5 coarser and faster, 2 finer (0.1 .. 10)")
+      ->check(finite_number());
+  sub->add_option("--near", o->request.near_field,
+                  "Near field, meters: tiles this close are ray traced from their real flowers instead of drawn "
+                  "from LDIs (0: LDIs everywhere)")
       ->check(finite_number());
   sub->callback([o, &global] {
     ViewRequest& r = o->request;

@@ -290,7 +290,13 @@ bool SceneField::tile_in_view(const TileCell& cell) const {
   return view->tile_visible(b, lo - 1, hi + 1);
 }
 
-FieldReport SceneField::place(const InstanceSink& sink) const {
+FieldReport SceneField::place(const InstanceSink& sink) const { return place_window(std::nullopt, sink); }
+
+FieldReport SceneField::place_in(const Extent& window, const InstanceSink& sink) const {
+  return place_window(window, sink);
+}
+
+FieldReport SceneField::place_window(const std::optional<Extent>& window, const InstanceSink& sink) const {
   FieldReport report;
   const TileRange whole = tile_range(*placement.area, placement.tile_size);
   report.field_tiles = std::uint64_t(whole.width()) * std::uint64_t(whole.height());
@@ -324,9 +330,14 @@ FieldReport SceneField::place(const InstanceSink& sink) const {
   PlacementStats stats;
   if (view) {
     PlacementOptions windowed = placement;
-    windowed.window = view->window();
+    windowed.window = window ? window->intersected(view->window()) : view->window();
     stats = ground.place(filled, windowed, pass_on, in_view);
     report.visible_tiles = visible.load();
+  } else if (window) {
+    PlacementOptions windowed = placement;
+    windowed.window = *window;
+    stats = ground.place(filled, windowed, pass_on);
+    report.visible_tiles = report.field_tiles;
   } else {
     stats = ground.place(filled, placement, pass_on);
     report.visible_tiles = report.field_tiles;

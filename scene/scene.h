@@ -72,11 +72,17 @@ struct SceneField {
 
   // Places every instance (thread-safe, deterministic).
   FieldReport place(const InstanceSink& sink) const;
+  // The same instances place() gives, of the tiles that meet `window` (ENU meters) only: what a
+  // renderer needs around a point of view (thread-safe, deterministic).
+  FieldReport place_in(const Extent& window, const InstanceSink& sink) const;
   // Whether the camera view keeps the tile (true without a view). Thread-safe.
   bool tile_in_view(const TileCell& cell) const;
   // The yaw (radians) an instance of a point with tile yaw `point_yaw` gets: the configured
   // facing spread over +- jitter by the point's own uniform yaw, or the point's yaw.
   float yaw_of(float point_yaw) const;
+
+ private:
+  FieldReport place_window(const std::optional<Extent>& window, const InstanceSink& sink) const;
 };
 
 struct Scene {

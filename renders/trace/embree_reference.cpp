@@ -18,6 +18,7 @@
 #include "core/vecmath.h"
 #include "renders/trace/embree_device.h"
 #include "renders/trace/ground_colors.h"
+#include "renders/trace/scene_tracer.h"
 
 namespace wangscape {
 
@@ -29,76 +30,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 constexpr int kTile = 16;  // pixels: the unit of parallel work
-constexpr unsigned kTerrainId = 0;
-
-// The flowers as structure of arrays, indexed by Embree instance id - 1.
-struct Flowers {
-  std::vector<std::uint16_t> variant;
-  std::vector<float> cos_yaw, sin_yaw;
-};
-
-// The whole scene in Embree, in a frame shifted by `origin` (ENU meters, near the camera) so
-// that floats keep millimetres where the rays start.
-struct TracedScene {
-  EmbreeDevice device;
-  std::vector<EmbreeScene> models;
-  std::unique_ptr<EmbreeScene> top;
-  Flowers flowers;
-  V3 origin{};
-};
-
-void add_flowers(TracedScene& t, const Scene& scene, const InstanceBatch& batch) {
-  for (std::size_t i = 0; i < batch.size(); ++i) {
-    const std::uint16_t variant = batch.variant[i];
-    if (variant >= scene.models.size())
-      throw Error("reference render: an instance of variant " + std::to_string(variant) + " but the scene has " +
-                  std::to_string(scene.models.size()) + " models");
-    const float c = std::cos(batch.yaw[i]), s = std::sin(batch.yaw[i]), k = batch.scale[i];
-    // Column-major 3 x 4: rotation about z by yaw, uniform scale, translation (as POV-Ray's
-    // rotate, scale, translate of the same instance).
-    const float xfm[12] = {c * k,
-                           s * k,
-                           0,
-                           -s * k,
-                           c * k,
-                           0,
-                           0,
-                           0,
-                           k,
-                           float(batch.x[i] - t.origin[0]),
-                           float(batch.y[i] - t.origin[1]),
-                           float(batch.z[i] - t.origin[2])};
-    RTCGeometry g = rtcNewGeometry(t.device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(g, t.models[variant].get());
-    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
-    rtcCommitGeometry(g);
-    rtcAttachGeometryByID(t.top->get(), g, unsigned(t.flowers.variant.size()) + 1);
-    rtcReleaseGeometry(g);
-    t.flowers.variant.push_back(variant);
-    t.flowers.cos_yaw.push_back(c);
-    t.flowers.sin_yaw.push_back(s);
-  }
-}
-
-void build(TracedScene& t, const Scene& scene, const V3& origin) {
-  t.origin = {std::round(origin[0]), std::round(origin[1]), std::round(origin[2])};
-  t.models = model_scenes(t.device, scene.models);
-  t.top = std::make_unique<EmbreeScene>(t.device.get());
-  if (!scene.terrain.triangles.empty()) {
-    std::vector<std::array<float, 3>> shifted(scene.terrain.positions.size());
-    for (std::size_t v = 0; v < shifted.size(); ++v)
-      for (std::size_t c = 0; c < 3; ++c) shifted[v][c] = float(double(scene.terrain.positions[v][c]) - t.origin[c]);
-    RTCGeometry g = triangle_geometry(t.device.get(), shifted, scene.terrain.triangles);
-    rtcAttachGeometryByID(t.top->get(), g, kTerrainId);
-    rtcReleaseGeometry(g);
-  }
-  if (scene.instances && !scene.models.empty())
-    scene.instances([&](const InstanceBatch& batch) { add_flowers(t, scene, batch); });
-  t.device.check("adding the terrain and the flowers");
-  rtcCommitScene(t.top->get());
-  t.device.check("building the scene");
-}
-
 void check_options(const Scene& scene, int width, int height, int spp) {
   const auto fail = [](const std::string& what) { throw Error("reference render: " + what); };
   if (width < 1 || height < 1 || width > kMaxReferenceSide || height > kMaxReferenceSide)
@@ -120,8 +51,7 @@ void check_options(const Scene& scene, int width, int height, int spp) {
 
 // What one tile of pixels needs.
 struct Tracer {
-  const Scene& scene;
-  const TracedScene& traced;
+  const SceneTracer& traced;
   const ShadingSettings& shading;
   const GroundColors& ground;
   CameraFrame frame;  // origin relative to traced.origin
@@ -152,11 +82,12 @@ struct Tracer {
       for (std::size_t c = 0; c < 3; ++c) d[c] = frame.forward[c] + nx * frame.right[c] + ny * frame.up[c];
       d = normalized(d);
       Vec3f color{};
-      if (const auto hit = intersect(d)) {
+      if (const auto hit = traced.intersect(frame.origin, d)) {
         ++hits;
         out.depth = std::min(out.depth, hit->t);
         int rays = 0;
-        color = shade(traced.top->get(), shading, surface(*hit, d), mix64(h ^ 0x5851f42d4c957f2dull), &rays);
+        color = shade(traced.scene(), shading, traced.surface(*hit, frame.origin, d, ground),
+                      mix64(h ^ 0x5851f42d4c957f2dull), &rays);
         out.secondary += std::uint64_t(rays);
       } else {
         color = sky_radiance(shading, {float(d[0]), float(d[1]), float(d[2])});
@@ -166,50 +97,6 @@ struct Tracer {
     for (float& c : out.color) c /= float(spp);
     out.coverage = float(hits) / float(spp);
     return out;
-  }
-
- private:
-  struct Hit {
-    float t, u, v;
-    unsigned geom, inst, prim;
-  };
-
-  std::optional<Hit> intersect(const V3& d) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    RTCRayHit rh{};
-    rh.ray.org_x = float(frame.origin[0]);
-    rh.ray.org_y = float(frame.origin[1]);
-    rh.ray.org_z = float(frame.origin[2]);
-    rh.ray.dir_x = float(d[0]);
-    rh.ray.dir_y = float(d[1]);
-    rh.ray.dir_z = float(d[2]);
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = std::numeric_limits<float>::infinity();
-    rh.ray.mask = 0xffffffffu;
-    rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(traced.top->get(), &context, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-    return Hit{rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.geomID, rh.hit.instID[0], rh.hit.primID};
-  }
-
-  SurfaceSample surface(const Hit& h, const V3& d) const {
-    SurfaceSample s;
-    for (std::size_t c = 0; c < 3; ++c) s.position[c] = float(frame.origin[c] + h.t * d[c]);
-    if (h.inst != RTC_INVALID_GEOMETRY_ID) {
-      const unsigned f = h.inst - 1;
-      model_surface(scene.models[traced.flowers.variant[f]], h.prim, h.u, h.v, traced.flowers.cos_yaw[f],
-                    traced.flowers.sin_yaw[f], s);
-    } else {
-      model_surface(scene.terrain, h.prim, h.u, h.v, 1.0f, 0.0f, s);
-      s.base_color = ground.at(double(s.position[0]) + traced.origin[0], double(s.position[1]) + traced.origin[1]);
-      s.translucency = 0;
-    }
-    // Two-sided: turn the normal towards the viewer.
-    if (s.normal[0] * d[0] + s.normal[1] * d[1] + s.normal[2] * d[2] > 0)
-      for (float& v : s.normal) v = -v;
-    return s;
   }
 };
 
@@ -257,18 +144,17 @@ ReferenceImage render_reference(const Scene& scene, const ReferenceOptions& opti
   if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
 
   ReferenceImage out;
-  TracedScene traced;
-  build(traced, scene, frame.origin);
-  for (std::size_t c = 0; c < 3; ++c) frame.origin[c] -= traced.origin[c];
+  const SceneTracer traced(scene, frame.origin);
+  for (std::size_t c = 0; c < 3; ++c) frame.origin[c] -= traced.origin()[c];
   out.stats.build_seconds = seconds_since(start);
-  out.stats.instances = traced.flowers.variant.size();
+  out.stats.instances = traced.instances();
   out.stats.triangles = scene.terrain.triangles.size();
   for (const Mesh& m : scene.models) out.stats.triangles += m.triangles.size();
 
   const ShadingSettings shading = with_sun(options.shading, scene.sun);
   const GroundColors ground(scene.ground_texture.get(), shading.ground_color);
   const int grid = int(std::ceil(std::sqrt(double(spp))));
-  const Tracer tracer{scene, traced, shading, ground, frame, width, height, spp, grid, options.seed};
+  const Tracer tracer{traced, shading, ground, frame, width, height, spp, grid, options.seed};
 
   out.image = ImageRgb8(width, height);
   const std::size_t pixels = std::size_t(width) * std::size_t(height);
@@ -301,7 +187,8 @@ ReferenceImage render_reference(const Scene& scene, const ReferenceOptions& opti
     }
     secondary += rays;
   });
-  traced.device.check("tracing");
+
+  traced.check("tracing");
   out.stats.render_seconds = seconds_since(render_start);
   out.stats.primary_rays = std::uint64_t(pixels) * std::uint64_t(spp);
   out.stats.secondary_rays = secondary.load();

@@ -20,6 +20,7 @@
 #include "renders/trace/embree_device.h"
 #include "renders/trace/shading.h"
 
+#include "renders/trace/scene_tracer.h"
 #include "renders/view/view_samples.h"
 
 namespace wangscape {
@@ -34,6 +35,10 @@ constexpr int kMaxSplat = 24;              // pixels
 constexpr float kLevelBlendStart = 0.75f;  // of a level's range: where dithering into the next level starts
 constexpr float kDirectionBand = 0.08f;    // of the angle between two directions: dithered either side of the bisector
 constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+// The near field: how far a flower reaches from its stem (meters), and how much further out the
+// flowers are kept as sun occluders (a low sun's shadows fall into the near field from there).
+constexpr double kNearFlowerRadius = 0.5;
+constexpr double kNearShadowMargin = 4.0;
 
 std::uint64_t pack_entry(float depth, std::uint8_t r, std::uint8_t g, std::uint8_t b) {
   return std::uint64_t(std::bit_cast<std::uint32_t>(depth)) << 32 | std::uint64_t(r) << 16 | std::uint64_t(g) << 8 | b;
@@ -120,6 +125,11 @@ struct LdiRenderer::Impl {
   std::vector<float> chunk_distance;
   std::atomic<std::uint64_t> depth_pixels{0};
   tbb::enumerable_thread_specific<ThreadDepths> thread_depths;  // per thread, kept across frames
+  // The near field: the real flowers of the tiles around the eye, ray traced (made on the first
+  // frame that needs it; its flowers placed again only when the eye's window of tiles changes).
+  std::unique_ptr<SceneTracer> near_tracer;
+  std::optional<Extent> near_window;
+  std::atomic<std::uint64_t> near_rays{0};
 
   std::array<float, 3> to_camera(double x, double y, double z) const {
     const V3 d{x - eye[0], y - eye[1], z - eye[2]};
@@ -187,6 +197,13 @@ void LdiRenderer::set_detail(double detail) {
     throw Error("view: detail " + std::to_string(detail) + "; expected " + std::to_string(kMinViewDetail) + " .. " +
                 std::to_string(kMaxViewDetail) + " (1: the pack's levels at their own distances)");
   detail_ = detail;
+}
+
+void LdiRenderer::set_near_field(double meters) {
+  if (!(meters >= 0 && meters <= kMaxNearField))
+    throw Error("view: near field " + std::to_string(meters) + " m; expected 0 .. " +
+                std::to_string(int(kMaxNearField)) + " m (0: LDIs only)");
+  near_field_ = meters;
 }
 
 namespace {
@@ -321,7 +338,7 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   std::fill(m.zbuffer.begin(), m.zbuffer.end(), kEmpty);
   m.depth_pixels = 0;
   stats_.depth_pixels = 0;
-  stats_.tiles_drawn = stats_.tiles_culled = 0;
+  stats_.tiles_drawn = stats_.tiles_culled = stats_.near_tiles = 0;
   std::fill(stats_.levels.begin(), stats_.levels.end(), 0);
   order_.clear();
 
@@ -411,7 +428,10 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
     }
     ++stats_.tiles_drawn;
     ++stats_.levels[std::min(a, levels)];
-    if (a < drawn_levels && (mask_.empty() || (t < mask_.size() && mask_[t]))) order_.push_back(std::uint32_t(t));
+    const bool near = d < near_field_;  // ray traced from the real flowers instead (trace_near_field)
+    stats_.near_tiles += near;
+    if (a < drawn_levels && !near && (mask_.empty() || (t < mask_.size() && mask_[t])))
+      order_.push_back(std::uint32_t(t));
   }
   // Back to front (the farthest first; ties by index).
   std::sort(order_.begin(), order_.end(), [&](std::uint32_t p, std::uint32_t q) {
@@ -664,6 +684,8 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   });
 
   const auto terrain_done = std::chrono::steady_clock::now();
+  stats_.near_rays = stats_.near_tiles ? trace_near_field() : 0;
+  const auto near_done = std::chrono::steady_clock::now();
   // ---- resolve: the z-buffer's colors, the sky where nothing was drawn ----
   tbb::parallel_for(tbb::blocked_range<int>(0, m.height, 8), [&](const tbb::blocked_range<int>& r) {
     for (int py = r.begin(); py != r.end(); ++py) {
@@ -692,10 +714,81 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   const auto end = std::chrono::steady_clock::now();
   const auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
   stats_.phase_ms = {ms(start, tiles_done), ms(tiles_done, ldis_done), ms(ldis_done, terrain_done),
-                     ms(terrain_done, end)};
+                     ms(terrain_done, near_done), ms(near_done, end)};
   stats_.depth_pixels = m.depth_pixels;
   stats_.frame_ms = ms(start, end);
   return stats_;
+}
+
+// ---- the near field: every pixel's ray, from the eye up to what the z-buffer already holds and
+// no further than the near tiles reach, traced against the real flowers of the tiles around the
+// eye and the terrain; a hit is shaded by the one shading model (sun with its shadow ray, the open
+// sky) and written into the z-buffer. Returns the rays cast (primary and shadow).
+std::uint64_t LdiRenderer::trace_near_field() {
+  Impl& m = *impl_;
+  const ViewWorld& world = *world_;
+  const SceneField& field = *world.scene().field;
+  const double s = world.tile_size();
+  // The flowers of near tiles stand within this far of the eye, across the ground; the window
+  // adds the shadows a sun low over the field casts into it from a little further out.
+  const double reach = near_field_ + 1.5 * s + kNearFlowerRadius;
+  const double margin = reach + kNearShadowMargin;
+  const Extent window{std::floor((m.eye[0] - margin) / s) * s, std::floor((m.eye[1] - margin) / s) * s,
+                      std::ceil((m.eye[0] + margin) / s) * s, std::ceil((m.eye[1] + margin) / s) * s};
+  if (!m.near_tracer) {
+    const Extent& area = world.scene().field_area;
+    m.near_tracer = std::make_unique<SceneTracer>(
+        world.scene(), std::array<double, 3>{(area.min_x + area.max_x) / 2, (area.min_y + area.max_y) / 2, m.eye[2]},
+        SceneTracer::Layout::part);
+  }
+  if (!m.near_window || m.near_window->min_x != window.min_x || m.near_window->min_y != window.min_y ||
+      m.near_window->max_x != window.max_x || m.near_window->max_y != window.max_y) {
+    m.near_tracer->set_flowers([&](const InstanceSink& sink) { field.place_in(window, sink); });
+    m.near_window = window;
+  }
+  const SceneTracer& tracer = *m.near_tracer;
+  const V3 from{m.eye[0] - tracer.origin()[0], m.eye[1] - tracer.origin()[1], m.eye[2] - tracer.origin()[2]};
+  // The open sky without sky rays: at one sample per pixel a few sky rays are noise that costs
+  // more than the shading otherwise (measured on the close-up camera at 320 x 180 against the
+  // 16-sample truth: 24.2 dB and SSIM 0.81 without, 20.5 dB and 0.56 with one ray, 24.1 dB and
+  // 0.73 with four at 3.6 times the time).
+  ShadingSettings shading = world.sun_shading();
+  shading.ao_rays = 0;
+  const Luts& lut = luts();
+  m.near_rays = 0;
+  tbb::parallel_for(tbb::blocked_range<int>(0, m.height, 4), [&](const tbb::blocked_range<int>& r) {
+    std::uint64_t rays = 0;
+    for (int py = r.begin(); py != r.end(); ++py) {
+      const double ray_up = -(double(py) + 0.5 - double(m.cy)) / double(m.focal);
+      std::uint64_t* row = m.zbuffer.data() + std::size_t(py) * std::size_t(m.width);
+      for (int px = 0; px < m.width; ++px) {
+        const double ray_right = (double(px) + 0.5 - double(m.cx)) / double(m.focal);
+        V3 d{};
+        for (std::size_t c = 0; c < 3; ++c) d[c] = m.forward[c] + ray_right * m.right[c] + ray_up * m.up[c];
+        d = normalized(d);
+        const double along = dot(d, m.forward);  // camera depth per meter of ray
+        const double across = std::hypot(d[0], d[1]);
+        const double drawn = row[px] == kEmpty ? std::numeric_limits<double>::infinity()
+                                               : double(std::bit_cast<float>(std::uint32_t(row[px] >> 32))) / along;
+        const double tfar = std::min(drawn, across > 1e-9 ? reach / across : drawn);
+        if (!(tfar > 0) || std::isinf(tfar)) continue;
+        const auto hit = tracer.intersect(from, d, float(tfar));
+        ++rays;
+        if (!hit) continue;
+        int cast = 0;
+        const std::uint64_t random = mix64(std::uint64_t(std::uint32_t(py)) << 32 | std::uint32_t(px));
+        const Vec3f color =
+            shade(tracer.scene(), shading, tracer.surface(*hit, from, d, world.ground_colors()), random, &cast);
+        rays += std::uint64_t(cast);
+        const float depth = float(double(hit->t) * along);
+        const std::uint64_t entry = pack_entry(depth, lut.encode(color[0]), lut.encode(color[1]), lut.encode(color[2]));
+        row[px] = std::min(row[px], entry);
+      }
+    }
+    m.near_rays += rays;
+  });
+  tracer.check("tracing the near field");
+  return m.near_rays.load();
 }
 
 }  // namespace wangscape

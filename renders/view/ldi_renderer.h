@@ -39,15 +39,22 @@ struct ViewCamera {
 };
 
 inline constexpr double kMinViewDetail = 0.1, kMaxViewDetail = 10;
+// The near field (LdiRenderer::set_near_field): at most this far (meters), and the distance
+// `wangscape view` uses unless told (docs/viewer.md says how it was chosen).
+inline constexpr double kMaxNearField = 100;
+inline constexpr double kDefaultNearField = 8;
 
 // What one frame drew.
 struct ViewFrameStats {
   double frame_ms = 0;
-  // Of it: choosing and culling tiles, warping LDIs, rasterizing the terrain, resolving (sky).
-  std::array<double, 4> phase_ms{};
+  // Of it: choosing and culling tiles, warping LDIs, rasterizing the terrain, ray tracing the
+  // near field, resolving (sky).
+  std::array<double, 5> phase_ms{};
   std::uint64_t depth_pixels = 0;  // depth pixels warped
   std::uint64_t tiles_drawn = 0;   // in the frustum: drawn as LDIs or as far-field color
   std::uint64_t tiles_culled = 0;  // outside the frustum
+  std::uint64_t near_tiles = 0;    // in the frustum or not, within the near field: ray traced
+  std::uint64_t near_rays = 0;     // rays the near field cast (primary, shadow and sky)
   // Tiles drawn per level (each at its nearer level when two are dithered); the last entry
   // counts those beyond the last level, drawn as the far-field color.
   std::vector<std::uint64_t> levels;
@@ -73,6 +80,12 @@ class LdiRenderer {
   // pack was built for; 0.5: coarser levels at half the distance, fewer depth pixels, a faster
   // and blockier frame; 2: finer). Throws Error outside kMinViewDetail .. kMaxViewDetail.
   void set_detail(double detail);
+  // The near field: the tiles within `meters` of the eye are not drawn from their LDIs but ray
+  // traced from their real flowers (Embree, one ray through each pixel's centre, shaded by the one
+  // shading model with the pack's sun and its shadow ray, under the open sky: no sky rays),
+  // over the LDIs and the terrain beyond. 0: LDIs everywhere. Throws Error outside
+  // 0 .. kMaxNearField.
+  void set_near_field(double meters);
   // Draws only the placed tiles whose entry is nonzero (the terrain and sky as always); empty:
   // every tile. For tests and for looking at single tiles.
   void set_tile_mask(std::vector<std::uint8_t> mask) { mask_ = std::move(mask); }
@@ -92,6 +105,8 @@ class LdiRenderer {
   std::vector<std::uint8_t> mask_;
   ViewFrameStats stats_;
   double detail_ = 1;
+  double near_field_ = 0;
+  std::uint64_t trace_near_field();
 };
 
 }  // namespace wangscape

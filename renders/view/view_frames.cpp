@@ -94,6 +94,7 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest&
   if (!fs::is_directory(request.frames_dir, ec)) throw Error(request.frames_dir, "", "cannot make the frames folder");
   LdiRenderer renderer(world, width, height);
   renderer.set_detail(request.detail);
+  renderer.set_near_field(request.near_field);
   const double fps = request.path_fps;
   const int frames = int(std::floor((keys.back().time - keys.front().time) * fps)) + 1;
   for (int k = 0; k < frames; ++k) {
@@ -121,22 +122,34 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest&
   if (!request.quiet) std::printf("%s\n", movie.string().c_str());
 }
 
-// --compare: the same camera ray traced by the Embree reference, and the figures.
+// --compare: the same camera ray traced by the Embree reference (the truth, and the exact
+// geometry at one sample per pixel), and the figures.
 void print_comparison(const ViewWorld& world, const LdiRenderer& renderer, const ViewCamera& camera,
                       const ViewRequest& request) {
-  const ViewComparison v = compare_with_reference(world, renderer, camera, request.reference_samples);
+  const ViewComparison v = compare_with_reference(world, renderer, camera, request.truth_samples);
   const ImageComparison& c = v.comparison;
+  const ImageComparison& e = v.exact;
   if (!request.diff.empty()) write_image(request.diff, c.difference);
+  if (!request.truth_out.empty()) write_image(request.truth_out, v.truth);
   if (request.json)
-    std::printf("{\"psnr_db\": %s, \"ssim\": %s, \"hole_share\": %s, \"holes\": %llu, \"reference_seconds\": %s}\n",
-                number(c.psnr_db).c_str(), number(c.ssim).c_str(), number(c.holes.share).c_str(),
-                static_cast<unsigned long long>(c.holes.holes), number(v.reference.seconds).c_str());
+    std::printf(
+        "{\"psnr_db\": %s, \"ssim\": %s, \"hole_share\": %s, \"holes\": %llu, \"reference_seconds\": %s, "
+        "\"truth_samples\": %d, \"exact_psnr_db\": %s, \"exact_ssim\": %s, \"exact_hole_share\": %s, "
+        "\"psnr_gap_db\": %s, \"ssim_gap\": %s, \"exact_seconds\": %s}\n",
+        number(c.psnr_db).c_str(), number(c.ssim).c_str(), number(c.holes.share).c_str(),
+        static_cast<unsigned long long>(c.holes.holes), number(v.reference.seconds).c_str(),
+        v.reference.samples_per_pixel, number(e.psnr_db).c_str(), number(e.ssim).c_str(), number(e.holes.share).c_str(),
+        number(e.psnr_db - c.psnr_db).c_str(), number(e.ssim - c.ssim).c_str(), number(v.one_sample.seconds).c_str());
   else
     std::printf(
-        "PSNR: %.2f dB\nSSIM: %.4f\nholes: %.4f %% of the pixels (%llu; %.4f %% of the reference's covered)\n"
-        "reference: %d samples per pixel, %.2f s\n",
-        c.psnr_db, c.ssim, 100 * c.holes.share, static_cast<unsigned long long>(c.holes.holes),
-        100 * c.holes.share_of_covered, v.reference.samples_per_pixel, v.reference.seconds);
+        "PSNR: %.2f dB (the exact geometry at one sample per pixel: %.2f dB, a gap of %.2f dB)\n"
+        "SSIM: %.4f (exact: %.4f, a gap of %.4f)\n"
+        "holes: %.4f %% of the pixels (%llu; %.4f %% of the truth's covered)\n"
+        "truth: %d samples per pixel, %.2f s%s%s; one-sample exact image: %.2f s\n",
+        c.psnr_db, e.psnr_db, e.psnr_db - c.psnr_db, c.ssim, e.ssim, e.ssim - c.ssim, 100 * c.holes.share,
+        static_cast<unsigned long long>(c.holes.holes), 100 * c.holes.share_of_covered, v.reference.samples_per_pixel,
+        v.reference.seconds, request.truth_out.empty() ? "" : ", saved to ", request.truth_out.string().c_str(),
+        v.one_sample.seconds);
 }
 
 }  // namespace
@@ -149,14 +162,19 @@ ViewComparison compare_with_reference(const ViewWorld& world, const LdiRenderer&
   options.height = renderer.height();
   options.samples_per_pixel = samples_per_pixel;
   options.shading = world.shading();
-  const ReferenceImage reference = render_reference(world.scene(), options);
-  const CoverageMask reference_mask = coverage_mask(reference.coverage, renderer.width(), renderer.height());
+  const ReferenceImage truth = render_reference(world.scene(), options);
+  options.samples_per_pixel = 1;
+  const ReferenceImage one_sample = render_reference(world.scene(), options);
+  const CoverageMask truth_mask = coverage_mask(truth.coverage, renderer.width(), renderer.height());
   CoverageMask view_mask{renderer.width(), renderer.height(), {}};
   view_mask.covered.resize(std::size_t(renderer.width()) * std::size_t(renderer.height()));
   for (int y = 0; y < renderer.height(); ++y)
     for (int x = 0; x < renderer.width(); ++x)
       view_mask.covered[std::size_t(y) * std::size_t(renderer.width()) + std::size_t(x)] = !renderer.sky_at(x, y);
-  return {compare_images(renderer.image(), reference.image, &view_mask, &reference_mask), reference.stats};
+  const CoverageMask one_sample_mask = coverage_mask(one_sample.coverage, renderer.width(), renderer.height());
+  return {compare_images(renderer.image(), truth.image, &view_mask, &truth_mask),
+          compare_images(one_sample.image, truth.image, &one_sample_mask, &truth_mask), truth.stats, one_sample.stats,
+          truth.image};
 }
 
 ViewCamera view_camera(const ViewWorld& world, const ViewRequest& request) {
@@ -185,19 +203,19 @@ ViewCamera view_camera(const ViewWorld& world, const ViewRequest& request) {
 
 ViewFrameStats measure_view(LdiRenderer& renderer, const ViewCamera& camera, int frames) {
   // The frame time and each phase's: medians of their own.
-  std::array<std::vector<double>, 5> times;
+  std::array<std::vector<double>, 6> times;
   ViewFrameStats stats;
   for (int k = 0; k < std::max(frames, 1); ++k) {
     stats = renderer.render(camera);
     times[0].push_back(stats.frame_ms);
-    for (std::size_t p = 0; p < 4; ++p) times[p + 1].push_back(stats.phase_ms[p]);
+    for (std::size_t p = 0; p < stats.phase_ms.size(); ++p) times[p + 1].push_back(stats.phase_ms[p]);
   }
   const auto median = [](std::vector<double>& v) {
     std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
     return v[v.size() / 2];
   };
   stats.frame_ms = median(times[0]);
-  for (std::size_t p = 0; p < 4; ++p) stats.phase_ms[p] = median(times[p + 1]);
+  for (std::size_t p = 0; p < stats.phase_ms.size(); ++p) stats.phase_ms[p] = median(times[p + 1]);
   return stats;
 }
 
@@ -225,7 +243,13 @@ void check_view_request(const ViewRequest& request) {
     throw Error("--detail " + number(request.detail) + ": expected " + number(kMinViewDetail) + " .. " +
                 number(kMaxViewDetail) + " (1: the pack's levels at their own distances)");
   if (!request.diff.empty() && !request.compare) throw Error("--diff: needs --compare");
-  if (request.reference_samples < 0 || request.reference_samples > 1024) throw Error("--spp: expected 1 .. 1024");
+  if (!(request.near_field >= 0 && request.near_field <= kMaxNearField))
+    throw Error("--near " + number(request.near_field) + ": expected 0 .. " + number(kMaxNearField) +
+                " meters (0: LDIs everywhere)");
+  if (request.truth_samples < 1 || request.truth_samples > kMaxReferenceSamples)
+    throw Error("--truth-spp " + std::to_string(request.truth_samples) + ": expected 1 .. " +
+                std::to_string(kMaxReferenceSamples) + " samples per pixel");
+  if (!request.truth_out.empty() && !request.compare) throw Error("--truth: needs --compare");
 }
 
 bool wants_window(const ViewRequest& request) {
@@ -249,6 +273,7 @@ int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewReq
   }
   LdiRenderer renderer(world, width, height);
   renderer.set_detail(request.detail);
+  renderer.set_near_field(request.near_field);
   const ViewFrameStats stats =
       request.stats ? measure_view(renderer, camera, request.repeat ? request.repeat : 200) : renderer.render(camera);
   if (!request.out.empty()) write_image(request.out, renderer.image());
@@ -265,8 +290,10 @@ int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewReq
                   camera.target[2], camera.fov_degrees, width, height);
       std::printf("frame: %.2f ms (%.1f frames/s, median of %d)\n", stats.frame_ms,
                   stats.frame_ms > 0 ? 1000 / stats.frame_ms : 0.0, request.repeat ? request.repeat : 200);
-      std::printf("of it: tiles %.2f ms, LDIs %.2f ms, terrain %.2f ms, sky and resolve %.2f ms\n", stats.phase_ms[0],
-                  stats.phase_ms[1], stats.phase_ms[2], stats.phase_ms[3]);
+      std::printf("of it: tiles %.2f ms, LDIs %.2f ms, terrain %.2f ms, near field %.2f ms, sky and resolve %.2f ms\n",
+                  stats.phase_ms[0], stats.phase_ms[1], stats.phase_ms[2], stats.phase_ms[3], stats.phase_ms[4]);
+      std::printf("near field: %llu tiles, %llu rays\n", static_cast<unsigned long long>(stats.near_tiles),
+                  static_cast<unsigned long long>(stats.near_rays));
       std::printf("depth pixels: %llu (%.1f M/s)\n", static_cast<unsigned long long>(stats.depth_pixels),
                   stats.frame_ms > 0 ? double(stats.depth_pixels) / stats.frame_ms / 1e3 : 0.0);
       std::printf("tiles: %llu drawn, %llu culled\n", static_cast<unsigned long long>(stats.tiles_drawn),

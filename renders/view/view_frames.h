@@ -14,6 +14,10 @@
 
 namespace wangscape {
 
+// The truth of a comparison: the Embree reference at 64 samples per pixel (40 dB from 256, so
+// converged for a comparison of one-sample frames; docs/viewer.md).
+inline constexpr int kDefaultTruthSamples = 64;
+
 struct ViewRequest {
   std::filesystem::path dir;
   std::optional<std::array<double, 3>> camera;   // E, N, H; H absent (NaN) = head height above the ground
@@ -26,12 +30,14 @@ struct ViewRequest {
   std::filesystem::path path;        // keyframes JSON
   std::filesystem::path frames_dir;  // where the path's frames go
   double path_fps = 24;
-  std::string script;          // window: scripted input (docs/viewer.md)
-  bool compare = false;        // also ray trace the frame with Embree and compare
-  std::filesystem::path diff;  // with compare: the difference image
-  int reference_samples = 0;   // with compare: samples per pixel (0: the scene's)
-  int threads = 0;             // 0 = all cores
-  double detail = 1;           // LdiRenderer::set_detail
+  std::string script;                        // window: scripted input (docs/viewer.md)
+  bool compare = false;                      // also ray trace the frame with Embree and compare
+  std::filesystem::path diff;                // with compare: the difference image
+  int truth_samples = kDefaultTruthSamples;  // with compare: the truth's samples per pixel
+  std::filesystem::path truth_out;           // with compare: where the truth image goes (empty: none)
+  int threads = 0;                           // 0 = all cores
+  double detail = 1;                         // LdiRenderer::set_detail
+  double near_field = 0;                     // LdiRenderer::set_near_field (meters; 0: LDIs only)
   bool quiet = false;
 };
 
@@ -51,13 +57,17 @@ std::shared_ptr<const ViewWorld> load_view_world(const ViewRequest& request);
 // figures to stdout. Returns the exit code (0). Throws Error for bad input.
 int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewRequest& request);
 
-// The renderer's last frame (drawn from `camera`) against the Embree reference of the same
-// camera and size, ray traced with the light the pack was shaded with at `samples_per_pixel`
-// (0: the scene's): PSNR, SSIM, holes (sky in the frame where the reference has geometry) and
-// the difference image; `reference` holds the reference's own figures (its time).
+// The renderer's last frame (drawn from `camera`) against the truth, the Embree reference of the
+// same camera and size ray traced with the light the pack was shaded with at `samples_per_pixel`
+// (0: the scene's): PSNR, SSIM, holes (sky in the frame where the truth has geometry) and the
+// difference image. Also the exact geometry at one sample per pixel (the reference at 1 sample)
+// against the same truth: what any one-sample frame can reach, so the gap is the view's own.
 struct ViewComparison {
-  ImageComparison comparison;
-  ReferenceStats reference;
+  ImageComparison comparison;  // the renderer's frame against the truth
+  ImageComparison exact;       // the exact geometry at one sample per pixel against the truth
+  ReferenceStats reference;    // the truth's figures (its time)
+  ReferenceStats one_sample;   // the one-sample exact image's
+  ImageRgb8 truth;             // the truth image itself
 };
 ViewComparison compare_with_reference(const ViewWorld& world, const LdiRenderer& renderer, const ViewCamera& camera,
                                       int samples_per_pixel);

@@ -225,6 +225,7 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
     : scene_(std::move(scene)),
       pack_(std::make_unique<LdiPack>(pack_path)),
       shading_(shading_settings),
+      sun_shading_(with_sun(shading_settings, scene_.sun)),
       ground_colors_(scene_.ground_texture.get(), shading_.ground_color) {
   if (!scene_.field) throw Error("scene '" + scene_.name + "': no field of flowers to view");
   const SceneField& field = *scene_.field;

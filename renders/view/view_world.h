@@ -85,6 +85,10 @@ class ViewWorld {
   // The light the pack was shaded with (the scene's [ldi] sky rays; the Embree reference of
   // --compare uses it too).
   const ShadingSettings& shading() const { return shading_; }
+  // That light with the scene's sun applied (with_sun): what shade() takes.
+  const ShadingSettings& sun_shading() const { return sun_shading_; }
+  // The ground's base colors (the bake, or the plain ground color), as the reference sees them.
+  const GroundColors& ground_colors() const { return ground_colors_; }
 
  private:
   Scene scene_;
@@ -100,6 +104,7 @@ class ViewWorld {
   std::vector<LdiImage> far_ldis_;  // (tile * directions + direction) * far_steps_ + step
   std::array<float, 3> sun_{0, 0, 1};
   ShadingSettings shading_;
+  ShadingSettings sun_shading_;
   GroundColors ground_colors_;  // of scene_'s bake, shading_'s plain ground
 };
 

@@ -237,6 +237,7 @@ void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& s
   const std::vector<ScriptStep> script = parse_script(options.script);
   LdiRenderer renderer(world, options.width, options.height);
   renderer.set_detail(options.detail);
+  renderer.set_near_field(options.near_field);
   const SdlSession sdl(options.width, options.height);
   if (options.script.empty()) SDL_SetRelativeMouseMode(SDL_TRUE);  // mouse look (a script moves it itself)
 

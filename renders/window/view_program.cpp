@@ -24,6 +24,7 @@ int run_view(const ViewRequest& request) {
   options.script = request.script;
   options.quiet = request.quiet;
   options.detail = request.detail;
+  options.near_field = request.near_field;
   run_view_window(world, camera, options);
   return 0;
 }

@@ -77,7 +77,7 @@ view_test(corrupt_pack ${cli_expect} 1 "broken/tiles\\.ldi: truncated"
 # field (19.30 dB and SSIM 0.659 at 320 x 240, 4 samples per pixel: 2 levels, so the far field's
 # one-layer LDIs start 7.5 m away), few holes, the difference image written.
 view_sh_test(compare "^ok"
-  "rm -f \"$1.diff.png\" && \"$0\" --quiet view \"$1\" --size 320x240 --compare --json --spp 4 --diff \"$1.diff.png\" | \"$2\" \"$3\" 18.5 0.6 0.03 && test -s \"$1.diff.png\""
+  "rm -f \"$1.diff.png\" && \"$0\" --quiet view \"$1\" --size 320x240 --compare --json --truth-spp 4 --diff \"$1.diff.png\" | \"$2\" \"$3\" 18.5 0.6 0.03 && test -s \"$1.diff.png\""
   "${CMAKE_CURRENT_LIST_DIR}/view_compare_check.py")
 view_test(diff_needs_compare ${cli_expect} 1 "--diff: needs --compare" "${WANGSCAPE_BIN}" view "${view_folder}" --diff "${view_dir}/d.png" --out "${view_dir}/x.png")
 

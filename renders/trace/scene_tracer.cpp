@@ -1,0 +1,161 @@
+#include "renders/trace/scene_tracer.h"
+
+#include <embree3/rtcore.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/error.h"
+#include "renders/trace/embree_device.h"
+
+namespace wangscape {
+
+namespace {
+
+using V3 = std::array<double, 3>;
+constexpr unsigned kTerrainId = 0;
+
+}  // namespace
+
+struct SceneTracer::Impl {
+  mutable EmbreeDevice device;  // check() keeps its first error
+  std::vector<EmbreeScene> models;
+  std::unique_ptr<EmbreeScene> top;
+  std::unique_ptr<EmbreeScene> terrain;  // Layout::part: instanced as geometry kTerrainId of top
+  // The flowers as structure of arrays, indexed by Embree instance id - 1.
+  std::vector<std::uint16_t> variant;
+  std::vector<float> cos_yaw, sin_yaw;
+  V3 origin{};
+
+  void add_flowers(const Scene& scene, const InstanceBatch& batch) {
+    for (std::size_t i = 0; i < batch.size(); ++i) {
+      const std::uint16_t v = batch.variant[i];
+      if (v >= scene.models.size())
+        throw Error("reference render: an instance of variant " + std::to_string(v) + " but the scene has " +
+                    std::to_string(scene.models.size()) + " models");
+      const float c = std::cos(batch.yaw[i]), s = std::sin(batch.yaw[i]), k = batch.scale[i];
+      // Column-major 3 x 4: rotation about z by yaw, uniform scale, translation (as POV-Ray's
+      // rotate, scale, translate of the same instance).
+      const float xfm[12] = {c * k,
+                             s * k,
+                             0,
+                             -s * k,
+                             c * k,
+                             0,
+                             0,
+                             0,
+                             k,
+                             float(batch.x[i] - origin[0]),
+                             float(batch.y[i] - origin[1]),
+                             float(batch.z[i] - origin[2])};
+      RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
+      rtcSetGeometryInstancedScene(g, models[v].get());
+      rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+      rtcCommitGeometry(g);
+      rtcAttachGeometryByID(top->get(), g, unsigned(variant.size()) + 1);
+      rtcReleaseGeometry(g);
+      variant.push_back(v);
+      cos_yaw.push_back(c);
+      sin_yaw.push_back(s);
+    }
+  }
+};
+
+SceneTracer::SceneTracer(const Scene& scene, const std::array<double, 3>& origin, Layout layout)
+    : scene_(scene), impl_(std::make_unique<Impl>()) {
+  Impl& t = *impl_;
+  t.origin = {std::round(origin[0]), std::round(origin[1]), std::round(origin[2])};
+  t.models = model_scenes(t.device, scene.models);
+  t.top = std::make_unique<EmbreeScene>(t.device.get());
+  if (!scene.terrain.triangles.empty()) {
+    std::vector<std::array<float, 3>> shifted(scene.terrain.positions.size());
+    for (std::size_t v = 0; v < shifted.size(); ++v)
+      for (std::size_t c = 0; c < 3; ++c) shifted[v][c] = float(double(scene.terrain.positions[v][c]) - t.origin[c]);
+    RTCGeometry g = triangle_geometry(t.device.get(), shifted, scene.terrain.triangles);
+    if (layout == Layout::part) {
+      t.terrain = std::make_unique<EmbreeScene>(t.device.get());
+      rtcAttachGeometryByID(t.terrain->get(), g, 0);
+      rtcCommitScene(t.terrain->get());
+    } else {
+      rtcAttachGeometryByID(t.top->get(), g, kTerrainId);
+    }
+    rtcReleaseGeometry(g);
+  }
+  if (layout == Layout::part) {
+    set_flowers({});
+    return;
+  }
+  if (scene.instances && !scene.models.empty())
+    scene.instances([&](const InstanceBatch& batch) { t.add_flowers(scene, batch); });
+  t.device.check("adding the terrain and the flowers");
+  rtcCommitScene(t.top->get());
+  t.device.check("building the scene");
+}
+
+void SceneTracer::set_flowers(const InstanceStream& flowers) {
+  Impl& t = *impl_;
+  t.top = std::make_unique<EmbreeScene>(t.device.get());
+  t.variant.clear();
+  t.cos_yaw.clear();
+  t.sin_yaw.clear();
+  if (t.terrain) {
+    RTCGeometry g = rtcNewGeometry(t.device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(g, t.terrain->get());
+    const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(t.top->get(), g, kTerrainId);
+    rtcReleaseGeometry(g);
+  }
+  if (flowers && !scene_.models.empty()) flowers([&](const InstanceBatch& batch) { t.add_flowers(scene_, batch); });
+  t.device.check("adding the flowers");
+  rtcCommitScene(t.top->get());
+  t.device.check("building the scene");
+}
+
+SceneTracer::~SceneTracer() = default;
+
+const std::array<double, 3>& SceneTracer::origin() const { return impl_->origin; }
+std::uint64_t SceneTracer::instances() const { return impl_->variant.size(); }
+RTCSceneTy* SceneTracer::scene() const { return impl_->top->get(); }
+void SceneTracer::check(const std::string& doing) const { impl_->device.check(doing); }
+
+std::optional<SceneTracer::Hit> SceneTracer::intersect(const V3& from, const V3& d, float tfar) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  RTCRayHit rh{};
+  rh.ray.org_x = float(from[0]);
+  rh.ray.org_y = float(from[1]);
+  rh.ray.org_z = float(from[2]);
+  rh.ray.dir_x = float(d[0]);
+  rh.ray.dir_y = float(d[1]);
+  rh.ray.dir_z = float(d[2]);
+  rh.ray.tnear = 0.0f;
+  rh.ray.tfar = tfar;
+  rh.ray.mask = 0xffffffffu;
+  rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->top->get(), &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+  return Hit{rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.geomID, rh.hit.instID[0], rh.hit.primID};
+}
+
+SurfaceSample SceneTracer::surface(const Hit& h, const V3& from, const V3& d, const GroundColors& ground) const {
+  const Impl& t = *impl_;
+  SurfaceSample s;
+  for (std::size_t c = 0; c < 3; ++c) s.position[c] = float(from[c] + h.t * d[c]);
+  if (h.inst != RTC_INVALID_GEOMETRY_ID && h.inst != kTerrainId) {  // a flower (the terrain: an instance of its own)
+    const unsigned f = h.inst - 1;
+    model_surface(scene_.models[t.variant[f]], h.prim, h.u, h.v, t.cos_yaw[f], t.sin_yaw[f], s);
+  } else {
+    model_surface(scene_.terrain, h.prim, h.u, h.v, 1.0f, 0.0f, s);
+    s.base_color = ground.at(double(s.position[0]) + t.origin[0], double(s.position[1]) + t.origin[1]);
+    s.translucency = 0;
+  }
+  // Two-sided: turn the normal towards the viewer.
+  if (s.normal[0] * d[0] + s.normal[1] * d[1] + s.normal[2] * d[2] > 0)
+    for (float& v : s.normal) v = -v;
+  return s;
+}
+
+}  // namespace wangscape

@@ -1,0 +1,62 @@
+// A Scene in Embree, built once and traced many times: the terrain mesh and every flower of the
+// scene's instance stream as an instance of its variant's model, shaded by the one shading model
+// (renders/trace/shading.h). What the reference renderer traces per sample and the real-time
+// view's near field per pixel. Coordinates are ENU meters shifted by origin() (whole meters), so
+// that floats keep millimetres near it. Tracing is thread-safe once built.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "renders/trace/ground_colors.h"
+#include "renders/trace/shading.h"
+#include "scene/scene.h"
+
+namespace wangscape {
+
+class SceneTracer {
+ public:
+  enum class Layout {
+    whole,  // the terrain and every flower of scene.instances (run once) in one scene
+    part,   // the terrain in a scene of its own; the flowers those of the last set_flowers()
+  };
+  // Throws Error for an instance of a model the scene does not have, and for Embree's own
+  // errors. The scene must outlive the tracer.
+  SceneTracer(const Scene& scene, const std::array<double, 3>& origin, Layout layout = Layout::whole);
+  // Layout::part: the flowers traced from now on (the previous ones dropped); a rebuild of the top
+  // level only (the models and the terrain stay built). Not thread-safe with tracing.
+  void set_flowers(const InstanceStream& flowers);
+  ~SceneTracer();
+  SceneTracer(const SceneTracer&) = delete;
+  SceneTracer& operator=(const SceneTracer&) = delete;
+
+  const std::array<double, 3>& origin() const;  // ENU meters, whole
+  std::uint64_t instances() const;              // flowers
+  RTCSceneTy* scene() const;                    // the top-level scene: every occluder, for shade()
+  // Throws the first error Embree reported while tracing, naming what we were doing.
+  void check(const std::string& doing) const;
+
+  struct Hit {
+    float t, u, v;
+    unsigned geom, inst, prim;  // inst: RTC_INVALID_GEOMETRY_ID (~0u) for the terrain
+  };
+  // The nearest hit of the ray from `from` (shifted frame) along the unit direction `d` with
+  // t in [0, tfar].
+  std::optional<Hit> intersect(const std::array<double, 3>& from, const std::array<double, 3>& d,
+                               float tfar = std::numeric_limits<float>::infinity()) const;
+  // The surface at a hit of that ray: position (shifted frame), normal turned towards the
+  // viewer, base color (the ground's from `ground`), translucency.
+  SurfaceSample surface(const Hit& hit, const std::array<double, 3>& from, const std::array<double, 3>& d,
+                        const GroundColors& ground) const;
+
+ private:
+  struct Impl;
+  const Scene& scene_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace wangscape
