@@ -51,7 +51,7 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
       ->check(finite_number());
   sub->add_option("--near", o->request.near_field,
                   "Near field, meters: tiles this close are ray traced from their real flowers instead of drawn "
-                  "from LDIs (0: LDIs everywhere)")
+                  "from LDIs (default 8; 0: LDIs everywhere)")
       ->check(finite_number());
   sub->callback([o, &global] {
     ViewRequest& r = o->request;

@@ -140,6 +140,34 @@ std::optional<SceneTracer::Hit> SceneTracer::intersect(const V3& from, const V3&
   return Hit{rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.geomID, rh.hit.instID[0], rh.hit.primID};
 }
 
+void SceneTracer::intersect16(const V3& from, const V3* d, const float* tfar, const bool* valid,
+                              std::optional<Hit>* hit) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) RTCRayHit16 rh{};
+  alignas(64) int active[16];
+  for (int l = 0; l < 16; ++l) {
+    active[l] = valid[l] ? -1 : 0;
+    rh.ray.org_x[l] = float(from[0]);
+    rh.ray.org_y[l] = float(from[1]);
+    rh.ray.org_z[l] = float(from[2]);
+    rh.ray.dir_x[l] = float(d[l][0]);
+    rh.ray.dir_y[l] = float(d[l][1]);
+    rh.ray.dir_z[l] = float(d[l][2]);
+    rh.ray.tnear[l] = 0.0f;
+    rh.ray.tfar[l] = valid[l] ? tfar[l] : 0.0f;
+    rh.ray.mask[l] = 0xffffffffu;
+    rh.hit.geomID[l] = rh.hit.instID[0][l] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect16(active, impl_->top->get(), &context, &rh);
+  for (int l = 0; l < 16; ++l) {
+    hit[l].reset();
+    if (valid[l] && rh.hit.geomID[l] != RTC_INVALID_GEOMETRY_ID)
+      hit[l] = Hit{rh.ray.tfar[l], rh.hit.u[l], rh.hit.v[l], rh.hit.geomID[l], rh.hit.instID[0][l], rh.hit.primID[l]};
+  }
+}
+
 SurfaceSample SceneTracer::surface(const Hit& h, const V3& from, const V3& d, const GroundColors& ground) const {
   const Impl& t = *impl_;
   SurfaceSample s;

@@ -48,6 +48,11 @@ class SceneTracer {
   // t in [0, tfar].
   std::optional<Hit> intersect(const std::array<double, 3>& from, const std::array<double, 3>& d,
                                float tfar = std::numeric_limits<float>::infinity()) const;
+  // 16 rays at once (one rtcIntersect16 packet; the same hits as intersect() one by one): from
+  // the one point `from` along the unit directions `d`, each up to its tfar; lanes whose `valid`
+  // is false are not traced. hit[l] is empty where lane l met nothing.
+  void intersect16(const std::array<double, 3>& from, const std::array<double, 3>* d, const float* tfar,
+                   const bool* valid, std::optional<Hit>* hit) const;
   // The surface at a hit of that ray: position (shifted frame), normal turned towards the
   // viewer, base color (the ground's from `ground`), translucency.
   SurfaceSample surface(const Hit& hit, const std::array<double, 3>& from, const std::array<double, 3>& d,

@@ -68,6 +68,45 @@ void model_surface(const Mesh& mesh, unsigned prim, float u, float v, float cos_
   }
 }
 
+int shade_in_the_open16(RTCSceneTy* scene, const ShadingSettings& s, const SurfaceSample* samples, const bool* valid,
+                        Vec3f* out) {
+  alignas(64) RTCRay16 packet{};
+  alignas(64) int active[16];
+  float sun[16];
+  int rays = 0;
+  for (int l = 0; l < 16; ++l) {
+    active[l] = 0;
+    if (!valid[l]) continue;
+    const SurfaceSample& sample = samples[l];
+    const float cos_sun = dot(sample.normal, s.sun_direction);
+    sun[l] = sun_share(cos_sun, sample.translucency);
+    if (!(sun[l] > 0 && s.shadows)) continue;
+    const Vec3f from = offset_along(sample.position, sample.normal, cos_sun > 0 ? s.ray_offset : -s.ray_offset);
+    active[l] = -1;
+    packet.org_x[l] = from[0];
+    packet.org_y[l] = from[1];
+    packet.org_z[l] = from[2];
+    packet.dir_x[l] = s.sun_direction[0];
+    packet.dir_y[l] = s.sun_direction[1];
+    packet.dir_z[l] = s.sun_direction[2];
+    packet.tnear[l] = 0.0f;
+    packet.tfar[l] = std::numeric_limits<float>::infinity();
+    packet.mask[l] = 0xffffffffu;
+    ++rays;
+  }
+  if (rays > 0) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcOccluded16(active, scene, &context, &packet);
+  }
+  for (int l = 0; l < 16; ++l) {
+    if (!valid[l]) continue;
+    if (active[l] != 0 && packet.tfar[l] < 0.0f) sun[l] = 0;  // tfar becomes -inf on a hit
+    out[l] = lit(s, samples[l].base_color, sun[l], 1.0f);
+  }
+  return rays;
+}
+
 Vec3f shade(RTCSceneTy* scene, const ShadingSettings& s, const SurfaceSample& sample, std::uint64_t random,
             int* rays_cast) {
   int rays = 0;

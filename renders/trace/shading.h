@@ -39,6 +39,12 @@ void model_surface(const Mesh& mesh, unsigned prim, float u, float v, float cos_
 Vec3f shade(RTCSceneTy* scene, const ShadingSettings& settings, const SurfaceSample& sample, std::uint64_t random,
             int* rays_cast = nullptr);
 
+// shade() of up to 16 samples under the open sky (settings.ao_rays is not used: no sky rays),
+// their sun-shadow rays cast as one rtcOccluded16 packet: the same colors shade() gives each with
+// ao_rays = 0. Samples whose `valid` entry is false are skipped. Returns the rays cast.
+int shade_in_the_open16(RTCSceneTy* scene, const ShadingSettings& settings, const SurfaceSample* samples,
+                        const bool* valid, Vec3f* out);
+
 // Linear RGB (times exposure) to 8-bit sRGB, clamped.
 std::array<std::uint8_t, 3> to_srgb8(const Vec3f& linear);
 

@@ -39,6 +39,7 @@ constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
 // flowers are kept as sun occluders (a low sun's shadows fall into the near field from there).
 constexpr double kNearFlowerRadius = 0.5;
 constexpr double kNearShadowMargin = 4.0;
+constexpr int kOcclusionBlock = 8;  // pixels: the side of a block of the occlusion test
 
 std::uint64_t pack_entry(float depth, std::uint8_t r, std::uint8_t g, std::uint8_t b) {
   return std::uint64_t(std::bit_cast<std::uint32_t>(depth)) << 32 | std::uint64_t(r) << 16 | std::uint64_t(g) << 8 | b;
@@ -130,6 +131,7 @@ struct LdiRenderer::Impl {
   std::unique_ptr<SceneTracer> near_tracer;
   std::optional<Extent> near_window;
   std::atomic<std::uint64_t> near_rays{0};
+  std::vector<float> block_far;  // the occlusion test's blocks: the farthest depth in each
 
   std::array<float, 3> to_camera(double x, double y, double z) const {
     const V3 d{x - eye[0], y - eye[1], z - eye[2]};
@@ -338,7 +340,7 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   std::fill(m.zbuffer.begin(), m.zbuffer.end(), kEmpty);
   m.depth_pixels = 0;
   stats_.depth_pixels = 0;
-  stats_.tiles_drawn = stats_.tiles_culled = stats_.near_tiles = 0;
+  stats_.tiles_drawn = stats_.tiles_culled = stats_.near_tiles = stats_.tiles_occluded = 0;
   std::fill(stats_.levels.begin(), stats_.levels.end(), 0);
   order_.clear();
 
@@ -439,6 +441,10 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   });
 
   const auto tiles_done = std::chrono::steady_clock::now();
+  // ---- the near field first: what it hides is neither warped nor shaded after it ----
+  stats_.near_rays = stats_.near_tiles ? trace_near_field() : 0;
+  stats_.tiles_occluded = stats_.near_tiles ? cull_occluded_tiles() : 0;
+  const auto near_done = std::chrono::steady_clock::now();
   // ---- the LDIs: tiles in parallel into the one z-buffer ----
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, order_.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -684,8 +690,6 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   });
 
   const auto terrain_done = std::chrono::steady_clock::now();
-  stats_.near_rays = stats_.near_tiles ? trace_near_field() : 0;
-  const auto near_done = std::chrono::steady_clock::now();
   // ---- resolve: the z-buffer's colors, the sky where nothing was drawn ----
   tbb::parallel_for(tbb::blocked_range<int>(0, m.height, 8), [&](const tbb::blocked_range<int>& r) {
     for (int py = r.begin(); py != r.end(); ++py) {
@@ -713,11 +717,66 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   });
   const auto end = std::chrono::steady_clock::now();
   const auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
-  stats_.phase_ms = {ms(start, tiles_done), ms(tiles_done, ldis_done), ms(ldis_done, terrain_done),
-                     ms(terrain_done, near_done), ms(near_done, end)};
+  stats_.phase_ms = {ms(start, tiles_done), ms(near_done, ldis_done), ms(ldis_done, terrain_done),
+                     ms(tiles_done, near_done), ms(terrain_done, end)};
   stats_.depth_pixels = m.depth_pixels;
   stats_.frame_ms = ms(start, end);
   return stats_;
+}
+
+// ---- occlusion: the LDI tiles wholly behind the near field (every screen block their box
+// covers holds a near surface nearer than the box's nearest point) are dropped from the order:
+// their samples would all fail the depth test. Returns how many.
+std::uint64_t LdiRenderer::cull_occluded_tiles() {
+  Impl& m = *impl_;
+  const ViewWorld& world = *world_;
+  const ViewWorld::Tiles& tiles = world.tiles();
+  const double s = world.tile_size();
+  const float top = world.pack().info().prism_top;
+  // The farthest depth of each block of kOcclusionBlock x kOcclusionBlock pixels (infinity where
+  // a pixel holds nothing yet).
+  const int bw = (m.width + kOcclusionBlock - 1) / kOcclusionBlock,
+            bh = (m.height + kOcclusionBlock - 1) / kOcclusionBlock;
+  m.block_far.assign(std::size_t(bw) * std::size_t(bh), 0.0f);
+  tbb::parallel_for(tbb::blocked_range<int>(0, bh), [&](const tbb::blocked_range<int>& r) {
+    for (int by = r.begin(); by != r.end(); ++by)
+      for (int y = by * kOcclusionBlock; y < std::min(m.height, (by + 1) * kOcclusionBlock); ++y) {
+        const std::uint64_t* row = m.zbuffer.data() + std::size_t(y) * std::size_t(m.width);
+        for (int x = 0; x < m.width; ++x) {
+          float& far = m.block_far[std::size_t(by) * std::size_t(bw) + std::size_t(x / kOcclusionBlock)];
+          const float depth = row[x] == kEmpty ? std::numeric_limits<float>::infinity()
+                                               : std::bit_cast<float>(std::uint32_t(row[x] >> 32));
+          far = std::max(far, depth);
+        }
+      }
+  });
+  const std::size_t before = order_.size();
+  std::erase_if(order_, [&](std::uint32_t t) {
+    const std::array<double, 3> low{tiles.x0[t], tiles.y0[t], double(tiles.z_min[t]) - 0.01};
+    const std::array<double, 3> high{tiles.x0[t] + s, tiles.y0[t] + s, double(tiles.z_max[t]) + top};
+    float nearest = std::numeric_limits<float>::infinity();
+    float x0 = std::numeric_limits<float>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
+    for (int k = 0; k < 8; ++k) {
+      const auto c = m.to_camera(k & 1 ? high[0] : low[0], k & 2 ? high[1] : low[1], k & 4 ? high[2] : low[2]);
+      if (c[2] < kNear) return false;  // reaches behind the eye: no screen box to test
+      nearest = std::min(nearest, c[2]);
+      const float px = m.cx + m.focal * c[0] / c[2], py = m.cy - m.focal * c[1] / c[2];
+      x0 = std::min(x0, px);
+      x1 = std::max(x1, px);
+      y0 = std::min(y0, py);
+      y1 = std::max(y1, py);
+    }
+    // Splats reach past the projected box by up to kMaxSplat pixels.
+    const int bx0 = std::max(0, int(std::floor(x0)) - kMaxSplat) / kOcclusionBlock;
+    const int by0 = std::max(0, int(std::floor(y0)) - kMaxSplat) / kOcclusionBlock;
+    const int bx1 = std::min(m.width - 1, int(std::ceil(x1)) + kMaxSplat) / kOcclusionBlock;
+    const int by1 = std::min(m.height - 1, int(std::ceil(y1)) + kMaxSplat) / kOcclusionBlock;
+    for (int by = by0; by <= by1; ++by)
+      for (int bx = bx0; bx <= bx1; ++bx)
+        if (!(m.block_far[std::size_t(by) * std::size_t(bw) + std::size_t(bx)] < nearest)) return false;
+    return true;
+  });
+  return before - order_.size();
 }
 
 // ---- the near field: every pixel's ray, from the eye up to what the z-buffer already holds and
@@ -756,35 +815,56 @@ std::uint64_t LdiRenderer::trace_near_field() {
   shading.ao_rays = 0;
   const Luts& lut = luts();
   m.near_rays = 0;
-  tbb::parallel_for(tbb::blocked_range<int>(0, m.height, 4), [&](const tbb::blocked_range<int>& r) {
+  // 4 x 4 pixel blocks: one packet of 16 primary rays, then one of their sun-shadow rays.
+  const int blocks_x = (m.width + 3) / 4, blocks_y = (m.height + 3) / 4;
+  tbb::parallel_for(tbb::blocked_range<int>(0, blocks_y), [&](const tbb::blocked_range<int>& r) {
     std::uint64_t rays = 0;
-    for (int py = r.begin(); py != r.end(); ++py) {
-      const double ray_up = -(double(py) + 0.5 - double(m.cy)) / double(m.focal);
-      std::uint64_t* row = m.zbuffer.data() + std::size_t(py) * std::size_t(m.width);
-      for (int px = 0; px < m.width; ++px) {
-        const double ray_right = (double(px) + 0.5 - double(m.cx)) / double(m.focal);
-        V3 d{};
-        for (std::size_t c = 0; c < 3; ++c) d[c] = m.forward[c] + ray_right * m.right[c] + ray_up * m.up[c];
-        d = normalized(d);
-        const double along = dot(d, m.forward);  // camera depth per meter of ray
-        const double across = std::hypot(d[0], d[1]);
-        const double drawn = row[px] == kEmpty ? std::numeric_limits<double>::infinity()
-                                               : double(std::bit_cast<float>(std::uint32_t(row[px] >> 32))) / along;
-        const double tfar = std::min(drawn, across > 1e-9 ? reach / across : drawn);
-        if (!(tfar > 0) || std::isinf(tfar)) continue;
-        const auto hit = tracer.intersect(from, d, float(tfar));
-        ++rays;
-        if (!hit) continue;
-        int cast = 0;
-        const std::uint64_t random = mix64(std::uint64_t(std::uint32_t(py)) << 32 | std::uint32_t(px));
-        const Vec3f color =
-            shade(tracer.scene(), shading, tracer.surface(*hit, from, d, world.ground_colors()), random, &cast);
-        rays += std::uint64_t(cast);
-        const float depth = float(double(hit->t) * along);
-        const std::uint64_t entry = pack_entry(depth, lut.encode(color[0]), lut.encode(color[1]), lut.encode(color[2]));
-        row[px] = std::min(row[px], entry);
+    std::array<V3, 16> d;
+    std::array<float, 16> tfar;
+    std::array<double, 16> along;
+    bool valid[16], hit_valid[16];
+    std::optional<SceneTracer::Hit> hit[16];
+    SurfaceSample surfaces[16];
+    Vec3f colors[16];
+    for (int by = r.begin(); by != r.end(); ++by)
+      for (int bx = 0; bx < blocks_x; ++bx) {
+        int lanes = 0;
+        for (int l = 0; l < 16; ++l) {
+          const int px = bx * 4 + (l & 3), py = by * 4 + (l >> 2);
+          valid[l] = false;
+          if (px >= m.width || py >= m.height) continue;
+          const double ray_right = (double(px) + 0.5 - double(m.cx)) / double(m.focal);
+          const double ray_up = -(double(py) + 0.5 - double(m.cy)) / double(m.focal);
+          for (std::size_t c = 0; c < 3; ++c) d[l][c] = m.forward[c] + ray_right * m.right[c] + ray_up * m.up[c];
+          d[l] = normalized(d[l]);
+          along[l] = dot(d[l], m.forward);  // camera depth per meter of ray
+          const double across = std::hypot(d[l][0], d[l][1]);
+          const std::uint64_t e = m.zbuffer[std::size_t(py) * std::size_t(m.width) + std::size_t(px)];
+          const double drawn = e == kEmpty ? std::numeric_limits<double>::infinity()
+                                           : double(std::bit_cast<float>(std::uint32_t(e >> 32))) / along[l];
+          const double limit = std::min(drawn, across > 1e-9 ? reach / across : drawn);
+          if (!(limit > 0) || std::isinf(limit)) continue;
+          tfar[l] = float(limit);
+          valid[l] = true;
+          ++lanes;
+        }
+        if (lanes == 0) continue;
+        tracer.intersect16(from, d.data(), tfar.data(), valid, hit);
+        rays += std::uint64_t(lanes);
+        for (int l = 0; l < 16; ++l) {
+          hit_valid[l] = valid[l] && hit[l].has_value();
+          if (hit_valid[l]) surfaces[l] = tracer.surface(*hit[l], from, d[l], world.ground_colors());
+        }
+        rays += std::uint64_t(shade_in_the_open16(tracer.scene(), shading, surfaces, hit_valid, colors));
+        for (int l = 0; l < 16; ++l) {
+          if (!hit_valid[l]) continue;
+          const int px = bx * 4 + (l & 3), py = by * 4 + (l >> 2);
+          const float depth = float(double(hit[l]->t) * along[l]);
+          std::uint64_t& slot = m.zbuffer[std::size_t(py) * std::size_t(m.width) + std::size_t(px)];
+          slot = std::min(
+              slot, pack_entry(depth, lut.encode(colors[l][0]), lut.encode(colors[l][1]), lut.encode(colors[l][2])));
+        }
       }
-    }
     m.near_rays += rays;
   });
   tracer.check("tracing the near field");

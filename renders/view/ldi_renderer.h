@@ -50,11 +50,12 @@ struct ViewFrameStats {
   // Of it: choosing and culling tiles, warping LDIs, rasterizing the terrain, ray tracing the
   // near field, resolving (sky).
   std::array<double, 5> phase_ms{};
-  std::uint64_t depth_pixels = 0;  // depth pixels warped
-  std::uint64_t tiles_drawn = 0;   // in the frustum: drawn as LDIs or as far-field color
-  std::uint64_t tiles_culled = 0;  // outside the frustum
-  std::uint64_t near_tiles = 0;    // in the frustum or not, within the near field: ray traced
-  std::uint64_t near_rays = 0;     // rays the near field cast (primary, shadow and sky)
+  std::uint64_t depth_pixels = 0;    // depth pixels warped
+  std::uint64_t tiles_drawn = 0;     // in the frustum: drawn as LDIs or as far-field color
+  std::uint64_t tiles_culled = 0;    // outside the frustum
+  std::uint64_t near_tiles = 0;      // in the frustum or not, within the near field: ray traced
+  std::uint64_t near_rays = 0;       // rays the near field cast (primary and shadow)
+  std::uint64_t tiles_occluded = 0;  // LDI tiles not warped: wholly behind the near field
   // Tiles drawn per level (each at its nearer level when two are dithered); the last entry
   // counts those beyond the last level, drawn as the far-field color.
   std::vector<std::uint64_t> levels;
@@ -107,6 +108,7 @@ class LdiRenderer {
   double detail_ = 1;
   double near_field_ = 0;
   std::uint64_t trace_near_field();
+  std::uint64_t cull_occluded_tiles();
 };
 
 }  // namespace wangscape

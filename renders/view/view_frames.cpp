@@ -292,8 +292,9 @@ int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewReq
                   stats.frame_ms > 0 ? 1000 / stats.frame_ms : 0.0, request.repeat ? request.repeat : 200);
       std::printf("of it: tiles %.2f ms, LDIs %.2f ms, terrain %.2f ms, near field %.2f ms, sky and resolve %.2f ms\n",
                   stats.phase_ms[0], stats.phase_ms[1], stats.phase_ms[2], stats.phase_ms[3], stats.phase_ms[4]);
-      std::printf("near field: %llu tiles, %llu rays\n", static_cast<unsigned long long>(stats.near_tiles),
-                  static_cast<unsigned long long>(stats.near_rays));
+      std::printf("near field: %llu tiles, %llu rays; %llu LDI tiles behind it not drawn\n",
+                  static_cast<unsigned long long>(stats.near_tiles), static_cast<unsigned long long>(stats.near_rays),
+                  static_cast<unsigned long long>(stats.tiles_occluded));
       std::printf("depth pixels: %llu (%.1f M/s)\n", static_cast<unsigned long long>(stats.depth_pixels),
                   stats.frame_ms > 0 ? double(stats.depth_pixels) / stats.frame_ms / 1e3 : 0.0);
       std::printf("tiles: %llu drawn, %llu culled\n", static_cast<unsigned long long>(stats.tiles_drawn),

@@ -37,7 +37,7 @@ struct ViewRequest {
   std::filesystem::path truth_out;           // with compare: where the truth image goes (empty: none)
   int threads = 0;                           // 0 = all cores
   double detail = 1;                         // LdiRenderer::set_detail
-  double near_field = 0;                     // LdiRenderer::set_near_field (meters; 0: LDIs only)
+  double near_field = kDefaultNearField;     // LdiRenderer::set_near_field (meters; 0: LDIs only)
   bool quiet = false;
 };
 
