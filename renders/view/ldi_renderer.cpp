@@ -14,6 +14,7 @@
 #include <numbers>
 
 #include "core/error.h"
+#include "core/vecmath.h"
 #include "exporters/scene_folder.h"
 #include "generator/placement.h"
 #include "renders/ldi/ldi_scene.h"
@@ -52,15 +53,7 @@ void depth_write(std::uint64_t& slot, std::uint64_t value) {
   }
 }
 
-using V3 = std::array<double, 3>;
-double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V3 cross(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-V3 normalized(const V3& a) {
-  const double n = std::sqrt(dot(a, a));
-  return {a[0] / n, a[1] / n, a[2] / n};
-}
+using V3 = Vector3d;
 
 }  // namespace
 
@@ -321,16 +314,14 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   const ViewWorld::Tiles& tiles = world.tiles();
   const double s = world.tile_size();
 
-  if (!(camera.fov_degrees > 0 && camera.fov_degrees < 179))
-    throw Error("view: field of view " + std::to_string(camera.fov_degrees) + " degrees; expected 0 .. 179");
-  const V3 look{camera.target[0] - camera.position[0], camera.target[1] - camera.position[1],
-                camera.target[2] - camera.position[2]};
-  if (!(std::hypot(look[0], look[1]) > 1e-9) || !std::isfinite(dot(look, look)))
+  check_field_of_view(camera.fov_degrees, "view: field of view");
+  const auto basis = camera_basis(camera.position, camera.target);
+  if (!basis)
     throw Error("view: the camera must look somewhere sideways (its target is straight above, below or at it)");
   m.eye = camera.position;
-  m.forward = normalized(look);
-  m.right = normalized(cross(m.forward, {0, 0, 1}));
-  m.up = cross(m.right, m.forward);
+  m.forward = basis->forward;
+  m.right = basis->right;
+  m.up = basis->up;
   m.tan_x = float(std::tan(camera.fov_degrees * std::numbers::pi / 360));
   m.focal = float(m.width) / 2 / m.tan_x;
   m.tan_y = float(m.height) / 2 / m.focal;

@@ -70,7 +70,7 @@ class LdiRenderer {
   LdiRenderer& operator=(const LdiRenderer&) = delete;
 
   // Draws one frame into image(). Throws Error for a camera with no direction or a field of
-  // view outside (0, 179) degrees.
+  // view outside (0, 179] degrees (core/vecmath.h check_field_of_view).
   const ViewFrameStats& render(const ViewCamera& camera);
   const ImageRgb8& image() const { return image_; }
   // Per pixel of the last frame: true where the sky shows (nothing was drawn), and the camera

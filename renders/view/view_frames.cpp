@@ -9,6 +9,8 @@
 #include <optional>
 
 #include "core/error.h"
+#include "core/number_text.h"
+#include "core/vecmath.h"
 #include "exporters/image_io.h"
 #include "renders/external/child_process.h"
 #include "renders/trace/embree_reference.h"
@@ -21,12 +23,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string number(double value) {
-  char text[32];
-  const auto result = std::to_chars(text, text + sizeof text, value);
-  return std::string(text, result.ptr);
-}
-
 struct Keyframe {
   double time = 0;
   std::array<double, 3> position{}, look_at{};
@@ -36,7 +32,8 @@ std::array<double, 3> read_point(const nlohmann::json& j, const fs::path& file, 
   if (!j.is_array() || j.size() != 3) throw Error(file, where, "expected [E, N, H] in meters");
   std::array<double, 3> p{};
   for (std::size_t k = 0; k < 3; ++k) {
-    if (!j[k].is_number() || !std::isfinite(j[k].get<double>())) throw Error(file, where, "expected finite numbers");
+    if (!j[k].is_number() || !std::isfinite(j[k].get<double>()))
+      throw Error(file, where, "expected finite numbers");
     p[k] = j[k].get<double>();
   }
   return p;
@@ -113,7 +110,7 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest&
     return;
   }
   const fs::path movie = request.frames_dir / "path.mp4", log = request.frames_dir / "ffmpeg.log";
-  const ChildExit exit = run_logged({ffmpeg.string(), "-y", "-loglevel", "error", "-framerate", number(fps), "-i",
+  const ChildExit exit = run_logged({ffmpeg.string(), "-y", "-loglevel", "error", "-framerate", number_text(fps), "-i",
                                      (request.frames_dir / "frame-%05d.png").string(), "-pix_fmt", "yuv420p", "-vf",
                                      "pad=ceil(iw/2)*2:ceil(ih/2)*2", movie.string()},
                                     log);
@@ -136,10 +133,11 @@ void print_comparison(const ViewWorld& world, const LdiRenderer& renderer, const
         "{\"psnr_db\": %s, \"ssim\": %s, \"hole_share\": %s, \"holes\": %llu, \"reference_seconds\": %s, "
         "\"truth_samples\": %d, \"exact_psnr_db\": %s, \"exact_ssim\": %s, \"exact_hole_share\": %s, "
         "\"psnr_gap_db\": %s, \"ssim_gap\": %s, \"exact_seconds\": %s}\n",
-        number(c.psnr_db).c_str(), number(c.ssim).c_str(), number(c.holes.share).c_str(),
-        static_cast<unsigned long long>(c.holes.holes), number(v.reference.seconds).c_str(),
-        v.reference.samples_per_pixel, number(e.psnr_db).c_str(), number(e.ssim).c_str(), number(e.holes.share).c_str(),
-        number(e.psnr_db - c.psnr_db).c_str(), number(e.ssim - c.ssim).c_str(), number(v.one_sample.seconds).c_str());
+        number_text(c.psnr_db).c_str(), number_text(c.ssim).c_str(), number_text(c.holes.share).c_str(),
+        static_cast<unsigned long long>(c.holes.holes), number_text(v.reference.seconds).c_str(),
+        v.reference.samples_per_pixel, number_text(e.psnr_db).c_str(), number_text(e.ssim).c_str(),
+        number_text(e.holes.share).c_str(), number_text(e.psnr_db - c.psnr_db).c_str(),
+        number_text(e.ssim - c.ssim).c_str(), number_text(v.one_sample.seconds).c_str());
   else
     std::printf(
         "PSNR: %.2f dB (the exact geometry at one sample per pixel: %.2f dB, a gap of %.2f dB)\n"
@@ -183,14 +181,13 @@ ViewCamera view_camera(const ViewWorld& world, const ViewRequest& request) {
   camera.position = scene.position;
   camera.target = scene.target;
   camera.fov_degrees = request.fov_degrees.value_or(scene.fov_degrees);
-  if (!(camera.fov_degrees > 0 && camera.fov_degrees < 179))
-    throw Error("--fov " + number(camera.fov_degrees) + ": expected degrees in (0, 179)");
+  check_field_of_view(camera.fov_degrees, "--fov");
   if (request.camera) {
     camera.position = *request.camera;
     if (std::isnan(camera.position[2])) {
       const auto h = world.scene().field->ground.height(camera.position[0], camera.position[1]);
       if (!h)
-        throw Error("--camera " + number(camera.position[0]) + "," + number(camera.position[1]) +
+        throw Error("--camera " + number_text(camera.position[0]) + "," + number_text(camera.position[1]) +
                     ": not over the ground; give the height too (E,N,H)");
       camera.position[2] = *h + world.pack().info().head_height;
     }
@@ -223,7 +220,7 @@ std::string view_stats_json(const ViewFrameStats& stats) {
   std::string levels;
   for (std::uint64_t n : stats.levels) levels += (levels.empty() ? "" : ", ") + std::to_string(n);
   const double fps = stats.frame_ms > 0 ? 1000.0 / stats.frame_ms : 0;
-  return "{\"frame_ms\": " + number(stats.frame_ms) + ", \"fps\": " + number(fps) +
+  return "{\"frame_ms\": " + number_text(stats.frame_ms) + ", \"fps\": " + number_text(fps) +
          ", \"depth_pixels\": " + std::to_string(stats.depth_pixels) +
          ", \"tiles\": {\"drawn\": " + std::to_string(stats.tiles_drawn) +
          ", \"culled\": " + std::to_string(stats.tiles_culled) + "}, \"levels\": [" + levels + "]}";
@@ -234,17 +231,16 @@ void check_view_request(const ViewRequest& request) {
       (request.width < 1 || request.height < 1 || request.width > 16384 || request.height > 16384))
     throw Error("--size " + std::to_string(request.width) + "x" + std::to_string(request.height) +
                 ": expected WIDTHxHEIGHT, each 1 .. 16384 pixels");
-  if (request.fov_degrees && !(*request.fov_degrees > 0 && *request.fov_degrees < 179))
-    throw Error("--fov " + number(*request.fov_degrees) + ": expected degrees in (0, 179)");
+  if (request.fov_degrees) check_field_of_view(*request.fov_degrees, "--fov");
   if (!request.path.empty() && request.frames_dir.empty()) throw Error("--path: needs --frames OUTDIR");
   if (!(request.path_fps > 0 && request.path_fps <= 240)) throw Error("--fps: expected 0 .. 240 frames per second");
   if (request.repeat < 0 || request.repeat > 100000) throw Error("--repeat: expected 0 .. 100000 frames");
   if (!(request.detail >= kMinViewDetail && request.detail <= kMaxViewDetail))
-    throw Error("--detail " + number(request.detail) + ": expected " + number(kMinViewDetail) + " .. " +
-                number(kMaxViewDetail) + " (1: the pack's levels at their own distances)");
+    throw Error("--detail " + number_text(request.detail) + ": expected " + number_text(kMinViewDetail) + " .. " +
+                number_text(kMaxViewDetail) + " (1: the pack's levels at their own distances)");
   if (!request.diff.empty() && !request.compare) throw Error("--diff: needs --compare");
   if (!(request.near_field >= 0 && request.near_field <= kMaxNearField))
-    throw Error("--near " + number(request.near_field) + ": expected 0 .. " + number(kMaxNearField) +
+    throw Error("--near " + number_text(request.near_field) + ": expected 0 .. " + number_text(kMaxNearField) +
                 " meters (0: LDIs everywhere)");
   if (request.truth_samples < 1 || request.truth_samples > kMaxReferenceSamples)
     throw Error("--truth-spp " + std::to_string(request.truth_samples) + ": expected 1 .. " +

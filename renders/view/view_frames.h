@@ -42,7 +42,7 @@ struct ViewRequest {
 };
 
 // The camera of the request: its flags, or the scene's own camera. Throws Error naming the
-// flag at fault (--fov outside (0, 179), a camera off the ground without a height, ...).
+// flag at fault (--fov outside (0, 179], a camera off the ground without a height, ...).
 ViewCamera view_camera(const ViewWorld& world, const ViewRequest& request);
 
 // Refuses a request's flags out of range (sizes, --fov, --fps, --repeat, --detail, --spp) and

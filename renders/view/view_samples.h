@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/color.h"
 #include "renders/ldi/ldi_pack.h"
 #include "renders/trace/shading.h"
 
@@ -21,8 +22,6 @@ constexpr float kGroundEpsilon = 0.002f;
 constexpr std::uint8_t kBayerIndex[4][4] = {{0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};
 inline int bayer_index(int x, int y) { return kBayerIndex[y & 3][x & 3]; }
 inline float threshold(int x, int y) { return (float(bayer_index(x, y)) + 0.5f) / 16; }
-
-inline float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
 struct Luts {
   std::array<float, 256> to_linear{};

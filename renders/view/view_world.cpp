@@ -281,7 +281,6 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
 
   // Light as the LDI build's: the scene's sun (scaled by its strength, where the terrain does not
   // shadow it) and the open sky.
-  const ShadingSettings& shading = shading_;
   const auto sun = scene_.sun.direction();
   sun_ = {float(sun[0]), float(sun[1]), float(sun[2])};
   const Mesh& mesh = scene_.terrain;
@@ -290,12 +289,7 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
   for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
     const std::array<float, 3> n = v < mesh.normals.size() ? mesh.normals[v] : std::array<float, 3>{0, 0, 1};
     const float cos_sun = sunlit[v] * std::max(0.0f, n[0] * sun_[0] + n[1] * sun_[1] + n[2] * sun_[2]);
-    const float strength = float(scene_.sun.strength);
-    auto light_of = [&](int c) {
-      return (shading.sun_color[std::size_t(c)] * strength * cos_sun + shading.sky_color[std::size_t(c)]) *
-             shading.exposure;
-    };
-    light[v] = {light_of(0), light_of(1), light_of(2)};
+    light[v] = lit(sun_shading_, {1, 1, 1}, cos_sun, 1);  // the irradiance: a white ground's color
   }
   terrain_ = chunked_terrain(mesh, light);
 
