@@ -32,8 +32,7 @@ std::array<double, 3> read_point(const nlohmann::json& j, const fs::path& file, 
   if (!j.is_array() || j.size() != 3) throw Error(file, where, "expected [E, N, H] in meters");
   std::array<double, 3> p{};
   for (std::size_t k = 0; k < 3; ++k) {
-    if (!j[k].is_number() || !std::isfinite(j[k].get<double>()))
-      throw Error(file, where, "expected finite numbers");
+    if (!j[k].is_number() || !std::isfinite(j[k].get<double>())) throw Error(file, where, "expected finite numbers");
     p[k] = j[k].get<double>();
   }
   return p;

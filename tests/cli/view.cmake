@@ -66,12 +66,25 @@ view_test(bad_fov ${cli_expect} 1 "--fov 200" "${WANGSCAPE_BIN}" view "${view_fo
 view_test(bad_detail ${cli_expect} 1 "--detail 0: expected 0.1 .. 10" "${WANGSCAPE_BIN}" view "${view_folder}" --detail 0 --out "${view_dir}/x.png")
 view_test(bad_camera ${cli_expect} 2 "--camera.*'1,b'" "${WANGSCAPE_BIN}" view "${view_folder}" --camera 1,b --out "${view_dir}/x.png")
 view_test(no_such_folder ${cli_expect} 1 "no_such_folder: no such scene folder" "${WANGSCAPE_BIN}" view "${view_dir}/no_such_folder" --out "${view_dir}/x.png")
-view_test(no_pack ${cli_expect} 1 "nopack/tiles\\.ldi: missing: build the folder from a scene with \\[exports\\] ldi"
-  sh -c "mkdir -p \"$1\" && cp \"$2/scene.toml\" \"$1/\" && \"$0\" view \"$1\" --out \"$1/x.png\""
-  "${WANGSCAPE_BIN}" "${view_dir}/nopack" "${view_folder}")
-view_test(corrupt_pack ${cli_expect} 1 "broken/tiles\\.ldi: truncated"
-  sh -c "mkdir -p \"$1\" && cp \"$2/scene.toml\" \"$1/\" && head -c 100 \"$2/tiles.ldi\" > \"$1/tiles.ldi\" && \"$0\" view \"$1\" --out \"$1/x.png\""
-  "${WANGSCAPE_BIN}" "${view_dir}/broken" "${view_folder}")
+# view_damaged(NAME REGEX DAMAGE): a folder NAME made by the shell commands DAMAGE ($1 the new
+# folder, empty; $2 the built one) is refused by view with REGEX and exit 1, and no frame written.
+function(view_damaged name regex damage)
+  view_test(${name} ${cli_expect} 1 "${regex}"
+    sh -c "rm -rf \"$1\" && mkdir -p \"$1\" && ${damage} && \"$0\" view \"$1\" --out \"$1/x.png\" || test ! -e \"$1/x.png\" && exit 1"
+    "${WANGSCAPE_BIN}" "${view_dir}/${name}" "${view_folder}")
+endfunction()
+view_damaged(nopack "nopack/tiles\\.ldi: missing: build the folder from a scene with \\[exports\\] ldi"
+  "cp \"$2/scene.toml\" \"$1/\"")
+view_damaged(broken "broken/tiles\\.ldi: truncated"
+  "cp \"$2/scene.toml\" \"$1/\" && head -c 100 \"$2/tiles.ldi\" > \"$1/tiles.ldi\"")
+# A folder from an older build (no scene.cache), one whose scene.toml was edited after the build
+# and one with a cut scene.cache are refused with what to do, not re-derived.
+view_damaged(old "old/scene\\.cache: missing: the folder was written by an older wangscape. build the folder again"
+  "cp -r \"$2\"/. \"$1\" && rm \"$1/scene.cache\"")
+view_damaged(edited "edited/scene\\.toml: was changed after the build. build the folder again"
+  "cp -r \"$2\"/. \"$1\" && echo '# edited' >> \"$1/scene.toml\"")
+view_damaged(cut "cut/scene\\.cache:byte [0-9]+: truncated"
+  "cp -r \"$2\"/. \"$1\" && head -c 60 \"$2/scene.cache\" > \"$1/scene.cache\"")
 
 # --compare against the Embree reference of the same camera: PSNR above a floor measured on this
 # field (19.30 dB and SSIM 0.659 at 320 x 240, 4 samples per pixel: 2 levels, so the far field's
@@ -80,18 +93,6 @@ view_sh_test(compare "^ok"
   "rm -f \"$1.diff.png\" && \"$0\" --quiet view \"$1\" --size 320x240 --compare --json --truth-spp 4 --diff \"$1.diff.png\" | \"$2\" \"$3\" 18.5 0.6 0.03 && test -s \"$1.diff.png\""
   "${CMAKE_CURRENT_LIST_DIR}/view_compare_check.py")
 view_test(diff_needs_compare ${cli_expect} 1 "--diff: needs --compare" "${WANGSCAPE_BIN}" view "${view_folder}" --diff "${view_dir}/d.png" --out "${view_dir}/x.png")
-
-# A folder from an older build (no scene.cache) and one whose scene.toml was edited after the
-# build are refused with what to do, not re-derived.
-view_test(older_folder ${cli_expect} 1 "old/scene\\.cache: missing: the folder was written by an older wangscape. build the folder again"
-  sh -c "rm -rf \"$1\" && cp -r \"$2\" \"$1\" && rm \"$1/scene.cache\" && \"$0\" view \"$1\" --out \"$1/x.png\" || test ! -e \"$1/x.png\" && exit 1"
-  "${WANGSCAPE_BIN}" "${view_dir}/old" "${view_folder}")
-view_test(edited_scene ${cli_expect} 1 "edited/scene\\.toml: was changed after the build. build the folder again"
-  sh -c "rm -rf \"$1\" && cp -r \"$2\" \"$1\" && echo '# edited' >> \"$1/scene.toml\" && \"$0\" view \"$1\" --out \"$1/x.png\""
-  "${WANGSCAPE_BIN}" "${view_dir}/edited" "${view_folder}")
-view_test(truncated_cache ${cli_expect} 1 "cut/scene\\.cache:byte [0-9]+: truncated"
-  sh -c "rm -rf \"$1\" && cp -r \"$2\" \"$1\" && head -c 60 \"$2/scene.cache\" > \"$1/scene.cache\" && \"$0\" view \"$1\" --out \"$1/x.png\""
-  "${WANGSCAPE_BIN}" "${view_dir}/cut" "${view_folder}")
 
 # A build killed while it samples its LDI pack leaves the folder as the previous build made it.
 tiny_scene("${view_dir}/kill.toml" EXPORTS "povray = true\nldi = true\n[ldi]\nlevels = 3\ndirections = 4\nsky_rays = 8")
