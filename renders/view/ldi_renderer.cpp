@@ -305,15 +305,9 @@ void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, 
 
 }  // namespace
 
-const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
-  const auto start = std::chrono::steady_clock::now();
+// The frame's camera (its basis, focal length, centre) and empty buffers and counters.
+void LdiRenderer::begin_frame(const ViewCamera& camera) {
   Impl& m = *impl_;
-  const ViewWorld& world = *world_;
-  const LdiPack& pack = world.pack();
-  const LdiPackInfo& info = pack.info();
-  const ViewWorld::Tiles& tiles = world.tiles();
-  const double s = world.tile_size();
-
   check_field_of_view(camera.fov_degrees, "view: field of view");
   const auto basis = camera_basis(camera.position, camera.target);
   if (!basis)
@@ -334,7 +328,16 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   stats_.tiles_drawn = stats_.tiles_culled = stats_.near_tiles = stats_.tiles_occluded = 0;
   std::fill(stats_.levels.begin(), stats_.levels.end(), 0);
   order_.clear();
+}
 
+// Steps 1-4 of docs/viewer.md: per placed tile its distance, level, direction and frustum test;
+// the tiles to warp, back to front, into order_.
+void LdiRenderer::choose_tiles() {
+  Impl& m = *impl_;
+  const ViewWorld& world = *world_;
+  const LdiPackInfo& info = world.pack().info();
+  const ViewWorld::Tiles& tiles = world.tiles();
+  const double s = world.tile_size();
   // ---- tiles: distance, level, direction, frustum ----
   const std::uint32_t levels = info.levels, directions = info.directions;
   // The pack's levels were sized for its own view; this view's pixels per radian rescale the distances.
@@ -430,12 +433,18 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   std::sort(order_.begin(), order_.end(), [&](std::uint32_t p, std::uint32_t q) {
     return m.distance[p] != m.distance[q] ? m.distance[p] > m.distance[q] : p < q;
   });
+}
 
-  const auto tiles_done = std::chrono::steady_clock::now();
-  // ---- the near field first: what it hides is neither warped nor shaded after it ----
-  stats_.near_rays = stats_.near_tiles ? trace_near_field() : 0;
-  stats_.tiles_occluded = stats_.near_tiles ? cull_occluded_tiles() : 0;
-  const auto near_done = std::chrono::steady_clock::now();
+// Steps 5, 6 and 8: the chosen LDIs warped in parallel, each thread into a z-buffer of its
+// own, merged into the frame's.
+void LdiRenderer::warp_tiles() {
+  Impl& m = *impl_;
+  const ViewWorld& world = *world_;
+  const LdiPack& pack = world.pack();
+  const ViewWorld::Tiles& tiles = world.tiles();
+  const double s = world.tile_size();
+  const LdiPackInfo& info = world.pack().info();
+  const std::uint32_t levels = info.levels, drawn_levels = levels + world.far_steps();
   // ---- the LDIs: tiles in parallel into the one z-buffer ----
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, order_.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -515,8 +524,15 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
     }
   });
   for (ThreadDepths& depths : m.thread_depths) depths.written = false;
+}
 
-  const auto ldis_done = std::chrono::steady_clock::now();
+// Step 7: the terrain's chunks in the frustum rasterized, nearest first. Longer than the other
+// steps because it holds its three short stages as lambdas over the frame's camera and buffers:
+// shade a pixel, rasterize a triangle, clip a triangle at the near plane and draw it.
+void LdiRenderer::draw_terrain() {
+  Impl& m = *impl_;
+  const ViewWorld& world = *world_;
+  const double s = world.tile_size();
   // ---- the terrain: chunks in the frustum, their vertices to camera space, their triangles
   // rasterized, in parallel ----
   const ViewWorld::Terrain& terrain = world.terrain();
@@ -679,8 +695,13 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
         draw_triangle(terrain.triangles[t]);
     }
   });
+}
 
-  const auto terrain_done = std::chrono::steady_clock::now();
+// Step 9: the z-buffer's colors into the image, the sky where nothing was drawn.
+void LdiRenderer::resolve() {
+  Impl& m = *impl_;
+  const ViewWorld& world = *world_;
+  const Luts& lut = luts();
   // ---- resolve: the z-buffer's colors, the sky where nothing was drawn ----
   tbb::parallel_for(tbb::blocked_range<int>(0, m.height, 8), [&](const tbb::blocked_range<int>& r) {
     for (int py = r.begin(); py != r.end(); ++py) {
@@ -706,11 +727,28 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
       }
     }
   });
-  const auto end = std::chrono::steady_clock::now();
+}
+
+const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  begin_frame(camera);
+  choose_tiles();
+  const auto tiles_done = Clock::now();
+  // The near field first: what it hides is neither warped nor shaded after it.
+  stats_.near_rays = stats_.near_tiles ? trace_near_field() : 0;
+  stats_.tiles_occluded = stats_.near_tiles ? cull_occluded_tiles() : 0;
+  const auto near_done = Clock::now();
+  warp_tiles();
+  const auto ldis_done = Clock::now();
+  draw_terrain();
+  const auto terrain_done = Clock::now();
+  resolve();
+  const auto end = Clock::now();
   const auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
   stats_.phase_ms = {ms(start, tiles_done), ms(near_done, ldis_done), ms(ldis_done, terrain_done),
                      ms(tiles_done, near_done), ms(terrain_done, end)};
-  stats_.depth_pixels = m.depth_pixels;
+  stats_.depth_pixels = impl_->depth_pixels;
   stats_.frame_ms = ms(start, end);
   return stats_;
 }

@@ -107,6 +107,12 @@ class LdiRenderer {
   ViewFrameStats stats_;
   double detail_ = 1;
   double near_field_ = 0;
+  // The frame's named steps (docs/viewer.md, "What a frame does"), in the order render() runs them.
+  void begin_frame(const ViewCamera& camera);
+  void choose_tiles();
+  void warp_tiles();
+  void draw_terrain();
+  void resolve();
   std::uint64_t trace_near_field();
   std::uint64_t cull_occluded_tiles();
 };
