@@ -2,8 +2,9 @@
 # bench/view_bench.sh [WANGSCAPE] [FOLDER] (the CLI side of build/release/bench/view_bench, the
 # Google Benchmark of the same views with the phases and the reference): frames/s and depth pixels/s of the real-time LDI view
 # (`wangscape view --stats`, median of REPEAT frames) on the default scene built with the LDI
-# export, from three cameras (at the field's northern edge looking south across it: the scene's
-# own camera; in the field; from above the field) at 640x360 and 1280x720. FOLDER (default
+# export, from four cameras (at the field's northern edge looking south across it: the scene's
+# own camera; in the field; from above the field; 1.5 m from a flower) at 640x360 and 1280x720,
+# with the near field at its default distance (NEAR=0: LDIs only). FOLDER (default
 # out/view-bench) is built once and reused. Prints the load before each figure.
 set -eu
 bin=${1:-build/release/cli/wangscape}
@@ -19,11 +20,12 @@ fi
 "$bin" ldi info "$dir/tiles.ldi" | head -8
 for size in 640x360 1280x720; do
   for camera in "edge (the scene's camera)|" "in the field|--camera 0,6300 --look-at 0,1200,1500" \
-                "above the field|--camera 0,6640,1150 --look-at 0,6450,1125"; do
+                "above the field|--camera 0,6640,1150 --look-at 0,6450,1125" \
+                "close-up|--camera 1.0,6291.3,1131.6 --look-at -0.5,6291.3,1131.5"; do
     name=${camera%%|*}
     flags=${camera#*|}
     echo "== $name, $size; load: $(cut -d' ' -f1-3 /proc/loadavg)"
     # shellcheck disable=SC2086
-    "$bin" --quiet view "$dir" $flags --size "$size" --stats --repeat "$repeat"
+    "$bin" --quiet view "$dir" $flags --size "$size" --near "${NEAR:-8}" --stats --repeat "$repeat"
   done
 done
