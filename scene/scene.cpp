@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/number_text.h"
 #include "generator/tiling.h"
 #include "scene/far_field.h"
 #include "scene/tileset_file.h"
@@ -19,12 +20,6 @@ namespace {
 
 void say(const StageObserver& stage, const std::string& message) {
   if (stage) stage(message);
-}
-
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
 }
 
 // ---- models ---------------------------------------------------------------------------------
@@ -138,7 +133,8 @@ std::shared_ptr<const CameraView> make_view(const SceneConfig& config, const Sce
   options.near =
       std::min(options.far, c.near.value_or(distance_for_pixels(head, 8, config.image.width, config.camera.fov)));
   if (c.near && *c.near > options.far)
-    throw config.error_at("camera_aware.near", "is beyond camera_aware.far (" + number(options.far) + " m)");
+    throw config.error_at("camera_aware.near",
+                          "is beyond camera_aware.far (" + significant_text(options.far, 6) + " m)");
   double height = 0, reach = 0;
   for (std::size_t v = 0; v < std::size_t(field.filled.variants) && v < scene.models.size(); ++v)
     for (const auto& p : scene.models[v].positions) {
@@ -186,8 +182,9 @@ void check_camera_above_ground(const std::array<double, 3>& p, const SceneGround
                                const std::string& key_at_fault) {
   const auto h = ground.height(p[0], p[1]);
   if (h && p[2] < *h)
-    throw config.error_at(key_at_fault, "puts the camera " + number(*h - p[2]) + " m below the ground (up " +
-                                            number(p[2]) + " m, the ground is at " + number(*h) +
+    throw config.error_at(key_at_fault, "puts the camera " + significant_text(*h - p[2], 6) +
+                                            " m below the ground (up " + significant_text(p[2], 6) +
+                                            " m, the ground is at " + significant_text(*h, 6) +
                                             " m there); raise it above the ground");
 }
 
@@ -210,8 +207,9 @@ std::array<double, 3> resolve_point(const CameraPoint& point, const SceneGround&
   }
   const auto h = ground.height(xy[0], xy[1]);
   if (!h)
-    throw config.error_at(key_at_fault, "(east " + number(xy[0]) + " m, north " + number(xy[1]) +
-                                            " m) is not over the ground (" + ground.description() + ")");
+    throw config.error_at(key_at_fault, "(east " + significant_text(xy[0], 6) + " m, north " +
+                                            significant_text(xy[1], 6) + " m) is not over the ground (" +
+                                            ground.description() + ")");
   const std::array<double, 3> resolved{xy[0], xy[1], *h + point.height_above_ground};
   if (key == "position") check_camera_above_ground(resolved, ground, config, "camera.height_above_ground");
   return resolved;
@@ -254,7 +252,8 @@ Sun make_sun(const SceneConfig& config, const SceneGround& ground) {
     sun.elevation_degrees = position.elevation_degrees;
     if (sun.elevation_degrees <= 0)
       throw config.error_at("sun.time", config.sun.time_text + " is night at the origin (the sun is " +
-                                            number(-sun.elevation_degrees) + " degrees below the horizon)");
+                                            significant_text(-sun.elevation_degrees, 6) +
+                                            " degrees below the horizon)");
   } else {
     sun.azimuth_degrees = config.sun.azimuth;
     sun.elevation_degrees = config.sun.elevation;
@@ -414,7 +413,7 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage, const Sc
     }
     auto bake = bake_ground(*look, ground, ground_config.bake_pixels);
     if (far_texture) {
-      say(stage, "painting the field beyond " + number(field->view->options().far) + " m into the ground");
+      say(stage, "painting the field beyond " + significant_text(field->view->options().far, 6) + " m into the ground");
       const std::vector<Mesh> full(scene.models.begin(), scene.models.begin() + std::ptrdiff_t(field->filled.variants));
       paint_far_field(bake, *field, FieldTexture(*field, full, field->view->far_view_direction(), scene.sun),
                       *field->view);
