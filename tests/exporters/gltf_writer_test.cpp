@@ -173,7 +173,9 @@ TEST(GltfWriter, SameSceneSameBytesWhateverTheBatching) {
 
 TEST(GltfWriter, NodePerInstanceIsValid) {
   const auto path = scratch("nodes.glb");
-  write_gltf(testing::make_test_scene(400, 8, 20.0f), path, {GltfInstancing::node_per_instance});
+  GltfOptions options;
+  options.instancing = GltfInstancing::node_per_instance;
+  write_gltf(testing::make_test_scene(400, 8, 20.0f), path, options);
   const Glb glb = read_glb(path);
   EXPECT_FALSE(glb.json.contains("extensionsUsed"));
   std::size_t flowers = 0;
