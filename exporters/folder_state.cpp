@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text_file.h"
 #include "generator/placement.h"
 #include "scene/filled_tileset_file.h"
 #include "scene/ground_look.h"
@@ -66,13 +66,13 @@ class Reader {
   std::size_t at_ = 0;
 };
 
-std::string read_file(const fs::path& file, const std::string& missing) {
+// The whole file through core/text_file.h (a regular file, at most `max_bytes`), or `missing`
+// when there is none.
+std::string read_file(const fs::path& file, std::uintmax_t max_bytes, std::string_view what,
+                      const std::string& missing) {
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) throw Error(file, "", missing);
-  std::ifstream in(file, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) throw Error(file, "", "cannot read it");
-  return bytes;
+  if (!fs::exists(file, ec)) throw Error(file, "", missing);
+  return read_text_file(file, max_bytes, what);
 }
 
 const char* const kBuildAgain = "build the folder again (wangscape build SCENE.toml --out DIR)";
@@ -140,7 +140,8 @@ void write_folder_state(const fs::path& dir, const std::string& scene_text, cons
 
 FolderState read_folder_state(const fs::path& dir, const std::string& scene_text) {
   const fs::path file = dir / kFolderStateFile, tiles_file = dir / kFolderTilesFile;
-  Reader r(read_file(file, std::string("missing: the folder was written by an older wangscape; ") + kBuildAgain), file);
+  const std::string missing = std::string("missing: the folder was written by an older wangscape; ") + kBuildAgain;
+  Reader r(read_file(file, kMaxFolderStateBytes, "scene cache", missing), file);
   if (std::memcmp(r.take(sizeof kMagic, "the magic"), kMagic, sizeof kMagic) != 0)
     r.fail("bad magic: not a Wangscape scene cache");
   const auto version = r.get<std::uint32_t>("the version");
@@ -189,8 +190,7 @@ FolderState read_folder_state(const fs::path& dir, const std::string& scene_text
   }
   if (r.left() != 0) r.fail(std::to_string(r.left()) + " bytes after the last section");
 
-  const std::string tiles_text =
-      read_file(tiles_file, std::string("missing: the folder was written by an older wangscape; ") + kBuildAgain);
+  const std::string tiles_text = read_file(tiles_file, kMaxFolderTilesBytes, "tile set", missing);
   if (fingerprint(tiles_text) != tiles_fingerprint)
     throw Error(tiles_file, "", std::string("does not match the folder's scene.cache; ") + kBuildAgain);
   Json document;

@@ -22,6 +22,10 @@ namespace wangscape {
 inline constexpr const char* kFolderStateFile = "scene.cache";
 inline constexpr const char* kFolderTilesFile = "tiles.json";
 inline constexpr std::uint32_t kFolderStateVersion = 1;
+// The most bytes read of each (docs/limits.md): a 16,384 x 16,384 ground bake and 50 million
+// placed tiles fit in the first; the largest fill (kMaxPointsPerTile) in the second.
+inline constexpr std::uintmax_t kMaxFolderStateBytes = std::uintmax_t(1) << 30;
+inline constexpr std::uintmax_t kMaxFolderTilesBytes = std::uintmax_t(1) << 28;
 
 // The field's tile grid over its area (generator/placement.h tile_range) and the cells of it that
 // received at least one flower, rows south to north. Cell c is tile (i0 + c % width, j0 + c / width).

@@ -808,8 +808,8 @@ std::uint64_t LdiRenderer::cull_occluded_tiles() {
   return before - order_.size();
 }
 
-// ---- the near field: every pixel's ray, from the eye up to what the z-buffer already holds and
-// no further than the near tiles reach, traced against the real flowers of the tiles around the
+// ---- the near field (the frame's first drawing): every pixel's ray, from the eye no further
+// than the near tiles reach, traced against the real flowers of the tiles around the
 // eye and the terrain; a hit is shaded by the one shading model (sun with its shadow ray, the open
 // sky) and written into the z-buffer. Returns the rays cast (primary and shadow).
 std::uint64_t LdiRenderer::trace_near_field() {
@@ -829,8 +829,7 @@ std::uint64_t LdiRenderer::trace_near_field() {
         world.scene(), std::array<double, 3>{(area.min_x + area.max_x) / 2, (area.min_y + area.max_y) / 2, m.eye[2]},
         SceneTracer::Layout::part);
   }
-  if (!m.near_window || m.near_window->min_x != window.min_x || m.near_window->min_y != window.min_y ||
-      m.near_window->max_x != window.max_x || m.near_window->max_y != window.max_y) {
+  if (m.near_window != window) {
     m.near_tracer->set_flowers([&](const InstanceSink& sink) { field.place_in(window, sink); });
     m.near_window = window;
   }
@@ -867,12 +866,10 @@ std::uint64_t LdiRenderer::trace_near_field() {
           for (std::size_t c = 0; c < 3; ++c) d[l][c] = m.forward[c] + ray_right * m.right[c] + ray_up * m.up[c];
           d[l] = normalized(d[l]);
           along[l] = dot(d[l], m.forward);  // camera depth per meter of ray
+          // As far as the near tiles reach across the ground; a ray straight down meets the
+          // terrain first.
           const double across = std::hypot(d[l][0], d[l][1]);
-          const std::uint64_t e = m.zbuffer[std::size_t(py) * std::size_t(m.width) + std::size_t(px)];
-          const double drawn = e == kEmpty ? std::numeric_limits<double>::infinity()
-                                           : double(std::bit_cast<float>(std::uint32_t(e >> 32))) / along[l];
-          const double limit = std::min(drawn, across > 1e-9 ? reach / across : drawn);
-          if (!(limit > 0) || std::isinf(limit)) continue;
+          const double limit = across > 1e-9 ? reach / across : std::numeric_limits<double>::infinity();
           tfar[l] = float(limit);
           valid[l] = true;
           ++lanes;

@@ -26,16 +26,8 @@ live_file="$dir/.tmp-$$-live.csv"
 # A shell starts background jobs with SIGINT ignored, which wangscape (rightly) keeps: undo that.
 env --default-signal=INT "$@" >/dev/null 2>"$dir/interrupt.err" &
 pid=$!
-started=no
-for _ in $(seq 1 400); do  # up to 40 s
-  for f in "$dir"/$pattern; do
-    case "$f" in *"-$pid-"* | *"-$pid") started=yes ;; esac
-  done
-  [ "$started" = yes ] && break
-  kill -0 "$pid" 2>/dev/null || break
-  sleep 0.1
-done
-[ "$started" = yes ] || {
+. "$(dirname "$0")/wait_for_start.sh"
+wait_for_start "$pid" "$dir" "$pattern" 40 || {
   kill -KILL "$pid" 2>/dev/null
   fail "the run never started writing ($pattern in $dir); stderr: $(cat "$dir/interrupt.err")"
 }

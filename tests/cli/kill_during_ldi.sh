@@ -21,16 +21,9 @@ out="$work/field"
 sed 's/^seed = .*/seed = 77/' "$scene" >"$work/second.toml"
 env --default-signal=INT "$bin" --quiet build "$work/second.toml" --out "$out" 2>"$work/second.err" &
 pid=$!
-sampling=no
-for _ in $(seq 1 600); do  # up to 60 s
-  if ls -a "$work"/.field.partial-"$pid"/ 2>/dev/null | grep -q "^\.tmp-$pid-tiles\.ldi$"; then
-    sampling=yes
-    break
-  fi
-  kill -0 "$pid" 2>/dev/null || break
-  sleep 0.05
-done
-[ "$sampling" = yes ] || {
+. "$(dirname "$0")/wait_for_start.sh"
+# The staging folder and its pack's temporary both carry the pid.
+wait_for_start "$pid" "$work" ".field.partial-$pid/.tmp-*-tiles.ldi" 60 || {
   kill -KILL "$pid" 2>/dev/null
   fail "the second build never reached its LDI stage; stderr: $(cat "$work/second.err")"
 }
