@@ -33,13 +33,22 @@ std::string read_text_file(const std::filesystem::path& file, std::uintmax_t max
 }
 
 void check_nesting(std::string_view text, const std::filesystem::path& file, int max_depth) {
-  int depth = 0, dots = 0, line = 1;
-  char quote = 0;  // the quote of the string we are in, or 0
+  // Dots count only inside a key: a TOML key before its '=' (a line at the top level, a table
+  // header, an inline table's entries), a JSON key before its ':'. A value's decimal points and a
+  // JSON array's numbers are never keys, so a document written on one line reads as one on many.
+  std::string open;  // the brackets open at this point, innermost last
+  int dots = 0, line = 1;
+  bool key = true;  // in a key: at the start of a top-level line, after '{' or a '{' entry's ','
+  char quote = 0;   // the quote of the string we are in, or 0
+  const auto start_key = [&](bool is_key) {
+    key = is_key;
+    dots = 0;
+  };
   for (std::size_t k = 0; k < text.size(); ++k) {
     const char c = text[k];
     if (c == '\n') {
       ++line;
-      dots = 0;
+      if (open.empty()) start_key(true);
     }
     if (quote) {
       if (c == '\\' && quote == '"') {
@@ -59,17 +68,30 @@ void check_nesting(std::string_view text, const std::filesystem::path& file, int
         break;
       case '[':
       case '{':
-        if (++depth > max_depth)
+        if (static_cast<int>(open.size()) >= max_depth)
           throw Error(
               file, std::to_string(line),
               "brackets nest deeper than " + std::to_string(max_depth) + " levels; that is not a scene or tile set");
+        open += c;
+        if (c == '{')
+          start_key(true);
+        else if (!key)
+          start_key(false);  // an array; a '[' in a key is a TOML table header
         break;
       case ']':
       case '}':
-        if (depth > 0) --depth;
+        if (!open.empty()) open.pop_back();
+        start_key(false);
+        break;
+      case ',':
+        start_key(!open.empty() && open.back() == '{');
+        break;
+      case '=':
+      case ':':
+        start_key(false);
         break;
       case '.':
-        if (++dots > max_depth)
+        if (key && ++dots > max_depth)
           throw Error(
               file, std::to_string(line),
               "a key of more than " + std::to_string(max_depth) + " dotted parts; tables nest at most that deep");

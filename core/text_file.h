@@ -16,8 +16,9 @@ namespace wangscape {
 std::string read_text_file(const std::filesystem::path& file, std::uintmax_t max_bytes, std::string_view what);
 
 // Throws Error naming the file and line when brackets ([ and {, outside strings) nest deeper
-// than max_depth, or a line holds more than max_depth dots outside strings (a TOML key of that
-// many dotted parts is a table that deep).
+// than max_depth, or a key holds more than max_depth dots (a TOML key of that many dotted parts
+// is a table that deep). Keys are TOML's before '=' and JSON's before ':'; the dots of numbers
+// and strings are not counted, so JSON written on one line passes as it does on many.
 void check_nesting(std::string_view text, const std::filesystem::path& file, int max_depth);
 
 // The nesting limit of every document Wangscape reads.
