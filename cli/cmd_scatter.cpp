@@ -34,6 +34,7 @@ struct ScatterOptions {
   std::string dem, origin, mask;
   std::optional<double> max_height, min_height, max_slope;
   bool fair_edges = false;
+  std::optional<std::uint64_t> max_instances;
 };
 
 void run(const ScatterOptions& options, const GlobalOptions& global) {
@@ -62,6 +63,8 @@ void run(const ScatterOptions& options, const GlobalOptions& global) {
   request.placement.algorithm = parse_tiling_algorithm(options.algorithm);
   request.out = options.out;
   request.metrics = options.metrics;
+  request.max_instances = options.max_instances;
+  const WriteReport report(global.quiet);
   std::optional<Progress> progress;
   request.progress = [&](std::uint64_t placed, std::uint64_t expected) {
     if (!progress) progress.emplace("scatter", expected, global.quiet);
@@ -77,10 +80,9 @@ void run(const ScatterOptions& options, const GlobalOptions& global) {
       fmt::print("{}\n", point_metrics_json(*result.metrics, result.seconds).dump(2));
     else
       fmt::print("{}", point_metrics_text(*result.metrics, result.packing_diameter));
-  } else if (!global.quiet) {
-    fmt::print(stderr, "wangscape: {} instances from {} tiles -> {}\n", result.stats.points, result.stats.tiles,
-               options.out);
   }
+  if (!options.out.empty())
+    report.wrote(options.out, fmt::format("{} instances from {} tiles", result.stats.points, result.stats.tiles_kept));
 }
 
 }  // namespace
@@ -94,6 +96,9 @@ void register_scatter_command(CLI::App& app, const GlobalOptions& global) {
                     ->capture_default_str();
   sub->add_option("--tile-size", options->tile_size, "Tile side in meters")->capture_default_str();
   sub->add_option("--out", options->out, "Instances: CSV (x,y,z,variant,yaw,scale,tile), or binary PLY for .ply");
+  sub->add_option("--max-instances", options->max_instances,
+                  "Refuse to place more than N instances (default: no cap; the free disk space is checked)")
+      ->check(CLI::PositiveNumber);
   sub->add_option("--seed", options->seed, "Tiling seed")->check(seed_number())->capture_default_str();
   sub->add_option("--algorithm", options->algorithm, "Tiling: scanline, bottom-left or hash (complete sets)")
       ->check(CLI::IsMember(tiling_algorithm_names()))

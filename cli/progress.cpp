@@ -4,7 +4,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <system_error>
+
+#include "core/number_text.h"
+#include "core/printable.h"
 
 namespace wangscape::cli {
 
@@ -42,6 +47,47 @@ void Progress::finish() {
   if (last_drawn_ < total_) update(total_, last_note_);
   finished_ = true;
   std::fputc('\n', stderr);
+}
+
+namespace {
+// A file's size, or the sum of the regular files under a folder; 0 when it cannot be read.
+double bytes_at(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (fs::is_regular_file(path, error)) {
+    const auto size = fs::file_size(path, error);
+    return error ? 0.0 : double(size);
+  }
+  double total = 0;
+  for (fs::recursive_directory_iterator it(path, error), end; !error && it != end; it.increment(error)) {
+    std::error_code size_error;
+    if (it->is_regular_file(size_error)) {
+      const auto size = it->file_size(size_error);
+      if (!size_error) total += double(size);
+    }
+  }
+  return total;
+}
+}  // namespace
+
+std::string duration_text(double seconds) {
+  if (seconds < 10) return fixed_text(seconds, 2) + " s";
+  if (seconds < 60) return fixed_text(seconds, 1) + " s";
+  const auto whole = static_cast<long long>(std::lround(seconds));
+  return std::to_string(whole / 60) + " min " + std::to_string(whole % 60) + " s";
+}
+
+double WriteReport::seconds() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+void WriteReport::wrote(const std::filesystem::path& path, const std::string& details) const {
+  if (quiet_) return;
+  std::string what = details;
+  if (!what.empty()) what += ", ";
+  what += byte_text(bytes_at(path));
+  std::fprintf(stderr, "wangscape: wrote %s (%s) in %s\n", printable(path.string()).c_str(), what.c_str(),
+               duration_text(seconds()).c_str());
 }
 
 }  // namespace wangscape::cli

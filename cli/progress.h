@@ -2,7 +2,9 @@
 // user did not ask for --quiet.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 
 namespace wangscape::cli {
@@ -28,5 +30,23 @@ class Progress {
   std::uint64_t last_drawn_ = 0;
   std::string last_note_;
 };
+
+// The one line a command says when it has written something, on stderr, silent under --quiet
+// (terminal or not): "wangscape: wrote PATH (DETAILS, SIZE) in TIME". SIZE is the file's size, or
+// the sum of a folder's files; TIME runs from the report's construction (the command's start).
+class WriteReport {
+ public:
+  explicit WriteReport(bool quiet) : quiet_(quiet), start_(std::chrono::steady_clock::now()) {}
+  // DETAILS: counts, e.g. "4410 instances from 230 tiles"; may be empty.
+  void wrote(const std::filesystem::path& path, const std::string& details) const;
+  double seconds() const;
+
+ private:
+  bool quiet_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+// "0.42 s", "12.3 s", "1 min 42 s".
+std::string duration_text(double seconds);
 
 }  // namespace wangscape::cli

@@ -14,6 +14,17 @@ std::string significant_text(double value, int digits) {
   return std::string(text, std::to_chars(text, text + sizeof text, value, std::chars_format::general, digits).ptr);
 }
 
+std::string byte_text(double bytes) {
+  static const char* const units[] = {"B", "kB", "MB", "GB", "TB", "PB"};
+  int unit = 0;
+  while (unit < 5 && std::abs(bytes) >= 999.5) {
+    bytes /= 1000;
+    ++unit;
+  }
+  // Past 999 PB: whole petabytes, never an exponent.
+  return (unit == 0 || bytes >= 999.5 ? fixed_text(bytes, 0) : significant_text(bytes, 3)) + " " + units[unit];
+}
+
 std::optional<std::vector<double>> parse_number_list(const std::string& text, char separator, std::size_t min_count,
                                                      std::size_t max_count) {
   std::vector<double> values;

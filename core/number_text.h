@@ -38,6 +38,10 @@ std::string fixed_text(double value, int decimals);
 // "1.5e+07"); digits 1 to 30.
 std::string significant_text(double value, int digits);
 
+// A size in bytes for people, in decimal units with three significant digits: "812 B",
+// "4.5 kB", "61.2 MB", "3.08 GB", "1.2 TB".
+std::string byte_text(double bytes);
+
 // ---- reading ----------------------------------------------------------------------------------
 
 // "<a><separator><b>", both whole numbers of T; false when malformed or out of T's range.

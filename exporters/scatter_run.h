@@ -1,7 +1,9 @@
 // What `wangscape scatter` runs: a filled tile set laid over a flat plane or over a DEM (the
 // scene's one ground, with every mask), every instance written (CSV, or binary PLY for .ply)
-// and/or measured (generator/point_metrics). The work is estimated and refused above the field
-// cap and, when measured, above the memory limit, before anything is placed or opened.
+// and/or measured (generator/point_metrics). The points are streamed, never held, so no count
+// caps them: the work is estimated after the masks and refused, before anything is placed or
+// opened, only where it would not fit: the file against the free disk space, the measured points
+// against the memory limit, and the count against --max-instances when one is given.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "exporters/point_writer.h"
 #include "generator/placement.h"
 #include "generator/point_metrics.h"
 #include "scene/scene_file.h"
@@ -24,6 +27,7 @@ struct ScatterRequest {
   PlacementOptions placement;                                                  // tile size, seed, algorithm
   std::filesystem::path out;                                                   // instances; empty: none written
   bool metrics = false;                                                        // measure the points
+  std::optional<std::uint64_t> max_instances;                                  // refuse more than this
   std::function<void(std::uint64_t placed, std::uint64_t expected)> progress;  // from this thread
 };
 
@@ -33,10 +37,15 @@ struct ScatterResult {
   std::optional<PointMetrics> metrics;  // with request.metrics
   double packing_diameter = 0;          // meters: twice the set's packing radius, scaled
   std::string empty_reason;             // over a DEM with no instance: why (which mask)
+  double estimate = 0;                  // instances expected before placing (after the masks)
 };
 
-// Throws Error for bad input (naming the file or value) and before any output for work beyond
-// the caps; the output file is published whole or not at all.
+// Throws Error for bad input (naming the file or value), before any output for work beyond the
+// limits above, and during the placement once more than max_instances are placed; the output
+// file is published whole or not at all.
 ScatterResult run_scatter(const ScatterRequest& request);
+
+// About how many bytes a point takes in a file of `format`: 26 in PLY, 54 in CSV (a mean line).
+double point_file_bytes_per_point(PointFileFormat format);
 
 }  // namespace wangscape

@@ -199,6 +199,10 @@ void SceneGround::check_tile_size(double tile_size, const std::string& what) con
                 " m): expected more than 0 and at most the ground's smaller side");
 }
 
+double SceneGround::growing_share() const {
+  return impl_->filter ? impl_->filter->passing_share(impl_->masks.fair_edges) : 1.0;
+}
+
 std::string SceneGround::explain_empty(double tile_size) const {
   if (impl_->masks.fair_edges)
     return "no flower of the tiling stands on ground that passes the masks (height, slope, painted mask) of " +

@@ -61,6 +61,10 @@ class SceneGround {
   // Throws Error when tiles of `tile_size` meters cannot fit the ground; `what` names the value
   // in the message (a flag, a key).
   void check_tile_size(double tile_size, const std::string& what) const;
+  // The share (0..1) of the ground where the masks let flowers grow, counted over the DEM's
+  // cells and the mask's pixels (1 for flat ground): what scales a count of the extent's tiles
+  // into an estimate of the placed ones.
+  double growing_share() const;
   // Why a placement produced no instance, in one sentence (for an explained empty result).
   std::string explain_empty(double tile_size) const;
 

@@ -337,6 +337,14 @@ bool TerrainFilter::point_passes(double x, double y, double z) const {
   return !mask_ || mask_->allows(x, y);
 }
 
+double TerrainFilter::passing_share(bool partial) const {
+  const double cells = double(cells_x_) * double(cells_y_);
+  if (!(cells > 0)) return 0;
+  double share = double(partial ? maybe_cells_ : passing_cells_) / cells;
+  if (mask_) share *= double(mask_->allowed_count()) / (double(mask_->width()) * double(mask_->height()));
+  return share;
+}
+
 void TerrainFilter::check_satisfiable() const {
   const DemRaster& dem = terrain_->dem();
   std::string range(1, '(');  // appended piecewise: GCC 12 warns falsely on "(" + ...

@@ -87,6 +87,11 @@ class TerrainFilter {
   // reports that instead of writing an empty result.
   void check_satisfiable() const;
 
+  // The share (0..1) of the DEM's cells whose ground passes (`partial`: may partly pass, the
+  // tiles fair edges keep), times the share of the mask's pixels that allow flowers: an
+  // estimate of what the masks keep, for counts before placement, not a test.
+  double passing_share(bool partial) const;
+
   const TerrainFilterOptions& options() const { return options_; }
   const PaintedMask* mask() const { return mask_ ? &*mask_ : nullptr; }
 

@@ -51,5 +51,15 @@ TEST(NumberText, WritesFixedDecimalsAndSignificantDigits) {
   EXPECT_EQ(significant_text(1.5e7, 2), "1.5e+07");
 }
 
+TEST(NumberText, WritesSizesInDecimalUnits) {
+  EXPECT_EQ(byte_text(0), "0 B");
+  EXPECT_EQ(byte_text(812), "812 B");
+  EXPECT_EQ(byte_text(999.6), "1 kB");
+  EXPECT_EQ(byte_text(4500), "4.5 kB");
+  EXPECT_EQ(byte_text(61.24e6), "61.2 MB");
+  EXPECT_EQ(byte_text(3.084e9), "3.08 GB");
+  EXPECT_EQ(byte_text(6.28e18), "6280 PB");  // never an exponent
+}
+
 }  // namespace
 }  // namespace wangscape

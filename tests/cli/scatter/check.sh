@@ -1,9 +1,10 @@
 #!/bin/sh
-# check.sh BIN SCRATCH MODE: one scatter CLI check; exits non-zero with a message on failure.
+# check.sh BIN SCRATCH MODE [DEM]: one scatter CLI check; exits non-zero with a message on failure.
 set -eu
 BIN=$1
 DIR=$2
 MODE=$3
+DEM=${4:-}
 rm -rf "$DIR"
 mkdir -p "$DIR"
 cd "$DIR"
@@ -136,6 +137,43 @@ errors)
   "$BIN" scatter --tileset t.json --plane 64by64 --out out.csv 2> err3.txt; code=$?
   [ $code -eq 1 ] && grep -q "plane" err3.txt || fail "bad --plane: exit $code $(cat err3.txt)"
   [ ! -e out.csv ] || fail "partial output"
+  ;;
+streams)
+  # Streaming has no count cap: the 8.4 million 4 m tiles of St. Helens hold about 100 million
+  # points, which the old cap (50 million, counted before the masks) refused; below 760 m about
+  # half a million are placed and written.
+  fill cohen8 tiles.json
+  "$BIN" scatter --tileset tiles.json --dem "$DEM" --tile-size 4 --max-height 760 --out low.ply 2> said.txt \
+    || fail "scatter below 760 m: $(cat said.txt)"
+  grep -Eq "^wangscape: wrote low.ply \([0-9]{6} instances from [0-9]+ tiles, [0-9.]+ MB\) in [0-9.]+ s$" said.txt \
+    || fail "no one-line summary: $(cat said.txt)"
+  count=$(sed -n 's/^element vertex \([0-9]*\).*/\1/p' low.ply | head -n 1)
+  [ "$count" -gt 200000 ] || fail "only $count points"
+  "$BIN" -q scatter --tileset tiles.json --dem "$DEM" --tile-size 4 --max-height 760 --out quiet.ply 2> quiet.txt \
+    || fail "quiet scatter"
+  [ ! -s quiet.txt ] || fail "--quiet said: $(cat quiet.txt)"
+  cmp -s low.ply quiet.ply || fail "same scatter, different bytes"
+  set +e
+  # A cap for those who want one: refused by the estimate after the masks, nothing written.
+  "$BIN" scatter --tileset tiles.json --dem "$DEM" --tile-size 4 --max-height 760 --max-instances 100000 \
+    --out capped.ply 2> err1.txt; code=$?
+  [ $code -eq 1 ] || fail "--max-instances 100000: exit $code"
+  grep -Eq "after the masks\) would place about [0-9.e+]+ instances; --max-instances is 100000" err1.txt \
+    || fail "cap message: $(cat err1.txt)"
+  [ ! -e capped.ply ] || fail "partial output under the cap"
+  # A file larger than the disk is refused before the first byte, naming the folder and sizes.
+  mkdir -p out
+  "$BIN" scatter --tileset tiles.json --plane 1e8x1e8 --tile-size 1 --out out/huge.csv 2> err2.txt; code=$?
+  [ $code -eq 1 ] || fail "huge plane: exit $code"
+  grep -Eq "^wangscape: error: out: scatter's points file 'out/huge.csv' \(about 1\.[0-9]+e\+17 instances.*would need about [0-9.]+ [A-Z]B; the folder has [0-9.]+ [kMGTP]?B free" err2.txt \
+    || fail "disk message: $(cat err2.txt)"
+  [ -z "$(ls out)" ] || fail "partial output: $(ls out)"
+  # Where the points are held (--metrics), memory is the limit.
+  "$BIN" scatter --tileset tiles.json --plane 1e6x1e6 --metrics 2> err3.txt; code=$?
+  [ $code -eq 1 ] || fail "metrics over a huge plane: exit $code"
+  grep -q "scatter --metrics over about .* would need about .* of memory" err3.txt || fail "memory message: $(cat err3.txt)"
+  "$BIN" scatter --tileset tiles.json --plane 64x64 --max-instances 0 --out zero.csv 2> /dev/null; code=$?
+  [ $code -eq 2 ] || fail "--max-instances 0: exit $code, expected 2"
   ;;
 *) fail "unknown mode" ;;
 esac
