@@ -44,7 +44,10 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--diff", o->request.diff, "With --compare: write the frame's difference from the truth (PNG)");
   sub->add_option("--truth-spp", o->request.truth_samples,
                   "With --compare: the truth's samples per pixel (default 64: converged for one-sample frames)");
-  sub->add_option("--truth", o->request.truth_out, "With --compare: write the truth image (PNG)");
+  sub->add_option("--reference,--truth", o->request.truth_out,
+                  "With --compare: write the reference it compared against, the truth (PNG)");
+  sub->add_option("--side-by-side", o->request.side_by_side,
+                  "With --compare: write the frame (left) beside the reference (right), one PNG");
   sub->add_option("--threads", o->request.threads, "Threads (default: all cores)")->check(CLI::Range(0, 1024));
   sub->add_option("--detail", o->request.detail,
                   "Level-of-detail scale: 1 the pack's levels, 0.5 coarser and faster, 2 finer (0.1 .. 10)")

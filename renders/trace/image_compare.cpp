@@ -174,4 +174,16 @@ ImageComparison compare_images(const ImageRgb8& candidate, const ImageRgb8& refe
   return out;
 }
 
+ImageRgb8 side_by_side(const ImageRgb8& left, const ImageRgb8& right, int gap) {
+  ImageRgb8 out(left.width + gap + right.width, std::max(left.height, right.height), Rgb8{255, 255, 255});
+  const auto paste = [&out](const ImageRgb8& image, int x0) {
+    for (int y = 0; y < image.height; ++y)
+      std::copy_n(image.pixels.begin() + std::ptrdiff_t(image.offset(0, y)), std::size_t(image.width) * 3,
+                  out.pixels.begin() + std::ptrdiff_t(out.offset(x0, y)));
+  };
+  paste(left, 0);
+  paste(right, left.width + gap);
+  return out;
+}
+
 }  // namespace wangscape

@@ -61,4 +61,8 @@ ImageComparison compare_images(const ImageRgb8& candidate, const ImageRgb8& refe
                                const CoverageMask* candidate_mask = nullptr,
                                const CoverageMask* reference_mask = nullptr, double difference_gain = 4.0);
 
+// `left` and `right` side by side, `gap` white pixels apart (the taller one's height; the other
+// on white): the picture of a comparison that users share.
+ImageRgb8 side_by_side(const ImageRgb8& left, const ImageRgb8& right, int gap = 4);
+
 }  // namespace wangscape

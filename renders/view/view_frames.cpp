@@ -1,21 +1,24 @@
 // `wangscape view` without a window: offline frames, frame statistics, path playback and the
 // comparison with the Embree reference, on top of the renderer of renders/view/ldi_renderer.h.
+#include <unistd.h>
+
 #include <algorithm>
-#include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 
 #include "core/error.h"
 #include "core/number_text.h"
+#include "core/run_cleanup.h"
 #include "core/vecmath.h"
 #include "exporters/image_io.h"
 #include "renders/external/child_process.h"
 #include "renders/trace/embree_reference.h"
 #include "renders/trace/image_compare.h"
 #include "renders/view/view_frames.h"
+#include "renders/view/view_path.h"
 
 namespace wangscape {
 
@@ -23,99 +26,87 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Keyframe {
-  double time = 0;
-  std::array<double, 3> position{}, look_at{};
+// Removes what a path playback wrote if it does not finish: the frames folder when this run made
+// it, else this run's frames.
+class FramesCleanup {
+ public:
+  explicit FramesCleanup(const fs::path& dir) : dir_(dir), made_(!fs::exists(dir)) {
+    if (made_) register_temporary(dir_);
+  }
+  FramesCleanup(const FramesCleanup&) = delete;
+  FramesCleanup& operator=(const FramesCleanup&) = delete;
+  void wrote(const fs::path& file) { written_.push_back(file); }
+  void keep() {
+    if (made_) unregister_temporary(dir_);
+    made_ = false;
+    written_.clear();
+  }
+  ~FramesCleanup() {
+    std::error_code ec;
+    if (made_) {
+      fs::remove_all(dir_, ec);
+      unregister_temporary(dir_);
+    }
+    for (const fs::path& file : written_) fs::remove(file, ec);
+  }
+
+ private:
+  fs::path dir_;
+  bool made_;
+  std::vector<fs::path> written_;
 };
-
-std::array<double, 3> read_point(const nlohmann::json& j, const fs::path& file, const std::string& where) {
-  if (!j.is_array() || j.size() != 3) throw Error(file, where, "expected [E, N, H] in meters");
-  std::array<double, 3> p{};
-  for (std::size_t k = 0; k < 3; ++k) {
-    if (!j[k].is_number() || !std::isfinite(j[k].get<double>())) throw Error(file, where, "expected finite numbers");
-    p[k] = j[k].get<double>();
-  }
-  return p;
-}
-
-// {"keyframes": [{"time": s, "position": [E, N, H], "look_at": [E, N, H]}, ...]}, times ascending.
-std::vector<Keyframe> read_path(const fs::path& file) {
-  std::ifstream in(file);
-  if (!in) throw Error(file, "", "cannot open the path file");
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(in, nullptr, true, false);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(file, "", std::string("not JSON: ") + e.what());
-  }
-  if (!doc.is_object() || !doc.contains("keyframes") || !doc["keyframes"].is_array() || doc["keyframes"].size() < 2)
-    throw Error(file, "", "expected {\"keyframes\": [...]} with at least two keyframes");
-  std::vector<Keyframe> keys;
-  for (std::size_t k = 0; k < doc["keyframes"].size(); ++k) {
-    const auto& j = doc["keyframes"][k];
-    const std::string where = "keyframes[" + std::to_string(k) + "]";
-    if (!j.is_object() || !j.contains("time") || !j["time"].is_number() || !j.contains("position") ||
-        !j.contains("look_at"))
-      throw Error(file, where, "expected {\"time\": seconds, \"position\": [E, N, H], \"look_at\": [E, N, H]}");
-    Keyframe key{j["time"].get<double>(), read_point(j["position"], file, where + ".position"),
-                 read_point(j["look_at"], file, where + ".look_at")};
-    if (!std::isfinite(key.time) || (!keys.empty() && !(key.time > keys.back().time)))
-      throw Error(file, where + ".time", "times must be finite and ascending");
-    keys.push_back(key);
-  }
-  if (keys.back().time - keys.front().time > 3600) throw Error(file, "", "the path lasts more than an hour");
-  return keys;
-}
-
-// Catmull-Rom through the keyframes (a smooth walk, no kinks at the keys).
-std::array<double, 3> along(const std::vector<Keyframe>& keys, double time, bool look) {
-  std::size_t i = 0;
-  while (i + 2 < keys.size() && time > keys[i + 1].time) ++i;
-  const double f = std::clamp((time - keys[i].time) / (keys[i + 1].time - keys[i].time), 0.0, 1.0);
-  auto at = [&](std::size_t k) { return look ? keys[k].look_at : keys[k].position; };
-  const auto p1 = at(i), p2 = at(i + 1);
-  const auto p0 = i > 0 ? at(i - 1) : p1, p3 = i + 2 < keys.size() ? at(i + 2) : p2;
-  std::array<double, 3> out{};
-  for (std::size_t c = 0; c < 3; ++c)
-    out[c] = 0.5 * (2 * p1[c] + (p2[c] - p0[c]) * f + (2 * p0[c] - 5 * p1[c] + 4 * p2[c] - p3[c]) * f * f +
-                    (3 * p1[c] - p0[c] - 3 * p2[c] + p3[c]) * f * f * f);
-  return out;
-}
 
 void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest& request, int width, int height,
                double fov) {
-  const std::vector<Keyframe> keys = read_path(request.path);
+  const ViewPath path = read_view_path(request.path);
+  const double fps = request.path_fps;
+  const long long frames = path.frame_count(fps);
+  if (frames > kMaxPathFrames)
+    throw Error(request.path, "",
+                "lasts " + number_text(path.duration()) + " s: " + std::to_string(frames) + " frames at " +
+                    number_text(fps) + " frames/s; at most " + std::to_string(kMaxPathFrames) +
+                    " are rendered (lower --fps or cut the path in parts)");
+  const GroundHeightAt ground = [&](double e, double n) { return world->scene().field->ground.height(e, n); };
+  for (double t : {path.keys.front().time, path.keys.back().time}) camera_along(path, t, ground, request.path);
+
   std::error_code ec;
+  FramesCleanup cleanup(request.frames_dir);
   fs::create_directories(request.frames_dir, ec);
   if (!fs::is_directory(request.frames_dir, ec)) throw Error(request.frames_dir, "", "cannot make the frames folder");
   LdiRenderer renderer(world, width, height);
   renderer.set_detail(request.detail);
   renderer.set_near_field(request.near_field);
-  const double fps = request.path_fps;
-  const int frames = int(std::floor((keys.back().time - keys.front().time) * fps)) + 1;
-  for (int k = 0; k < frames; ++k) {
-    const double t = keys.front().time + k / fps;
-    ViewCamera camera{along(keys, t, false), along(keys, t, true), fov};
-    renderer.render(camera);
+  const auto start = std::chrono::steady_clock::now();
+  for (long long k = 0; k < frames; ++k) {
+    const PathCamera at = camera_along(path, path.keys.front().time + double(k) / fps, ground, request.path);
+    renderer.render(ViewCamera{at.position, at.look_at, fov});
     char name[32];
-    std::snprintf(name, sizeof name, "frame-%05d.png", k);
+    std::snprintf(name, sizeof name, "frame-%05lld.png", k);
     write_image(request.frames_dir / name, renderer.image());
-    if (!request.quiet) std::fprintf(stderr, "\rwangscape: frame %d / %d", k + 1, frames);
+    cleanup.wrote(request.frames_dir / name);
+    if (!request.quiet && isatty(2)) {
+      const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::fprintf(stderr, "\rwangscape: frame %lld / %lld, about %.0f s left ", k + 1, frames,
+                   spent / double(k + 1) * double(frames - k - 1));
+    }
   }
-  if (!request.quiet) std::fprintf(stderr, "\n");
+  if (!request.quiet && isatty(2)) std::fprintf(stderr, "\n");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const fs::path ffmpeg = find_program("ffmpeg");
-  if (ffmpeg.empty()) {
-    if (!request.quiet) std::fprintf(stderr, "wangscape: ffmpeg not found: PNG frames only\n");
-    return;
+  if (!ffmpeg.empty()) {
+    const fs::path movie = request.frames_dir / "path.mp4", log = request.frames_dir / "ffmpeg.log";
+    const ChildExit exit = run_logged({ffmpeg.string(), "-y", "-loglevel", "error", "-framerate", number_text(fps),
+                                       "-i", (request.frames_dir / "frame-%05d.png").string(), "-pix_fmt", "yuv420p",
+                                       "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", movie.string()},
+                                      log);
+    if (!exit.exited || exit.status != 0) throw Error(movie, "", "ffmpeg " + exit.describe() + last_log_lines(log, 3));
+    fs::remove(log, ec);
   }
-  const fs::path movie = request.frames_dir / "path.mp4", log = request.frames_dir / "ffmpeg.log";
-  const ChildExit exit = run_logged({ffmpeg.string(), "-y", "-loglevel", "error", "-framerate", number_text(fps), "-i",
-                                     (request.frames_dir / "frame-%05d.png").string(), "-pix_fmt", "yuv420p", "-vf",
-                                     "pad=ceil(iw/2)*2:ceil(ih/2)*2", movie.string()},
-                                    log);
-  if (!exit.exited || exit.status != 0) throw Error(movie, "", "ffmpeg " + exit.describe() + last_log_lines(log, 3));
-  fs::remove(log, ec);
-  if (!request.quiet) std::printf("%s\n", movie.string().c_str());
+  cleanup.keep();
+  if (!request.quiet)
+    std::fprintf(stderr, "wangscape: wrote %lld frames of %dx%d to %s%s in %.1f s\n", frames, width, height,
+                 request.frames_dir.string().c_str(),
+                 ffmpeg.empty() ? " (no ffmpeg on PATH: PNG frames only)" : " and path.mp4", seconds);
 }
 
 // --compare: the same camera ray traced by the Embree reference (the truth, and the exact
@@ -127,6 +118,7 @@ void print_comparison(const ViewWorld& world, const LdiRenderer& renderer, const
   const ImageComparison& e = v.exact;
   if (!request.diff.empty()) write_image(request.diff, c.difference);
   if (!request.truth_out.empty()) write_image(request.truth_out, v.truth);
+  if (!request.side_by_side.empty()) write_image(request.side_by_side, side_by_side(renderer.image(), v.truth));
   if (request.json)
     std::printf(
         "{\"psnr_db\": %s, \"ssim\": %s, \"hole_share\": %s, \"holes\": %llu, \"reference_seconds\": %s, "
@@ -147,6 +139,11 @@ void print_comparison(const ViewWorld& world, const LdiRenderer& renderer, const
         static_cast<unsigned long long>(c.holes.holes), 100 * c.holes.share_of_covered, v.reference.samples_per_pixel,
         v.reference.seconds, request.truth_out.empty() ? "" : ", saved to ", request.truth_out.string().c_str(),
         v.one_sample.seconds);
+  if (!request.quiet)
+    for (const auto& [file, what] :
+         {std::pair{request.truth_out, "the reference"},
+          std::pair{request.side_by_side, "the frame beside the reference"}, std::pair{request.diff, "the difference"}})
+      if (!file.empty()) std::fprintf(stderr, "wangscape: wrote %s to %s\n", what, file.string().c_str());
 }
 
 }  // namespace
@@ -232,6 +229,7 @@ void check_view_request(const ViewRequest& request) {
                 ": expected WIDTHxHEIGHT, each 1 .. 16384 pixels");
   if (request.fov_degrees) check_field_of_view(*request.fov_degrees, "--fov");
   if (!request.path.empty() && request.frames_dir.empty()) throw Error("--path: needs --frames OUTDIR");
+  if (!request.path.empty()) read_view_path(request.path);  // a bad path file fails before the folder loads
   if (!(request.path_fps > 0 && request.path_fps <= 240)) throw Error("--fps: expected 0 .. 240 frames per second");
   if (request.repeat < 0 || request.repeat > 100000) throw Error("--repeat: expected 0 .. 100000 frames");
   if (!(request.detail >= kMinViewDetail && request.detail <= kMaxViewDetail))
@@ -244,7 +242,8 @@ void check_view_request(const ViewRequest& request) {
   if (request.truth_samples < 1 || request.truth_samples > kMaxReferenceSamples)
     throw Error("--truth-spp " + std::to_string(request.truth_samples) + ": expected 1 .. " +
                 std::to_string(kMaxReferenceSamples) + " samples per pixel");
-  if (!request.truth_out.empty() && !request.compare) throw Error("--truth: needs --compare");
+  if (!request.truth_out.empty() && !request.compare) throw Error("--reference: needs --compare");
+  if (!request.side_by_side.empty() && !request.compare) throw Error("--side-by-side: needs --compare");
 }
 
 bool wants_window(const ViewRequest& request) {
@@ -271,7 +270,11 @@ int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewReq
   renderer.set_near_field(request.near_field);
   const ViewFrameStats stats =
       request.stats ? measure_view(renderer, camera, request.repeat ? request.repeat : 200) : renderer.render(camera);
-  if (!request.out.empty()) write_image(request.out, renderer.image());
+  if (!request.out.empty()) {
+    write_image(request.out, renderer.image());
+    if (!request.quiet)
+      std::fprintf(stderr, "wangscape: wrote the frame (%dx%d) to %s\n", width, height, request.out.string().c_str());
+  }
   if (request.compare) {
     print_comparison(*world, renderer, camera, request);
     return 0;

@@ -35,6 +35,7 @@ struct ViewRequest {
   std::filesystem::path diff;                // with compare: the difference image
   int truth_samples = kDefaultTruthSamples;  // with compare: the truth's samples per pixel
   std::filesystem::path truth_out;           // with compare: where the truth image goes (empty: none)
+  std::filesystem::path side_by_side;        // with compare: the frame beside the truth (empty: none)
   int threads = 0;                           // 0 = all cores
   double detail = 1;                         // LdiRenderer::set_detail
   double near_field = kDefaultNearField;     // LdiRenderer::set_near_field (meters; 0: LDIs only)

@@ -46,6 +46,34 @@ view_sh_test(path "path.mp4"
   "rm -rf \"$3\" && \"$0\" --quiet view \"$1\" --path \"$4\" --frames \"$3\" --fps 10 --size 48x32 && ls \"$3\" && test -s \"$3/frame-00003.png\" && test ! -e \"$3/frame-00004.png\" && test -s \"$3/path.mp4\""
   "${view_dir}/path_frames" "${view_dir}/path.json")
 
+# A walk given by heights above the ground: 4 frames, and one line saying what was written.
+file(WRITE "${view_dir}/walk.json"
+  "{\"keyframes\": [{\"time\": 0, \"position\": [0, -16], \"height_above_ground\": 1.7, \"look_at\": [0, 0], \"look_at_height_above_ground\": 1.0},\n"
+  "                {\"time\": 0.3, \"position\": [2, -10], \"height_above_ground\": 1.7, \"look_at\": [0, 4], \"look_at_height_above_ground\": 1.0}]}\n")
+view_sh_test(path_above_ground "wrote 4 frames of 48x32 to .*walk_frames"
+  "rm -rf \"$3\" && \"$0\" view \"$1\" --path \"$4\" --frames \"$3\" --fps 10 --size 48x32 && test -s \"$3/frame-00003.png\""
+  "${view_dir}/walk_frames" "${view_dir}/walk.json")
+# A path refused before anything is written (a height of 1e300 m), and one that leaves the
+# ground half-way (its first and last points are over it): exit 1, no frames folder left.
+file(WRITE "${view_dir}/path_high.json"
+  "{\"keyframes\": [{\"time\": 0, \"position\": [0, -16, 1e300], \"look_at\": [0, 0, 1]}, {\"time\": 1, \"position\": [0, -10, 2], \"look_at\": [0, 0, 1]}]}")
+view_sh_test(path_refused "path_high.json:keyframes\\[0\\].position\\[2\\]: is 1e\\+300. expected meters"
+  "rm -rf \"$3\" && \"$0\" --quiet view \"$1\" --path \"$4\" --frames \"$3\" --size 48x32 && exit 5 || test $? = 1 && test ! -e \"$3\""
+  "${view_dir}/refused_frames" "${view_dir}/path_high.json")
+file(WRITE "${view_dir}/path_off.json"
+  "{\"keyframes\": [{\"time\": 0, \"position\": [0, -16], \"height_above_ground\": 2, \"look_at\": [0, 0, 1]},\n"
+  " {\"time\": 0.5, \"position\": [5000, -10], \"height_above_ground\": 2, \"look_at\": [0, 0, 1]},\n"
+  " {\"time\": 1, \"position\": [0, -10], \"height_above_ground\": 2, \"look_at\": [0, 0, 1]}]}")
+view_sh_test(path_off_ground "path_off.json: at 0.[0-9]+ s the eye .* is not over the ground"
+  "rm -rf \"$3\" && \"$0\" --quiet view \"$1\" --path \"$4\" --frames \"$3\" --fps 10 --size 48x32 && exit 5 || test $? = 1 && test ! -e \"$3\""
+  "${view_dir}/off_frames" "${view_dir}/path_off.json")
+
+# --compare writes the reference it compared against and the frame beside it (twice as wide
+# plus a 4-pixel gap), and says so.
+view_sh_test(compare_writes "^ok 100x32$"
+  "rm -f \"$3\"* && \"$0\" view \"$1\" --size 48x32 --compare --truth-spp 2 --reference \"$3ref.png\" --side-by-side \"$3sbs.png\" >/dev/null 2>\"$3log\" && test -s \"$3ref.png\" && grep -q 'wrote the frame beside the reference to .*sbs.png' \"$3log\" && echo ok $(oiiotool \"$3sbs.png\" --echo '{TOP.width}x{TOP.height}')"
+  "${view_dir}/compare_")
+
 # The window under a real X server: scripted keys go through SDL's event queue; the first
 # screenshot (before any move) is the offline frame of the same camera, the second after a walk
 # and a turn differs from it and is not one color; Escape quits with 0.

@@ -112,5 +112,17 @@ TEST(image_compare, RefusesMismatchedOrTinyImages) {
   EXPECT_THROW(difference_image(a, a, 0.0), Error);
 }
 
+TEST(image_compare, SideBySideKeepsBothImagesAndAWhiteGap) {
+  const ImageRgb8 left(5, 3, Rgb8{10, 20, 30}), right(4, 6, Rgb8{200, 100, 50});
+  const ImageRgb8 both = side_by_side(left, right, 2);
+  ASSERT_EQ(both.width, 11);
+  ASSERT_EQ(both.height, 6);
+  EXPECT_EQ(both.at(4, 2).r, 10);
+  EXPECT_EQ(both.at(4, 3).r, 255);  // below the shorter image
+  EXPECT_EQ(both.at(5, 0).g, 255);  // the gap
+  EXPECT_EQ(both.at(7, 5).g, 100);
+  EXPECT_EQ(both.at(10, 0).b, 50);
+}
+
 }  // namespace
 }  // namespace wangscape

@@ -1,0 +1,62 @@
+// A flythrough's path file (docs/viewer.md, "A path file"): keyframes of time, eye and look-at
+// point, each given in ENU meters either with an absolute height or with a height above the
+// ground, and the camera at any time along a Catmull-Rom spline through them. Read defensively
+// (core/text_file.h): size, nesting, counts and every number are checked before use.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+namespace wangscape {
+
+inline constexpr std::uintmax_t kMaxPathFileBytes = 16u << 20;  // about 200,000 keyframes as written
+inline constexpr std::size_t kMaxPathKeyframes = 100000;
+inline constexpr double kMaxPathSeconds = 3600;
+inline constexpr int kMaxPathFrames = 100000;      // an hour at 24 frames/s is 86,401
+inline constexpr double kMaxPathCoordinate = 1e7;  // meters east or north of the scene's origin
+inline constexpr double kMinPathHeight = -12000;   // below the deepest ground on Earth
+inline constexpr double kMaxPathHeight = 100000;   // meters, absolute or above the ground
+
+struct PathKeyframe {
+  double time = 0;
+  // E, N and the height: absolute, or above the ground when the path says so (ViewPath).
+  std::array<double, 3> position{}, look_at{};
+};
+
+struct ViewPath {
+  std::vector<PathKeyframe> keys;  // at least two, times ascending
+  bool position_above_ground = false;
+  bool look_at_above_ground = false;
+
+  double duration() const { return keys.back().time - keys.front().time; }
+  // Frames at `fps` from the first key time to the last, both included.
+  long long frame_count(double fps) const;
+};
+
+// Parses a path file's text; `file` names it in errors (Error: file, "keyframes[3].position",
+// what was expected).
+ViewPath parse_view_path(std::string_view text, const std::filesystem::path& file);
+// Reads and parses a path file (a regular file of at most kMaxPathFileBytes).
+ViewPath read_view_path(const std::filesystem::path& file);
+// The path as JSON text, readable by parse_view_path (a walk recorded in the window).
+std::string view_path_json(const ViewPath& path);
+
+// The ground height at E, N (nullopt: no ground there).
+using GroundHeightAt = std::function<std::optional<double>(double east, double north)>;
+
+struct PathCamera {
+  std::array<double, 3> position{}, look_at{};
+};
+// The camera at `time` (clamped to the path's times): E, N and the height interpolated by the
+// spline; a height above the ground is added to the ground under the interpolated point, so
+// the spline is taken over the ground. Throws Error naming `file` and the time when such a
+// point has no ground under it.
+PathCamera camera_along(const ViewPath& path, double time, const GroundHeightAt& ground,
+                        const std::filesystem::path& file);
+
+}  // namespace wangscape
