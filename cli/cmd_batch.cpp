@@ -1,4 +1,6 @@
 // wangscape batch plan|example|run|status|run-task (hidden: what workers run): renders/batch/batch_run.h.
+#include <chrono>
+#include <cstdio>
 #include <iostream>
 #include "cli/command.h"
 #include "cli/progress.h"
@@ -19,14 +21,20 @@ void register_batch_command(CLI::App& app, const GlobalOptions& global) {
   run->add_option("--out", s->out_dir, "Output folder")->required();
   auto executor = std::make_shared<std::string>("local");
   run->add_option("--executor", *executor, "local or slurm")->check(CLI::IsMember(batch_executor_names()));
-  run->add_option("--workers", s->workers, "Local worker processes (default: the cores)")->check(CLI::PositiveNumber);
+  run->add_option("--workers", s->workers, "Local worker processes (default: the cores)")
+      ->check(CLI::Range(1, kMaxBatchWorkers));
   run->add_option("--chunk", s->chunk, "Slurm: tasks per array element")->check(CLI::PositiveNumber);
   run->add_option("--throttle", s->throttle, "Slurm: array elements running at once")->check(CLI::PositiveNumber);
   run->add_option("--retries", s->retries, "Slurm: resubmissions of failed elements")->check(CLI::NonNegativeNumber);
   run->callback([=, &global] {
     s->executor = parse_batch_executor(*executor);
     s->chatty = chatty(global);
-    run_batch(*s);
+    const auto start = std::chrono::steady_clock::now();
+    const BatchCounts counts = run_batch(*s);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!global.quiet)  // failures end in the error instead, which names them
+      std::fprintf(stderr, "wangscape: wrote %s (%d stills, 0 failed; gallery %s) in %.1f s\n",
+                   s->out_dir.string().c_str(), counts.done, (s->out_dir / "index.html").string().c_str(), seconds);
   });
   auto* status = batch->add_subcommand("status", "Done / running / failed / pending per task of DIR");
   status->add_option("dir", s->out_dir, "Batch output folder")->required();

@@ -7,12 +7,13 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <numbers>
 #include <set>
 #include <sstream>
 
 #include "core/number_text.h"
+#include "core/text_file.h"
+#include "core/vecmath.h"
 #include "scene/ground.h"
 #include "scene/sun.h"
 #include "terrain/georef.h"
@@ -46,7 +47,15 @@ class Table {
     const auto* n = node(key);
     if (!n) return fallback;
     if (auto v = n->value<double>(); v && std::isfinite(*v)) return *v;
-    fail(*n, key, "must be a number");
+    fail(*n, key, "must be a finite number");
+  }
+  // A number in [lo, hi] (units in `unit`), or the fallback when the key is absent.
+  double number(const std::string& key, double fallback, double lo, double hi, const std::string& unit) {
+    const double v = number(key, fallback);
+    if (node(key) && !(v >= lo && v <= hi))
+      fail(*node(key), key,
+           "is " + number_text(v) + "; expected " + unit + " from " + number_text(lo) + " to " + number_text(hi));
+    return v;
   }
   int integer(const std::string& key, int fallback, int min, int max) {
     const auto* n = node(key);
@@ -80,6 +89,7 @@ class Table {
       const auto a = pair && pair->size() == 2 ? (*pair)[0].value<double>() : std::nullopt;
       const auto b = pair && pair->size() == 2 ? (*pair)[1].value<double>() : std::nullopt;
       if (!a || !b) fail(item, key, "must be a list of [a, b] number pairs");
+      if (!std::isfinite(*a) || !std::isfinite(*b)) fail(item, key, "must hold finite numbers");
       out.push_back({*a, *b});
     }
     return out;
@@ -146,15 +156,23 @@ void read_suns(Table& sun, BatchConfig& config) {
     const auto t0 = unix_seconds(*from, sun, "from"), t1 = unix_seconds(*to, sun, "to");
     if (t1 < t0) sun.fail(*to, "to", "is before 'from'");
     const int offset = from->as_date_time()->get().offset->minutes;
-    for (std::int64_t t = t0, k = 0; t <= t1 && k < 10000; ++k, t = t0 + static_cast<std::int64_t>(k * step * 60))
+    const double count = std::floor(static_cast<double>(t1 - t0) / (step * 60)) + 1;
+    if (count > kMaxBatchSuns)
+      sun.fail(*from, "from",
+               "to 'to' every " + number_text(step) + " minutes is " + number_text(count) + " suns; at most " +
+                   std::to_string(kMaxBatchSuns) + " are planned: raise step_minutes or shorten the span");
+    for (std::int64_t t = t0, k = 0; t <= t1; ++k, t = t0 + static_cast<std::int64_t>(k * step * 60))
       config.suns.push_back({t, local_time_text(t, offset)});
   }
+  const auto* angles = sun.node("angles");
   for (const auto& [az, el] : sun.pairs("angles")) {
-    if (!(el > 0 && el <= 90)) throw Error(sun.file(), "", "'sun.angles' elevations must be in (0, 90]");
+    if (!(el > 0 && el <= 90))
+      sun.fail(*angles, "angles", "elevation " + number_text(el) + ": expected degrees in (0, 90]");
     BatchSun s;
-    s.azimuth = az;
+    s.azimuth = az;  // any finite value; the label gives it in [0, 360)
+    const double compass = std::fmod(std::fmod(az, 360.0) + 360.0, 360.0);
     s.elevation = el;
-    s.label = "az " + std::to_string(static_cast<int>(std::lround(az))) + " el " +
+    s.label = "az " + std::to_string(static_cast<int>(std::lround(compass))) + " el " +
               std::to_string(static_cast<int>(std::lround(el)));
     config.suns.push_back(s);
   }
@@ -169,9 +187,12 @@ ViewpointRule read_viewpoint(Table& v, int line) {
     rule.kind = *kind;
   }
   rule.count = v.integer("count", rule.count, 1, 10000);
-  rule.eye_height = v.number("eye_height", rule.eye_height);
-  rule.min_height = v.number("min_height", rule.min_height);
+  rule.eye_height = v.number("eye_height", rule.eye_height, 0, kMaxEyeHeight, "meters above the ground");
+  rule.min_height = v.number("min_height", rule.min_height, -kMaxGroundHeight, kMaxGroundHeight, "meters");
   rule.fov = v.number("fov", 0);
+  if (const auto* n = v.node("fov"); n && !valid_field_of_view(rule.fov))
+    v.fail(*n, "fov",
+           "is " + number_text(rule.fov) + "; expected degrees in (0, " + number_text(kMaxFieldOfViewDegrees) + "]");
   if (const auto* n = v.node("grid")) {
     const auto* a = n->as_array();
     const auto c = a && a->size() == 2 ? (*a)[0].value<std::int64_t>() : std::nullopt;
@@ -187,11 +208,6 @@ ViewpointRule read_viewpoint(Table& v, int line) {
 }
 
 // ---- numbers and hashes -------------------------------------------------------------------------
-
-std::string pad4(int index) {
-  std::string s = std::to_string(index);
-  return std::string(s.size() < 4 ? 4 - s.size() : 0, '0') + s;
-}
 
 // What the scene folder depends on: the scene text, the DEM and its size and time.
 std::string scene_key(const SceneConfig& scene, const std::filesystem::path& dem) {
@@ -337,6 +353,12 @@ std::vector<View> expand_viewpoint(const ViewpointRule& rule, const Site& site, 
       // Look along the path: towards the next point, the last one onwards from the one before.
       const auto& a = points[k + 1 < points.size() ? k : k - 1];
       const auto& b = points[k + 1 < points.size() ? k + 1 : k];
+      if (std::hypot(b[0] - a[0], b[1] - a[1]) < 1e-3)
+        throw Error(file, std::to_string(rule.line),
+                    "path points " + std::to_string(k + 1 < points.size() ? k + 1 : k) + " and " +
+                        std::to_string(k + 1 < points.size() ? k + 2 : k + 1) +
+                        " are the same place (less than 1 mm apart), so the camera there has no direction; " +
+                        "give points that move along the path");
       const auto eye = site.eye_at(x, y, rule.eye_height);
       add("path " + std::to_string(k + 1), eye, {x + b[0] - a[0], y + b[1] - a[1], eye[2]});
     }
@@ -347,7 +369,37 @@ std::vector<View> expand_viewpoint(const ViewpointRule& rule, const Site& site, 
   return views;
 }
 
+// The tasks a batch will make, counted from the file before any ground is loaded: the viewpoints
+// a rule asks for (fewer may fit the ground) times the suns, engines and DEMs.
+double planned_tasks(const BatchConfig& config, double* viewpoints = nullptr) {
+  double views = 0;
+  for (const auto& rule : config.viewpoints)
+    views += rule.kind == ViewpointKind::grid   ? double(rule.grid[0]) * rule.grid[1]
+             : rule.kind == ViewpointKind::path ? double(rule.path_enu.size() + rule.path_latlon.size())
+                                                : double(rule.count);
+  if (viewpoints) *viewpoints = views;
+  return views * double(std::max<std::size_t>(config.suns.size(), 1)) * double(config.engines.size()) *
+         double(std::max<std::size_t>(config.dems.size(), 1));
+}
+
+void check_batch_size(const BatchConfig& config) {
+  double views = 0;
+  const double tasks = planned_tasks(config, &views);
+  if (tasks <= kMaxBatchTasks) return;
+  throw Error(config.source, "",
+              "the batch asks for up to " + fixed_text(tasks, 0) + " stills (" +
+                  std::to_string(std::max<std::size_t>(config.dems.size(), 1)) + " DEMs x " + fixed_text(views, 0) +
+                  " viewpoints x " + std::to_string(std::max<std::size_t>(config.suns.size(), 1)) + " suns x " +
+                  std::to_string(config.engines.size()) + " engines); at most " + std::to_string(kMaxBatchTasks) +
+                  " are planned: split it into several batch files, each with its own --out");
+}
+
 }  // namespace
+
+std::string batch_task_id(int index) {
+  std::string s = std::to_string(index);
+  return std::string(s.size() < 4 ? 4 - s.size() : 0, '0') + s;
+}
 
 std::string hash_hex(std::string_view text) {
   std::uint64_t h = 1469598103934665603ull;
@@ -360,6 +412,7 @@ std::string hash_hex(std::string_view text) {
 
 BatchConfig parse_batch_config(std::string_view toml_text, const std::filesystem::path& source,
                                const std::filesystem::path& base_dir) {
+  check_nesting(toml_text, source, kMaxNesting);  // toml++ recurses: refuse deep input first
   toml::table root;
   try {
     root = toml::parse(toml_text, source.string());
@@ -426,11 +479,7 @@ BatchConfig parse_batch_config(std::string_view toml_text, const std::filesystem
 }
 
 BatchConfig load_batch_config(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error(file, "", "cannot read the batch file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_batch_config(text.str(), file, file.parent_path());
+  return parse_batch_config(read_text_file(file, kMaxBatchFileBytes, "batch file"), file, file.parent_path());
 }
 
 std::string_view example_batch_text() { return kExampleBatchToml; }
@@ -452,6 +501,7 @@ SceneConfig task_scene_config(const SceneConfig& base, const BatchTask& task) {
 }
 
 std::vector<BatchTask> expand_batch(const BatchConfig& config) {
+  check_batch_size(config);
   // Every DEM is checked before anything is loaded, so a typo fails at once.
   for (const auto& dem : config.dems)
     if (!std::filesystem::is_regular_file(dem))
@@ -494,7 +544,7 @@ std::vector<BatchTask> expand_batch(const BatchConfig& config) {
           for (const auto& engine : config.engines) {
             BatchTask t;
             t.index = static_cast<int>(tasks.size());
-            t.id = pad4(t.index);
+            t.id = batch_task_id(t.index);
             t.dem = dem;
             t.scene_key = key;
             t.viewpoint = view.name;

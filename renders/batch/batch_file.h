@@ -18,6 +18,13 @@
 
 namespace wangscape {
 
+// Limits of a batch (docs/limits.md), checked before anything is allocated for them.
+inline constexpr std::uintmax_t kMaxBatchFileBytes = 1 << 20;  // the batch file, as a scene file
+inline constexpr int kMaxBatchTasks = 100000;                  // stills of one batch (plan.json ~80 MB)
+inline constexpr int kMaxBatchSuns = 10000;                    // suns of [sun] from/to/step_minutes
+inline constexpr double kMaxEyeHeight = 20000;                 // viewpoints' eye_height, meters above ground
+inline constexpr double kMaxGroundHeight = 12000;              // |min_height| of summits, meters
+
 // How [[viewpoints]] choose cameras: at flowers, on summits, over a grid, along a path.
 enum class ViewpointKind { flowers, summits, grid, path };
 
@@ -84,6 +91,9 @@ std::vector<BatchTask> expand_batch(const BatchConfig& config);
 
 // The scene a task renders: the base scene over the task's DEM, with its camera, sun and size.
 SceneConfig task_scene_config(const SceneConfig& base, const BatchTask& task);
+
+// A task's id: its index with at least 4 digits ("0007"); the name of its still, record and log.
+std::string batch_task_id(int index);
 
 // 16 hex digits of a 64-bit FNV-1a hash (input hashes, scene keys).
 std::string hash_hex(std::string_view text);

@@ -23,6 +23,9 @@
 
 #include "core/atomic_file.h"
 #include "core/number_text.h"
+#include "core/printable.h"
+#include "core/text_file.h"
+#include "core/vecmath.h"
 #include "exporters/povray_writer.h"
 #include "exporters/scene_folder.h"
 #include "renders/external/blender_render.h"
@@ -61,9 +64,21 @@ json task_json(const BatchTask& t) {
           {"input_hash", t.input_hash}};
 }
 
+// JSON text of what Wangscape writes: user text (a DEM's path, a label) that is not UTF-8 is
+// written with U+FFFD in its place instead of failing the write.
+std::string json_text(const json& j, int indent) { return j.dump(indent, ' ', false, json::error_handler_t::replace); }
+
+// An integer field of at most 2^31 - 1 (a float or a larger number throws, as a missing field does).
+int int_field(const json& j, const char* key) {
+  const json& v = j.at(key);
+  if (!v.is_number_integer() || v.get<std::int64_t>() < 0 || v.get<std::int64_t>() > 0x7fffffff)
+    throw json::type_error::create(302, "not an integer", &v);
+  return static_cast<int>(v.get<std::int64_t>());
+}
+
 BatchTask task_from_json(const json& j) {
   BatchTask t;
-  t.index = j.at("index");
+  t.index = int_field(j, "index");
   t.id = j.at("id");
   t.dem = j.at("dem").get<std::string>();
   t.viewpoint = j.at("viewpoint");
@@ -76,10 +91,13 @@ BatchTask task_from_json(const json& j) {
   t.sun.label = s.at("label");
   t.sun.azimuth = s.at("azimuth");
   t.sun.elevation = s.at("elevation");
-  if (!s.at("time_unix").is_null()) t.sun.time_unix = s.at("time_unix").get<std::int64_t>();
+  if (const json& when = s.at("time_unix"); !when.is_null()) {
+    if (!when.is_number_integer()) throw json::type_error::create(302, "not an integer", &when);
+    t.sun.time_unix = when.get<std::int64_t>();
+  }
   t.engine = parse_render_engine(j.at("engine").get<std::string>());
-  t.width = j.at("width");
-  t.height = j.at("height");
+  t.width = int_field(j, "width");
+  t.height = int_field(j, "height");
   t.scene_key = j.at("scene_key");
   t.input_hash = j.at("input_hash");
   return t;
@@ -93,36 +111,29 @@ std::string read_text(const fs::path& file) {
   return text.str();
 }
 
+// A task record (tasks/ID.json, .failed): small files of this run; anything else (a torn write,
+// a folder, a FIFO, a foreign or deep file) counts as absent.
 json read_json(const fs::path& file) {
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec) || fs::file_size(file, ec) > (1u << 20) || ec) return json();
   const std::string text = read_text(file);
   if (text.empty()) return json();
   try {
+    check_nesting(text, file, kMaxNesting);
     return json::parse(text);
-  } catch (const json::exception&) {
-    return json();  // a torn or foreign file counts as absent
+  } catch (const std::exception&) {
+    return json();
   }
 }
 
-struct Plan {
-  SceneConfig scene;
-  std::vector<BatchTask> tasks;
-};
+using Plan = BatchPlan;
 
 Plan load_plan(const fs::path& dir) {
   const fs::path file = dir / "plan.json";
-  const json j = read_json(file);
-  if (!j.is_object()) throw Error(file, "", "is missing or not a batch plan (run `wangscape batch run` first)");
-  try {
-    Plan plan;
-    const auto& s = j.at("scene");
-    plan.scene = parse_scene_config(s.at("text").get<std::string>(), s.at("source").get<std::string>(),
-                                    s.at("base_dir").get<std::string>());
-    plan.scene.terrain.dem = s.at("dem").get<std::string>();
-    for (const auto& t : j.at("tasks")) plan.tasks.push_back(task_from_json(t));
-    return plan;
-  } catch (const json::exception& e) {
-    throw Error(file, "", std::string("is not a batch plan: ") + e.what());
-  }
+  std::error_code ec;
+  if (!fs::exists(file, ec))
+    throw Error(file, "", "is missing: not a batch output folder (run `wangscape batch run BATCH --out DIR` first)");
+  return parse_batch_plan(read_text_file(file, kMaxPlanBytes, "batch plan"), file);
 }
 
 void write_plan(const fs::path& dir, const BatchConfig& config, const std::vector<BatchTask>& tasks) {
@@ -134,7 +145,7 @@ void write_plan(const fs::path& dir, const BatchConfig& config, const std::vecto
                 {"dem", config.scene.terrain.dem.string()}};
   j["tasks"] = json::array();
   for (const auto& t : tasks) j["tasks"].push_back(task_json(t));
-  write_file_atomically(dir / "plan.json", j.dump(1) + "\n");
+  write_file_atomically(dir / "plan.json", json_text(j, 1) + "\n");
 }
 
 // ---- one task -----------------------------------------------------------------------------------
@@ -268,7 +279,7 @@ bool run_task(const fs::path& dir, const Plan& plan, const BatchTask& t) {
                          {"renders", (previous.is_object() ? previous.value("renders", 0) : 0) + 1},
                          {"finished_unix", static_cast<std::int64_t>(std::time(nullptr))},
                          {"host", host}};
-    write_file_atomically(record_of(dir, t, ".json"), record.dump(1) + "\n");
+    write_file_atomically(record_of(dir, t, ".json"), json_text(record, 1) + "\n");
     fs::remove(record_of(dir, t, ".failed"));
     fs::remove(record_of(dir, t, ".running"));
     std::printf("task %s: rendered in %.2f s\n", t.id.c_str(), seconds);
@@ -276,7 +287,7 @@ bool run_task(const fs::path& dir, const Plan& plan, const BatchTask& t) {
   } catch (const std::exception& e) {
     const fs::path log =
         t.engine == RenderEngine::blender ? dir / "work" / t.id / "blender.log" : dir / "work" / t.id / "povray.log";
-    write_file_atomically(record_of(dir, t, ".failed"), json{{"error", e.what()}, {"log", log.string()}}.dump(1));
+    write_file_atomically(record_of(dir, t, ".failed"), json_text(json{{"error", e.what()}, {"log", log.string()}}, 1));
     fs::remove(record_of(dir, t, ".running"));
     std::fprintf(stderr, "task %s failed: %s\n", t.id.c_str(), e.what());
     return false;
@@ -344,7 +355,11 @@ void run_local(const BatchRunSettings& s, const Plan& plan) {
     }
   };
   std::vector<std::thread> pool;
-  for (int i = 0; i < std::min(workers, std::max(total, 1)); ++i) pool.emplace_back(worker);
+  try {
+    for (int i = 0; i < std::min(workers, std::max(total, 1)); ++i) pool.emplace_back(worker);
+  } catch (const std::system_error&) {  // no thread left: run with the workers that started
+    if (pool.empty()) throw Error("batch run: cannot start a worker thread (too many threads or processes)");
+  }
   for (auto& th : pool) th.join();
 }
 
@@ -477,13 +492,68 @@ void write_contact_sheet(const fs::path& dir, const Plan& plan) {
 
 }  // namespace
 
+BatchPlan parse_batch_plan(std::string_view text, const fs::path& file) {
+  check_nesting(text, file, kMaxNesting);  // nlohmann's parser recurses
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw Error(file, "", "is not a batch plan: not JSON (at byte " + std::to_string(e.byte) + ")");
+  }
+  const auto bad = [&](const std::string& place, const std::string& what) {
+    return Error(file, place, what + " (the plan is written by `wangscape batch run`; run it again)");
+  };
+  if (!j.is_object() || !j.contains("scene") || !j.contains("tasks") || !j["tasks"].is_array())
+    throw bad("", "is not a batch plan: expected an object with 'scene' and 'tasks'");
+  BatchPlan plan;
+  try {
+    const auto& s = j.at("scene");
+    plan.scene = parse_scene_config(s.at("text").get<std::string>(), s.at("source").get<std::string>(),
+                                    s.at("base_dir").get<std::string>());
+    plan.scene.terrain.dem = s.at("dem").get<std::string>();
+  } catch (const json::exception&) {
+    throw bad("scene", "is not a batch plan's scene: expected 'text', 'source', 'base_dir' and 'dem' strings");
+  }
+  if (j["tasks"].size() > static_cast<std::size_t>(kMaxBatchTasks))
+    throw bad("tasks", "holds " + std::to_string(j["tasks"].size()) + " tasks; at most " +
+                           std::to_string(kMaxBatchTasks) + " are planned");
+  for (const auto& item : j["tasks"]) {
+    const std::string place = "task " + std::to_string(plan.tasks.size());
+    BatchTask t;
+    try {
+      t = task_from_json(item);
+    } catch (const json::exception&) {
+      throw bad(place, "a field is missing or of the wrong type");
+    } catch (const Error& e) {
+      throw bad(place, e.message());
+    }
+    // Every path a worker derives from a task (stills/ID.png, tasks/ID.json, work/ID/, logs/ID.log,
+    // scenes/KEY/) stays inside the output folder: ids and keys are checked, never trusted.
+    if (t.index != static_cast<int>(plan.tasks.size()) || t.id != batch_task_id(t.index))
+      throw bad(place, "has index " + std::to_string(t.index) + " and id '" + printable(t.id) + "'; expected " +
+                           std::to_string(plan.tasks.size()) + " and '" +
+                           batch_task_id(static_cast<int>(plan.tasks.size())) + "'");
+    if (t.scene_key.size() != 16 || t.scene_key.find_first_not_of("0123456789abcdef") != std::string::npos)
+      throw bad(place, "has scene key '" + printable(t.scene_key) + "'; expected 16 hex digits");
+    const auto& c = t.camera;
+    for (double v : {c.position[0], c.position[1], c.position[2], c.target[0], c.target[1], c.target[2], t.sun.azimuth,
+                     t.camera_latlon[0], t.camera_latlon[1]})
+      if (!std::isfinite(v)) throw bad(place, "holds a number that is not finite");
+    if (!valid_field_of_view(c.fov_degrees) || !(t.sun.elevation >= -90 && t.sun.elevation <= 90) || t.width < 1 ||
+        t.width > 32768 || t.height < 1 || t.height > 32768)
+      throw bad(place, "has a field of view, a sun elevation or an image size out of range");
+    plan.tasks.push_back(t);
+  }
+  return plan;
+}
+
 std::string batch_plan_text(const fs::path& batch_file, bool as_json) {
   const auto config = load_batch_config(batch_file);
   const auto tasks = expand_batch(config);
   if (as_json) {
     json j = json::array();
     for (const auto& t : tasks) j.push_back(task_json(t));
-    return j.dump(2) + "\n";
+    return json_text(j, 2) + "\n";
   }
   std::string out;
   for (const auto& t : tasks) {
@@ -591,13 +661,62 @@ void assemble_batch(const fs::path& dir) {
                       {"pending", counts.pending},
                       {"running", counts.running},
                       {"renders_total", renders}};
-  write_file_atomically(dir / "batch.json", batch.dump(1) + "\n");
+  write_file_atomically(dir / "batch.json", json_text(batch, 1) + "\n");
 }
 
-void run_batch(const BatchRunSettings& s) {
+namespace {
+
+// The folders of a batch's output, or an Error naming the one that cannot be made.
+void make_output_folders(const fs::path& out) {
+  std::error_code ec;
+  if (fs::exists(out, ec) && !fs::is_directory(out, ec))
+    throw Error(out, "", "the batch output folder exists and is not a folder; name another --out");
+  for (const char* sub : {"", "scenes", "work", "stills", "tasks", "logs"}) {
+    const fs::path folder = *sub ? out / sub : out;
+    fs::create_directories(folder, ec);
+    if (ec || !fs::is_directory(folder))
+      throw Error(folder, "", "cannot create the batch output folder: " + (ec ? ec.message() : "not a folder"));
+  }
+}
+
+// One `batch run` at a time per output folder: a second one would render every still again
+// beside the first. The lock (flock on logs/run.lock) goes with the process, killed or not.
+class RunLock {
+ public:
+  explicit RunLock(const fs::path& out) : file_(out / "logs" / "run.lock") {
+    fd_ = ::open(file_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw Error(file_, "", "cannot open the run's lock file");
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      std::string holder = read_text(file_);
+      while (!holder.empty() && (holder.back() == '\n' || holder.back() == ' ')) holder.pop_back();
+      ::close(fd_);
+      throw Error(out, "",
+                  "another `wangscape batch run` (" +
+                      (holder.empty() ? std::string("pid unknown") : printable(holder)) +
+                      ") is rendering into this folder; wait for it (`wangscape batch status " + out.string() +
+                      " --progress`) or give another --out");
+    }
+    const std::string me = "pid " + std::to_string(::getpid()) + "\n";
+    if (::ftruncate(fd_, 0) != 0 || ::pwrite(fd_, me.data(), me.size(), 0) < 0) {
+    }  // the holder's pid: a courtesy
+  }
+  ~RunLock() { ::close(fd_); }
+  RunLock(const RunLock&) = delete;
+  RunLock& operator=(const RunLock&) = delete;
+
+ private:
+  fs::path file_;
+  int fd_ = -1;
+};
+
+}  // namespace
+
+BatchCounts run_batch(const BatchRunSettings& s) {
+  if (s.out_dir.empty()) throw Error("batch run: --out is empty; name the output folder");
   const auto config = load_batch_config(s.batch_file);
   const auto tasks = expand_batch(config);
-  for (const char* sub : {"scenes", "work", "stills", "tasks", "logs"}) fs::create_directories(s.out_dir / sub);
+  make_output_folders(s.out_dir);
+  const RunLock lock(s.out_dir);
   write_plan(s.out_dir, config, tasks);
   const Plan plan = load_plan(s.out_dir);
   if (s.chatty)
@@ -616,9 +735,7 @@ void run_batch(const BatchRunSettings& s) {
     throw Error(s.out_dir / "index.html", "",
                 std::to_string(counts.done) + " of " + std::to_string(tasks.size()) + " stills done, " +
                     std::to_string(counts.failed) + " failed, " + std::to_string(counts.pending) + " pending");
-  if (s.chatty)
-    std::fprintf(stderr, "wangscape: %d of %zu stills done; gallery %s\n", counts.done, tasks.size(),
-                 (s.out_dir / "index.html").string().c_str());
+  return counts;
 }
 
 std::string_view to_string(BatchExecutor executor) { return executor == BatchExecutor::slurm ? "slurm" : "local"; }

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -50,10 +51,28 @@ struct BatchRunSettings {
   std::function<void(int finished, int total)> on_progress;  // tasks done or failed so far
 };
 
-// Expands the batch, writes plan.json, runs every task not yet done and assembles the results.
-// Throws Error for a bad batch file before any task starts, and after the run when some task
+struct BatchCounts {
+  int done = 0, running = 0, failed = 0, pending = 0;
+};
+
+// Expands the batch, writes plan.json, runs every task not yet done and assembles the results;
+// returns the tasks' states at the end. Throws Error for a bad batch file or output folder before
+// any task starts, when another `batch run` holds the folder, and after the run when some task
 // failed (each one named on stderr with its error and log).
-void run_batch(const BatchRunSettings& settings);
+BatchCounts run_batch(const BatchRunSettings& settings);
+
+// At most this many local worker processes (`--workers`).
+inline constexpr int kMaxBatchWorkers = 256;
+
+// A batch's plan.json read back: the base scene and its tasks. A plan is input like any other
+// (a worker on another node reads it): its size, nesting, ids, keys and numbers are checked.
+struct BatchPlan {
+  SceneConfig scene;
+  std::vector<BatchTask> tasks;
+};
+inline constexpr std::uintmax_t kMaxPlanBytes = std::uintmax_t{256} << 20;  // 100,000 tasks are ~80 MB
+// Parses plan.json's text; throws Error naming `file`, the task and what was expected.
+BatchPlan parse_batch_plan(std::string_view text, const std::filesystem::path& file);
 
 // The plan as text (one line per task) or as JSON (a list of tasks), without running anything.
 std::string batch_plan_text(const std::filesystem::path& batch_file, bool json);
@@ -64,9 +83,6 @@ void run_batch_tasks(const std::filesystem::path& dir, int first, int count);
 // `batch run-task`: settings.task_range of settings.out_dir, or assemble_batch when it is empty.
 void run_batch_tasks(const BatchRunSettings& settings);
 
-struct BatchCounts {
-  int done = 0, running = 0, failed = 0, pending = 0;
-};
 // Each task's state from the files (whichever executor ran it); `report` gets one line per task.
 BatchCounts batch_status(const std::filesystem::path& dir, std::string* report = nullptr);
 // `batch status`: the report of settings.out_dir; with settings.watch, on_progress is called
