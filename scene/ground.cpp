@@ -127,6 +127,25 @@ std::optional<double> SceneGround::slope_degrees(double x, double y) const {
   return impl_->terrain ? impl_->terrain->slope_degrees(x, y) : impl_->flat.slope_degrees(x, y);
 }
 
+double SceneGround::height_or_error(double x, double y) const {
+  if (const auto z = height(x, y)) return *z;
+  const Extent& e = impl_->area;
+  const std::string at = "east " + number(x) + " m, north " + number(y) + " m";
+  const std::string extent = "east " + number(std::round(e.min_x)) + " .. " + number(std::round(e.max_x)) +
+                             " m, north " + number(std::round(e.min_y)) + " .. " + number(std::round(e.max_y)) + " m";
+  double col = 0, row = 0;
+  const Terrain* t = terrain();
+  const bool on_dem = t && e.contains(x, y) && t->map_to_sample(x, y, col, row) && col >= 0 && row >= 0 &&
+                      col <= t->dem().width - 1 && row <= t->dem().height - 1;
+  if (on_dem)
+    throw Error(impl_->description + " has no height at " + at +
+                ": a corner of the DEM cell there holds the no-data value");
+  if (e.contains(x, y))
+    throw Error(at + " is off the grid of " + impl_->description + ": its samples span " + extent +
+                ", a box the grid, turned in the scene's frame, does not fill at its corners");
+  throw Error(at + " is outside " + impl_->description + ", which spans " + extent);
+}
+
 std::array<double, 2> SceneGround::to_enu(double latitude, double longitude) const {
   const auto& frame = impl_->terrain ? impl_->terrain->frame() : *impl_->frame;
   return frame.to_enu({latitude, longitude});

@@ -35,6 +35,11 @@ class SceneGround {
   std::optional<double> height(double x, double y) const;
   std::optional<double> slope_degrees(double x, double y) const;
 
+  // The ground height at ENU (x, y) (meters, orthometric as the DEM stores it). Throws Error
+  // naming the ground and why it has none there: beyond its extent (given in the message), or a
+  // DEM cell with a no-data corner.
+  double height_or_error(double x, double y) const;
+
   // ENU x, y (meters) of a WGS 84 latitude/longitude (degrees).
   std::array<double, 2> to_enu(double latitude, double longitude) const;
   // WGS 84 latitude, longitude (degrees) of the ENU origin.

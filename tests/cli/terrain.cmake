@@ -46,6 +46,31 @@ terrain_cli_test(info_bad_origin 2 "terrain|info|--origin|95,0|${PROJECT_SOURCE_
 terrain_cli_test(info_unknown_option 2 "terrain|info|--bogus|${PROJECT_SOURCE_DIR}/data/SainteHelens.dem")
 terrain_cli_test(no_subcommand 2 "terrain")
 
+# wangscape terrain height: the ground under points of the scene frame (issue 24). The default
+# scene's frame (the DEM's center): 0,6590 is the pumice plain at 1117.89 m; its lat/lon gives the
+# same point; the DEM's south-west corner holds no-data; beyond the DEM is refused.
+set(_helens "${PROJECT_SOURCE_DIR}/data/SainteHelens.dem")
+terrain_cli_test(height_point 0 "terrain|height|${_helens}|0,6590" OUT "^0\\.00,6590\\.00,1117\\.89\n$" ERR "^$")
+terrain_cli_test(height_points_above 0 "terrain|height|${_helens}|0,6590|-200,6000|--above|1.7"
+  OUT "^0\\.00,6590\\.00,1119\\.59\n-200\\.00,6000\\.00,1143\\.87\n$")
+terrain_cli_test(height_latlon 0 "terrain|height|${_helens}|--latlon|46.24659967532685,-122.18859025851513"
+  OUT "^0\\.00,6590\\.00,1117\\.89\n$")
+terrain_cli_test(height_origin 0 "terrain|height|${_helens}|--origin|46.24659967532685,-122.18859025851513|0,0"
+  OUT "^0\\.00,0\\.00,1117\\.89\n$")
+terrain_cli_test(height_json 0 "terrain|height|${_helens}|0,6590|--above|2|--json"
+  OUT "\"east_m\": 0\\.0,.*\"ground_m\": 1117\\.89[0-9]*,.*\"latitude_deg\": 46\\.2465[0-9]*,.*\"longitude_deg\": -122\\.1885[0-9]*,.*\"north_m\": 6590\\.0,.*\"position_m\": .*1119\\.89")
+terrain_cli_test(height_nodata 1 "terrain|height|${_helens}|-4830,-6900"
+  ERR "^wangscape: error: SainteHelens\\.dem \\(327 x 468 samples, 30 m\\) has no height at east -4830 m, north -6900 m: a corner of the DEM cell there holds the no-data value\n$")
+terrain_cli_test(height_outside 1 "terrain|height|${_helens}|0,6590|90000,0" OUT "^$"
+  ERR "^wangscape: error: east 90000 m, north 0 m is outside SainteHelens\\.dem \\(327 x 468 samples, 30 m\\), which spans east -4837 \\.\\. 4823 m, north -6947 \\.\\. 6947 m\n$")
+terrain_cli_test(height_off_grid 1 "terrain|height|${_helens}|-4830,6900" ERR "is off the grid of SainteHelens\\.dem")
+terrain_cli_test(height_no_point 2 "terrain|height|${_helens}" ERR "at least one point")
+terrain_cli_test(height_bad_point 2 "terrain|height|${_helens}|1,2,3" ERR "'1,2,3' is not E,N in meters")
+terrain_cli_test(height_bad_latlon 2 "terrain|height|${_helens}|--latlon|95,0" ERR "LAT,LON")
+add_test(NAME cli_terrain_height_folder
+  COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/terrain/height_folder.sh ${WANGSCAPE_BIN} ${CLI_SCRATCH}/terrain_height_folder ${_helens})
+set_tests_properties(cli_terrain_height_folder PROPERTIES LABELS "cli;terrain" TIMEOUT 120)
+
 # wangscape scatter --dem (tests/cli/terrain/scatter_check.cmake, one MODE per test).
 foreach(mode IN ITEMS below_threshold explained_empty errors)
   add_test(NAME cli_terrain_scatter_${mode}

@@ -1,0 +1,44 @@
+#!/bin/sh
+# height_folder.sh BIN SCRATCH DEM: `terrain height` of a scene file and of the folder built from
+# it reads their [terrain]: with the origin moved to the DEM's point (0, 6590), the point 0,0 of
+# the scene is that ground (1117.89 m), as the scene's camera and a view path see it.
+set -eu
+BIN=$1
+DIR=$2
+DEM=$3
+fail() { echo "FAIL: $*" >&2; exit 1; }
+rm -rf "$DIR"
+mkdir -p "$DIR"
+cd "$DIR"
+cat > scene.toml <<TOML
+name = "height"
+[terrain]
+dem = "$DEM"
+origin_latitude = 46.24659967532685    # the DEM's point east 0, north 6590 (its center the origin)
+origin_longitude = -122.18859025851513
+[tiles]
+points_per_tile = 4
+relaxation_rounds = 0
+area = [-8.0, -8.0, 8.0, 8.0]
+[models]
+variants = 1
+triangle_budget = 400
+[camera]
+position = [0.0, -20.0]
+height_above_ground = 2.0
+target = [0.0, 0.0, 1118.0]
+[image]
+width = 32
+height = 18
+TOML
+dem_says=$("$BIN" terrain height "$DEM" 0,6590) || fail "terrain height DEM"
+[ "$dem_says" = "0.00,6590.00,1117.89" ] || fail "DEM: $dem_says"
+file_says=$("$BIN" terrain height scene.toml 0,0) || fail "terrain height scene.toml"
+[ "$file_says" = "0.00,0.00,1117.89" ] || fail "scene file: $file_says"
+"$BIN" -q build scene.toml --out field || fail "build"
+folder_says=$("$BIN" terrain height field 0,0 --above 1.7) || fail "terrain height field"
+[ "$folder_says" = "0.00,0.00,1119.59" ] || fail "folder: $folder_says"
+# The scene sets its origin: --origin is refused (a usage of the DEM only).
+if "$BIN" terrain height field 0,0 --origin 46.2,-122.2 2> err.txt; then fail "--origin with a folder accepted"; fi
+grep -q "the scene's \[terrain\] sets the origin" err.txt || fail "message: $(cat err.txt)"
+echo ok
