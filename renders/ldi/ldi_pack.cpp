@@ -11,6 +11,8 @@
 #include <cstring>
 
 #include "core/atomic_file.h"
+#include "core/number_text.h"
+#include "core/vecmath.h"
 
 namespace wangscape {
 
@@ -249,6 +251,11 @@ LdiView validate_block(const std::uint8_t* block, std::uint64_t bytes, std::uint
     fail("it claims more non-empty pixels than it has pixels");
   if (!(std::isfinite(f->pixel_size) && f->pixel_size > 0 && std::isfinite(f->depth_range) && f->depth_range > 0))
     fail("its pixel size or depth range is not a positive number");
+  for (const auto* v : {&f->origin, &f->right, &f->up, &f->forward})
+    for (float c : *v)
+      if (!std::isfinite(c)) fail("its frame's origin or axes hold a number that is not finite");
+  if (!std::isfinite(f->azimuth_degrees) || !(f->elevation_degrees >= -90 && f->elevation_degrees <= 90))
+    fail("its frame's azimuth is not finite or its elevation is not in [-90, 90] degrees");
   const BlockLayout layout(*f);
   if (layout.total > bytes)
     fail("its sections need " + std::to_string(layout.total) + " bytes, its block has " + std::to_string(bytes));
@@ -285,11 +292,45 @@ LdiView validate_block(const std::uint8_t* block, std::uint64_t bytes, std::uint
   return v;
 }
 
+// Every number of the header and its arrays finite and in the range a build writes: a NaN fails
+// every comparison, so a reader checking `tile_size == expected` later would pass it.
+template <class Fail>
+void check_header_numbers(const LdiPackInfo& info, Fail&& fail) {
+  const auto in = [](float v, float lo, float hi) { return std::isfinite(v) && v >= lo && v <= hi; };
+  if (!in(info.tile_size, 1e-3f, 1e6f) || info.tile_size <= 0)
+    fail("tile size " + number_text(info.tile_size) + ": expected meters in (0, 1e6]");
+  if (!in(info.head_height, 0, 1e4f) || info.head_height <= 0)
+    fail("head height " + number_text(info.head_height) + ": expected meters in (0, 10000]");
+  if (!in(info.prism_top, -1e6f, 1e6f)) fail("prism top " + number_text(info.prism_top) + ": expected finite meters");
+  if (!valid_field_of_view(info.fov_degrees))
+    fail("field of view " + number_text(info.fov_degrees) + ": expected degrees in (0, 179]");
+  if (info.image_width == 0 || info.image_width > 65535)
+    fail("image width " + std::to_string(info.image_width) + ": expected 1 .. 65535 pixels");
+  for (std::size_t l = 0; l < info.level_distances.size(); ++l) {
+    const std::string level = "level " + std::to_string(l) + ": ";
+    if (info.resolutions[l] == 0 || info.resolutions[l] > 65535)
+      fail(level + "resolution " + std::to_string(info.resolutions[l]) + ": expected 1 .. 65535 pixels");
+    if (!in(info.level_distances[l], 0, 1e9f) || info.level_distances[l] <= 0 ||
+        (l > 0 && !(info.level_distances[l] > info.level_distances[l - 1])))
+      fail(level + "distance " + number_text(info.level_distances[l]) +
+           ": expected positive meters, each level farther than the one before");
+    if (!in(info.elevations[l], -90, 90) || (l > 0 && info.elevations[l] > info.elevations[l - 1]))
+      fail(level + "elevation " + number_text(info.elevations[l]) +
+           ": expected degrees in [-90, 90], each level no higher than the one before");
+  }
+  for (std::size_t d = 0; d < info.azimuths.size(); ++d)
+    if (!in(info.azimuths[d], 0, 360) || info.azimuths[d] == 360 ||
+        (d > 0 && !(info.azimuths[d] > info.azimuths[d - 1])))
+      fail("direction " + std::to_string(d) + ": azimuth " + number_text(info.azimuths[d]) +
+           ": expected degrees in [0, 360), each direction after the one before");
+}
+
 }  // namespace
 
 LdiPack::LdiPack(const std::filesystem::path& path) : path_(path) {
   auto fail = [&](const std::string& what) -> void { throw Error(path_, "", what); };
-  const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
+  // O_NONBLOCK: opening a FIFO would wait for a writer; the fstat below refuses it at once.
+  const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) fail(std::string("cannot open: ") + std::strerror(errno));
   struct stat st {};
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
@@ -341,6 +382,7 @@ LdiPack::LdiPack(const std::filesystem::path& path) : path_(path) {
     read_array(info_.level_distances, h.levels, h.levels * 4u);
     read_array(info_.elevations, h.levels, h.levels * 8u);
     read_array(info_.azimuths, h.directions, h.levels * 12u);
+    check_header_numbers(info_, fail);
 
     const auto* index = reinterpret_cast<const IndexEntry*>(data_ + h.index_offset);
     const std::uint64_t data_start = h.index_offset + n * sizeof(IndexEntry);

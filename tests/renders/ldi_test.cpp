@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
+#include <limits>
 #include <string>
 
 #include "generator/poisson_tiles.h"
@@ -472,6 +474,38 @@ TEST_F(ldi_pack_damage, OutOfRangeOffsetsAndCountsAreRefused) {
   bytes = good;
   poke32(bytes, first + 8, 0xffffffu);  // span count
   expect_refused("spans.ldi", bytes, "LDI (tile 0, level 0, direction 0)");
+}
+
+// Every float of a pack is checked on open (issue 25): a NaN fails every comparison, so a NaN tile
+// size passed `ldi info` and the view's tile-set check; flipped level and direction arrays passed.
+TEST_F(ldi_pack_damage, NonFiniteAndFlippedNumbersAreRefused) {
+  const std::string good = read_bytes(*good_);
+  const auto poke = [&](std::size_t at, float value) {
+    std::string bytes = good;
+    std::memcpy(bytes.data() + at, &value, 4);
+    return bytes;
+  };
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  const LdiPackInfo info = LdiPack(*good_).info();
+  ASSERT_EQ(info.levels, 2u);
+  ASSERT_EQ(info.directions, 8u);
+  // The header: tile size (32), head height (36), prism top (40), field of view (44).
+  expect_refused("tile_nan.ldi", poke(32, nan), "tile size nan: expected meters in (0, 1e6]");
+  expect_refused("tile_zero.ldi", poke(32, 0), "tile size 0");
+  expect_refused("head_inf.ldi", poke(36, inf), "head height inf");
+  expect_refused("top_nan.ldi", poke(40, -nan), "prism top");
+  expect_refused("fov.ldi", poke(44, 180), "field of view 180");
+  // The arrays after the 64-byte header: 2 resolutions, distances, elevations, then 8 azimuths.
+  expect_refused("distance.ldi", poke(64 + 8 + 4, info.level_distances[0] / 2), "level 1: distance");
+  expect_refused("elevation.ldi", poke(64 + 16, 95), "level 0: elevation 95");
+  expect_refused("elevation_flip.ldi", poke(64 + 16 + 4, info.elevations[0] + 1), "level 1: elevation");
+  expect_refused("azimuth_flip.ldi", poke(64 + 24 + 4, 300), "direction 2: azimuth 90");
+  expect_refused("azimuth_nan.ldi", poke(64 + 24, nan), "direction 0: azimuth nan");
+  // A frame's axes: the origin's x of the first LDI (after 8 32-bit fields).
+  std::uint64_t index_offset = 0, first = 0;
+  std::memcpy(&index_offset, good.data() + 56, 8);
+  std::memcpy(&first, good.data() + index_offset, 8);
+  expect_refused("origin.ldi", poke(first + 32, inf), "origin or axes hold a number that is not finite");
 }
 
 TEST(ldi_info, JsonStartsWithTheDocumentedKeys) {
