@@ -37,6 +37,8 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--path", o->request.path, "Keyframes JSON to fly along (docs/viewer.md)");
   sub->add_option("--frames", o->request.frames_dir, "Folder for the path's frames (and path.mp4 with ffmpeg)");
   sub->add_option("--fps", o->request.path_fps, "Frames per second of the path")->check(finite_number());
+  sub->add_option("--record", o->request.record,
+                  "Window: where the keyframes dropped with K go on exit, a path file for --path (default path.json)");
   sub->add_option("--script", o->request.script, "Window: scripted input, e.g. \"W*30,screenshot,Escape\"");
   sub->add_flag("--compare", o->request.compare,
                 "Also ray trace the frame with Embree (the truth, and the exact geometry at one sample per pixel) "

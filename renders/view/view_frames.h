@@ -31,6 +31,7 @@ struct ViewRequest {
   std::filesystem::path frames_dir;  // where the path's frames go
   double path_fps = 24;
   std::string script;                        // window: scripted input (docs/viewer.md)
+  std::filesystem::path record;              // window: where K's keyframes go (empty: path.json)
   bool compare = false;                      // also ray trace the frame with Embree and compare
   std::filesystem::path diff;                // with compare: the difference image
   int truth_samples = kDefaultTruthSamples;  // with compare: the truth's samples per pixel

@@ -6,12 +6,16 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <memory>
 #include <numbers>
 #include <unordered_set>
 #include <vector>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "exporters/image_io.h"
+#include "renders/view/view_path.h"
 
 namespace wangscape {
 
@@ -20,7 +24,7 @@ namespace {
 // ---- the script ----------------------------------------------------------------------------
 
 struct ScriptStep {
-  enum Kind { key, mouse, wait } kind = key;
+  enum Kind { key, mouse, wait, resize } kind = key;
   SDL_Keycode code = 0;
   int frames = 1, dx = 0, dy = 0;
 };
@@ -46,7 +50,7 @@ std::vector<ScriptStep> parse_script(const std::string& script) {
     at = end + 1;
     auto bad = [&](const std::string& why) {
       return Error("--script: '" + token + "' " + why +
-                   " (expected KEY, KEY*N, mouse:DX:DY, wait*N, screenshot or Escape; docs/viewer.md)");
+                   " (expected KEY, KEY*N, mouse:DX:DY, size:W:H, wait*N, screenshot or Escape; docs/viewer.md)");
     };
     ScriptStep step;
     std::string name = token;
@@ -67,6 +71,14 @@ std::vector<ScriptStep> parse_script(const std::string& script) {
       step.kind = ScriptStep::mouse;
       step.dx = dx;
       step.dy = dy;
+    } else if (name.rfind("size:", 0) == 0) {
+      int w = 0, h = 0;
+      char tail = 0;
+      if (std::sscanf(name.c_str() + 5, "%d:%d%c", &w, &h, &tail) != 2 || w < 16 || h < 16 || w > 16384 || h > 16384)
+        throw bad("is not size:WIDTH:HEIGHT, 16 .. 16384 pixels each");
+      step.kind = ScriptStep::resize;
+      step.dx = w;
+      step.dy = h;
     } else if (name == "wait") {
       step.kind = ScriptStep::wait;
     } else {
@@ -125,6 +137,8 @@ std::uint16_t glyph(char c) {
       return 0b101110100110101;
     case 'F':
       return 0b111100111100100;
+    case 'E':
+      return 0b111100111100111;
     case 'Y':
       return 0b101101010010010;
     case 'X':
@@ -196,9 +210,10 @@ struct SdlSession {
     if (SDL_Init(SDL_INIT_VIDEO) != 0)
       throw Error(std::string("view: cannot open a window (SDL: ") + SDL_GetError() +
                   "); without a display use --out FILE for an offline frame");
-    window = SDL_CreateWindow("wangscape view", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, w, h, 0);
+    window =
+        SDL_CreateWindow("wangscape view", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, w, h, SDL_WINDOW_RESIZABLE);
     if (window) renderer = SDL_CreateRenderer(window, -1, 0);
-    if (renderer) texture = SDL_CreateTexture(renderer, SDL_PIXELFORMAT_RGB24, SDL_TEXTUREACCESS_STREAMING, w, h);
+    if (renderer) make_texture(w, h);
     if (!texture) {
       const std::string why = SDL_GetError();
       release();
@@ -206,6 +221,13 @@ struct SdlSession {
     }
   }
   ~SdlSession() { release(); }
+  void make_texture(int w, int h) {
+    if (texture) SDL_DestroyTexture(texture);
+    texture = SDL_CreateTexture(renderer, SDL_PIXELFORMAT_RGB24, SDL_TEXTUREACCESS_STREAMING, w, h);
+    if (!texture)
+      throw Error(std::string("view: cannot make a frame of ") + std::to_string(w) + "x" + std::to_string(h) +
+                  " (SDL: " + SDL_GetError() + ")");
+  }
   void release() {
     if (texture) SDL_DestroyTexture(texture);
     if (renderer) SDL_DestroyRenderer(renderer);
@@ -232,18 +254,68 @@ void push_key(SDL_Keycode code, bool pressed) {
 
 void check_view_script(const std::string& script) { parse_script(script); }
 
+void check_display() {
+  const auto set = [](const char* name) {
+    const char* v = std::getenv(name);
+    return v != nullptr && *v != 0;
+  };
+  if (!set("DISPLAY") && !set("WAYLAND_DISPLAY") && !set("SDL_VIDEODRIVER"))
+    throw Error(
+        "view: no display to open a window on (DISPLAY is not set); write frames with --out FILE, --path FILE "
+        "--frames DIR or --stats, or run the window under xvfb-run");
+}
+
+namespace {
+
+// The keyframes K drops: the eye by its height above the ground, the point looked at as it is.
+class WalkRecorder {
+ public:
+  void drop(const ViewWorld& world, const ViewCamera& camera, double time) {
+    const auto mm = [](double v) { return std::round(v * 1000) / 1000; };     // a file a person edits
+    if (!path_.keys.empty() && !(mm(time) > path_.keys.back().time)) return;  // one a millisecond
+    const double ground = world.ground_height(camera.position[0], camera.position[1],
+                                              camera.position[2] - world.pack().info().head_height);
+    PathKeyframe key;
+    key.time = mm(time);
+    key.position = {mm(camera.position[0]), mm(camera.position[1]), mm(std::max(camera.position[2] - ground, 0.0))};
+    key.look_at = {mm(camera.target[0]), mm(camera.target[1]), mm(camera.target[2])};
+    path_.keys.push_back(key);
+  }
+  std::size_t size() const { return path_.keys.size(); }
+  void write(const std::filesystem::path& file, bool quiet) {
+    if (path_.keys.empty()) return;
+    if (path_.keys.size() < 2) {
+      if (!quiet) std::fprintf(stderr, "wangscape: one keyframe recorded; a path needs two: nothing written\n");
+      return;
+    }
+    path_.position_above_ground = true;
+    write_file_atomically(file, view_path_json(path_));
+    if (!quiet)
+      std::fprintf(stderr,
+                   "wangscape: wrote %zu keyframes (%.1f s) to %s; replay: wangscape view DIR --path %s --frames DIR\n",
+                   path_.keys.size(), path_.duration(), file.string().c_str(), file.string().c_str());
+  }
+
+ private:
+  ViewPath path_;
+};
+
+}  // namespace
+
 void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& start,
                      const ViewWindowOptions& options) {
   const std::vector<ScriptStep> script = parse_script(options.script);
-  LdiRenderer renderer(world, options.width, options.height);
-  renderer.set_detail(options.detail);
-  renderer.set_near_field(options.near_field);
-  const SdlSession sdl(options.width, options.height);
+  auto renderer = std::make_unique<LdiRenderer>(world, options.width, options.height);
+  renderer->set_detail(options.detail);
+  renderer->set_near_field(options.near_field);
+  SdlSession sdl(options.width, options.height);
   if (options.script.empty()) SDL_SetRelativeMouseMode(SDL_TRUE);  // mouse look (a script moves it itself)
 
   Walker walker(start);
   std::unordered_set<SDL_Keycode> held;
   ImageRgb8 shown(options.width, options.height);
+  WalkRecorder recorder;
+  double walk_time = 0;
   int screenshots = 0;
   std::size_t next_step = 0;
   int step_frames_left = 0;
@@ -260,6 +332,7 @@ void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& s
         const ScriptStep& step = script[next_step++];
         step_frames_left = step.frames;
         if (step.kind == ScriptStep::key) push_key(step.code, true);
+        if (step.kind == ScriptStep::resize) SDL_SetWindowSize(sdl.window, step.dx, step.dy);  // as a user drags
         if (step.kind == ScriptStep::mouse) {
           SDL_Event e{};
           e.type = SDL_MOUSEMOTION;
@@ -272,9 +345,14 @@ void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& s
     if (step_frames_left > 0) --step_frames_left;
 
     int mouse_dx = 0, mouse_dy = 0;
-    bool screenshot = false;
+    bool screenshot = false, keyframe = false;
+    int new_width = 0, new_height = 0;
     for (SDL_Event e; SDL_PollEvent(&e);) {
       if (e.type == SDL_QUIT) running = false;
+      if (e.type == SDL_WINDOWEVENT && e.window.event == SDL_WINDOWEVENT_SIZE_CHANGED) {
+        new_width = std::clamp(e.window.data1, 16, 16384);
+        new_height = std::clamp(e.window.data2, 16, 16384);
+      }
       if (e.type == SDL_MOUSEMOTION) {
         mouse_dx += e.motion.xrel;
         mouse_dy += e.motion.yrel;
@@ -288,33 +366,46 @@ void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& s
       if (k == SDLK_EQUALS || k == SDLK_PLUS || k == SDLK_KP_PLUS) walker.speed = std::min(walker.speed * 2, 400.0);
       if (k == SDLK_MINUS || k == SDLK_KP_MINUS) walker.speed = std::max(walker.speed / 2, 0.1);
       if (k == SDLK_F12 && !e.key.repeat) screenshot = true;
+      if (k == SDLK_k && !e.key.repeat) keyframe = true;
     }
     if (!running) break;
+    if (new_width > 0 && (new_width != renderer->width() || new_height != renderer->height())) {
+      // Frames at the window's new size (not the old frame stretched).
+      renderer = std::make_unique<LdiRenderer>(world, new_width, new_height);
+      renderer->set_detail(options.detail);
+      renderer->set_near_field(options.near_field);
+      sdl.make_texture(new_width, new_height);
+      shown = ImageRgb8(new_width, new_height);
+    }
     const auto now = std::chrono::steady_clock::now();
     const double dt = scripted ? 1.0 / 30 : std::min(0.25, std::chrono::duration<double>(now - last).count());
     last = now;
     walker.update(*world, held, dt, mouse_dx, mouse_dy);
+    walk_time += dt;
+    if (keyframe) recorder.drop(*world, walker.camera, walk_time);
 
-    const ViewFrameStats& stats = renderer.render(walker.camera);
+    const ViewFrameStats& stats = renderer->render(walker.camera);
     if (screenshot) {
       char name[32];
       std::snprintf(name, sizeof name, "view-%04d.png", ++screenshots);
-      write_image(options.screenshot_dir / name, renderer.image());  // the frame, without the overlay
+      write_image(options.screenshot_dir / name, renderer->image());  // the frame, without the overlay
       if (!options.quiet) std::printf("%s\n", (options.screenshot_dir / name).string().c_str());
     }
     // The overlay: a smoothed frame time and depth-pixel rate.
     shown_ms = shown_ms == 0 ? stats.frame_ms : shown_ms * 0.9 + stats.frame_ms * 0.1;
     const double rate = stats.frame_ms > 0 ? double(stats.depth_pixels) / stats.frame_ms / 1e3 : 0;  // M/s
     shown_rate = shown_rate == 0 ? rate : shown_rate * 0.9 + rate * 0.1;
-    shown.pixels = renderer.image().pixels;
+    shown.pixels = renderer->image().pixels;
     char text[64];
-    std::snprintf(text, sizeof text, "%.1f MS  %.1f MDP/S  %s", shown_ms, shown_rate, walker.fly ? "FLY" : "WALK");
+    std::snprintf(text, sizeof text, "%.1f MS  %.1f MDP/S  %s%s", shown_ms, shown_rate, walker.fly ? "FLY" : "WALK",
+                  recorder.size() ? ("  KEYS " + std::to_string(recorder.size())).c_str() : "");
     draw_text(shown, 6, 6, text, 2);
     SDL_UpdateTexture(sdl.texture, nullptr, shown.pixels.data(), shown.width * 3);
     SDL_RenderClear(sdl.renderer);
     SDL_RenderCopy(sdl.renderer, sdl.texture, nullptr, nullptr);
     SDL_RenderPresent(sdl.renderer);
   }
+  recorder.write(options.record, options.quiet);
 }
 
 }  // namespace wangscape

@@ -1,5 +1,6 @@
 // The window of `wangscape view DIR` (SDL2): walk at head height over the terrain or fly,
-// mouse look, speed keys, an on-screen frame time and depth-pixel rate, screenshots. A script
+// mouse look, speed keys, an on-screen frame time and depth-pixel rate, screenshots, keyframes
+// recorded into a path file; resizable (frames are drawn at the window's size). A script
 // of key presses (docs/viewer.md) is pushed into SDL's own event queue, so tests drive the
 // same event path a user does (under Xvfb).
 #pragma once
@@ -12,6 +13,8 @@
 
 namespace wangscape {
 
+inline constexpr int kDefaultWindowWidth = 1280, kDefaultWindowHeight = 720;
+
 struct ViewWindowOptions {
   int width = 640, height = 360;
   double detail = 1;                      // LdiRenderer::set_detail
@@ -21,12 +24,19 @@ struct ViewWindowOptions {
   // frames advance time by 1/30 s each, so a script gives the same frames on any machine.
   std::string script;
   std::filesystem::path screenshot_dir = ".";  // F12 writes view-0001.png, view-0002.png, ...
+  // K drops a keyframe of the walk (the eye by its height above the ground); on exit, two or more
+  // are written here as a path file (renders/view/view_path.h) that `view --path` replays.
+  std::filesystem::path record = "path.json";
   bool quiet = false;
 };
 
 // Opens the window at `start` and runs until Escape, the window's close button or the end of
 // the script. Throws Error when SDL cannot open a window (no display) or the script is bad.
 void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& start, const ViewWindowOptions& options);
+
+// Throws Error at once when there is no display to open a window on (no DISPLAY and no
+// WAYLAND_DISPLAY, unless SDL_VIDEODRIVER names a driver): SDL would otherwise wait.
+void check_display();
 
 // The moves a script asks for, checked without a display (tests, the CLI's early refusal).
 // Throws Error naming the token at fault.

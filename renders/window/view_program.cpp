@@ -11,7 +11,10 @@ namespace wangscape {
 int run_view(const ViewRequest& request) {
   check_view_request(request);
   const bool window = wants_window(request);
-  if (window) check_view_script(request.script);  // refused before the scene is assembled
+  if (window) {
+    check_view_script(request.script);  // refused before the scene is assembled
+    check_display();
+  }
   std::optional<tbb::global_control> threads;
   if (request.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(request.threads));
 
@@ -19,8 +22,9 @@ int run_view(const ViewRequest& request) {
   if (!window) return run_view_frames(world, request);
   const ViewCamera camera = view_camera(*world, request);
   ViewWindowOptions options;
-  options.width = request.width ? request.width : world->scene().render.width;
-  options.height = request.height ? request.height : world->scene().render.height;
+  options.width = request.width ? request.width : kDefaultWindowWidth;
+  options.height = request.height ? request.height : kDefaultWindowHeight;
+  if (!request.record.empty()) options.record = request.record;
   options.script = request.script;
   options.quiet = request.quiet;
   options.detail = request.detail;

@@ -80,6 +80,15 @@ view_sh_test(compare_writes "^ok 100x32$"
 view_sh_test(window "stddev"
   "rm -rf \"$1.win\" && mkdir -p \"$1.win\" && cd \"$1.win\" && xvfb-run -a -s '-screen 0 640x480x24' \"$0\" --quiet view \"$1\" --size 320x240 --script 'screenshot,W*20,mouse:60:0,D*5,screenshot,Escape' && \"$0\" --quiet view \"$1\" --size 320x240 --out offline.png && idiff -a view-0001.png offline.png && ! idiff -a view-0002.png offline.png >/dev/null && \"$2\" \"$3\" view-0002.png 0.5 1.0 6"
   "${ground_variance}")
+# A walk recorded in the window (K drops a keyframe) is written as a path file on exit, with the
+# eye by its height above the ground, and replays offline; the window resized (by the X server,
+# as a user's drag) draws its frames at the new size.
+view_sh_test(window_record "^replayed 5$"
+  "rm -rf \"$1.rec\" && mkdir -p \"$1.rec\" && cd \"$1.rec\" && xvfb-run -a -s '-screen 0 640x480x24' \"$0\" --quiet view \"$1\" --size 160x120 --record walk.json --script 'W*10,K,W*30,mouse:40:0,K,size:200:100,wait*3,screenshot,Escape' && grep -q '\"height_above_ground\": 1.7' walk.json && test \"$(oiiotool view-0001.png --echo '{TOP.width}x{TOP.height}')\" = 200x100 && \"$0\" --quiet view \"$1\" --path walk.json --frames fr --fps 4 --size 32x24 && echo replayed $(ls fr | grep -c png)")
+set_property(TEST cli_view_window_record APPEND PROPERTY ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0")
+# No display: refused at once (SDL would wait), naming the ways out.
+view_test(window_no_display ${cli_expect} 1 "no display to open a window on .*xvfb-run"
+  env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER "${WANGSCAPE_BIN}" --quiet view "${view_folder}")
 # Under the asan preset: SDL's X11 and GL drivers are dlopen'ed and unloaded, so what they keep
 # until exit shows as leaks in an unknown module that no suppression can name; the other ASan
 # checks stay on. (No effect on a build without ASan.)
