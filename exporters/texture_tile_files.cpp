@@ -54,6 +54,18 @@ Tiling preview_tiling(const TileSet& set, int w, int h, int tile, std::uint64_t 
   return make_tiling(set, (w + tile - 1) / tile, (h + tile - 1) / tile, options);
 }
 
+// Writes the tile files after the preview was written; when they fail, the preview goes too.
+template <class Write>
+void write_tiles_after_preview(const std::filesystem::path& preview, bool no_preview, Write&& write) {
+  try {
+    write();
+  } catch (...) {
+    std::error_code ignored;
+    if (!no_preview) std::filesystem::remove(preview, ignored);
+    throw;
+  }
+}
+
 }  // namespace
 
 std::string run_tiles_job(const NoiseTilesJob& job) {
@@ -61,7 +73,7 @@ std::string run_tiles_job(const NoiseTilesJob& job) {
   const std::array<int, 2> size =
       job.preview_size.empty() ? std::array<int, 2>{} : parse_preview_size(job.preview_size);
   const NoiseTileSet tiles(load_tileset(job.set), job.options);
-  write_noise_tile_files(job.out, tiles, job.pixels);
+  // The preview first: a preview that cannot be written leaves no tiles folder behind.
   if (!job.preview_size.empty()) {
     // Turbulence over a window of the set's own tiling, one tile per `pixels` pixels.
     const WindowNoise field(
@@ -75,6 +87,8 @@ std::string run_tiles_job(const NoiseTilesJob& job) {
                                   field.turbulence((x + 0.5) * pixel, (size[1] - y - 0.5) * pixel)));
     write_image_gray16(job.preview, image);
   }
+  write_tiles_after_preview(job.preview, job.preview_size.empty(),
+                            [&] { write_noise_tile_files(job.out, tiles, job.pixels); });
   char line[256];
   std::snprintf(line, sizeof line, "%s: %zu noise tiles, lattice %d, %d octaves, %.3f s", tiles.set().name.c_str(),
                 tiles.size(), tiles.lattice(), tiles.levels(), seconds_since(start));
@@ -92,8 +106,7 @@ std::string run_tiles_job(const TextureTilesJob& job) {
   }
   TextureTileReport report;
   const TextureTileSet tiles = make_texture_tiles(load_tileset(job.set), exemplars, job.options, &report);
-  write_texture_tile_files(job.out, tiles);
-  if (!job.preview_size.empty()) {
+  if (!job.preview_size.empty()) {  // first, as above
     const ImageRgb8 all =
         draw_texture_tiling(tiles, preview_tiling(tiles.set, size[0], size[1], tiles.tile_size, job.options.seed));
     ImageRgb8 image(size[0], size[1]);
@@ -101,6 +114,7 @@ std::string run_tiles_job(const TextureTilesJob& job) {
       std::copy_n(&all.pixels[all.offset(0, y)], std::size_t(size[0]) * 3, &image.pixels[image.offset(0, y)]);
     write_image(job.preview, image);
   }
+  write_tiles_after_preview(job.preview, job.preview_size.empty(), [&] { write_texture_tile_files(job.out, tiles); });
   char line[256];
   std::snprintf(line, sizeof line, "%s: %zu texture tiles of %d px, quilting error %llu (search %llu -> %llu), %.3f s",
                 tiles.set.name.c_str(), tiles.tiles.size(), tiles.tile_size,

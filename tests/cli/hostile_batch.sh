@@ -6,22 +6,11 @@ set -u
 name=$1
 bin=$2
 dir=$3
+here=$(cd "$(dirname "$0")" && pwd)
 cd "$dir" || exit 1
 fail() { echo "FAIL ($name): $*" >&2; exit 1; }
 # refuse CODE PATTERN COMMAND...: exit CODE, output matching PATTERN, no library text, no hang.
-refuse() {
-  code=$1
-  pattern=$2
-  shift 2
-  out=$(timeout 30 "$@" 2>&1)
-  got=$?
-  printf '%s\n' "$out"
-  [ "$got" -eq "$code" ] || fail "exit code $got, expected $code"
-  printf '%s\n' "$out" | grep -Eq -- "$pattern" || fail "output does not match: $pattern"
-  if printf '%s\n' "$out" | grep -Eq 'json\.exception|filesystem error|basic_filebuf|std::|terminate called'; then
-    fail "raw library text"
-  fi
-}
+refuse() { sh "$here/refuse.sh" "$@" || fail "refused otherwise"; }
 # batch NAME LINES...: a batch file NAME.toml over tiny.toml with these lines.
 batch() {
   f=$1.toml

@@ -3,3 +3,43 @@
 hostile_test(ldi_fifo 1 "fifo.ldi: not a regular file"
              sh -c "rm -f \"$1\" && mkfifo \"$1\" && exec timeout 20 \"$0\" ldi info \"$1\""
              "${WANGSCAPE_BIN}" "${hostile_dir}/fifo.ldi")
+set(cli_refuse sh "${CMAKE_CURRENT_SOURCE_DIR}/refuse.sh")  # expect.sh, and no raw library text
+
+# Ground exemplars of texture tiles: not a file, too large to decode (the estimate from the PNG's
+# header, before decoding), damaged (libpng's own line never reaches the terminal).
+add_test(NAME hostile_exemplar_dev_zero COMMAND ${cli_refuse} 1 "cannot read image '/dev/zero': not a regular file"
+         "${WANGSCAPE_BIN}" texture tiles --exemplar /dev/zero --out "${hostile_dir}/exemplar_zero")
+add_test(NAME hostile_exemplar_fifo COMMAND ${cli_refuse} 1 "fifo.png': not a regular file"
+         sh -c "rm -f \"$1\" && mkfifo \"$1\" && exec \"$0\" texture tiles --exemplar \"$1\" --out \"$2\""
+         "${WANGSCAPE_BIN}" "${hostile_dir}/fifo.png" "${hostile_dir}/exemplar_fifo")
+# png.py W H FILE: a PNG header declaring W x H RGB pixels with one short IDAT chunk.
+file(WRITE "${hostile_dir}/png.py" [=[
+import struct, sys, zlib
+def chunk(kind, data):
+    return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff)
+w, h = int(sys.argv[1]), int(sys.argv[2])
+ihdr = struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0)
+open(sys.argv[3], "wb").write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(b"\0" * 100)) + chunk(b"IEND", b""))
+]=])
+add_test(NAME hostile_exemplar_huge
+         COMMAND ${cli_refuse} 1 "huge.png: the image of 65535 x 65535 pixels would need about .* GB of memory; the limit is"
+         sh -c "python3 \"$1/png.py\" 65535 65535 \"$1/huge.png\" && exec \"$0\" texture tiles --exemplar \"$1/huge.png\" --out \"$1/exemplar_huge\""
+         "${WANGSCAPE_BIN}" "${hostile_dir}")
+add_test(NAME hostile_exemplar_damaged
+         COMMAND ${cli_refuse} 1 "^wangscape: error: cannot read image '.*short.png': PNG read error: Not enough image data$"
+         sh -c "python3 \"$1/png.py\" 64 64 \"$1/short.png\" && exec \"$0\" texture tiles --exemplar \"$1/short.png\" --out \"$1/exemplar_short\""
+         "${WANGSCAPE_BIN}" "${hostile_dir}")
+# A preview that cannot be written leaves no tiles folder (it is written first).
+foreach(kind IN ITEMS noise texture)
+  set(exemplar "")
+  if(kind STREQUAL "texture")
+    set(exemplar "--exemplar meadow")
+  endif()
+  add_test(NAME hostile_${kind}_tiles_preview_unwritable
+           COMMAND ${cli_refuse} 0 "no image format for extension '.txt'; name a .png"
+           sh -c "rm -rf \"$1\" && ! \"$0\" ${kind} tiles ${exemplar} --out \"$1\" --preview 64x64 \"$1.txt\" && ! ls \"$1\""
+           "${WANGSCAPE_BIN}" "${hostile_dir}/${kind}_preview_tiles")
+endforeach()
+set_tests_properties(hostile_exemplar_dev_zero hostile_exemplar_fifo hostile_exemplar_huge hostile_exemplar_damaged
+                     hostile_noise_tiles_preview_unwritable hostile_texture_tiles_preview_unwritable
+                     PROPERTIES LABELS "cli;hostile" TIMEOUT 60)
