@@ -40,6 +40,23 @@ void register_batch_command(CLI::App& app, const GlobalOptions& global) {
   status->add_option("dir", s->out_dir, "Batch output folder")->required();
   status->add_flag("--progress", s->watch, "On a terminal: a bar until no task is running");
   status->callback([=] { std::cout << batch_status_text(*s); });
+  // The examples' run renders four stills of the default scene (half a minute on two cores).
+  set_help_footer(plan, "nothing: the tasks on stdout",
+                  {"wangscape batch example > batch.toml", "wangscape batch plan batch.toml",
+                   "wangscape batch plan batch.toml --json"});
+  set_help_footer(batch->get_subcommand("example"), "the batch file on stdout",
+                  {"wangscape batch example > batch.toml", "wangscape batch plan batch.toml"});
+  set_help_footer(run,
+                  "the folder --out: a scene folder and its still per task, the logs, and the gallery index.html; "
+                  "a run again renders only what is not done",
+                  {"wangscape batch example > batch.toml", "wangscape batch run batch.toml --out stills",
+                   "wangscape batch run batch.toml --out stills --workers 1"});
+  set_help_footer(status, "nothing: one line per task on stdout",
+                  {"wangscape batch example > batch.toml", "wangscape batch run batch.toml --out stills",
+                   "wangscape batch status stills"});
+  set_help_footer(batch, "see each command's --help (docs/batch-file.md)",
+                  {"wangscape batch example > batch.toml", "wangscape batch plan batch.toml",
+                   "wangscape batch run batch.toml --out stills"});
   auto* task = batch->add_subcommand("run-task")->group("")->callback([=] { run_batch_tasks(*s); });
   task->add_option("dir", s->out_dir)->required();
   task->add_option("tasks", s->task_range, "FIRST [COUNT]; none: assemble the gallery")->expected(0, 2);

@@ -18,6 +18,10 @@ void register_demo_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--out,-o", options->out, "Output folder")->capture_default_str();
   sub->add_flag("--print-scene", options->print_scene,
                 "Print the default scene file (data paths made absolute) and exit");
+  set_help_footer(sub,
+                  "the default scene's folder --out (default out/demo) with its POV-Ray image render.png; "
+                  "--print-scene: the scene file on stdout",
+                  {"wangscape demo --print-scene > field.toml", "wangscape demo --out demo"});
   sub->callback([options, &global] {
     if (options->print_scene) {
       const std::string text = default_scene_text_for_saving();

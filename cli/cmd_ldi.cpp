@@ -76,12 +76,18 @@ void register_ldi_command(CLI::App& app, const GlobalOptions& global) {
   build->add_option("--ground", args->ground, "The ground in the LDIs: none, visible (where it shows through), always")
       ->capture_default_str()
       ->check(CLI::IsMember({"none", "visible", "always"}));
+  set_help_footer(build, "the pack --out (docs/ldi-pack-format.md), the file `wangscape view` maps",
+                  {"wangscape ldi build templates/scenes/small.toml --out small.ldi",
+                   "wangscape ldi build templates/scenes/small.toml --out small-near.ldi --levels 1 --directions 4"});
   build->callback([args, &global] { run_ldi_build(*args, global); });
 
   auto* info = ldi->add_subcommand("info", "Print what a pack holds: sizes, resolutions, layers, bytes");
   auto info_args = std::make_shared<std::pair<std::string, bool>>();
   info->add_option("pack", info_args->first, "LDI pack")->required();
   info->add_flag("--json", info_args->second, "One JSON object instead of text");
+  set_help_footer(info, "nothing: the pack's figures on stdout",
+                  {"wangscape ldi build templates/scenes/small.toml --out small.ldi", "wangscape ldi info small.ldi",
+                   "wangscape ldi info small.ldi --json"});
   info->callback([info_args] {
     const LdiPack pack(info_args->first);
     std::fputs((info_args->second ? ldi_info_json(pack) : ldi_info_text(pack)).c_str(), stdout);
@@ -100,6 +106,12 @@ void register_ldi_command(CLI::App& app, const GlobalOptions& global) {
   sheet->add_option("--cell", sheet_args->cell, "Pixels per LDI in the sheet")
       ->capture_default_str()
       ->check(CLI::Range(8, 2048));
+  set_help_footer(sheet, "the PNG --out: the front layer shaded (left) and the layer count (right) of each LDI",
+                  {"wangscape ldi build templates/scenes/small.toml --out small.ldi",
+                   "wangscape ldi sheet small.ldi --tile 0 --out sheet.png"});
+  set_help_footer(ldi, "see each command's --help",
+                  {"wangscape ldi build templates/scenes/small.toml --out small.ldi",
+                   "wangscape ldi info small.ldi --json", "wangscape ldi sheet small.ldi --tile 0 --out sheet.png"});
   sheet->callback(
       [sheet_args] { write_ldi_sheet(sheet_args->pack, sheet_args->tile, sheet_args->out, sheet_args->cell); });
 }

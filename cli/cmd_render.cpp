@@ -45,6 +45,11 @@ void register_render_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--out", request->out, "embree: the image to write (default DIR/render_embree.png)");
   sub->add_option("--spp", request->spp, "embree: samples per pixel (default: the scene's antialias squared)")
       ->check(CLI::Range(1, kMaxReferenceSamples));
+  set_help_footer(sub,
+                  "into the folder: render.png and povray.log (povray); scene.blend, render_blender.png and "
+                  "blender.log (blender); render_embree.png or --out (embree)",
+                  {"wangscape build templates/scenes/small.toml --out small", "wangscape render small",
+                   "wangscape render small --engine embree --spp 4 --out small/embree.png"});
   sub->callback([dir, request, &global] { run_render(*dir, *request, global); });
 }
 

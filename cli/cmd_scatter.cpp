@@ -126,6 +126,13 @@ void register_scatter_command(CLI::App& app, const GlobalOptions& global) {
                   "With --dem: scene origin LAT,LON in WGS 84 degrees (default: DEM center)")
       ->check(lat_lon_validator())
       ->needs(dem);
+  set_help_footer(sub,
+                  "--out FILE: every instance as CSV or binary PLY (streamed: any count the disk holds); --metrics: "
+                  "figures on stdout (--json), --spectrum-png a plot",
+                  {"wangscape tileset --set cohen8 --per-tile 20 --out tiles.json",
+                   "wangscape scatter --tileset tiles.json --plane 64x64 --tile-size 4 --out points.csv --metrics",
+                   "wangscape scatter --tileset tiles.json --dem data/SainteHelens.dem --tile-size 8 --max-height 800 "
+                   "--out points.ply"});
   sub->callback([options, &global] { run(*options, global); });
 }
 

@@ -106,6 +106,9 @@ void register_terrain_command(CLI::App& app, const GlobalOptions&) {
   info->add_flag("--json", options->json, "Print JSON instead of text");
   info->add_option("--origin", options->origin, "Scene origin LAT,LON in WGS 84 degrees (default: DEM center)")
       ->check(lat_lon_validator());
+  set_help_footer(info, "nothing: the DEM's figures on stdout",
+                  {"wangscape terrain info data/SainteHelens.dem",
+                   "wangscape terrain info data/SainteHelens.dem --json --origin 46.2,-122.19"});
   info->callback([options] {
     TerrainOptions terrain_options;
     if (!options->origin.empty()) {
@@ -146,6 +149,14 @@ void register_terrain_command(CLI::App& app, const GlobalOptions&) {
       ->check(lat_lon_validator());
   height->add_flag("--json", height_options->json,
                    "Print JSON: east_m, north_m, ground_m, position_m (with --above), latitude_deg, longitude_deg");
+  set_help_footer(height,
+                  "nothing: a line E,N,H per point on stdout (--json: objects), for --camera and path keyframes",
+                  {"wangscape terrain height data/SainteHelens.dem 0,6590",
+                   "wangscape terrain height data/SainteHelens.dem 0,6590 -200,6000 --above 1.7",
+                   "wangscape terrain height data/SainteHelens.dem --latlon 46.2466,-122.1886 --json"});
+  set_help_footer(terrain_command, "nothing: figures on stdout",
+                  {"wangscape terrain info data/SainteHelens.dem",
+                   "wangscape terrain height data/SainteHelens.dem 0,6590 --above 1.7"});
   height->callback([height_options] {
     if (height_options->points.empty() && height_options->latlon.empty())
       throw CLI::ValidationError("points", "give at least one point E,N or --latlon LAT,LON");

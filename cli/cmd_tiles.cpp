@@ -21,6 +21,8 @@ static CLI::App* add_tiles(CLI::App& app, const char* name, const char* help, st
       ->expected(1)
       ->type_name("WxH FILE");
   sub->callback([job] { fmt::print("{}\n", run_tiles_job(*job)); });
+  sub->callback([job] { fmt::print("{}\n", run_tiles_job(*job)); });
+
   return sub;
 }
 
@@ -29,6 +31,15 @@ void register_tiles_commands(CLI::App& app, const GlobalOptions&) {
   auto* n = add_tiles(app, "noise", "Perlin-noise Wang tiles: noise that joins without seams across tile edges", noise);
   n->add_option("--lattice", noise->options.lattice, "Cells per tile side (power of two)")->capture_default_str();
   n->add_option("--octaves", noise->options.octaves, "Mip levels (0 = all)")->check(CLI::Range(0, 12));
+  // `noise --help` and `noise tiles --help` (texture likewise) end alike.
+  const std::string writes =
+      "the folder --out: one PNG per tile and tiles.json (docs/texture-tiles.md); --preview: an image of the tiles "
+      "laid in a tiling";
+  for (CLI::App* a : {n, n->get_parent()})
+    set_help_footer(a, writes,
+                    {"wangscape noise tiles --set corner-3 --lattice 32 --octaves 3 --out noise --preview 1024x512 "
+                     "noise.png",
+                     "wangscape noise tiles --set cohen8 --out noise8"});
   auto texture = std::make_shared<TextureTilesJob>();
   auto* t = add_tiles(app, "texture", "Texture Wang tiles quilted from an exemplar image, seamless across tile edges",
                       texture);
@@ -40,6 +51,11 @@ void register_tiles_commands(CLI::App& app, const GlobalOptions&) {
   t->add_option_function<std::string>("--exemplar", slot(0), "Exemplar image, or meadow / pumice")->required();
   t->add_option_function<std::string>("--exemplar2", slot(1), "Second exemplar (corner-marked sets)");
   t->add_option("--size", texture->options.tile_size, "Pixels per tile side")->capture_default_str();
+  for (CLI::App* a : {t, t->get_parent()})
+    set_help_footer(a, writes,
+                    {"wangscape texture tiles --exemplar meadow --exemplar2 pumice --set corner-2 --size 64 --out tex "
+                     "--preview 1024x512 tex.png",
+                     "wangscape texture tiles --exemplar pumice --set cohen8 --size 64 --out pumice"});
 }
 
 }  // namespace wangscape::cli

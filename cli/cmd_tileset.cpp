@@ -76,6 +76,12 @@ void register_tileset_command(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
   sub->add_option("--out", options->out, "With --per-tile: write the filled set as JSON");
+  set_help_footer(
+      sub,
+      "the set's summary on stdout (--json: the set as JSON); --sheet: a PNG; --per-tile N --out FILE: "
+      "the filled set as JSON, for scatter and scene files",
+      {"wangscape tileset --set cohen8 --json > cohen8.json", "wangscape tileset --set cohen8 --sheet sheet.png",
+       "wangscape tileset --set cohen8 --per-tile 20 --relax 20 --seed 1 --out tiles.json --sheet discs.png"});
   sub->callback([options, &global] {
     options->quiet = global.quiet;
     run(*options);

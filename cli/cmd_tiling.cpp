@@ -103,6 +103,10 @@ void register_tiling_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   sub->add_flag("--stats", options->stats, "Print validity, tile frequencies, identical-neighbour rate, periodicity");
   sub->add_flag("--json", options->json, "Print the statistics as JSON");
+  set_help_footer(sub, "--out FILE: a PNG tile map (north up) or a CSV of i,j,tile; --stats: statistics on stdout",
+                  {"wangscape tiling --set cohen8 --size 64x64 --seed 3 --out map.png --stats",
+                   "wangscape tiling --set complete-edge-2 --algorithm hash --origin -1000,250 --size 32x32 --out "
+                   "window.csv"});
   sub->callback([options, &global] { run(*options, global); });
 }
 

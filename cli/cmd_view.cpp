@@ -58,6 +58,13 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
                   "Near field, meters: tiles this close are ray traced from their real flowers instead of drawn "
                   "from LDIs (default 8; 0: LDIs everywhere)")
       ->check(finite_number());
+  set_help_footer(sub,
+                  "--out: one PNG; --path with --frames: the folder of frames (and path.mp4); --stats and "
+                  "--compare: figures on stdout; the window's F12 screenshots and --record's path file in the "
+                  "current folder. Positions E,N,H for --camera and paths: `wangscape terrain height DIR E,N --above "
+                  "1.7`",
+                  {"wangscape build templates/scenes/small.toml --out small", "wangscape view small --out frame.png",
+                   "wangscape view small --camera 0,6570 --look-at 0,6540,1117.2 --size 320x180 --out close.png"});
   sub->callback([o, &global] {
     ViewRequest& r = o->request;
     r.dir = o->dir;

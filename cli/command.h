@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <initializer_list>
 #include <string>
 
 #include "scene/ground.h"
@@ -61,6 +62,15 @@ inline CLI::Validator lat_lon_validator() {
         }
       },
       "LAT,LON");
+}
+
+// The end of a subcommand's --help: what it writes and where, then two or three examples that
+// work from the repository root (data/SainteHelens.dem, templates/scenes/small.toml), each a
+// command a user can paste; tests/cli/help_examples.sh runs every one of them.
+inline void set_help_footer(CLI::App* sub, const std::string& writes, std::initializer_list<const char*> examples) {
+  std::string text = "Writes: " + writes + "\n\nExamples (from the repository root):\n";
+  for (const char* line : examples) text += std::string("  ") + line + "\n";
+  sub->footer(text);
 }
 
 // Registration: each subcommand file adds its CLI11 subcommand and sets a callback that

@@ -34,6 +34,10 @@ int main(int argc, char** argv) {
   wangscape::cli::register_ldi_command(app, global);
   wangscape::cli::register_view_command(app, global);
 
+  wangscape::cli::set_help_footer(&app, "see each command's --help; every command says what it wrote on stderr",
+                                  {"wangscape build templates/scenes/small.toml --out small", "wangscape render small",
+                                   "wangscape terrain height small 0,6570 --above 1.7"});
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -4,3 +4,10 @@ add_test(NAME help_words COMMAND sh "${CMAKE_CURRENT_SOURCE_DIR}/help_words.sh" 
 add_test(NAME help_tiles_preview_type
   COMMAND ${cli_expect} 0 "--preview WxH FILE +Also write a WxH-pixel image FILE"
           "${WANGSCAPE_BIN}" texture tiles --help)
+# Help that teaches (issue 24): every --help says what it writes and ends with two or three
+# examples from the repository root; tests/cli/help_examples.sh runs each one (the few that take
+# half a minute are named there) in a scratch folder laid out like the checkout.
+add_test(NAME help_examples
+  COMMAND sh "${CMAKE_CURRENT_SOURCE_DIR}/help_examples.sh" "${WANGSCAPE_BIN}" "${PROJECT_SOURCE_DIR}"
+          "${CLI_SCRATCH}/help_examples")
+set_tests_properties(help_examples PROPERTIES LABELS cli TIMEOUT 300)
