@@ -13,9 +13,12 @@
 // BM_ViewAgainstTruth/CAMERA/W/H/NEAR_CM: the frame against the truth (the Embree reference at
 //   64 samples per pixel), beside the exact geometry at one sample per pixel: PSNR, SSIM, holes
 //   and the gaps (exact minus view).
-// BM_EmbreeOneSample/CAMERA/W/H: the anchor, Embree ray casting the same frame at one sample per
-//   pixel with the same shading as the near field (a primary and a sun-shadow ray per pixel, the
-//   open sky; single rays, both threads): its trace seconds (the scene built once, not counted).
+// BM_ViewRayCast/CAMERA/W/H: the anchor, `view --engine embree`: the same frame ray cast whole
+//   (LdiRenderer::set_ray_cast: a primary and a sun-shadow ray per pixel in packets of 16, the
+//   near field's shading, both threads), with the counters of BM_ViewFrame.
+// BM_RayCastAgainstTruth/CAMERA/640/360: the ray-cast frame against the truth, as above.
+// BM_EmbreeOneSample/CAMERA/W/H: the reference renderer at one sample per pixel with the same
+//   shading (single rays, both threads): its trace seconds (the scene built once, not counted).
 // bench/view_bench.sh runs the same views through `wangscape view --stats`.
 #include <benchmark/benchmark.h>
 #include <unistd.h>
@@ -73,12 +76,14 @@ double process_cpu_seconds() {
          double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) / 1e6;
 }
 
-void BM_ViewFrame(benchmark::State& state) {
+// Frames of one camera (the LDI view, or the whole frame ray cast) and their counters.
+void measure_frames(benchmark::State& state, bool ray_cast) {
   const auto world = default_world();
   LdiRenderer renderer(world, int(state.range(1)), int(state.range(2)));
-  renderer.set_near_field(double(state.range(3)) / 100);
+  renderer.set_near_field(ray_cast ? 0 : double(state.range(3)) / 100);
+  renderer.set_ray_cast(ray_cast);
   const ViewCamera camera = bench_camera(*world, int(state.range(0)));
-  renderer.render(camera);  // the near field's scene is made on the first frame
+  renderer.render(camera);  // the near field's (or the ray cast's) scene is made on the first frame
   std::uint64_t depth_pixels = 0, tiles = 0, near_tiles = 0, near_rays = 0;
   std::array<std::vector<double>, 5> phases;
   const double cpu_start = process_cpu_seconds();
@@ -104,10 +109,14 @@ void BM_ViewFrame(benchmark::State& state) {
   }
 }
 
-void BM_ViewAgainstTruth(benchmark::State& state) {
+void BM_ViewFrame(benchmark::State& state) { measure_frames(state, false); }
+void BM_ViewRayCast(benchmark::State& state) { measure_frames(state, true); }
+
+void against_truth(benchmark::State& state, bool ray_cast) {
   const auto world = default_world();
   LdiRenderer renderer(world, int(state.range(1)), int(state.range(2)));
-  renderer.set_near_field(double(state.range(3)) / 100);
+  renderer.set_near_field(ray_cast ? 0 : double(state.range(3)) / 100);
+  renderer.set_ray_cast(ray_cast);
   const ViewCamera camera = bench_camera(*world, int(state.range(0)));
   for (auto _ : state) {
     renderer.render(camera);
@@ -121,6 +130,9 @@ void BM_ViewAgainstTruth(benchmark::State& state) {
     state.counters["ssim_gap"] = v.exact.ssim - v.comparison.ssim;
   }
 }
+
+void BM_ViewAgainstTruth(benchmark::State& state) { against_truth(state, false); }
+void BM_RayCastAgainstTruth(benchmark::State& state) { against_truth(state, true); }
 
 void BM_EmbreeOneSample(benchmark::State& state) {
   const auto world = default_world();
@@ -155,8 +167,19 @@ void anchor_views(benchmark::internal::Benchmark* b) {
   b->ArgNames({"camera", "width", "height"});
 }
 
+void small_anchor_views(benchmark::internal::Benchmark* b) {
+  for (int camera = 0; camera < 4; ++camera) b->Args({camera, 640, 360});
+  b->ArgNames({"camera", "width", "height"});
+}
+
 BENCHMARK(BM_ViewFrame)->Apply(views)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_ViewAgainstTruth)->Apply(views)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_ViewRayCast)->Apply(anchor_views)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK(BM_RayCastAgainstTruth)
+    ->Apply(small_anchor_views)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
 BENCHMARK(BM_EmbreeOneSample)->Apply(anchor_views)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(3);
 
 }  // namespace

@@ -122,6 +122,7 @@ struct LdiRenderer::Impl {
   // The near field: the real flowers of the tiles around the eye, ray traced (made on the first
   // frame that needs it; its flowers placed again only when the eye's window of tiles changes).
   std::unique_ptr<SceneTracer> near_tracer;
+  std::unique_ptr<SceneTracer> whole_tracer;  // set_ray_cast: the whole scene
   std::optional<Extent> near_window;
   std::atomic<std::uint64_t> near_rays{0};
   std::vector<float> block_far;  // the occlusion test's blocks: the farthest depth in each
@@ -733,6 +734,18 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   begin_frame(camera);
+  if (ray_cast_) {
+    // The anchor: the same frame by rays alone (the near field's shading over the whole frame).
+    stats_ = ViewFrameStats{};
+    stats_.near_rays = ray_cast_frame();
+    const auto traced = Clock::now();
+    resolve();
+    const auto end = Clock::now();
+    const auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
+    stats_.phase_ms = {0, 0, 0, ms(start, traced), ms(traced, end)};
+    stats_.frame_ms = ms(start, end);
+    return stats_;
+  }
   choose_tiles();
   const auto tiles_done = Clock::now();
   // The near field first: what it hides is neither warped nor shaded after it.
@@ -833,7 +846,27 @@ std::uint64_t LdiRenderer::trace_near_field() {
     m.near_tracer->set_flowers([&](const InstanceSink& sink) { field.place_in(window, sink); });
     m.near_window = window;
   }
-  const SceneTracer& tracer = *m.near_tracer;
+  return cast_rays(*m.near_tracer, reach);
+}
+
+// The whole frame ray cast (set_ray_cast): every flower of the scene and the terrain in one
+// Embree scene, built on the first frame.
+std::uint64_t LdiRenderer::ray_cast_frame() {
+  Impl& m = *impl_;
+  if (!m.whole_tracer) {
+    const Extent& area = world_->scene().field_area;
+    m.whole_tracer = std::make_unique<SceneTracer>(
+        world_->scene(), std::array<double, 3>{(area.min_x + area.max_x) / 2, (area.min_y + area.max_y) / 2, m.eye[2]},
+        SceneTracer::Layout::whole);
+  }
+  return cast_rays(*m.whole_tracer, std::numeric_limits<double>::infinity());
+}
+
+// One ray through each pixel's centre, up to `reach` meters across the ground, shaded into the
+// z-buffer: the near field's and the ray-cast frame's. Returns the rays cast.
+std::uint64_t LdiRenderer::cast_rays(const SceneTracer& tracer, double reach) {
+  Impl& m = *impl_;
+  const ViewWorld& world = *world_;
   const V3 from{m.eye[0] - tracer.origin()[0], m.eye[1] - tracer.origin()[1], m.eye[2] - tracer.origin()[2]};
   // The open sky without sky rays: at one sample per pixel a few sky rays are noise that costs
   // more than the shading otherwise (measured on the close-up camera at 320 x 180 against the
@@ -893,7 +926,7 @@ std::uint64_t LdiRenderer::trace_near_field() {
       }
     m.near_rays += rays;
   });
-  tracer.check("tracing the near field");
+  tracer.check(std::isinf(reach) ? "ray casting the frame" : "tracing the near field");
   return m.near_rays.load();
 }
 

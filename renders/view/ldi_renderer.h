@@ -61,6 +61,8 @@ struct ViewFrameStats {
   std::vector<std::uint64_t> levels;
 };
 
+class SceneTracer;
+
 class LdiRenderer {
  public:
   // Throws Error when the size is not 1 .. 16384 per side.
@@ -87,6 +89,10 @@ class LdiRenderer {
   // over the LDIs and the terrain beyond. 0: LDIs everywhere. Throws Error outside
   // 0 .. kMaxNearField.
   void set_near_field(double meters);
+  // On: the whole frame is ray cast instead (the near field's rays and shading over every pixel,
+  // against every flower of the scene: no LDI, no rasterized terrain). The anchor the LDI frame
+  // is measured against (`view --engine embree`); the first frame builds the scene's Embree BVH.
+  void set_ray_cast(bool on) { ray_cast_ = on; }
   // Draws only the placed tiles whose entry is nonzero (the terrain and sky as always); empty:
   // every tile. For tests and for looking at single tiles.
   void set_tile_mask(std::vector<std::uint8_t> mask) { mask_ = std::move(mask); }
@@ -107,6 +113,7 @@ class LdiRenderer {
   ViewFrameStats stats_;
   double detail_ = 1;
   double near_field_ = 0;
+  bool ray_cast_ = false;
   // The frame's named steps (docs/viewer.md, "What a frame does"), in the order render() runs them.
   void begin_frame(const ViewCamera& camera);
   void choose_tiles();
@@ -114,6 +121,8 @@ class LdiRenderer {
   void draw_terrain();
   void resolve();
   std::uint64_t trace_near_field();
+  std::uint64_t ray_cast_frame();
+  std::uint64_t cast_rays(const SceneTracer& tracer, double reach);
   std::uint64_t cull_occluded_tiles();
 };
 

@@ -76,6 +76,7 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest&
   LdiRenderer renderer(world, width, height);
   renderer.set_detail(request.detail);
   renderer.set_near_field(request.near_field);
+  renderer.set_ray_cast(request.ray_cast);
   const auto start = std::chrono::steady_clock::now();
   for (long long k = 0; k < frames; ++k) {
     const PathCamera at = camera_along(path, path.keys.front().time + double(k) / fps, ground, request.path);
@@ -268,6 +269,7 @@ int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewReq
   LdiRenderer renderer(world, width, height);
   renderer.set_detail(request.detail);
   renderer.set_near_field(request.near_field);
+  renderer.set_ray_cast(request.ray_cast);
   const ViewFrameStats stats =
       request.stats ? measure_view(renderer, camera, request.repeat ? request.repeat : 200) : renderer.render(camera);
   if (!request.out.empty()) {

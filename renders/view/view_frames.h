@@ -40,6 +40,7 @@ struct ViewRequest {
   int threads = 0;                           // 0 = all cores
   double detail = 1;                         // LdiRenderer::set_detail
   double near_field = kDefaultNearField;     // LdiRenderer::set_near_field (meters; 0: LDIs only)
+  bool ray_cast = false;                     // --engine embree: LdiRenderer::set_ray_cast
   bool quiet = false;
 };
 

@@ -305,9 +305,14 @@ class WalkRecorder {
 void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& start,
                      const ViewWindowOptions& options) {
   const std::vector<ScriptStep> script = parse_script(options.script);
-  auto renderer = std::make_unique<LdiRenderer>(world, options.width, options.height);
-  renderer->set_detail(options.detail);
-  renderer->set_near_field(options.near_field);
+  const auto make_renderer = [&](int width, int height) {
+    auto made = std::make_unique<LdiRenderer>(world, width, height);
+    made->set_detail(options.detail);
+    made->set_near_field(options.near_field);
+    made->set_ray_cast(options.ray_cast);
+    return made;
+  };
+  auto renderer = make_renderer(options.width, options.height);
   SdlSession sdl(options.width, options.height);
   if (options.script.empty()) SDL_SetRelativeMouseMode(SDL_TRUE);  // mouse look (a script moves it itself)
 
@@ -371,9 +376,7 @@ void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& s
     if (!running) break;
     if (new_width > 0 && (new_width != renderer->width() || new_height != renderer->height())) {
       // Frames at the window's new size (not the old frame stretched).
-      renderer = std::make_unique<LdiRenderer>(world, new_width, new_height);
-      renderer->set_detail(options.detail);
-      renderer->set_near_field(options.near_field);
+      renderer = make_renderer(new_width, new_height);
       sdl.make_texture(new_width, new_height);
       shown = ImageRgb8(new_width, new_height);
     }

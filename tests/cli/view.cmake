@@ -96,6 +96,12 @@ set_property(TEST cli_view_window APPEND PROPERTY ENVIRONMENT "ASAN_OPTIONS=dete
 view_test(window_bad_script ${cli_expect} 1 "--script: 'W\\*x' has no frame count"
   "${WANGSCAPE_BIN}" --quiet view "${view_folder}" --script "W*x")
 
+# --engine embree: the whole frame ray cast (the anchor), not one color below the horizon; an
+# unknown engine is a usage error.
+view_sh_test(engine_embree "stddev" "\"$0\" --quiet view \"$1\" --engine embree --size 160x120 --out \"$1.embree.png\" && \"$2\" \"$3\" \"$1.embree.png\" 0.55 1.0 8"
+  "${ground_variance}")
+view_test(bad_engine ${cli_expect} 2 "--engine" "${WANGSCAPE_BIN}" view "${view_folder}" --engine optix --out "${view_dir}/x.png")
+
 # Refusals: bad sizes and angles name the flag; a folder without a pack names tiles.ldi.
 view_test(bad_size ${cli_expect} 2 "--size.*0x10" "${WANGSCAPE_BIN}" view "${view_folder}" --size 0x10 --out "${view_dir}/x.png")
 view_test(bad_size_text ${cli_expect} 2 "--size.*'big'" "${WANGSCAPE_BIN}" view "${view_folder}" --size big --out "${view_dir}/x.png")

@@ -283,5 +283,30 @@ TEST(ldi_view_near, ADistanceOutOfRangeIsRefused) {
   EXPECT_THROW(renderer.set_near_field(std::nan("")), Error);
 }
 
+// --engine embree: the whole frame ray cast, the anchor the LDI frame is measured against. It is
+// the exact geometry at one sample per pixel without sky rays: as close to the truth as the
+// reference's own one-sample image (whose few sky rays are noise), the same on 1 and 2 threads.
+TEST(ldi_view_ray_cast, IsTheExactOneSampleFrameOnAnyThreadCount) {
+  const ViewCamera camera = looking(0.3, -7.2, 1.3, 0.3, -4, 1.0, 60);
+  std::vector<std::uint8_t> one;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    LdiRenderer renderer(field(), 96, 64);
+    renderer.set_ray_cast(true);
+    renderer.render(camera);
+    one = renderer.image().pixels;
+  }
+  LdiRenderer renderer(field(), 96, 64);
+  renderer.set_ray_cast(true);
+  const ViewFrameStats& stats = renderer.render(camera);
+  EXPECT_EQ(renderer.image().pixels, one);
+  EXPECT_EQ(stats.depth_pixels, 0u);
+  EXPECT_GE(stats.near_rays, 96u * 64u);  // every pixel's primary ray, and the hits' shadow rays
+  const ViewComparison v = compare_with_reference(*field(), renderer, camera, 16);
+  EXPECT_GT(v.comparison.psnr_db, v.exact.psnr_db - 0.5) << v.comparison.psnr_db << " against " << v.exact.psnr_db;
+  EXPECT_GT(v.comparison.ssim, v.exact.ssim - 0.02);
+  EXPECT_LE(v.comparison.holes.holes, v.exact.holes.holes + 8) << v.exact.holes.holes;
+}
+
 }  // namespace
 }  // namespace wangscape
