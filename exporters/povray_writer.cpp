@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/number_text.h"
 #include "core/printable.h"
 #include "exporters/export_support.h"
 #include "exporters/image_io.h"
@@ -21,10 +22,15 @@ namespace {
 
 // Appends `value` with exactly `decimals` digits after the point, via an integer: much faster
 // than floating-point formatting and never locale-dependent. |value| * 10^decimals must fit
-// in 63 bits (always true for meters and degrees).
+// in 63 bits to take the fast path (meters and degrees always do); larger values are written by
+// fixed_text.
 void append_fixed(std::string& out, double value, int decimals) {
   static constexpr double kPowers[] = {1, 10, 100, 1000, 1e4, 1e5, 1e6, 1e7, 1e8};
   if (!std::isfinite(value)) value = 0.0;
+  if (std::fabs(value) * kPowers[decimals] >= 9.2e18) {  // beyond 63 bits: the slow way, never wrapped
+    out += fixed_text(value, decimals);
+    return;
+  }
   const bool negative = value < 0;
   const auto scaled = static_cast<std::uint64_t>(std::llround(std::fabs(value) * kPowers[decimals]));
   char digits[24];

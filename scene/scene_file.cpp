@@ -11,9 +11,11 @@
 #include <limits>
 #include <numbers>
 #include <set>
+#include <span>
 #include <sstream>
 #include <vector>
 
+#include "core/number_text.h"
 #include "core/text_file.h"
 #include "core/vecmath.h"
 #include "generator/poisson_tiles.h"
@@ -188,6 +190,14 @@ void read_camera_point(Section& camera, const std::string& prefix, CameraPoint& 
     } else {
       owner_for_errors.fail(*node, enu_key, "must be [east, north, up] or [east, north] in meters");
     }
+    // A camera farther than any ground (the fixed-point writers take at most ~9e15 m, and a float
+    // view not even that) is a typo: 1e300 was built and written as the origin.
+    const auto& enu = point.enu ? std::span<const double>(*point.enu) : std::span<const double>(*point.enu_ground);
+    for (double v : enu)
+      if (std::abs(v) > kMaxCameraMeters)
+        owner_for_errors.fail(*node, enu_key,
+                              "holds " + number_text(v) + "; expected meters within +-" +
+                                  number_text(kMaxCameraMeters) + " of the origin");
   }
   const std::string lat_key = prefix == "position" ? "latitude" : "target_latitude";
   const std::string lon_key = prefix == "position" ? "longitude" : "target_longitude";
@@ -201,7 +211,8 @@ void read_camera_point(Section& camera, const std::string& prefix, CameraPoint& 
                           "needs both " + lat_key + " and " + lon_key);
   if (point.latitude && (point.enu || point.enu_ground))
     owner_for_errors.fail(*camera.node(lat_key), lat_key, "cannot be given together with " + enu_key);
-  camera.read(height_key, point.height_above_ground);
+  if (camera.read(height_key, point.height_above_ground))
+    camera.check_range(height_key, point.height_above_ground, -kMaxCameraMeters, kMaxCameraMeters);
 }
 
 // [terrain]: the DEM (or a flat plane), its geographic origin and crop.
@@ -305,6 +316,7 @@ void read_sun(Section s, SceneConfig& config) {
   const bool has_azimuth = s.read("azimuth", config.sun.azimuth);  // both read: each marks its key used
   const bool has_angles = s.read("elevation", config.sun.elevation) || has_azimuth;
   s.check_range("elevation", config.sun.elevation, -90, 90);
+  if (has_azimuth) s.check_range("azimuth", config.sun.azimuth, -360, 360);
   if (const auto* node = s.node("time")) {
     const auto* when = node->as_date_time();
     if (!when || !when->get().offset)
@@ -373,7 +385,12 @@ void read_camera_aware(Section s, SceneConfig& config) {
   if (s.read("far", c.far)) s.check_range("far", *c.far, 0.1, 1e6);
   if (c.near && c.far && *c.near > *c.far) s.fail(*s.node("near"), "near", "must not be beyond far");
   if (s.read("sun_margin", c.sun_margin)) s.check_range("sun_margin", *c.sun_margin, 0, 1e4);
-  s.read_int("proxy_triangles", c.proxy_triangles, kSunflowerMinimumTriangleBudget, kSunflowerMaximumTriangleBudget);
+  if (s.read_int("proxy_triangles", c.proxy_triangles, kSunflowerMinimumTriangleBudget,
+                 kSunflowerMaximumTriangleBudget) &&
+      c.proxy_triangles > config.models.triangle_budget)
+    s.fail(*s.node("proxy_triangles"), "proxy_triangles",
+           "is " + std::to_string(c.proxy_triangles) + "; a proxy has at most models.triangle_budget (" +
+               std::to_string(config.models.triangle_budget) + ") triangles");
   s.read("far_texture", c.far_texture);
   s.reject_unknown();
 }

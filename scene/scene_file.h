@@ -178,6 +178,9 @@ SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem
                                const std::filesystem::path& base_dir);
 // Scene files are small; anything larger is not one (docs/limits.md).
 inline constexpr std::uintmax_t kMaxSceneFileBytes = 1u << 20;
+// The farthest a camera or its target may be from the scene's origin, and the most a height above
+// the ground may be: 10,000 km, beyond any ground a scene holds.
+inline constexpr double kMaxCameraMeters = 1e7;
 
 // Reads and parses a scene file; relative paths resolve against its folder. Refuses a file
 // that is not a regular file or is over kMaxSceneFileBytes, naming it.
