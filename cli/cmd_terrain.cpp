@@ -13,6 +13,7 @@
 
 #include "cli/command.h"
 #include "core/error.h"
+#include "core/json_text.h"
 #include "core/number_text.h"
 #include "exporters/reports.h"
 #include "exporters/scene_folder.h"
@@ -87,7 +88,7 @@ void print_heights(const TerrainHeightOptions& options) {
                      {"latitude_deg", ll.lat},
                      {"longitude_deg", ll.lon}});
     }
-    fmt::print("{}\n", out.dump(2));
+    fmt::print("{}\n", json_text(out, 2));
     return;
   }
   // E,N,H: the form of --camera and of a path keyframe's position.
@@ -117,7 +118,7 @@ void register_terrain_command(CLI::App& app, const GlobalOptions&) {
     }
     const Terrain terrain = Terrain::load(options->file, terrain_options);
     if (options->json)
-      fmt::print("{}\n", terrain_info_json(terrain).dump(2));
+      fmt::print("{}\n", json_text(terrain_info_json(terrain), 2));
     else
       fmt::print("{}", terrain_info_text(terrain));
   });

@@ -7,6 +7,7 @@
 
 #include "cli/command.h"
 #include "cli/progress.h"
+#include "core/json_text.h"
 #include "core/number_text.h"
 #include "exporters/image_io.h"
 #include "exporters/reports.h"
@@ -69,7 +70,7 @@ void run(const TilingCommandOptions& options, const GlobalOptions& global) {
     const TilingStats stats = compute_tiling_stats(set, tiling);
     const TilingRun run{options.algorithm, options.seed, options.no_identical_neighbours};
     if (options.json)
-      fmt::print("{}\n", tiling_stats_json(set, tiling, run, stats).dump(2));
+      fmt::print("{}\n", json_text(tiling_stats_json(set, tiling, run, stats), 2));
     else
       fmt::print("{}", tiling_stats_text(set, tiling, run, stats));
   }
@@ -97,7 +98,8 @@ void register_tiling_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   sub->add_flag("--no-identical-neighbours", options->no_identical_neighbours,
                 "Never lay a tile next to an identical copy of itself (fails if the set cannot avoid it)");
-  sub->add_option("--out", options->out, "Output: .png pseudo-colored tile map (north up) or .csv with i,j,tile");
+  sub->add_option("--out", options->out, "Output: .png pseudo-colored tile map (north up) or .csv with i,j,tile")
+      ->check(non_empty_path());
   sub->add_option("--pixels-per-tile", options->pixels_per_tile, "Tile map block size in pixels")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();

@@ -38,6 +38,14 @@ inline CLI::Validator finite_number() {
       "NUMBER");
 }
 
+// A CLI11 check that a file or folder name is not empty (`--out ""` wrote nothing and said
+// nothing, or wrote into the current folder): a usage error, exit 2.
+inline CLI::Validator non_empty_path() {
+  return CLI::Validator(
+      [](std::string& text) { return text.empty() ? std::string("is empty; name a file or folder") : std::string(); },
+      "PATH");
+}
+
 // A CLI11 check for seeds: a whole number 0 .. 2^64 - 1 (CLI11 alone reads -1 as 2^64 - 1 and
 // saturates larger numbers).
 inline CLI::Validator seed_number() {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/json_text.h"
 #include "exporters/export_support.h"
 #include "exporters/image_io.h"
 #include "exporters/zip_writer.h"
@@ -252,7 +253,7 @@ void BlenderWriter::finish(const StreamTotals& totals) {
     impl.bytes += zip.size();
   }
 
-  const std::string text = manifest.dump(2) + "\n";
+  const std::string text = json_text(manifest, 2) + "\n";
   impl.summary.manifest = impl.folder / "manifest.json";
   write_file_atomically(impl.summary.manifest, text);
   impl.summary.instance_count = count;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/json_text.h"
 #include "core/vecmath.h"
 #include "exporters/export_support.h"
 #include "exporters/image_io.h"
@@ -458,7 +459,7 @@ void GltfWriter::finish(const StreamTotals& totals) {
   const std::uint64_t instance_bytes = impl.options.instancing == GltfInstancing::gpu_instancing ? count * 40 : 0;
   const std::uint64_t bin_size = impl.builder.bin.size() + instance_bytes;
   const Json gltf = impl.document(count, std::move(cameras), std::move(materials), std::move(ground), bin_size);
-  const std::uint64_t total = impl.write_glb(gltf.dump(), bin_size);
+  const std::uint64_t total = impl.write_glb(json_text(gltf), bin_size);
   impl.spill.reset();  // its temporary files go now, before the folder they are in is published
   impl.summary = GltfSummary{impl.path, count, total};
 }

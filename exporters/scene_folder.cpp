@@ -2,10 +2,14 @@
 
 #include "exporters/folder_state.h"
 
+#include <fcntl.h>  // AT_FDCWD; renameat2 and RENAME_EXCHANGE come from <cstdio> (glibc 2.28+, _GNU_SOURCE)
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstdio>
+#include <cstring>
 #include <memory>
 
 #include "core/atomic_file.h"
@@ -42,13 +46,26 @@ fs::path sibling(const fs::path& out_dir, const char* role) {
   return out_dir.parent_path() / name;
 }
 
-// Replaces out_dir by staging: with one rename when out_dir does not exist, else out_dir is
-// first renamed aside (so a reader sees the old folder or the new one, never a mix) and
-// removed once the new one is in place.
-void publish(const fs::path& staging, const fs::path& out_dir) {
+// Replaces out_dir by staging: with one rename when out_dir does not exist, else with one
+// exchange of the two folders (renameat2 RENAME_EXCHANGE), so a reader, or a kill at any moment,
+// finds the old folder or the new one, never none; the old build, now at the staging name, is
+// removed after. Where the filesystem cannot exchange (EINVAL: not supported there), out_dir is
+// renamed aside first and the new one renamed in, which the observer is told: in between, for a
+// moment, there is no folder (a run killed there puts the old one back on the next write).
+void publish(const fs::path& staging, const fs::path& out_dir, const SceneFolderObserver& observer) {
   auto uninterrupted = hold_run_cleanup();  // an interrupt waits until the swap is done
   std::error_code ec;
   if (fs::exists(out_dir, ec)) {
+    if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, out_dir.c_str(), RENAME_EXCHANGE) == 0) {
+      uninterrupted.unlock();  // staging (still a registered temporary) now holds the old build
+      fs::remove_all(staging, ec);
+      unregister_temporary(staging);
+      return;
+    }
+    if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP)
+      throw Error(out_dir, "", std::string("cannot swap the new build in: ") + std::strerror(errno));
+    say(observer, "this filesystem cannot exchange two folders at once (" + std::string(std::strerror(errno)) +
+                      "); replacing " + out_dir.string() + " with two renames");
     const fs::path old = sibling(out_dir, "old");
     fs::remove_all(old, ec);
     fs::rename(out_dir, old, ec);
@@ -164,7 +181,7 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
     write_file_atomically(staging / "scene.toml", scene_text);
     if (!scene_base_dir.empty())
       write_file_atomically(staging / kSceneBaseFile, fs::absolute(scene_base_dir).lexically_normal().string() + "\n");
-    publish(staging, out_dir);
+    publish(staging, out_dir, observer);
   } catch (...) {
     fs::remove_all(staging, ec);
     unregister_temporary(staging);

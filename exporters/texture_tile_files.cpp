@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "core/atomic_file.h"
+#include "core/json_text.h"
 #include "exporters/image_io.h"
 #include "scene/ground_look.h"
 #include "scene/tileset_file.h"
@@ -141,7 +142,7 @@ void write_noise_tile_files(const std::filesystem::path& dir, const NoiseTileSet
   doc["pixels"] = pixels;
   doc["gray"] = {{"min", is_signed ? -1 : 0}, {"max", 1}};
   doc["tiles"] = tile_entries(tiles.set(), "noise_tile_");
-  write_file_atomically(dir / "noise_tiles.json", doc.dump(2) + "\n");
+  write_file_atomically(dir / "noise_tiles.json", json_text(doc, 2) + "\n");
 }
 
 void write_texture_tile_files(const std::filesystem::path& dir, const TextureTileSet& tiles) {
@@ -160,7 +161,7 @@ void write_texture_tile_files(const std::filesystem::path& dir, const TextureTil
   Json entries = tile_entries(tiles.set, "texture_tile_");
   for (std::size_t t = 0; t < tiles.tiles.size(); ++t) entries[t]["error"] = tiles.tiles[t].error;
   doc["tiles"] = std::move(entries);
-  write_file_atomically(dir / "texture_tiles.json", doc.dump(2) + "\n");
+  write_file_atomically(dir / "texture_tiles.json", json_text(doc, 2) + "\n");
 }
 
 }  // namespace wangscape

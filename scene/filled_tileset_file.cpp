@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "core/json_text.h"
 
 namespace wangscape {
 
@@ -29,7 +30,7 @@ std::string expected_range(double lo, double hi, bool hi_open) {
 
 double number_in(const Json& value, const std::string& at, const char* key, double lo, double hi, bool hi_open) {
   if (!value.is_number() || !in_range(value.get<double>(), lo, hi, hi_open))
-    throw Error(at + ": \"" + key + "\" is " + value.dump() + "; " + expected_range(lo, hi, hi_open));
+    throw Error(at + ": \"" + key + "\" is " + json_text(value) + "; " + expected_range(lo, hi, hi_open));
   return value.get<double>();
 }
 
@@ -38,16 +39,16 @@ double number_in(const Json& value, const std::string& at, const char* key, doub
 float float_in(const Json& value, const std::string& at, const char* key, double lo, double hi, bool hi_open) {
   const auto kept = static_cast<float>(number_in(value, at, key, lo, hi, hi_open));
   if (!in_range(kept, lo, hi, hi_open))
-    throw Error(at + ": \"" + key + "\" is " + value.dump() + ", " + Json(kept).dump() + " as a float; " +
+    throw Error(at + ": \"" + key + "\" is " + json_text(value) + ", " + json_text(Json(kept)) + " as a float; " +
                 expected_range(lo, hi, hi_open));
   return kept;
 }
 
 std::uint64_t integer_in(const Json& value, const std::string& at, const char* key, std::uint64_t hi) {
   if (!value.is_number_unsigned() && !(value.is_number_integer() && value.get<std::int64_t>() >= 0))
-    throw Error(at + ": \"" + key + "\" is " + value.dump() + "; expected a non-negative integer");
+    throw Error(at + ": \"" + key + "\" is " + json_text(value) + "; expected a non-negative integer");
   const auto v = value.get<std::uint64_t>();
-  if (v > hi) throw Error(at + ": \"" + key + "\" is " + value.dump() + "; expected at most " + std::to_string(hi));
+  if (v > hi) throw Error(at + ": \"" + key + "\" is " + json_text(value) + "; expected at most " + std::to_string(hi));
   return v;
 }
 
@@ -89,7 +90,7 @@ FilledTileSet filled_tileset_from_json(const Json& document, std::string_view so
   const std::string at = where(source);
   const Json& format = required(document, "format", at, "\"wangscape-filled-tileset\"");
   if (format != kFormat)
-    throw Error(at + ": \"format\" is " + format.dump() + "; expected \"" + kFormat +
+    throw Error(at + ": \"format\" is " + json_text(format) + "; expected \"" + kFormat +
                 "\" (write one with `wangscape tileset --per-tile N --out FILE`)");
   if (const auto v = integer_in(required(document, "version", at, "1"), at, "version", 1000); v != kVersion)
     throw Error(at + ": version " + std::to_string(v) + "; this wangscape reads version " + std::to_string(kVersion));
@@ -109,11 +110,11 @@ FilledTileSet filled_tileset_from_json(const Json& document, std::string_view so
   for (std::size_t t = 0; t < tiles.size(); ++t) {
     const std::string tile_at = at + ": tile " + std::to_string(t);
     const Json& points = required(tiles[t], "points", tile_at, "an array of points");
-    if (!points.is_array()) throw Error(tile_at + ": \"points\" is " + points.dump() + "; expected an array");
+    if (!points.is_array()) throw Error(tile_at + ": \"points\" is " + json_text(points) + "; expected an array");
     for (std::size_t k = 0; k < points.size(); ++k) {
       const std::string point_at = tile_at + " point " + std::to_string(k);
       const Json& p = points[k];
-      if (!p.is_object()) throw Error(point_at + " is " + p.dump() + "; expected an object");
+      if (!p.is_object()) throw Error(point_at + " is " + json_text(p) + "; expected an object");
       TilePoint tp;
       tp.id =
           static_cast<std::uint32_t>(integer_in(required(p, "id", point_at, "an integer"), point_at, "id", UINT32_MAX));
@@ -134,11 +135,11 @@ std::string format_filled_tileset_json(const Json& document) {
   return format_tileset_json(document, [](const Json& tile) {
     Json colors = tile;
     colors.erase("points");
-    std::string text = colors.dump();
+    std::string text = json_text(colors);
     text.pop_back();  // the closing brace: the points follow
     text += ", \"points\": [";
     const Json& points = tile.contains("points") ? tile["points"] : Json::array();
-    for (std::size_t k = 0; k < points.size(); ++k) text += (k ? ",\n      " : "\n      ") + points[k].dump();
+    for (std::size_t k = 0; k < points.size(); ++k) text += (k ? ",\n      " : "\n      ") + json_text(points[k]);
     return text + (points.empty() ? "]}" : "\n    ]}");
   });
 }

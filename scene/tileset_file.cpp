@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "core/json_text.h"
 #include "core/text_file.h"
 
 namespace wangscape {
@@ -130,7 +131,7 @@ TileSet tileset_from_json(const Json& document, std::string_view source) {
 }
 
 std::string format_tileset_json(const Json& document) {
-  return format_tileset_json(document, [](const Json& tile) { return tile.dump(); });
+  return format_tileset_json(document, [](const Json& tile) { return json_text(tile); });
 }
 
 std::string format_tileset_json(const Json& document, const std::function<std::string(const Json& tile)>& format_tile) {
@@ -139,13 +140,13 @@ std::string format_tileset_json(const Json& document, const std::function<std::s
   for (const auto& [key, value] : document.items()) {
     text += first_key ? "  " : ",\n  ";
     first_key = false;
-    text += Json(key).dump() + ": ";
+    text += json_text(Json(key)) + ": ";
     if (key == "tiles" && value.is_array()) {
       text += "[";
       for (std::size_t i = 0; i < value.size(); ++i) text += (i ? ",\n    " : "\n    ") + format_tile(value[i]);
       text += value.empty() ? "]" : "\n  ]";
     } else {
-      text += value.dump();
+      text += json_text(value);
     }
   }
   return text + "\n}\n";

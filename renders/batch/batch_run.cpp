@@ -22,6 +22,7 @@
 #include <thread>
 
 #include "core/atomic_file.h"
+#include "core/json_text.h"
 #include "core/number_text.h"
 #include "core/printable.h"
 #include "core/text_file.h"
@@ -63,10 +64,6 @@ json task_json(const BatchTask& t) {
           {"scene_key", t.scene_key},
           {"input_hash", t.input_hash}};
 }
-
-// JSON text of what Wangscape writes: user text (a DEM's path, a label) that is not UTF-8 is
-// written with U+FFFD in its place instead of failing the write.
-std::string json_text(const json& j, int indent) { return j.dump(indent, ' ', false, json::error_handler_t::replace); }
 
 // An integer field of at most 2^31 - 1 (a float or a larger number throws, as a missing field does).
 int int_field(const json& j, const char* key) {

@@ -4,6 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/json_text.h"
+
 namespace wangscape {
 
 std::string ldi_info_text(const LdiPack& pack) {
@@ -54,7 +56,7 @@ std::string ldi_info_json(const LdiPack& pack) {
   j["depth_pixels_per_level"] = stats.depth_pixels_per_level;
   j["bytes_per_level"] = stats.bytes_per_level;
   j["layer_histogram"] = stats.layer_histogram;
-  return j.dump() + "\n";
+  return json_text(j) + "\n";
 }
 
 }  // namespace wangscape

@@ -1,11 +1,12 @@
 #!/bin/sh
-# hostile_batch.sh NAME WANGSCAPE DIR: one hostile batch case (issue 25, tests/cli/hostile_batch.cmake)
-# in DIR, which holds tiny.toml. Each is refused with its exit code and a message naming the file,
+# hostile_batch.sh NAME WANGSCAPE DIR SOURCE: one hostile batch case (issue 25,
+# tests/cli/hostile_batch.cmake) in DIR, which holds tiny.toml; SOURCE is the source tree. Each is refused with its exit code and a message naming the file,
 # the place and what was expected, without raw library text; none needs a renderer.
 set -u
 name=$1
 bin=$2
 dir=$3
+source=$4
 here=$(cd "$(dirname "$0")" && pwd)
 cd "$dir" || exit 1
 fail() { echo "FAIL ($name): $*" >&2; exit 1; }
@@ -103,6 +104,16 @@ plan_ids)
   refuse 1 "range/plan.json:task 0: has a field of view, a sun elevation or an image size out of range" "$bin" batch status range
   rm -f range/plan.json && mkfifo range/plan.json || fail "mkfifo"
   refuse 1 "range/plan.json: the batch plan is not a regular file" "$bin" batch status range
+  ;;
+utf8)
+  # A DEM whose name is not UTF-8 (byte 0xFF): JSON output gets U+FFFD, not json.exception.
+  rm -rf dems && mkdir dems || fail "mkdir"
+  name=$(printf 'b\377')
+  cp "$source/tests/data/dem/SRTMGL3_boulder_CO_240x144.asc" "dems/$name.asc" || fail "cp"
+  cp "$source/tests/data/dem/SRTMGL3_boulder_CO_240x144.prj" "dems/$name.prj" || fail "cp"
+  batch utf8 'dem_folder = "dems"' '[[viewpoints]]' 'count = 1'
+  refuse 0 "$(printf 'b\357\277\275[.]asc')" "$bin" batch plan utf8.toml --json
+  refuse 0 "$(printf 'b\357\277\275[.]asc')" "$bin" terrain info --json "dems/$name.asc"
   ;;
 lock)
   batch one '[[viewpoints]]' 'count = 1'

@@ -43,3 +43,22 @@ endforeach()
 set_tests_properties(hostile_exemplar_dev_zero hostile_exemplar_fifo hostile_exemplar_huge hostile_exemplar_damaged
                      hostile_noise_tiles_preview_unwritable hostile_texture_tiles_preview_unwritable
                      PROPERTIES LABELS "cli;hostile" TIMEOUT 60)
+
+# `--out ""`: tiling exited 0 writing nothing; tiles tried to make a folder ''.
+add_test(NAME hostile_tiling_empty_out COMMAND ${cli_refuse} 2 "--out: is empty; name a file or folder"
+         sh -c "exec \"$0\" tiling --set cohen8 --size 4x4 --out ''" "${WANGSCAPE_BIN}")
+add_test(NAME hostile_tiles_empty_out COMMAND ${cli_refuse} 2 "--out: is empty; name a file or folder"
+         sh -c "exec \"$0\" noise tiles --out ''" "${WANGSCAPE_BIN}")
+set_tests_properties(hostile_tiling_empty_out hostile_tiles_empty_out PROPERTIES LABELS "cli;hostile" TIMEOUT 60)
+
+# A rebuild swaps the folders in one exchange (renameat2 RENAME_EXCHANGE), so a reader or a kill
+# at any moment finds the old build or the new one: never a rename of the folder aside first.
+find_program(STRACE strace)
+if(STRACE)
+  tiny_scene("${hostile_dir}/swap.toml" EXPORTS "povray = true")
+  add_test(NAME hostile_rebuild_swaps_in_one_exchange
+           COMMAND ${cli_refuse} 0 "renameat2\\(AT_FDCWD, \".*/\\.swap\\.partial-[0-9]+\", AT_FDCWD, \".*/swap\", RENAME_EXCHANGE\\) = 0"
+           sh -c "rm -rf \"$1/swap\" && \"$0\" --quiet build \"$1/swap.toml\" --out \"$1/swap\" && \"$2\" -f -e trace=rename,renameat,renameat2 \"$0\" --quiet build \"$1/swap.toml\" --out \"$1/swap\" 2>&1 | grep -v '\\.old-' | grep -E 'rename.*/swap\"' && [ -s \"$1/swap/scene.toml\" ] && ! ls -a \"$1\" | grep -E '^\\.swap\\.'"
+           "${WANGSCAPE_BIN}" "${hostile_dir}" "${STRACE}")
+  set_tests_properties(hostile_rebuild_swaps_in_one_exchange PROPERTIES LABELS "cli;hostile" TIMEOUT 60)
+endif()
