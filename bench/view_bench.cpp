@@ -14,7 +14,7 @@
 //   64 samples per pixel), beside the exact geometry at one sample per pixel: PSNR, SSIM, holes
 //   and the gaps (exact minus view).
 // BM_ViewRayCast/CAMERA/W/H: the anchor, `view --engine embree`: the same frame ray cast whole
-//   (LdiRenderer::set_ray_cast: a primary and a sun-shadow ray per pixel in packets of 16, the
+//   (ViewEngine::embree: a primary and a sun-shadow ray per pixel in packets of 16, the
 //   near field's shading, both threads), with the counters of BM_ViewFrame.
 // BM_RayCastAgainstTruth/CAMERA/640/360: the ray-cast frame against the truth, as above.
 // BM_EmbreeOneSample/CAMERA/W/H: the reference renderer at one sample per pixel with the same
@@ -81,7 +81,7 @@ void measure_frames(benchmark::State& state, bool ray_cast) {
   const auto world = default_world();
   LdiRenderer renderer(world, int(state.range(1)), int(state.range(2)));
   renderer.set_near_field(ray_cast ? 0 : double(state.range(3)) / 100);
-  renderer.set_ray_cast(ray_cast);
+  renderer.set_engine(ray_cast ? ViewEngine::embree : ViewEngine::ldi);
   const ViewCamera camera = bench_camera(*world, int(state.range(0)));
   renderer.render(camera);  // the near field's (or the ray cast's) scene is made on the first frame
   std::uint64_t depth_pixels = 0, tiles = 0, near_tiles = 0, near_rays = 0;
@@ -116,7 +116,7 @@ void against_truth(benchmark::State& state, bool ray_cast) {
   const auto world = default_world();
   LdiRenderer renderer(world, int(state.range(1)), int(state.range(2)));
   renderer.set_near_field(ray_cast ? 0 : double(state.range(3)) / 100);
-  renderer.set_ray_cast(ray_cast);
+  renderer.set_engine(ray_cast ? ViewEngine::embree : ViewEngine::ldi);
   const ViewCamera camera = bench_camera(*world, int(state.range(0)));
   for (auto _ : state) {
     renderer.render(camera);

@@ -22,7 +22,7 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
   auto* sub = app.add_subcommand("view", "Walk through a scene folder's field in a window, or render its LDI frames");
   struct Options {
     ViewRequest request;
-    std::string dir, camera, look_at, size, engine = "ldi";
+    std::string dir, camera, look_at, size, engine = "auto";
   };
   auto o = std::make_shared<Options>();
   sub->add_option("dir", o->dir, "Scene folder written by `wangscape build` with [exports] ldi")->required();
@@ -59,9 +59,10 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
                   "from LDIs (default 8; 0: LDIs everywhere)")
       ->check(finite_number());
   sub->add_option("--engine", o->engine,
-                  "ldi: the real-time view (LDIs, the near field ray traced); embree: every pixel ray cast "
-                  "(one primary and one sun-shadow ray, the anchor the view is measured against)")
-      ->check(CLI::IsMember({"ldi", "embree"}));
+                  "auto (default): per frame, rays where the near field already fills half the frame (in "
+                  "the field), else LDIs; ldi: LDIs beyond the near field; embree: every pixel ray cast (one "
+                  "primary and one sun-shadow ray, the anchor the view is measured against)")
+      ->check(CLI::IsMember({"auto", "ldi", "embree"}));
   set_help_footer(sub,
                   "--out: one PNG; --path with --frames: the folder of frames (and path.mp4); --stats and "
                   "--compare: figures on stdout; the window's F12 screenshots and --record's path file in the "
@@ -73,7 +74,9 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
     ViewRequest& r = o->request;
     r.dir = o->dir;
     r.quiet = global.quiet;
-    r.ray_cast = o->engine == "embree";
+    r.engine = o->engine == "embree" ? ViewEngine::embree
+               : o->engine == "ldi"  ? ViewEngine::ldi
+                                     : ViewEngine::automatic;
     if (!o->camera.empty() && !(r.camera = parse_triple(o->camera, true)))
       throw CLI::ValidationError("--camera", "'" + o->camera + "' is not E,N or E,N,H in meters");
     if (!o->look_at.empty() && !(r.look_at = parse_triple(o->look_at, false)))

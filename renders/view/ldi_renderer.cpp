@@ -35,6 +35,8 @@ constexpr float kSplatScale = 1.5f;        // splat side over the projected dept
 constexpr int kMaxSplat = 24;              // pixels
 constexpr float kLevelBlendStart = 0.75f;  // of a level's range: where dithering into the next level starts
 constexpr float kDirectionBand = 0.08f;    // of the angle between two directions: dithered either side of the bisector
+// ViewEngine::automatic samples the near field with a grid of this many rays across and down.
+constexpr int kShareGridX = 32, kShareGridY = 18;
 constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
 // The near field: how far a flower reaches from its stem (meters), and how much further out the
 // flowers are kept as sun occluders (a low sun's shadows fall into the near field from there).
@@ -122,7 +124,7 @@ struct LdiRenderer::Impl {
   // The near field: the real flowers of the tiles around the eye, ray traced (made on the first
   // frame that needs it; its flowers placed again only when the eye's window of tiles changes).
   std::unique_ptr<SceneTracer> near_tracer;
-  std::unique_ptr<SceneTracer> whole_tracer;  // set_ray_cast: the whole scene
+  std::unique_ptr<SceneTracer> whole_tracer;  // ViewEngine::embree and automatic: the whole scene
   std::optional<Extent> near_window;
   std::atomic<std::uint64_t> near_rays{0};
   std::vector<float> block_far;  // the occlusion test's blocks: the farthest depth in each
@@ -130,6 +132,13 @@ struct LdiRenderer::Impl {
   std::array<float, 3> to_camera(double x, double y, double z) const {
     const V3 d{x - eye[0], y - eye[1], z - eye[2]};
     return {float(dot(d, right)), float(dot(d, up)), float(dot(d, forward))};
+  }
+  // The unit direction (ENU) of the ray through the screen point (x, y) (pixel centres at +0.5).
+  V3 ray_through(double x, double y) const {
+    const double ray_right = (x - double(cx)) / double(focal), ray_up = -(y - double(cy)) / double(focal);
+    V3 d;
+    for (std::size_t c = 0; c < 3; ++c) d[c] = forward[c] + ray_right * right[c] + ray_up * up[c];
+    return normalized(d);
   }
   std::array<float, 3> direction_to_camera(double x, double y, double z) const {
     const V3 d{x, y, z};
@@ -734,21 +743,30 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   begin_frame(camera);
-  if (ray_cast_) {
-    // The anchor: the same frame by rays alone (the near field's shading over the whole frame).
-    stats_ = ViewFrameStats{};
-    stats_.near_rays = ray_cast_frame();
+  const auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
+  const auto ray_cast_rest = [&](std::uint64_t near_rays, Clock::time_point traced_from) {
+    stats_.near_rays = near_rays + ray_cast_frame();
+    stats_.ray_cast = true;
     const auto traced = Clock::now();
     resolve();
     const auto end = Clock::now();
-    const auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
-    stats_.phase_ms = {0, 0, 0, ms(start, traced), ms(traced, end)};
+    stats_.phase_ms = {ms(start, traced_from), 0, 0, ms(traced_from, traced), ms(traced, end)};
     stats_.frame_ms = ms(start, end);
+  };
+  if (engine_ == ViewEngine::embree) {
+    stats_ = ViewFrameStats{};
+    ray_cast_rest(0, start);
     return stats_;
   }
   choose_tiles();
   const auto tiles_done = Clock::now();
   // The near field first: what it hides is neither warped nor shaded after it.
+  stats_.ray_cast = false;
+  if (engine_ == ViewEngine::automatic && stats_.near_tiles && near_share() >= kRayCastShare) {
+    stats_.depth_pixels = 0;
+    ray_cast_rest(0, tiles_done);
+    return stats_;
+  }
   stats_.near_rays = stats_.near_tiles ? trace_near_field() : 0;
   stats_.tiles_occluded = stats_.near_tiles ? cull_occluded_tiles() : 0;
   const auto near_done = Clock::now();
@@ -758,7 +776,6 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   const auto terrain_done = Clock::now();
   resolve();
   const auto end = Clock::now();
-  const auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
   stats_.phase_ms = {ms(start, tiles_done), ms(near_done, ldis_done), ms(ldis_done, terrain_done),
                      ms(tiles_done, near_done), ms(terrain_done, end)};
   stats_.depth_pixels = impl_->depth_pixels;
@@ -825,7 +842,38 @@ std::uint64_t LdiRenderer::cull_occluded_tiles() {
 // than the near tiles reach, traced against the real flowers of the tiles around the
 // eye and the terrain; a hit is shaded by the one shading model (sun with its shadow ray, the open
 // sky) and written into the z-buffer. Returns the rays cast (primary and shadow).
+// How far along the unit ray `d` it is `reach` meters across the ground (a ray straight down
+// meets the terrain first: unlimited).
+static double reach_along(const V3& d, double reach) {
+  const double across = std::hypot(d[0], d[1]);
+  return across > 1e-9 ? reach / across : std::numeric_limits<double>::infinity();
+}
+
 std::uint64_t LdiRenderer::trace_near_field() {
+  const double reach = place_near_field();
+  return cast_rays(*impl_->near_tracer, reach);
+}
+
+// ViewEngine::automatic: the share of a coarse grid of pixels (kShareGridX x kShareGridY) whose
+// rays the near field's flowers and ground stop: where it is high the eye stands in the field.
+double LdiRenderer::near_share() {
+  Impl& m = *impl_;
+  const double reach = place_near_field();
+  const SceneTracer& tracer = *m.near_tracer;
+  const V3 from{m.eye[0] - tracer.origin()[0], m.eye[1] - tracer.origin()[1], m.eye[2] - tracer.origin()[2]};
+  int stopped = 0;
+  for (int gy = 0; gy < kShareGridY; ++gy)
+    for (int gx = 0; gx < kShareGridX; ++gx) {
+      const V3 d = m.ray_through((gx + 0.5) * m.width / kShareGridX, (gy + 0.5) * m.height / kShareGridY);
+      stopped += tracer.intersect(from, d, float(reach_along(d, reach))).has_value();
+    }
+  tracer.check("sampling the near field");
+  return double(stopped) / (kShareGridX * kShareGridY);
+}
+
+// The near field's tracer holds the flowers of the tiles around the eye; returns how far (across
+// the ground) its rays reach.
+double LdiRenderer::place_near_field() {
   Impl& m = *impl_;
   const ViewWorld& world = *world_;
   const SceneField& field = *world.scene().field;
@@ -846,11 +894,11 @@ std::uint64_t LdiRenderer::trace_near_field() {
     m.near_tracer->set_flowers([&](const InstanceSink& sink) { field.place_in(window, sink); });
     m.near_window = window;
   }
-  return cast_rays(*m.near_tracer, reach);
+  return reach;
 }
 
-// The whole frame ray cast (set_ray_cast): every flower of the scene and the terrain in one
-// Embree scene, built on the first frame.
+// The frame ray cast (ViewEngine::embree, or the rest of it for automatic): every flower of the scene and the terrain
+// in one Embree scene, built on the first frame.
 std::uint64_t LdiRenderer::ray_cast_frame() {
   Impl& m = *impl_;
   if (!m.whole_tracer) {
@@ -894,16 +942,9 @@ std::uint64_t LdiRenderer::cast_rays(const SceneTracer& tracer, double reach) {
           const int px = bx * 4 + (l & 3), py = by * 4 + (l >> 2);
           valid[l] = false;
           if (px >= m.width || py >= m.height) continue;
-          const double ray_right = (double(px) + 0.5 - double(m.cx)) / double(m.focal);
-          const double ray_up = -(double(py) + 0.5 - double(m.cy)) / double(m.focal);
-          for (std::size_t c = 0; c < 3; ++c) d[l][c] = m.forward[c] + ray_right * m.right[c] + ray_up * m.up[c];
-          d[l] = normalized(d[l]);
+          d[l] = m.ray_through(double(px) + 0.5, double(py) + 0.5);
           along[l] = dot(d[l], m.forward);  // camera depth per meter of ray
-          // As far as the near tiles reach across the ground; a ray straight down meets the
-          // terrain first.
-          const double across = std::hypot(d[l][0], d[l][1]);
-          const double limit = across > 1e-9 ? reach / across : std::numeric_limits<double>::infinity();
-          tfar[l] = float(limit);
+          tfar[l] = float(reach_along(d[l], reach));
           valid[l] = true;
           ++lanes;
         }

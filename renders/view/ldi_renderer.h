@@ -56,12 +56,24 @@ struct ViewFrameStats {
   std::uint64_t near_tiles = 0;      // in the frustum or not, within the near field: ray traced
   std::uint64_t near_rays = 0;       // rays the near field cast (primary and shadow)
   std::uint64_t tiles_occluded = 0;  // LDI tiles not warped: wholly behind the near field
+  bool ray_cast = false;             // the frame beyond the near field was ray cast (ViewEngine)
   // Tiles drawn per level (each at its nearer level when two are dithered); the last entry
   // counts those beyond the last level, drawn as the far-field color.
   std::vector<std::uint64_t> levels;
 };
 
 class SceneTracer;
+
+enum class ViewEngine {
+  ldi,        // LDIs beyond the near field, the terrain rasterized
+  embree,     // the whole frame ray cast (the near field's rays and shading over every pixel, against
+              // every flower of the scene): the anchor the LDI frame is measured against
+  automatic,  // per frame: the whole frame ray cast when the near field's flowers and ground stop at
+              // least kRayCastShare of a coarse grid of its rays (the eye inside the field, where
+              // rays end soon and LDIs are slower than rays: docs/viewer.md), else as ldi
+};
+// The share of the near field's rays that must stop for ViewEngine::automatic to ray cast.
+inline constexpr double kRayCastShare = 0.5;
 
 class LdiRenderer {
  public:
@@ -89,10 +101,9 @@ class LdiRenderer {
   // over the LDIs and the terrain beyond. 0: LDIs everywhere. Throws Error outside
   // 0 .. kMaxNearField.
   void set_near_field(double meters);
-  // On: the whole frame is ray cast instead (the near field's rays and shading over every pixel,
-  // against every flower of the scene: no LDI, no rasterized terrain). The anchor the LDI frame
-  // is measured against (`view --engine embree`); the first frame builds the scene's Embree BVH.
-  void set_ray_cast(bool on) { ray_cast_ = on; }
+  // How frames are drawn (ViewEngine); the first frame that ray casts beyond the near field
+  // builds the whole scene's Embree BVH.
+  void set_engine(ViewEngine engine) { engine_ = engine; }
   // Draws only the placed tiles whose entry is nonzero (the terrain and sky as always); empty:
   // every tile. For tests and for looking at single tiles.
   void set_tile_mask(std::vector<std::uint8_t> mask) { mask_ = std::move(mask); }
@@ -113,7 +124,7 @@ class LdiRenderer {
   ViewFrameStats stats_;
   double detail_ = 1;
   double near_field_ = 0;
-  bool ray_cast_ = false;
+  ViewEngine engine_ = ViewEngine::ldi;
   // The frame's named steps (docs/viewer.md, "What a frame does"), in the order render() runs them.
   void begin_frame(const ViewCamera& camera);
   void choose_tiles();
@@ -122,6 +133,8 @@ class LdiRenderer {
   void resolve();
   std::uint64_t trace_near_field();
   std::uint64_t ray_cast_frame();
+  double place_near_field();
+  double near_share();
   std::uint64_t cast_rays(const SceneTracer& tracer, double reach);
   std::uint64_t cull_occluded_tiles();
 };

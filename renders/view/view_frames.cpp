@@ -76,7 +76,7 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest&
   LdiRenderer renderer(world, width, height);
   renderer.set_detail(request.detail);
   renderer.set_near_field(request.near_field);
-  renderer.set_ray_cast(request.ray_cast);
+  renderer.set_engine(request.engine);
   const auto start = std::chrono::steady_clock::now();
   for (long long k = 0; k < frames; ++k) {
     const PathCamera at = camera_along(path, path.keys.front().time + double(k) / fps, ground, request.path);
@@ -220,7 +220,8 @@ std::string view_stats_json(const ViewFrameStats& stats) {
   return "{\"frame_ms\": " + number_text(stats.frame_ms) + ", \"fps\": " + number_text(fps) +
          ", \"depth_pixels\": " + std::to_string(stats.depth_pixels) +
          ", \"tiles\": {\"drawn\": " + std::to_string(stats.tiles_drawn) +
-         ", \"culled\": " + std::to_string(stats.tiles_culled) + "}, \"levels\": [" + levels + "]}";
+         ", \"culled\": " + std::to_string(stats.tiles_culled) + "}, \"levels\": [" + levels +
+         "], \"ray_cast\": " + (stats.ray_cast ? "true" : "false") + "}";
 }
 
 void check_view_request(const ViewRequest& request) {
@@ -269,7 +270,7 @@ int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewReq
   LdiRenderer renderer(world, width, height);
   renderer.set_detail(request.detail);
   renderer.set_near_field(request.near_field);
-  renderer.set_ray_cast(request.ray_cast);
+  renderer.set_engine(request.engine);
   const ViewFrameStats stats =
       request.stats ? measure_view(renderer, camera, request.repeat ? request.repeat : 200) : renderer.render(camera);
   if (!request.out.empty()) {
@@ -292,6 +293,7 @@ int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewReq
                   stats.frame_ms > 0 ? 1000 / stats.frame_ms : 0.0, request.repeat ? request.repeat : 200);
       std::printf("of it: tiles %.2f ms, LDIs %.2f ms, terrain %.2f ms, near field %.2f ms, sky and resolve %.2f ms\n",
                   stats.phase_ms[0], stats.phase_ms[1], stats.phase_ms[2], stats.phase_ms[3], stats.phase_ms[4]);
+      if (stats.ray_cast) std::printf("drawn by: rays (the whole frame ray cast, --engine)\n");
       std::printf("near field: %llu tiles, %llu rays; %llu LDI tiles behind it not drawn\n",
                   static_cast<unsigned long long>(stats.near_tiles), static_cast<unsigned long long>(stats.near_rays),
                   static_cast<unsigned long long>(stats.tiles_occluded));

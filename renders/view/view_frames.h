@@ -30,17 +30,17 @@ struct ViewRequest {
   std::filesystem::path path;        // keyframes JSON
   std::filesystem::path frames_dir;  // where the path's frames go
   double path_fps = 24;
-  std::string script;                        // window: scripted input (docs/viewer.md)
-  std::filesystem::path record;              // window: where K's keyframes go (empty: path.json)
-  bool compare = false;                      // also ray trace the frame with Embree and compare
-  std::filesystem::path diff;                // with compare: the difference image
-  int truth_samples = kDefaultTruthSamples;  // with compare: the truth's samples per pixel
-  std::filesystem::path truth_out;           // with compare: where the truth image goes (empty: none)
-  std::filesystem::path side_by_side;        // with compare: the frame beside the truth (empty: none)
-  int threads = 0;                           // 0 = all cores
-  double detail = 1;                         // LdiRenderer::set_detail
-  double near_field = kDefaultNearField;     // LdiRenderer::set_near_field (meters; 0: LDIs only)
-  bool ray_cast = false;                     // --engine embree: LdiRenderer::set_ray_cast
+  std::string script;                         // window: scripted input (docs/viewer.md)
+  std::filesystem::path record;               // window: where K's keyframes go (empty: path.json)
+  bool compare = false;                       // also ray trace the frame with Embree and compare
+  std::filesystem::path diff;                 // with compare: the difference image
+  int truth_samples = kDefaultTruthSamples;   // with compare: the truth's samples per pixel
+  std::filesystem::path truth_out;            // with compare: where the truth image goes (empty: none)
+  std::filesystem::path side_by_side;         // with compare: the frame beside the truth (empty: none)
+  int threads = 0;                            // 0 = all cores
+  double detail = 1;                          // LdiRenderer::set_detail
+  double near_field = kDefaultNearField;      // LdiRenderer::set_near_field (meters; 0: LDIs only)
+  ViewEngine engine = ViewEngine::automatic;  // --engine: LdiRenderer::set_engine
   bool quiet = false;
 };
 

@@ -309,7 +309,7 @@ void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& s
     auto made = std::make_unique<LdiRenderer>(world, width, height);
     made->set_detail(options.detail);
     made->set_near_field(options.near_field);
-    made->set_ray_cast(options.ray_cast);
+    made->set_engine(options.engine);
     return made;
   };
   auto renderer = make_renderer(options.width, options.height);

@@ -29,7 +29,7 @@ int run_view(const ViewRequest& request) {
   options.quiet = request.quiet;
   options.detail = request.detail;
   options.near_field = request.near_field;
-  options.ray_cast = request.ray_cast;
+  options.engine = request.engine;
   run_view_window(world, camera, options);
   return 0;
 }

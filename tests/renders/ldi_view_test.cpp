@@ -292,12 +292,12 @@ TEST(ldi_view_ray_cast, IsTheExactOneSampleFrameOnAnyThreadCount) {
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
     LdiRenderer renderer(field(), 96, 64);
-    renderer.set_ray_cast(true);
+    renderer.set_engine(ViewEngine::embree);
     renderer.render(camera);
     one = renderer.image().pixels;
   }
   LdiRenderer renderer(field(), 96, 64);
-  renderer.set_ray_cast(true);
+  renderer.set_engine(ViewEngine::embree);
   const ViewFrameStats& stats = renderer.render(camera);
   EXPECT_EQ(renderer.image().pixels, one);
   EXPECT_EQ(stats.depth_pixels, 0u);
@@ -306,6 +306,26 @@ TEST(ldi_view_ray_cast, IsTheExactOneSampleFrameOnAnyThreadCount) {
   EXPECT_GT(v.comparison.psnr_db, v.exact.psnr_db - 0.5) << v.comparison.psnr_db << " against " << v.exact.psnr_db;
   EXPECT_GT(v.comparison.ssim, v.exact.ssim - 0.02);
   EXPECT_LE(v.comparison.holes.holes, v.exact.holes.holes + 8) << v.exact.holes.holes;
+}
+
+// ViewEngine::automatic: rays where the eye stands in the field (the near field stops most rays),
+// LDIs from outside it; each frame byte for byte the one of the engine it chose.
+TEST(ldi_view_automatic, RaysInTheFieldLdisFromOutside) {
+  const ViewCamera inside = looking(0.3, -7.2, 1.3, 0.3, -4, 1.0, 60);
+  const ViewCamera outside = looking(0, -16, 2.2, 0, 0, 1.2, 60);
+  const auto frame = [](ViewEngine engine, const ViewCamera& camera, bool* ray_cast) {
+    LdiRenderer renderer(field(), 96, 64);
+    renderer.set_near_field(6);
+    renderer.set_engine(engine);
+    const ViewFrameStats& stats = renderer.render(camera);
+    if (ray_cast) *ray_cast = stats.ray_cast;
+    return renderer.image().pixels;
+  };
+  bool chose_rays = false;
+  EXPECT_EQ(frame(ViewEngine::automatic, inside, &chose_rays), frame(ViewEngine::embree, inside, nullptr));
+  EXPECT_TRUE(chose_rays);
+  EXPECT_EQ(frame(ViewEngine::automatic, outside, &chose_rays), frame(ViewEngine::ldi, outside, nullptr));
+  EXPECT_FALSE(chose_rays);
 }
 
 }  // namespace
