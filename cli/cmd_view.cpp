@@ -58,6 +58,9 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
                   "Near field, meters: tiles this close are ray traced from their real flowers instead of drawn "
                   "from LDIs (default 8; 0: LDIs everywhere)")
       ->check(finite_number());
+  sub->add_option("--spp", o->request.samples,
+                  "Samples per pixel of each frame: N jittered frames averaged (anti-aliased offline frames and "
+                  "paths; with --compare the exact image at N samples is the one to match; default 1)");
   sub->add_option("--engine", o->engine,
                   "auto (default): per frame, rays where the near field already fills half the frame (in "
                   "the field), else LDIs; ldi: LDIs beyond the near field; embree: every pixel ray cast (one "

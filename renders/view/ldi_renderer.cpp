@@ -13,6 +13,7 @@
 #include <limits>
 #include <numbers>
 
+#include "core/color.h"
 #include "core/error.h"
 #include "core/vecmath.h"
 #include "exporters/scene_folder.h"
@@ -127,7 +128,8 @@ struct LdiRenderer::Impl {
   std::unique_ptr<SceneTracer> whole_tracer;  // ViewEngine::embree and automatic: the whole scene
   std::optional<Extent> near_window;
   std::atomic<std::uint64_t> near_rays{0};
-  std::vector<float> block_far;  // the occlusion test's blocks: the farthest depth in each
+  std::vector<float> accumulated;  // set_samples: the samples' sum, linear light
+  std::vector<float> block_far;    // the occlusion test's blocks: the farthest depth in each
 
   std::array<float, 3> to_camera(double x, double y, double z) const {
     const V3 d{x - eye[0], y - eye[1], z - eye[2]};
@@ -329,8 +331,8 @@ void LdiRenderer::begin_frame(const ViewCamera& camera) {
   m.tan_x = float(std::tan(camera.fov_degrees * std::numbers::pi / 360));
   m.focal = float(m.width) / 2 / m.tan_x;
   m.tan_y = float(m.height) / 2 / m.focal;
-  m.cx = float(m.width) / 2;
-  m.cy = float(m.height) / 2;
+  m.cx = float(m.width) / 2 + subpixel_[0];
+  m.cy = float(m.height) / 2 + subpixel_[1];
 
   std::fill(m.zbuffer.begin(), m.zbuffer.end(), kEmpty);
   m.depth_pixels = 0;
@@ -739,7 +741,42 @@ void LdiRenderer::resolve() {
   });
 }
 
+void LdiRenderer::set_samples(int samples) {
+  if (samples < 1 || samples > kMaxViewSamples)
+    throw Error("view: " + std::to_string(samples) + " samples per pixel; expected 1 .. " +
+                std::to_string(kMaxViewSamples));
+  samples_ = samples;
+}
+
 const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
+  if (samples_ <= 1) return render_sample(camera);
+  // Jittered samples (the R2 sequence: the first at the pixel centres), averaged in linear light.
+  std::vector<float>& sum = impl_->accumulated;
+  sum.assign(image_.pixels.size(), 0.0f);
+  std::array<float, 256> linear{};
+  for (std::size_t v = 0; v < 256; ++v) linear[v] = srgb8_to_linear(std::uint8_t(v));
+  ViewFrameStats total;
+  for (int k = 0; k < samples_; ++k) {
+    const double jx = std::fmod(0.5 + k * 0.7548776662466927, 1.0) - 0.5;
+    const double jy = std::fmod(0.5 + k * 0.5698402909980532, 1.0) - 0.5;
+    subpixel_ = {float(jx), float(jy)};
+    const ViewFrameStats& one = render_sample(camera);
+    for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += linear[image_.pixels[i]];
+    total.frame_ms += one.frame_ms;
+    for (std::size_t p = 0; p < total.phase_ms.size(); ++p) total.phase_ms[p] += one.phase_ms[p];
+    total.depth_pixels += one.depth_pixels;
+    total.near_rays += one.near_rays;
+  }
+  subpixel_ = {0, 0};
+  for (std::size_t i = 0; i < sum.size(); ++i) image_.pixels[i] = linear_to_srgb8(sum[i] / float(samples_));
+  stats_.frame_ms = total.frame_ms;
+  stats_.phase_ms = total.phase_ms;
+  stats_.depth_pixels = total.depth_pixels;
+  stats_.near_rays = total.near_rays;
+  return stats_;
+}
+
+const ViewFrameStats& LdiRenderer::render_sample(const ViewCamera& camera) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   begin_frame(camera);

@@ -72,6 +72,7 @@ enum class ViewEngine {
               // least kRayCastShare of a coarse grid of its rays (the eye inside the field, where
               // rays end soon and LDIs are slower than rays: docs/viewer.md), else as ldi
 };
+inline constexpr int kMaxViewSamples = 1024;
 // The share of the near field's rays that must stop for ViewEngine::automatic to ray cast.
 inline constexpr double kRayCastShare = 0.5;
 
@@ -104,6 +105,12 @@ class LdiRenderer {
   // How frames are drawn (ViewEngine); the first frame that ray casts beyond the near field
   // builds the whole scene's Embree BVH.
   void set_engine(ViewEngine engine) { engine_ = engine; }
+  // Samples per pixel: render() draws this many frames, each moved by a sub-pixel offset (a
+  // low-discrepancy sequence whose first is the pixel centres), and averages them in linear light
+  // (anti-aliased offline frames); the statistics are the samples' sums. Throws Error outside
+  // 1 .. kMaxViewSamples.
+  void set_samples(int samples);
+  int samples() const { return samples_; }
   // Draws only the placed tiles whose entry is nonzero (the terrain and sky as always); empty:
   // every tile. For tests and for looking at single tiles.
   void set_tile_mask(std::vector<std::uint8_t> mask) { mask_ = std::move(mask); }
@@ -125,6 +132,9 @@ class LdiRenderer {
   double detail_ = 1;
   double near_field_ = 0;
   ViewEngine engine_ = ViewEngine::ldi;
+  int samples_ = 1;
+  std::array<float, 2> subpixel_{0, 0};  // the sample's offset, pixels
+  const ViewFrameStats& render_sample(const ViewCamera& camera);
   // The frame's named steps (docs/viewer.md, "What a frame does"), in the order render() runs them.
   void begin_frame(const ViewCamera& camera);
   void choose_tiles();

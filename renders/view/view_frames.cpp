@@ -77,6 +77,7 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest&
   renderer.set_detail(request.detail);
   renderer.set_near_field(request.near_field);
   renderer.set_engine(request.engine);
+  renderer.set_samples(request.samples);
   const auto start = std::chrono::steady_clock::now();
   for (long long k = 0; k < frames; ++k) {
     const PathCamera at = camera_along(path, path.keys.front().time + double(k) / fps, ground, request.path);
@@ -113,7 +114,7 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest&
 // --compare: the same camera ray traced by the Embree reference (the truth, and the exact
 // geometry at one sample per pixel), and the figures.
 void print_comparison(const ViewWorld& world, const LdiRenderer& renderer, const ViewCamera& camera,
-                      const ViewRequest& request) {
+                      const ViewRequest& request, const ViewFrameStats& frame) {
   const ViewComparison v = compare_with_reference(world, renderer, camera, request.truth_samples);
   const ImageComparison& c = v.comparison;
   const ImageComparison& e = v.exact;
@@ -124,22 +125,23 @@ void print_comparison(const ViewWorld& world, const LdiRenderer& renderer, const
     std::printf(
         "{\"psnr_db\": %s, \"ssim\": %s, \"hole_share\": %s, \"holes\": %llu, \"reference_seconds\": %s, "
         "\"truth_samples\": %d, \"exact_psnr_db\": %s, \"exact_ssim\": %s, \"exact_hole_share\": %s, "
-        "\"psnr_gap_db\": %s, \"ssim_gap\": %s, \"exact_seconds\": %s}\n",
+        "\"psnr_gap_db\": %s, \"ssim_gap\": %s, \"exact_seconds\": %s, \"samples\": %d, \"frame_ms\": %s}\n",
         number_text(c.psnr_db).c_str(), number_text(c.ssim).c_str(), number_text(c.holes.share).c_str(),
         static_cast<unsigned long long>(c.holes.holes), number_text(v.reference.seconds).c_str(),
         v.reference.samples_per_pixel, number_text(e.psnr_db).c_str(), number_text(e.ssim).c_str(),
         number_text(e.holes.share).c_str(), number_text(e.psnr_db - c.psnr_db).c_str(),
-        number_text(e.ssim - c.ssim).c_str(), number_text(v.one_sample.seconds).c_str());
+        number_text(e.ssim - c.ssim).c_str(), number_text(v.one_sample.seconds).c_str(), renderer.samples(),
+        number_text(frame.frame_ms).c_str());
   else
     std::printf(
-        "PSNR: %.2f dB (the exact geometry at one sample per pixel: %.2f dB, a gap of %.2f dB)\n"
+        "PSNR: %.2f dB (the exact geometry at %d sample(s) per pixel: %.2f dB, a gap of %.2f dB)\n"
         "SSIM: %.4f (exact: %.4f, a gap of %.4f)\n"
         "holes: %.4f %% of the pixels (%llu; %.4f %% of the truth's covered)\n"
-        "truth: %d samples per pixel, %.2f s%s%s; one-sample exact image: %.2f s\n",
-        c.psnr_db, e.psnr_db, e.psnr_db - c.psnr_db, c.ssim, e.ssim, e.ssim - c.ssim, 100 * c.holes.share,
-        static_cast<unsigned long long>(c.holes.holes), 100 * c.holes.share_of_covered, v.reference.samples_per_pixel,
-        v.reference.seconds, request.truth_out.empty() ? "" : ", saved to ", request.truth_out.string().c_str(),
-        v.one_sample.seconds);
+        "truth: %d samples per pixel, %.2f s%s%s; exact image: %.2f s; the frame: %.1f ms\n",
+        c.psnr_db, renderer.samples(), e.psnr_db, e.psnr_db - c.psnr_db, c.ssim, e.ssim, e.ssim - c.ssim,
+        100 * c.holes.share, static_cast<unsigned long long>(c.holes.holes), 100 * c.holes.share_of_covered,
+        v.reference.samples_per_pixel, v.reference.seconds, request.truth_out.empty() ? "" : ", saved to ",
+        request.truth_out.string().c_str(), v.one_sample.seconds, frame.frame_ms);
   if (!request.quiet)
     for (const auto& [file, what] :
          {std::pair{request.truth_out, "the reference"},
@@ -158,7 +160,7 @@ ViewComparison compare_with_reference(const ViewWorld& world, const LdiRenderer&
   options.samples_per_pixel = samples_per_pixel;
   options.shading = world.shading();
   const ReferenceImage truth = render_reference(world.scene(), options);
-  options.samples_per_pixel = 1;
+  options.samples_per_pixel = renderer.samples();
   const ReferenceImage one_sample = render_reference(world.scene(), options);
   const CoverageMask truth_mask = coverage_mask(truth.coverage, renderer.width(), renderer.height());
   CoverageMask view_mask{renderer.width(), renderer.height(), {}};
@@ -241,6 +243,9 @@ void check_view_request(const ViewRequest& request) {
   if (!(request.near_field >= 0 && request.near_field <= kMaxNearField))
     throw Error("--near " + number_text(request.near_field) + ": expected 0 .. " + number_text(kMaxNearField) +
                 " meters (0: LDIs everywhere)");
+  if (request.samples < 1 || request.samples > kMaxViewSamples)
+    throw Error("--spp " + std::to_string(request.samples) + ": expected 1 .. " + std::to_string(kMaxViewSamples) +
+                " samples per pixel");
   if (request.truth_samples < 1 || request.truth_samples > kMaxReferenceSamples)
     throw Error("--truth-spp " + std::to_string(request.truth_samples) + ": expected 1 .. " +
                 std::to_string(kMaxReferenceSamples) + " samples per pixel");
@@ -271,6 +276,7 @@ int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewReq
   renderer.set_detail(request.detail);
   renderer.set_near_field(request.near_field);
   renderer.set_engine(request.engine);
+  renderer.set_samples(request.samples);
   const ViewFrameStats stats =
       request.stats ? measure_view(renderer, camera, request.repeat ? request.repeat : 200) : renderer.render(camera);
   if (!request.out.empty()) {
@@ -279,7 +285,7 @@ int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewReq
       std::fprintf(stderr, "wangscape: wrote the frame (%dx%d) to %s\n", width, height, request.out.string().c_str());
   }
   if (request.compare) {
-    print_comparison(*world, renderer, camera, request);
+    print_comparison(*world, renderer, camera, request, stats);
     return 0;
   }
   if (request.stats) {

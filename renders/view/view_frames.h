@@ -41,6 +41,7 @@ struct ViewRequest {
   double detail = 1;                          // LdiRenderer::set_detail
   double near_field = kDefaultNearField;      // LdiRenderer::set_near_field (meters; 0: LDIs only)
   ViewEngine engine = ViewEngine::automatic;  // --engine: LdiRenderer::set_engine
+  int samples = 1;                            // --spp: LdiRenderer::set_samples
   bool quiet = false;
 };
 
@@ -63,13 +64,14 @@ int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewReq
 // The renderer's last frame (drawn from `camera`) against the truth, the Embree reference of the
 // same camera and size ray traced with the light the pack was shaded with at `samples_per_pixel`
 // (0: the scene's): PSNR, SSIM, holes (sky in the frame where the truth has geometry) and the
-// difference image. Also the exact geometry at one sample per pixel (the reference at 1 sample)
-// against the same truth: what any one-sample frame can reach, so the gap is the view's own.
+// difference image. Also the exact geometry at the renderer's samples per pixel (the reference at
+// 1 sample, or N with --spp N) against the same truth: what any frame of that many samples can
+// reach, so the gap is the view's own.
 struct ViewComparison {
   ImageComparison comparison;  // the renderer's frame against the truth
-  ImageComparison exact;       // the exact geometry at one sample per pixel against the truth
+  ImageComparison exact;       // the exact geometry at the renderer's samples per pixel against the truth
   ReferenceStats reference;    // the truth's figures (its time)
-  ReferenceStats one_sample;   // the one-sample exact image's
+  ReferenceStats one_sample;   // the exact image's (at the renderer's samples per pixel)
   ImageRgb8 truth;             // the truth image itself
 };
 ViewComparison compare_with_reference(const ViewWorld& world, const LdiRenderer& renderer, const ViewCamera& camera,

@@ -310,6 +310,7 @@ void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& s
     made->set_detail(options.detail);
     made->set_near_field(options.near_field);
     made->set_engine(options.engine);
+    made->set_samples(options.samples);
     return made;
   };
   auto renderer = make_renderer(options.width, options.height);

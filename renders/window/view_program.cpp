@@ -30,6 +30,7 @@ int run_view(const ViewRequest& request) {
   options.detail = request.detail;
   options.near_field = request.near_field;
   options.engine = request.engine;
+  options.samples = request.samples;
   run_view_window(world, camera, options);
   return 0;
 }

@@ -100,6 +100,7 @@ view_test(window_bad_script ${cli_expect} 1 "--script: 'W\\*x' has no frame coun
 # unknown engine is a usage error.
 view_sh_test(engine_embree "stddev" "\"$0\" --quiet view \"$1\" --engine embree --size 160x120 --out \"$1.embree.png\" && \"$2\" \"$3\" \"$1.embree.png\" 0.55 1.0 8"
   "${ground_variance}")
+view_test(bad_spp ${cli_expect} 1 "--spp 0: expected 1 .. 1024 samples per pixel" "${WANGSCAPE_BIN}" view "${view_folder}" --spp 0 --out "${view_dir}/x.png")
 view_test(bad_engine ${cli_expect} 2 "--engine" "${WANGSCAPE_BIN}" view "${view_folder}" --engine optix --out "${view_dir}/x.png")
 
 # Refusals: bad sizes and angles name the flag; a folder without a pack names tiles.ldi.

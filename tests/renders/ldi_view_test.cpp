@@ -328,5 +328,29 @@ TEST(ldi_view_automatic, RaysInTheFieldLdisFromOutside) {
   EXPECT_FALSE(chose_rays);
 }
 
+// --spp N: N frames at sub-pixel offsets averaged; the first sample is the one-sample frame, and
+// the average is closer to the truth than one sample (edges anti-aliased).
+TEST(ldi_view_samples, JitteredFramesAreAveragedAndCloserToTheTruth) {
+  const ViewCamera camera = looking(0.3, -7.2, 1.3, 0.3, -4, 1.0, 60);
+  for (const ViewEngine engine : {ViewEngine::ldi, ViewEngine::embree}) {
+    LdiRenderer one(field(), 96, 64), four(field(), 96, 64);
+    one.set_engine(engine);
+    four.set_engine(engine);
+    four.set_samples(1);
+    const std::uint64_t one_sample_pixels = one.render(camera).depth_pixels;
+    EXPECT_EQ(four.render(camera).depth_pixels, one_sample_pixels);
+    EXPECT_EQ(four.image().pixels, one.image().pixels);
+    four.set_samples(4);
+    EXPECT_EQ(four.render(camera).depth_pixels, 4 * one_sample_pixels);
+    EXPECT_NE(four.image().pixels, one.image().pixels);
+    const ViewComparison a = compare_with_reference(*field(), one, camera, 16);
+    const ViewComparison b = compare_with_reference(*field(), four, camera, 16);
+    EXPECT_GT(b.comparison.psnr_db, a.comparison.psnr_db + 0.5) << int(engine);
+  }
+  LdiRenderer renderer(field(), 8, 8);
+  EXPECT_THROW(renderer.set_samples(0), Error);
+  EXPECT_THROW(renderer.set_samples(kMaxViewSamples + 1), Error);
+}
+
 }  // namespace
 }  // namespace wangscape
