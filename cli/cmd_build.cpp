@@ -13,7 +13,9 @@ namespace wangscape::cli {
 
 bool chatty(const GlobalOptions& global) { return !global.quiet && ::isatty(STDERR_FILENO); }
 
-void run_build(const SceneConfig& config, const std::filesystem::path& out_dir, const GlobalOptions& global) {
+void run_build(const SceneConfig& config, const std::filesystem::path& out_dir, const GlobalOptions& global,
+               bool say_written) {
+  const WriteReport report(global.quiet || !say_written);
   SceneFolderObserver observer;
   std::unique_ptr<Progress> progress;
   if (chatty(global)) {
@@ -31,15 +33,14 @@ void run_build(const SceneConfig& config, const std::filesystem::path& out_dir, 
   const auto summary = build_scene(config, out_dir, {observer, ldi_terminal_observer(global, ldi_progress)});
   progress.reset();
   ldi_progress.reset();
-  if (chatty(global))
-    std::fprintf(stderr, "wangscape: wrote %s (%llu flowers, %.1f MB of POV-Ray files, %.1f s)\n",
-                 out_dir.string().c_str(), static_cast<unsigned long long>(summary.instances),
-                 double(summary.povray_bytes) / 1e6, summary.seconds);
-  if (const auto& f = summary.field; f && !global.quiet)
-    std::fprintf(stderr,
-                 "wangscape: tiles: %llu visible, %llu placed, %llu culled; flowers: %llu models, %llu proxies\n",
-                 (unsigned long long)f->visible_tiles, (unsigned long long)f->placed_tiles,
-                 (unsigned long long)f->culled_tiles, (unsigned long long)f->models, (unsigned long long)f->proxies);
+  // One line: the folder, its flowers (with camera-aware export: the tiles and how the flowers were
+  // drawn), its size and the time.
+  std::string details = std::to_string(summary.instances) + " flowers";
+  if (const auto& f = summary.field)
+    details = "tiles: " + std::to_string(f->visible_tiles) + " visible, " + std::to_string(f->placed_tiles) +
+              " placed, " + std::to_string(f->culled_tiles) + " culled; flowers: " + std::to_string(f->models) +
+              " models, " + std::to_string(f->proxies) + " proxies";
+  report.wrote(out_dir, details);
 }
 
 void register_build_command(CLI::App& app, const GlobalOptions& global) {

@@ -28,8 +28,8 @@ void register_demo_command(CLI::App& app, const GlobalOptions& global) {
       std::fwrite(text.data(), 1, text.size(), stdout);
       return;
     }
-    run_build(default_scene_config(), options->out, global);
-    run_render(options->out, RenderRequest{}, global);
+    run_build(default_scene_config(), options->out, global, false);
+    run_render(options->out, RenderRequest{}, global);  // "wangscape: wrote DIR/render.png (...)"
     if (!global.quiet) std::printf("%s\n", (std::filesystem::path(options->out) / "render.png").string().c_str());
   });
 }

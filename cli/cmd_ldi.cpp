@@ -39,6 +39,7 @@ struct LdiBuildArgs {
 };
 
 void run_ldi_build(const LdiBuildArgs& args, const GlobalOptions& global) {
+  const WriteReport said(global.quiet);
   const SceneConfig config = load_scene_config(args.scene);
   LdiBuildOptions options = ldi_options(config);
   options.view.head_height = args.head_height.value_or(options.view.head_height);
@@ -52,10 +53,9 @@ void run_ldi_build(const LdiBuildArgs& args, const GlobalOptions& global) {
   const LdiSceneObserver observer = ldi_terminal_observer(global, progress);
   const LdiBuildReport report = build_scene_ldi_pack(config, args.out, options, observer);
   progress.reset();
-  if (chatty(global))
-    std::fprintf(stderr, "wangscape: wrote %s (%llu LDIs, %.1f M depth pixels, %.1f M rays, %.1f s)\n",
-                 args.out.c_str(), static_cast<unsigned long long>(report.ldis), double(report.depth_pixels) / 1e6,
-                 double(report.primary_rays + report.secondary_rays) / 1e6, report.seconds);
+  said.wrote(args.out,
+             fmt::format("{} LDIs, {:.1f} M depth pixels, {:.1f} M rays", report.ldis,
+                         double(report.depth_pixels) / 1e6, double(report.primary_rays + report.secondary_rays) / 1e6));
 }
 
 }  // namespace
@@ -112,8 +112,11 @@ void register_ldi_command(CLI::App& app, const GlobalOptions& global) {
   set_help_footer(ldi, "see each command's --help",
                   {"wangscape ldi build templates/scenes/small.toml --out small.ldi",
                    "wangscape ldi info small.ldi --json", "wangscape ldi sheet small.ldi --tile 0 --out sheet.png"});
-  sheet->callback(
-      [sheet_args] { write_ldi_sheet(sheet_args->pack, sheet_args->tile, sheet_args->out, sheet_args->cell); });
+  sheet->callback([sheet_args, &global] {
+    const WriteReport report(global.quiet);
+    write_ldi_sheet(sheet_args->pack, sheet_args->tile, sheet_args->out, sheet_args->cell);
+    report.wrote(sheet_args->out, fmt::format("tile {}", sheet_args->tile));
+  });
 }
 
 }  // namespace wangscape::cli

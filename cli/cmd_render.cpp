@@ -14,6 +14,7 @@
 namespace wangscape::cli {
 
 void run_render(const std::filesystem::path& dir, const RenderRequest& request, const GlobalOptions& global) {
+  const WriteReport report(global.quiet);
   FolderRenderRequest folder{
       parse_render_engine(request.engine), request.width, request.height, request.out, request.spp, {}};
   std::unique_ptr<Progress> progress;
@@ -27,9 +28,9 @@ void run_render(const std::filesystem::path& dir, const RenderRequest& request, 
   }
   const auto result = render_scene_folder(dir, folder);
   progress.reset();
-  if (chatty(global))
-    std::fprintf(stderr, "wangscape: wrote %s in %.1f s (%s)\n", result.image.string().c_str(), result.seconds,
-                 result.log.empty() ? result.summary.c_str() : ("log: " + result.log.string()).c_str());
+  std::vector<std::filesystem::path> written{result.image};
+  if (!result.blend.empty()) written.push_back(result.blend);
+  report.wrote(written, request.engine + (result.log.empty() ? "; " + result.summary : "; log " + shown_path(result.log)));
 }
 
 void register_render_command(CLI::App& app, const GlobalOptions& global) {

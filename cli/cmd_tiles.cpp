@@ -2,15 +2,19 @@
 // an optional preview tiling. The work is in exporters/texture_tile_files.h.
 #include <fmt/core.h>
 
+#include <filesystem>
 #include <memory>
+#include <vector>
 
 #include "cli/command.h"
+#include "cli/progress.h"
 #include "exporters/texture_tile_files.h"
 
 namespace wangscape::cli {
 
 template <class Job>  // --set, --out, --preview WxH FILE: the same in both commands
-static CLI::App* add_tiles(CLI::App& app, const char* name, const char* help, std::shared_ptr<Job> job) {
+static CLI::App* add_tiles(CLI::App& app, const GlobalOptions& global, const char* name, const char* help,
+                           std::shared_ptr<Job> job) {
   auto* sub = app.add_subcommand(name, help)->require_subcommand(1)->add_subcommand("tiles", help);
   sub->add_option("--set", job->set, "Built-in tile set or tile-set JSON")->capture_default_str();
   sub->add_option("--out", job->out, "Folder for the tile PNGs and JSON")->required()->check(non_empty_path());
@@ -20,15 +24,21 @@ static CLI::App* add_tiles(CLI::App& app, const char* name, const char* help, st
       ->type_size(2)  // one value of two words: the help shows "WxH FILE", not "TEXT x 2"
       ->expected(1)
       ->type_name("WxH FILE");
-  sub->callback([job] { fmt::print("{}\n", run_tiles_job(*job)); });
-  sub->callback([job] { fmt::print("{}\n", run_tiles_job(*job)); });
+  sub->callback([job, &global] {
+    const WriteReport report(global.quiet);
+    fmt::print("{}\n", run_tiles_job(*job));
+    std::vector<std::filesystem::path> written{job->out};
+    if (!job->preview.empty()) written.push_back(job->preview);
+    report.wrote(written, {});
+  });
 
   return sub;
 }
 
-void register_tiles_commands(CLI::App& app, const GlobalOptions&) {
+void register_tiles_commands(CLI::App& app, const GlobalOptions& global) {
   auto noise = std::make_shared<NoiseTilesJob>();
-  auto* n = add_tiles(app, "noise", "Perlin-noise Wang tiles: noise that joins without seams across tile edges", noise);
+  auto* n = add_tiles(app, global, "noise", "Perlin-noise Wang tiles: noise that joins without seams across tile edges",
+                      noise);
   n->add_option("--lattice", noise->options.lattice, "Cells per tile side (power of two)")->capture_default_str();
   n->add_option("--octaves", noise->options.octaves, "Mip levels (0 = all)")->check(CLI::Range(0, 12));
   // `noise --help` and `noise tiles --help` (texture likewise) end alike.
@@ -41,8 +51,8 @@ void register_tiles_commands(CLI::App& app, const GlobalOptions&) {
                      "noise.png",
                      "wangscape noise tiles --set cohen8 --out noise8"});
   auto texture = std::make_shared<TextureTilesJob>();
-  auto* t = add_tiles(app, "texture", "Texture Wang tiles quilted from an exemplar image, seamless across tile edges",
-                      texture);
+  auto* t = add_tiles(app, global, "texture",
+                      "Texture Wang tiles quilted from an exemplar image, seamless across tile edges", texture);
   const auto slot = [texture](std::size_t k) {  // whatever order CLI11 runs the two options in
     return [texture, k](const std::string& file) {
       texture->exemplars.resize(std::max<std::size_t>(texture->exemplars.size(), k + 1)), texture->exemplars[k] = file;

@@ -1,9 +1,13 @@
 // wangscape tileset --set NAME|FILE [--json] [--sheet sheet.png]: print or draw a tile set.
 #include <fmt/core.h>
 
+#include <filesystem>
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include "cli/command.h"
+#include "cli/progress.h"
 #include "exporters/image_io.h"
 #include "exporters/reports.h"
 #include "generator/tiling_preview.h"
@@ -24,7 +28,16 @@ struct TilesetOptions {
   int relax = 0;           // relaxation rounds after dart throwing
   std::string out;         // the filled set as JSON (docs/filled-tileset-format.md)
   bool quiet = false;      // --quiet: no stage message
+  std::optional<WriteReport> report;
 };
+
+// The line of what was written (--out, --sheet), unless --quiet.
+void say_written(const TilesetOptions& options, const std::string& details) {
+  std::vector<std::filesystem::path> written;
+  if (!options.out.empty()) written.push_back(options.out);
+  if (!options.sheet.empty()) written.push_back(options.sheet);
+  if (!written.empty()) options.report->wrote(written, details);
+}
 
 // --per-tile N: fill the set with Poisson-disk points, write --out, draw --sheet with discs.
 void fill(const TileSet& set, const TilesetOptions& options) {
@@ -41,6 +54,9 @@ void fill(const TileSet& set, const TilesetOptions& options) {
   if (!options.sheet.empty())
     write_image(options.sheet, draw_filled_tileset_sheet(filled, std::max(options.tile_pixels, 96)));
   fmt::print("{}", poisson_fill_text(filled, report, options.per_tile));
+  std::size_t points = 0;
+  for (const auto& tile : filled.tiles) points += tile.size();
+  say_written(options, fmt::format("{} tiles filled with {} points", filled.tiles.size(), points));
 }
 
 void run(const TilesetOptions& options) {
@@ -48,6 +64,7 @@ void run(const TilesetOptions& options) {
   if (options.per_tile > 0) return fill(set, options);
   if (!options.out.empty()) throw std::runtime_error("--out needs --per-tile N (the points to write)");
   if (!options.sheet.empty()) write_image(options.sheet, draw_tileset_sheet(set, options.tile_pixels));
+  say_written(options, fmt::format("{} tiles", set.tiles.size()));
   if (options.json) {
     fmt::print("{}", format_tileset_json(tileset_to_json(set)));
   } else if (options.sheet.empty()) {
@@ -84,6 +101,7 @@ void register_tileset_command(CLI::App& app, const GlobalOptions& global) {
        "wangscape tileset --set cohen8 --per-tile 20 --relax 20 --seed 1 --out tiles.json --sheet discs.png"});
   sub->callback([options, &global] {
     options->quiet = global.quiet;
+    options->report.emplace(global.quiet);
     run(*options);
   });
 }

@@ -48,6 +48,7 @@ std::string validate_origin(const std::string& text) {
 }
 
 void run(const TilingCommandOptions& options, const GlobalOptions& global) {
+  const WriteReport report(global.quiet);
   const std::filesystem::path out(options.out);
   const std::string extension = out.extension().string();
   if (!options.out.empty() && extension != ".png" && extension != ".csv")
@@ -74,7 +75,7 @@ void run(const TilingCommandOptions& options, const GlobalOptions& global) {
     else
       fmt::print("{}", tiling_stats_text(set, tiling, run, stats));
   }
-  if (!options.out.empty() && !global.quiet) fmt::print(stderr, "wrote {}\n", options.out);
+  if (!options.out.empty()) report.wrote(options.out, fmt::format("{} x {} tiles", width, height));
 }
 
 }  // namespace

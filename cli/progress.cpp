@@ -70,6 +70,16 @@ double bytes_at(const std::filesystem::path& path) {
 }
 }  // namespace
 
+std::string shown_path(const std::filesystem::path& path) {
+  std::error_code error;
+  if (path.is_absolute()) {
+    const auto here = std::filesystem::current_path(error);
+    const auto inside = error ? std::filesystem::path() : path.lexically_relative(here);
+    if (!inside.empty() && *inside.begin() != "..") return printable(inside.string());
+  }
+  return printable(path.string());
+}
+
 std::string duration_text(double seconds) {
   if (seconds < 10) return fixed_text(seconds, 2) + " s";
   if (seconds < 60) return fixed_text(seconds, 1) + " s";
@@ -82,11 +92,22 @@ double WriteReport::seconds() const {
 }
 
 void WriteReport::wrote(const std::filesystem::path& path, const std::string& details) const {
-  if (quiet_) return;
+  wrote(std::vector<std::filesystem::path>{path}, details);
+}
+
+void WriteReport::wrote(const std::vector<std::filesystem::path>& paths, const std::string& details) const {
+  if (quiet_ || paths.empty()) return;
+  std::string names;
+  double bytes = 0;
+  for (const auto& path : paths) {
+    if (!names.empty()) names += ", ";
+    names += shown_path(path);
+    bytes += bytes_at(path);
+  }
   std::string what = details;
   if (!what.empty()) what += ", ";
-  what += byte_text(bytes_at(path));
-  std::fprintf(stderr, "wangscape: wrote %s (%s) in %s\n", printable(path.string()).c_str(), what.c_str(),
+  what += byte_text(bytes);
+  std::fprintf(stderr, "wangscape: wrote %s (%s) in %s\n", names.c_str(), what.c_str(),
                duration_text(seconds()).c_str());
 }
 

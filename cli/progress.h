@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace wangscape::cli {
 
@@ -32,19 +33,25 @@ class Progress {
 };
 
 // The one line a command says when it has written something, on stderr, silent under --quiet
-// (terminal or not): "wangscape: wrote PATH (DETAILS, SIZE) in TIME". SIZE is the file's size, or
-// the sum of a folder's files; TIME runs from the report's construction (the command's start).
+// (terminal or not): "wangscape: wrote PATH (DETAILS, SIZE) in TIME", or "PATH, PATH2 (...)" for
+// a command that writes several. SIZE is the files' size (a folder: the sum of its files); TIME
+// runs from the report's construction (the command's start).
 class WriteReport {
  public:
   explicit WriteReport(bool quiet) : quiet_(quiet), start_(std::chrono::steady_clock::now()) {}
   // DETAILS: counts, e.g. "4410 instances from 230 tiles"; may be empty.
   void wrote(const std::filesystem::path& path, const std::string& details) const;
+  void wrote(const std::vector<std::filesystem::path>& paths, const std::string& details) const;
   double seconds() const;
 
  private:
   bool quiet_;
   std::chrono::steady_clock::time_point start_;
 };
+
+// A path for a message: an absolute one inside the current folder as relative to it
+// ("small/render.png"), any other as it is; control characters escaped.
+std::string shown_path(const std::filesystem::path& path);
 
 // "0.42 s", "12.3 s", "1 min 42 s".
 std::string duration_text(double seconds);

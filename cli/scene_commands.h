@@ -1,5 +1,6 @@
 // What `build`, `render` and `demo` share: a build or a render with the CLI's progress and
-// messages (stderr, only when it is a terminal and --quiet is off).
+// messages (stages and bars on stderr only when it is a terminal; the line of what was written
+// unless --quiet).
 #pragma once
 
 #include <filesystem>
@@ -17,8 +18,10 @@ namespace wangscape::cli {
 // bar and must outlive the build.
 LdiSceneObserver ldi_terminal_observer(const GlobalOptions& global, std::unique_ptr<Progress>& progress);
 
-// Builds `config` into `out_dir` (cmd_build.cpp).
-void run_build(const SceneConfig& config, const std::filesystem::path& out_dir, const GlobalOptions& global);
+// Builds `config` into `out_dir` (cmd_build.cpp); says what it wrote unless --quiet or not
+// `say_written` (demo says it once, for the image).
+void run_build(const SceneConfig& config, const std::filesystem::path& out_dir, const GlobalOptions& global,
+               bool say_written = true);
 
 struct RenderRequest {
   std::string engine = "povray";

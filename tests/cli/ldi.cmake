@@ -52,7 +52,7 @@ ldi_cli_test(info_text 0 "ldi|info|${ldi_dir}/tiny.ldi"
   OUT "tiles: +8\nlevels: +1\ndirections: +2\n.*layers per pixel \\(pixels\\): 0:[0-9]+, 1:[0-9]+.*depth pixels: [1-9]"
   REQUIRES ldi_pack)
 ldi_cli_test(sheet 0 "ldi|sheet|${ldi_dir}/tiny.ldi|--tile|3|--cell|32|--out|${ldi_dir}/sheet.png"
-  ERR "^$" REQUIRES ldi_pack)
+  ERR "^wangscape: wrote [^\n]*sheet\\.png \\(tile 3, [0-9.]+ [kM]?B\\) in [0-9.]+ s\n$" REQUIRES ldi_pack)
 ldi_cli_test(sheet_no_such_tile 1 "ldi|sheet|${ldi_dir}/tiny.ldi|--tile|8|--out|${ldi_dir}/sheet8.png"
   ERR "^wangscape: error: [^\n]*tiny\\.ldi: no tile 8 \\(the pack has 8\\)" NO_FILE "${ldi_dir}/sheet8.png"
   REQUIRES ldi_pack)
