@@ -68,7 +68,8 @@ terrain_cli_test(height_no_point 2 "terrain|height|${_helens}" ERR "at least one
 terrain_cli_test(height_bad_point 2 "terrain|height|${_helens}|1,2,3" ERR "'1,2,3' is not E,N in meters")
 terrain_cli_test(height_bad_latlon 2 "terrain|height|${_helens}|--latlon|95,0" ERR "LAT,LON")
 add_test(NAME cli_terrain_height_folder
-  COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/terrain/height_folder.sh ${WANGSCAPE_BIN} ${CLI_SCRATCH}/terrain_height_folder ${_helens})
+  COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/terrain/height_folder.sh ${WANGSCAPE_BIN} ${CLI_SCRATCH}/terrain_height_folder ${_helens}
+          ${PROJECT_SOURCE_DIR})
 set_tests_properties(cli_terrain_height_folder PROPERTIES LABELS "cli;terrain" TIMEOUT 120)
 
 # wangscape scatter --dem (tests/cli/terrain/scatter_check.cmake, one MODE per test).
