@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <vector>
 
 #include "core/atomic_file.h"
 #include "core/run_cleanup.h"
@@ -111,6 +112,15 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
   if (out_dir.filename().empty()) out_dir = out_dir.parent_path();
 
   std::error_code ec;
+  // The parent folders this build makes, nearest first: a build that fails removes them again.
+  std::vector<fs::path> made;
+  for (fs::path p = out_dir.parent_path(); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+    made.push_back(p);
+    if (p == p.parent_path()) break;
+  }
+  const auto remove_made = [&] {
+    for (const fs::path& p : made) fs::remove(p, ec);  // only while empty
+  };
   fs::create_directories(out_dir.parent_path(), ec);
   remove_stale_temporaries(out_dir.parent_path());
   const fs::path staging = sibling(out_dir, "partial");
@@ -118,7 +128,9 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
   register_temporary(staging);
   if (!fs::create_directory(staging, ec) || ec) {
     unregister_temporary(staging);
-    throw Error(staging, "", "cannot create the staging folder beside the output folder: " + ec.message());
+    const std::string why = ec.message();
+    remove_made();
+    throw Error(staging, "", "cannot create the staging folder beside the output folder: " + why);
   }
 
   SceneFolderSummary summary;
@@ -185,6 +197,7 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
   } catch (...) {
     fs::remove_all(staging, ec);
     unregister_temporary(staging);
+    remove_made();
     throw;
   }
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -462,6 +462,19 @@ std::string html_escape(const std::string& text) {
   return out;
 }
 
+// Where the gallery links a still to, relative to the output folder: the scene folder it was
+// rendered from (POV-Ray: the shared scenes/KEY/; Blender: the task's own work/ID/), the
+// engine's log and what the engine ran (POV-Ray: work/ID/scene.pov with the task's camera and
+// sun; Blender: the manifest of the task's folder, which holds them).
+struct TaskLinks {
+  std::string scene, log, inputs;
+};
+TaskLinks task_links(const BatchTask& t) {
+  const std::string work = "work/" + t.id + "/";
+  if (t.engine == RenderEngine::blender) return {work, work + "blender.log", work + "blender/manifest.json"};
+  return {"scenes/" + t.scene_key + "/", work + "povray.log", work + "scene.pov"};
+}
+
 void write_contact_sheet(const fs::path& dir, const Plan& plan) {
   constexpr int kThumb = 160;
   const int n = static_cast<int>(plan.tasks.size());
@@ -617,7 +630,8 @@ void assemble_batch(const fs::path& dir) {
   std::string html =
       "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>Wangscape batch</title><style>"
       "body{font-family:sans-serif;background:#222;color:#ddd}figure{display:inline-block;margin:6px;"
-      "vertical-align:top;width:330px}img{width:320px}figcaption{font-size:12px}</style></head><body>\n"
+      "vertical-align:top;width:330px}img{width:320px}figcaption{font-size:12px}a{color:#9cf}"
+      ".failed{color:#f88;font-size:12px;white-space:pre-wrap}</style></head><body>\n"
       "<h1>Wangscape batch</h1>\n<p><img src=\"contact-sheet.png\" alt=\"contact sheet\" style=\"width:auto\"></p>\n";
   int renders = 0;
   BatchCounts counts;
@@ -635,18 +649,29 @@ void assemble_batch(const fs::path& dir) {
     j["renders"] = record.is_object() ? record.value("renders", 0) : 0;
     renders += j["renders"].get<int>();
     j["image"] = s == State::done ? "stills/" + t.id + ".png" : "";
-    if (s == State::failed) j["failure"] = read_json(record_of(dir, t, ".failed"));
+    const json failure = s == State::failed ? read_json(record_of(dir, t, ".failed")) : json();
+    if (s == State::failed) j["failure"] = failure;
+    const TaskLinks links = task_links(t);
+    j["links"] = {{"scene", links.scene}, {"log", links.log}, {"inputs", links.inputs}};
     const auto& p = t.camera.position;
+    std::string failed;
+    if (s == State::failed)
+      failed = "<p class=\"failed\">failed: " +
+               html_escape(failure.is_object() ? failure.value("error", std::string("?")) : std::string("?")) + "</p>";
     html += "<figure>" +
-            (s == State::done ? "<img src=\"stills/" + t.id + ".png\" alt=\"still " + t.id + "\">"
-                              : "<p>" + std::string(state_name(s)) + "</p>") +
+            (s == State::done ? "<a href=\"stills/" + t.id + ".png\"><img src=\"stills/" + t.id +
+                                    ".png\" alt=\"still " + t.id + "\"></a>"
+             : failed.empty() ? "<p>" + std::string(state_name(s)) + "</p>"
+                              : failed) +
             "<figcaption>" + t.id + " " + html_escape(t.viewpoint) +
             "<br>DEM: " + html_escape(t.dem.empty() ? std::string("flat ground") : t.dem.filename().string()) +
             "<br>camera ENU (" + fixed_text(p[0], 1) + ", " + fixed_text(p[1], 1) + ", " + fixed_text(p[2], 1) +
             ") m, lat/lon " + fixed_text(t.camera_latlon[0], 6) + ", " + fixed_text(t.camera_latlon[1], 6) +
             "<br>sun " + html_escape(t.sun.label) + " (az " + fixed_text(t.sun.azimuth, 1) + ", el " +
             fixed_text(t.sun.elevation, 1) + ")<br>" + std::string(to_string(t.engine)) + ", " +
-            fixed_text(seconds, 2) + " s</figcaption></figure>\n";
+            fixed_text(seconds, 2) + " s<br><a href=\"" + links.scene + "\">scene folder</a> · <a href=\"" + links.log +
+            "\">" + std::string(to_string(t.engine)) + " log</a> · <a href=\"" + links.inputs +
+            "\">inputs</a></figcaption></figure>\n";
     all.push_back(j);
   }
   html += "</body></html>\n";

@@ -53,12 +53,20 @@ set_tests_properties(hostile_tiling_empty_out hostile_tiles_empty_out PROPERTIES
 
 # A rebuild swaps the folders in one exchange (renameat2 RENAME_EXCHANGE), so a reader or a kill
 # at any moment finds the old build or the new one: never a rename of the folder aside first.
+tiny_scene("${hostile_dir}/swap.toml" EXPORTS "povray = true")
 find_program(STRACE strace)
 if(STRACE)
-  tiny_scene("${hostile_dir}/swap.toml" EXPORTS "povray = true")
   add_test(NAME hostile_rebuild_swaps_in_one_exchange
            COMMAND ${cli_refuse} 0 "renameat2\\(AT_FDCWD, \".*/\\.swap\\.partial-[0-9]+\", AT_FDCWD, \".*/swap\", RENAME_EXCHANGE\\) = 0"
            sh -c "rm -rf \"$1/swap\" && \"$0\" --quiet build \"$1/swap.toml\" --out \"$1/swap\" && \"$2\" -f -e trace=rename,renameat,renameat2 \"$0\" --quiet build \"$1/swap.toml\" --out \"$1/swap\" 2>&1 | grep -v '\\.old-' | grep -E 'rename.*/swap\"' && [ -s \"$1/swap/scene.toml\" ] && ! ls -a \"$1\" | grep -E '^\\.swap\\.'"
            "${WANGSCAPE_BIN}" "${hostile_dir}" "${STRACE}")
   set_tests_properties(hostile_rebuild_swaps_in_one_exchange PROPERTIES LABELS "cli;hostile" TIMEOUT 60)
 endif()
+
+# A refused build leaves no parent folders it made (here POV-Ray refuses the folder's name, after
+# the parents were made for its staging folder).
+add_test(NAME hostile_build_refused_leaves_no_parents
+         COMMAND ${cli_refuse} 0 "POV-Ray cannot use this path"
+         sh -c "rm -rf \"$1/made\" && ! \"$0\" --quiet build \"$2\" --out \"$1/made/b/c\\\"d\" && ! ls -d \"$1/made\""
+         "${WANGSCAPE_BIN}" "${hostile_dir}" "${hostile_dir}/swap.toml")
+set_tests_properties(hostile_build_refused_leaves_no_parents PROPERTIES LABELS "cli;hostile" TIMEOUT 60)

@@ -8,6 +8,20 @@ dir=$3
 here=$(cd "$(dirname "$0")" && pwd)
 cd "$dir" || exit 1
 fail() { echo "FAIL ($name): $*" >&2; exit 1; }
+# Every link of DIR/index.html (the scene folder, the log, the inputs of each still) exists, and
+# each still has all three.
+check_links() {
+  python3 - "$1" <<'PY' || fail "gallery links: $1"
+import json, os, re, sys
+d = sys.argv[1]
+html = open(d + "/index.html").read()
+links = re.findall(r'<a href="([^"]+)">(scene folder|\w+ log|inputs)</a>', html)
+tasks = json.load(open(d + "/batch.json"))["tasks"]
+assert len(links) == 3 * len(tasks), (len(links), len(tasks))
+for target, what in links:
+    assert os.path.exists(os.path.join(d, target)), (target, what)
+PY
+}
 # Every task of a batch.json rendered exactly once, and `count` done.
 check_once() {
   python3 - "$1" "$2" <<'PY' || fail "batch.json: $1"
@@ -51,6 +65,8 @@ local)
     [ -s "local/$f" ] || fail "local/$f missing"
   done
   grep -c '<img src="stills/' local/index.html | grep -q '^4$' || fail "gallery does not show 4 stills"
+  # Each still links to its scene folder, its engine's log and its inputs, which exist (issue 24).
+  check_links local
   check_once local 4
   before=$(ls -l --time-style=+%s.%N local/stills local/tasks | md5sum)
   "$bin" --quiet batch run four.toml --out local --workers 2 || fail "rerun"
@@ -89,6 +105,11 @@ failing)
   "$bin" batch status failing | grep -q "done 2, running 0, failed 2, pending 0" || fail "status of failures"
   python3 -c 'import json; b = json.load(open("failing/batch.json")); assert b["failed"] == 2 and b["tasks"][1]["failure"]["log"]' ||
     fail "batch.json does not record the failures"
+  # The gallery shows each failed still with its error and links to the Blender log (issue 24).
+  [ "$(grep -c 'class="failed">failed: ' failing/index.html)" = 2 ] || fail "the gallery does not show the 2 errors"
+  grep -q '<a href="work/0001/blender.log">blender log</a>' failing/index.html || fail "no link to the failed task's log"
+  grep -q '<a href="scenes/[0-9a-f]*/">scene folder</a>' failing/index.html || fail "no link to a scene folder"
+  check_links failing
   ;;
 slurm)
   command -v slurmctld > /dev/null && command -v munged > /dev/null || { echo "Slurm not installed"; exit 77; }
