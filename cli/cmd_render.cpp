@@ -30,7 +30,8 @@ void run_render(const std::filesystem::path& dir, const RenderRequest& request, 
   progress.reset();
   std::vector<std::filesystem::path> written{result.image};
   if (!result.blend.empty()) written.push_back(result.blend);
-  report.wrote(written, request.engine + (result.log.empty() ? "; " + result.summary : "; log " + shown_path(result.log)));
+  report.wrote(written,
+               request.engine + (result.log.empty() ? "; " + result.summary : "; log " + shown_path(result.log)));
 }
 
 void register_render_command(CLI::App& app, const GlobalOptions& global) {
