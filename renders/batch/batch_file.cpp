@@ -60,7 +60,7 @@ class Table {
   int integer(const std::string& key, int fallback, int min, int max) {
     const auto* n = node(key);
     if (!n) return fallback;
-    const auto v = n->value<std::int64_t>();
+    const auto v = n->value_exact<std::int64_t>();
     if (!v || *v < min || *v > max)
       fail(*n, key, "must be an integer from " + std::to_string(min) + " to " + std::to_string(max));
     return static_cast<int>(*v);
@@ -195,9 +195,10 @@ ViewpointRule read_viewpoint(Table& v, int line) {
            "is " + number_text(rule.fov) + "; expected degrees in (0, " + number_text(kMaxFieldOfViewDegrees) + "]");
   if (const auto* n = v.node("grid")) {
     const auto* a = n->as_array();
-    const auto c = a && a->size() == 2 ? (*a)[0].value<std::int64_t>() : std::nullopt;
-    const auto r = a && a->size() == 2 ? (*a)[1].value<std::int64_t>() : std::nullopt;
-    if (!c || !r || *c < 1 || *r < 1 || *c * *r > 10000) v.fail(*n, "grid", "must be [columns, rows], each >= 1");
+    const auto c = a && a->size() == 2 ? (*a)[0].value_exact<std::int64_t>() : std::nullopt;
+    const auto r = a && a->size() == 2 ? (*a)[1].value_exact<std::int64_t>() : std::nullopt;
+    if (!c || !r || *c < 1 || *r < 1 || *c > 10000 || *r > 10000 || *c * *r > 10000)
+      v.fail(*n, "grid", "must be [columns, rows], each >= 1");
     rule.grid = {static_cast<int>(*c), static_cast<int>(*r)};
   }
   rule.path_enu = v.pairs("enu");

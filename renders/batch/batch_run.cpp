@@ -509,6 +509,8 @@ BatchPlan parse_batch_plan(std::string_view text, const fs::path& file) {
     j = json::parse(text);
   } catch (const json::parse_error& e) {
     throw Error(file, "", "is not a batch plan: not JSON (at byte " + std::to_string(e.byte) + ")");
+  } catch (const json::exception&) {  // out_of_range.406: a number beyond a double
+    throw Error(file, "", "is not a batch plan: it holds a number too large for a double");
   }
   const auto bad = [&](const std::string& place, const std::string& what) {
     return Error(file, place, what + " (the plan is written by `wangscape batch run`; run it again)");

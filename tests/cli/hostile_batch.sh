@@ -64,6 +64,8 @@ numbers)
     batch "fov" '[[viewpoints]]' "fov = $fov"
     refuse 1 "fov.toml:5: 'viewpoints.fov' is .*; expected degrees in \(0, 179\]" "$bin" batch plan fov.toml
   done
+  batch grid '[[viewpoints]]' 'kind = "grid"' 'grid = [1e300, 1]'
+  refuse 1 "grid.toml:6: 'viewpoints.grid' must be \[columns, rows\]" "$bin" batch plan grid.toml
   batch eye '[[viewpoints]]' 'eye_height = 1e300'
   refuse 1 "eye.toml:5: 'viewpoints.eye_height' is 1e\+300; expected meters above the ground from 0 to 20000" \
     "$bin" batch plan eye.toml
@@ -99,6 +101,9 @@ plan_ids)
   refuse 1 "types/plan.json:task 1: a field is missing or of the wrong type" "$bin" batch status types
   tamper types "p['tasks'][1]['sun']['azimuth'] = float('nan')"
   refuse 1 "types/plan.json: is not a batch plan: not JSON" "$bin" batch status types
+  plan_folder types
+  sed -i 's/"fov": 60.0/"fov": 1e5456/' types/plan.json
+  refuse 1 "types/plan.json: is not a batch plan: it holds a number too large for a double" "$bin" batch status types
   plan_folder range
   tamper range "p['tasks'][0]['camera']['fov'] = 0"
   refuse 1 "range/plan.json:task 0: has a field of view, a sun elevation or an image size out of range" "$bin" batch status range
