@@ -88,7 +88,8 @@ void run(const ScatterOptions& options, const GlobalOptions& global) {
 }  // namespace
 
 void register_scatter_command(CLI::App& app, const GlobalOptions& global) {
-  auto* sub = app.add_subcommand("scatter", "Lay a filled tile set over a flat plane and write every instance");
+  auto* sub =
+      app.add_subcommand("scatter", "Lay a filled tile set over a flat plane or a DEM and write every instance");
   auto options = std::make_shared<ScatterOptions>();
   sub->add_option("--tileset", options->tileset, "Filled tile set (wangscape tileset --per-tile N --out FILE)")
       ->required();

@@ -99,7 +99,8 @@ void print_heights(const TerrainHeightOptions& options) {
 }  // namespace
 
 void register_terrain_command(CLI::App& app, const GlobalOptions&) {
-  auto* terrain_command = app.add_subcommand("terrain", "Inspect digital elevation models");
+  auto* terrain_command =
+      app.add_subcommand("terrain", "Inspect DEMs: what one holds, the ground height at a point of the scene");
   terrain_command->require_subcommand(1);
   auto options = std::make_shared<TerrainInfoOptions>();
   auto* info = terrain_command->add_subcommand("info", "Print a DEM's CRS, size, spacing, heights and georeference");
