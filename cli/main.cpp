@@ -3,9 +3,12 @@
 #include <clocale>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <new>
+#include <string>
 
 #include "cli/command.h"
+#include "core/json_text.h"
 #include "core/printable.h"
 #include "core/run_cleanup.h"
 
@@ -47,9 +50,19 @@ int main(int argc, char** argv) {
     // Sizes are estimated and refused before large allocations; this is the last line of defence.
     std::fprintf(stderr, "wangscape: error: out of memory: the request needs more memory than this machine has\n");
     return 1;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // The last line of defence for a folder operation no reader checked: "PATH: cannot create
+    // directories: Not a directory" instead of the library's "filesystem error: ... [PATH]".
+    std::string what = e.what();
+    if (what.starts_with("filesystem error: ")) what.erase(0, 18);
+    if (const auto bracket = what.find(" ["); bracket != std::string::npos) what.erase(bracket);
+    std::fprintf(stderr, "wangscape: error: %s: %s\n", wangscape::printable(e.path1().string(), true).c_str(),
+                 wangscape::printable(what, true).c_str());
+    return 1;
   } catch (const std::exception& e) {
-    // Messages quote user text (names, paths): no control character reaches the terminal.
-    std::fprintf(stderr, "wangscape: error: %s\n", wangscape::printable(e.what(), true).c_str());
+    // Messages quote user text (names, paths): no control character reaches the terminal; a
+    // nlohmann-json exception nothing caught loses its "[json.exception.NAME] " id.
+    std::fprintf(stderr, "wangscape: error: %s\n", wangscape::printable(wangscape::json_error_text(e), true).c_str());
     return 1;
   }
   return 0;

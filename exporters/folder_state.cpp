@@ -6,6 +6,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/json_text.h"
 #include "core/text_file.h"
 #include "generator/placement.h"
 #include "scene/filled_tileset_file.h"
@@ -197,7 +198,7 @@ FolderState read_folder_state(const fs::path& dir, const std::string& scene_text
   try {
     document = Json::parse(tiles_text);
   } catch (const Json::exception& e) {
-    throw Error(tiles_file, "", std::string("not JSON: ") + e.what());
+    throw Error(tiles_file, "", "not JSON: " + json_error_text(e));
   }
   state.prebuilt.filled = filled_tileset_from_json(document, tiles_file.string());
   return state;

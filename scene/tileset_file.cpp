@@ -159,12 +159,7 @@ Json read_json_file(const std::filesystem::path& path, std::string_view what) {
   try {
     return Json::parse(text);
   } catch (const Json::exception& e) {
-    // nlohmann's text starts with "[json.exception.parse_error.101] parse error at ...": keep the
-    // part after the id, which says where and what.
-    std::string reason = e.what();
-    if (const auto close = reason.find("] "); reason.starts_with("[json.exception") && close != std::string::npos)
-      reason.erase(0, close + 2);
-    throw Error(at + ": not valid JSON: " + reason);
+    throw Error(at + ": not valid JSON: " + json_error_text(e));  // where and what, without nlohmann's id
   }
 }
 
