@@ -10,12 +10,14 @@ namespace wangscape {
 
 namespace {
 // Also registers the temporary for removal on an interrupt, after clearing the folder of
-// dead runs' temporaries.
-std::filesystem::path temporary_beside(const std::filesystem::path& path) {
+// dead runs' temporaries. `keep_extension`: ".tmp-<pid>-NAME", for writers that pick the format
+// from the extension (OIIO, a renderer); else ".NAME.tmp-<pid>", which no reader of the folder
+// takes for content (its extension is the pid, not .csv or .png), even when a killed run left it.
+std::filesystem::path temporary_beside(const std::filesystem::path& path, bool keep_extension) {
   remove_stale_temporaries(path.parent_path());
-  // Keep the extension last: some writers (OIIO) pick the format from it.
+  const std::string pid = std::to_string(::getpid()), name = path.filename().string();
   std::filesystem::path temp = path;
-  temp.replace_filename(".tmp-" + std::to_string(::getpid()) + "-" + path.filename().string());
+  temp.replace_filename(keep_extension ? ".tmp-" + pid + "-" + name : "." + name + ".tmp-" + pid);
   register_temporary(temp);
   return temp;
 }
@@ -38,7 +40,8 @@ void remove_temporary(const std::filesystem::path& temp) {
 }
 }  // namespace
 
-AtomicFile::AtomicFile(std::filesystem::path path) : path_(std::move(path)), temp_path_(temporary_beside(path_)) {
+AtomicFile::AtomicFile(std::filesystem::path path)
+    : path_(std::move(path)), temp_path_(temporary_beside(path_, false)) {
   stream_.open(temp_path_, std::ios::binary | std::ios::trunc);
   if (!stream_) {
     unregister_temporary(temp_path_);
@@ -67,7 +70,8 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
   file.commit();
 }
 
-AtomicPath::AtomicPath(std::filesystem::path path) : path_(std::move(path)), temp_path_(temporary_beside(path_)) {}
+AtomicPath::AtomicPath(std::filesystem::path path)
+    : path_(std::move(path)), temp_path_(temporary_beside(path_, true)) {}
 
 AtomicPath::~AtomicPath() {
   if (committed_) return;

@@ -13,8 +13,9 @@ namespace wangscape {
 
 class AtomicFile {
  public:
-  // Opens ".tmp-<pid>-<name>" beside `path` for writing (binary); the pid lets a later run tell
-  // a dead process's leftovers. Throws Error naming `path`.
+  // Opens ".<name>.tmp-<pid>" beside `path` for writing (binary): a name no reader of the folder
+  // takes for content (its extension is not the target's); the pid lets a later run tell a dead
+  // process's leftovers. Throws Error naming `path`.
   explicit AtomicFile(std::filesystem::path path);
   // Removes the temporary file unless commit() succeeded.
   ~AtomicFile();
@@ -39,7 +40,8 @@ class AtomicFile {
 void write_file_atomically(const std::filesystem::path& path, const std::string& contents);
 
 // For outputs produced by another library (OIIO, a renderer): a temporary path with the
-// same extension, renamed into place by commit(); removed on destruction otherwise.
+// same extension (".tmp-<pid>-<name>": they pick the format from it), renamed into place by
+// commit(); removed on destruction otherwise.
 class AtomicPath {
  public:
   explicit AtomicPath(std::filesystem::path path);

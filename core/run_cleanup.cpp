@@ -107,7 +107,7 @@ void remove_if_stale(const fs::path& folder, const std::string& entry) {
     if (pid != 0 && process_is_gone(pid)) fs::remove_all(folder / entry, ec);
     return;
   }
-  if (!staged_name(entry, "partial", pid).empty()) {
+  if (!staged_name(entry, "tmp", pid).empty() || !staged_name(entry, "partial", pid).empty()) {
     if (process_is_gone(pid)) fs::remove_all(folder / entry, ec);
     return;
   }

@@ -36,8 +36,8 @@ void unregister_child(pid_t pid);
 // waits until it is released.
 std::unique_lock<std::recursive_mutex> hold_run_cleanup();
 
-// Removes from `folder` what runs that no longer exist left there: ".tmp-<pid>-NAME" files,
-// ".NAME.partial-<pid>" staging folders, and ".NAME.old-<pid>" earlier builds (moved back to
+// Removes from `folder` what runs that no longer exist left there: ".NAME.tmp-<pid>" and
+// ".tmp-<pid>-NAME" files, ".NAME.partial-<pid>" staging folders, and ".NAME.old-<pid>" earlier builds (moved back to
 // NAME when NAME is missing, as the swap was cut short). A pid is dead only when kill(pid, 0)
 // fails with ESRCH: files of live processes, this one included, are never touched. Each folder
 // is scanned once per run; errors are ignored (a later run tries again).

@@ -17,23 +17,23 @@ string(REPLACE "area = [-12.0, -12.0, 12.0, 12.0]" "area = [-400.0, -400.0, 400.
 string(REPLACE "points_per_tile = 10" "points_per_tile = 60" big_field "${big_field}")
 file(WRITE "${run_dir}/big_field.toml" "${big_field}")
 hostile_test(interrupt_tiling_sigint 0 "SIGINT -> exit 130"
-             ${interrupt} INT 130 "${run_dir}/tiling" ".tmp-*"
+             ${interrupt} INT 130 "${run_dir}/tiling" ".*tmp-*"
              "${WANGSCAPE_BIN}" --quiet tiling --set cohen8 --size 12000x12000 --out "${run_dir}/tiling/big.csv")
 hostile_test(interrupt_scatter_sigterm 0 "SIGTERM -> exit 143"
-             sh -c "\"$0\" --quiet tileset --set cohen8 --per-tile 5 --out \"$1/filled.json\" >/dev/null && exec $2 TERM 143 \"$1/scatter\" '.tmp-*' \"$0\" --quiet scatter --tileset \"$1/filled.json\" --plane 3000x3000 --tile-size 1 --out \"$1/scatter/p.csv\""
+             sh -c "\"$0\" --quiet tileset --set cohen8 --per-tile 5 --out \"$1/filled.json\" >/dev/null && exec $2 TERM 143 \"$1/scatter\" '.*tmp-*' \"$0\" --quiet scatter --tileset \"$1/filled.json\" --plane 3000x3000 --tile-size 1 --out \"$1/scatter/p.csv\""
              "${WANGSCAPE_BIN}" "${run_dir}" "sh ${CMAKE_CURRENT_SOURCE_DIR}/interrupt.sh")
 hostile_test(interrupt_build_sigterm 0 "SIGTERM -> exit 143"
              ${interrupt} TERM 143 "${run_dir}/build" ".out.partial-*"
              "${WANGSCAPE_BIN}" --quiet build "${run_dir}/big_field.toml" --out "${run_dir}/build/out")
 # During a POV-Ray render: POV-Ray is stopped too, its temporary image and state file removed.
 hostile_test(interrupt_render_sigterm 0 "SIGTERM -> exit 143"
-             sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$2\" --out \"$1\" && exec $3 TERM 143 \"$1\" '.tmp-*' \"$0\" --quiet render \"$1\" --width 1600 --height 1200"
+             sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$2\" --out \"$1\" && exec $3 TERM 143 \"$1\" '.*tmp-*' \"$0\" --quiet render \"$1\" --width 1600 --height 1200"
              "${WANGSCAPE_BIN}" "${run_dir}/render" "${run_dir}/pov.toml" "sh ${CMAKE_CURRENT_SOURCE_DIR}/interrupt.sh")
 
 # A full disk (the file-size limit) during a PNG: an error naming the file, nothing published.
 # (No ';' in these scripts: CMake would split the argument there.)
 hostile_test(png_disk_full 1 "cannot write '.*/m.png': write failed"
-             sh -c "rm -f \"$1\"/m.png \"$1\"/.tmp-*
+             sh -c "rm -f \"$1\"/m.png \"$1\"/.tmp-* \"$1\"/.*.tmp-*
                     prlimit --fsize=2000 \"$0\" tiling --set cohen8 --size 512x512 --out \"$1/m.png\"
                     code=$?
                     if ls -a \"$1\" | grep 'm.png'

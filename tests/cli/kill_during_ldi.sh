@@ -23,7 +23,7 @@ env --default-signal=INT "$bin" --quiet build "$work/second.toml" --out "$out" 2
 pid=$!
 . "$(dirname "$0")/wait_for_start.sh"
 # The staging folder and its pack's temporary both carry the pid.
-wait_for_start "$pid" "$work" ".field.partial-$pid/.tmp-*-tiles.ldi" 60 || {
+wait_for_start "$pid" "$work" ".field.partial-$pid/.tiles.ldi.tmp-*" 60 || {
   kill -KILL "$pid" 2>/dev/null
   fail "the second build never reached its LDI stage; stderr: $(cat "$work/second.err")"
 }

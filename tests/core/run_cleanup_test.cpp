@@ -43,6 +43,9 @@ TEST(RunCleanup, RemovesWhatDeadRunsLeftAndKeepsLiveOnes) {
   touch(dir / (".tmp-" + live + "-b.csv"));
   touch(dir / (".tmp-" + self + "-c.csv"));
   touch(dir / ".tmp-notapid-d.csv");
+  // AtomicFile's names since issue 25: the pid last, so the extension is not the target's.
+  touch(dir / (".e.csv.tmp-" + dead));
+  touch(dir / (".f.csv.tmp-" + live));
   fs::create_directory(dir / (".out.partial-" + dead));
   touch(dir / (".out.partial-" + dead) / "scene.pov");
   fs::create_directory(dir / (".kept.partial-" + live));
@@ -59,6 +62,8 @@ TEST(RunCleanup, RemovesWhatDeadRunsLeftAndKeepsLiveOnes) {
   EXPECT_TRUE(fs::exists(dir / (".tmp-" + live + "-b.csv")));
   EXPECT_TRUE(fs::exists(dir / (".tmp-" + self + "-c.csv")));
   EXPECT_TRUE(fs::exists(dir / ".tmp-notapid-d.csv"));
+  EXPECT_FALSE(fs::exists(dir / (".e.csv.tmp-" + dead)));
+  EXPECT_TRUE(fs::exists(dir / (".f.csv.tmp-" + live)));
   EXPECT_FALSE(fs::exists(dir / (".out.partial-" + dead)));
   EXPECT_TRUE(fs::exists(dir / (".kept.partial-" + live)));
   EXPECT_TRUE(fs::exists(dir / "gone" / "scene.toml"));
@@ -75,6 +80,13 @@ TEST(RunCleanup, AtomicFileClearsItsFolderFirst) {
   write_file_atomically(dir / "new.txt", "hello");
   EXPECT_FALSE(fs::exists(stale));
   EXPECT_TRUE(fs::exists(dir / "new.txt"));
+  // Its temporary is no file a reader of the folder takes for content: not a .csv (issue 25).
+  {
+    AtomicFile file(dir / "points.csv");
+    EXPECT_EQ(file.temp_path().filename().string(), ".points.csv.tmp-" + std::to_string(::getpid()));
+    EXPECT_NE(file.temp_path().extension(), ".csv");
+  }
+  EXPECT_FALSE(fs::exists(dir / (".points.csv.tmp-" + std::to_string(::getpid()))));
   fs::remove_all(dir);
 }
 

@@ -85,7 +85,7 @@ TEST(BlenderRender, CyclesRendersANonBlankImage) {
   EXPECT_GT(stats.avg[1], stats.avg[2]);
   // No temporary files left behind.
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    EXPECT_EQ(entry.path().filename().string().rfind(".tmp-", 0), std::string::npos) << entry.path();
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
   }
   std::filesystem::remove_all(dir);
 }

@@ -217,7 +217,7 @@ TEST(PovrayRender, FailureQuotesPovrayAndLeavesNoImage) {
   EXPECT_FALSE(fs::exists(dir / "render.png"));
   EXPECT_TRUE(fs::exists(dir / "povray.log"));
   for (const auto& entry : fs::directory_iterator(dir))
-    EXPECT_EQ(entry.path().filename().string().rfind(".tmp-", 0), std::string::npos);
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos);
 }
 
 TEST(PovrayRender, MissingPovrayIsNamed) {
