@@ -1,6 +1,4 @@
 // wangscape batch plan|example|run|status|run-task (hidden: what workers run): renders/batch/batch_run.h.
-#include <chrono>
-#include <cstdio>
 #include <iostream>
 #include "cli/command.h"
 #include "cli/progress.h"
@@ -29,12 +27,10 @@ void register_batch_command(CLI::App& app, const GlobalOptions& global) {
   run->callback([=, &global] {
     s->executor = parse_batch_executor(*executor);
     s->chatty = chatty(global);
-    const auto start = std::chrono::steady_clock::now();
-    const BatchCounts counts = run_batch(*s);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!global.quiet)  // failures end in the error instead, which names them
-      std::fprintf(stderr, "wangscape: wrote %s (%d stills, 0 failed; gallery %s) in %.1f s\n",
-                   s->out_dir.string().c_str(), counts.done, (s->out_dir / "index.html").string().c_str(), seconds);
+    const WriteReport report(global.quiet);
+    const BatchCounts counts = run_batch(*s);  // failures end in the error instead, which names them
+    report.wrote(s->out_dir,
+                 std::to_string(counts.done) + " stills, 0 failed, gallery " + (s->out_dir / "index.html").string());
   });
   auto* status = batch->add_subcommand("status", "Done / running / failed / pending per task of DIR");
   status->add_option("dir", s->out_dir, "Batch output folder")->required();

@@ -74,6 +74,12 @@ local)
   [ "$before" = "$after" ] || fail "the rerun touched stills or task records"
   check_once local 4
   "$bin" batch status local | grep -q "done 4, running 0, failed 0, pending 0" || fail "status"
+  # One summary line on stderr, no progress bar off a terminal; nothing with --quiet (issue 24).
+  "$bin" batch run four.toml --out local --workers 2 2> summary.txt > /dev/null || fail "summary run"
+  [ "$(wc -l < summary.txt)" = 1 ] && grep -Eq '^wangscape: wrote local \(4 stills, 0 failed, gallery local/index.html, [0-9.]+ [kM]?B\) in ' summary.txt ||
+    { cat summary.txt; fail "not one summary line on stderr"; }
+  "$bin" --quiet batch run four.toml --out local --workers 2 2> quiet.txt > /dev/null || fail "quiet run"
+  [ -s quiet.txt ] && fail "--quiet still wrote to stderr"
   ;;
 kill)
   rm -rf killed
