@@ -12,7 +12,6 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
-#include <limits>
 #include <string>
 
 #include "generator/poisson_tiles.h"
