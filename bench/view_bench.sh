@@ -4,7 +4,8 @@
 # (`wangscape view --stats`, median of REPEAT frames) on the default scene built with the LDI
 # export, from four cameras (at the field's northern edge looking south across it: the scene's
 # own camera; in the field; from above the field; 1.5 m from a flower) at 640x360 and 1280x720,
-# with the near field at its default distance (NEAR=0: LDIs only). FOLDER (default
+# with the near field at its default distance (NEAR=0: LDIs only), by each engine (ENGINES, default
+# "auto ldi embree": the default choice, LDIs beyond the near field, the whole frame ray cast). FOLDER (default
 # out/view-bench) is built once and reused. Prints the load before each figure.
 set -eu
 bin=${1:-build/release/cli/wangscape}
@@ -24,8 +25,10 @@ for size in 640x360 1280x720; do
                 "close-up|--camera 1.0,6291.3,1131.6 --look-at -0.5,6291.3,1131.5"; do
     name=${camera%%|*}
     flags=${camera#*|}
-    echo "== $name, $size; load: $(cut -d' ' -f1-3 /proc/loadavg)"
-    # shellcheck disable=SC2086
-    "$bin" --quiet view "$dir" $flags --size "$size" --near "${NEAR:-8}" --stats --repeat "$repeat"
+    for engine in ${ENGINES:-auto ldi embree}; do
+      echo "== $name, $size, --engine $engine; load: $(cut -d' ' -f1-3 /proc/loadavg)"
+      # shellcheck disable=SC2086
+      "$bin" --quiet view "$dir" $flags --size "$size" --near "${NEAR:-8}" --engine "$engine" --stats --repeat "$repeat"
+    done
   done
 done
