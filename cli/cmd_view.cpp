@@ -51,14 +51,14 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--side-by-side", o->request.side_by_side,
                   "With --compare: write the frame (left) beside the reference (right), one PNG");
   sub->add_option("--threads", o->request.threads, "Threads (default: all cores)")->check(CLI::Range(0, 1024));
-  sub->add_option("--detail", o->request.detail,
+  sub->add_option("--detail", o->request.settings.detail,
                   "Level-of-detail scale: 1 the pack's levels, 0.5 coarser and faster, 2 finer (0.1 .. 10)")
       ->check(finite_number());
-  sub->add_option("--near", o->request.near_field,
+  sub->add_option("--near", o->request.settings.near_field,
                   "Near field, meters: tiles this close are ray traced from their real flowers instead of drawn "
                   "from LDIs (default 8; 0: LDIs everywhere)")
       ->check(finite_number());
-  sub->add_option("--spp", o->request.samples,
+  sub->add_option("--spp", o->request.settings.samples,
                   "Samples per pixel of each frame: N jittered frames averaged (anti-aliased offline frames and "
                   "paths; with --compare the exact image at N samples is the one to match; default 1)");
   sub->add_option("--engine", o->engine,
@@ -77,9 +77,9 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
     ViewRequest& r = o->request;
     r.dir = o->dir;
     r.quiet = global.quiet;
-    r.engine = o->engine == "embree" ? ViewEngine::embree
-               : o->engine == "ldi"  ? ViewEngine::ldi
-                                     : ViewEngine::automatic;
+    r.settings.engine = o->engine == "embree" ? ViewEngine::embree
+                        : o->engine == "ldi"  ? ViewEngine::ldi
+                                              : ViewEngine::automatic;
     if (!o->camera.empty() && !(r.camera = parse_triple(o->camera, true)))
       throw CLI::ValidationError("--camera", "'" + o->camera + "' is not E,N or E,N,H in meters");
     if (!o->look_at.empty() && !(r.look_at = parse_triple(o->look_at, false)))

@@ -163,14 +163,8 @@ struct LdiRenderer::Impl {
 
 LdiRenderer::LdiRenderer(std::shared_ptr<const ViewWorld> world, int width, int height)
     : world_(std::move(world)), impl_(std::make_unique<Impl>()) {
-  if (width < 1 || height < 1 || width > 16384 || height > 16384)
-    throw Error("view: size " + std::to_string(width) + "x" + std::to_string(height) +
-                " pixels; expected 1 .. 16384 per side");
+  resize(width, height);
   Impl& m = *impl_;
-  m.width = width;
-  m.height = height;
-  m.zbuffer.assign(std::size_t(width) * std::size_t(height), kEmpty);
-  image_ = ImageRgb8(width, height);
   const std::size_t n = world_->tiles().size();
   for (auto* v :
        {&m.distance, &m.far_from, &m.far_r, &m.far_g, &m.far_b, &m.far_cover, &m.level_b_weight, &m.dir_b_weight})
@@ -741,6 +735,24 @@ void LdiRenderer::resolve() {
   });
 }
 
+void LdiRenderer::resize(int width, int height) {
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw Error("view: size " + std::to_string(width) + "x" + std::to_string(height) +
+                " pixels; expected 1 .. 16384 per side");
+  Impl& m = *impl_;
+  m.width = width;
+  m.height = height;
+  m.zbuffer.assign(std::size_t(width) * std::size_t(height), kEmpty);  // (the threads' buffers follow it)
+  image_ = ImageRgb8(width, height);
+}
+
+void LdiRenderer::apply(const ViewSettings& settings) {
+  set_detail(settings.detail);
+  set_near_field(settings.near_field);
+  set_engine(settings.engine);
+  set_samples(settings.samples);
+}
+
 void LdiRenderer::set_samples(int samples) {
   if (samples < 1 || samples > kMaxViewSamples)
     throw Error("view: " + std::to_string(samples) + " samples per pixel; expected 1 .. " +
@@ -781,9 +793,11 @@ const ViewFrameStats& LdiRenderer::render_sample(const ViewCamera& camera) {
   const auto start = Clock::now();
   begin_frame(camera);
   const auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
-  const auto ray_cast_rest = [&](std::uint64_t near_rays, Clock::time_point traced_from) {
-    stats_.near_rays = near_rays + ray_cast_frame();
+  // The whole frame by rays (ViewEngine::embree, or automatic in the field).
+  const auto ray_cast = [&](Clock::time_point traced_from) {
+    stats_.near_rays = ray_cast_frame();
     stats_.ray_cast = true;
+    stats_.depth_pixels = 0;
     const auto traced = Clock::now();
     resolve();
     const auto end = Clock::now();
@@ -791,8 +805,7 @@ const ViewFrameStats& LdiRenderer::render_sample(const ViewCamera& camera) {
     stats_.frame_ms = ms(start, end);
   };
   if (engine_ == ViewEngine::embree) {
-    stats_ = ViewFrameStats{};
-    ray_cast_rest(0, start);
+    ray_cast(start);
     return stats_;
   }
   choose_tiles();
@@ -800,8 +813,7 @@ const ViewFrameStats& LdiRenderer::render_sample(const ViewCamera& camera) {
   // The near field first: what it hides is neither warped nor shaded after it.
   stats_.ray_cast = false;
   if (engine_ == ViewEngine::automatic && stats_.near_tiles && near_share() >= kRayCastShare) {
-    stats_.depth_pixels = 0;
-    ray_cast_rest(0, tiles_done);
+    ray_cast(tiles_done);
     return stats_;
   }
   stats_.near_rays = stats_.near_tiles ? trace_near_field() : 0;
@@ -875,17 +887,18 @@ std::uint64_t LdiRenderer::cull_occluded_tiles() {
   return before - order_.size();
 }
 
-// ---- the near field (the frame's first drawing): every pixel's ray, from the eye no further
-// than the near tiles reach, traced against the real flowers of the tiles around the
-// eye and the terrain; a hit is shaded by the one shading model (sun with its shadow ray, the open
-// sky) and written into the z-buffer. Returns the rays cast (primary and shadow).
 // How far along the unit ray `d` it is `reach` meters across the ground (a ray straight down
 // meets the terrain first: unlimited).
 static double reach_along(const V3& d, double reach) {
+  if (std::isinf(reach)) return reach;
   const double across = std::hypot(d[0], d[1]);
   return across > 1e-9 ? reach / across : std::numeric_limits<double>::infinity();
 }
 
+// ---- the near field (the frame's first drawing): every pixel's ray, from the eye no further
+// than the near tiles reach, traced against the real flowers of the tiles around the
+// eye and the terrain; a hit is shaded by the one shading model (sun with its shadow ray, the open
+// sky) and written into the z-buffer. Returns the rays cast (primary and shadow).
 std::uint64_t LdiRenderer::trace_near_field() {
   const double reach = place_near_field();
   return cast_rays(*impl_->near_tracer, reach);
@@ -934,8 +947,8 @@ double LdiRenderer::place_near_field() {
   return reach;
 }
 
-// The frame ray cast (ViewEngine::embree, or the rest of it for automatic): every flower of the scene and the terrain
-// in one Embree scene, built on the first frame.
+// The whole frame ray cast (ViewEngine::embree, or automatic in the field): every flower of the
+// scene and the terrain in one Embree scene, built on the first frame that needs it.
 std::uint64_t LdiRenderer::ray_cast_frame() {
   Impl& m = *impl_;
   if (!m.whole_tracer) {

@@ -73,6 +73,15 @@ enum class ViewEngine {
               // rays end soon and LDIs are slower than rays: docs/viewer.md), else as ldi
 };
 inline constexpr int kMaxViewSamples = 1024;
+
+// How frames are drawn, as `view`'s flags give it: the offline frames and the window apply the
+// same settings (LdiRenderer::apply).
+struct ViewSettings {
+  double detail = 1;                          // set_detail
+  double near_field = kDefaultNearField;      // set_near_field
+  ViewEngine engine = ViewEngine::automatic;  // set_engine
+  int samples = 1;                            // set_samples
+};
 // The share of the near field's rays that must stop for ViewEngine::automatic to ray cast.
 inline constexpr double kRayCastShare = 0.5;
 
@@ -111,6 +120,11 @@ class LdiRenderer {
   // 1 .. kMaxViewSamples.
   void set_samples(int samples);
   int samples() const { return samples_; }
+  // All four of the above.
+  void apply(const ViewSettings& settings);
+  // Frames of another size from now on (a resized window); the Embree scenes are kept. Throws
+  // Error when the size is not 1 .. 16384 per side.
+  void resize(int width, int height);
   // Draws only the placed tiles whose entry is nonzero (the terrain and sky as always); empty:
   // every tile. For tests and for looking at single tiles.
   void set_tile_mask(std::vector<std::uint8_t> mask) { mask_ = std::move(mask); }

@@ -56,9 +56,8 @@ class FramesCleanup {
   std::vector<fs::path> written_;
 };
 
-void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest& request, int width, int height,
-               double fov) {
-  const ViewPath path = read_view_path(request.path);
+void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest& request, const ViewPath& path,
+               int width, int height, double fov) {
   const double fps = request.path_fps;
   const long long frames = path.frame_count(fps);
   if (frames > kMaxPathFrames)
@@ -74,10 +73,7 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest&
   fs::create_directories(request.frames_dir, ec);
   if (!fs::is_directory(request.frames_dir, ec)) throw Error(request.frames_dir, "", "cannot make the frames folder");
   LdiRenderer renderer(world, width, height);
-  renderer.set_detail(request.detail);
-  renderer.set_near_field(request.near_field);
-  renderer.set_engine(request.engine);
-  renderer.set_samples(request.samples);
+  renderer.apply(request.settings);
   const auto start = std::chrono::steady_clock::now();
   for (long long k = 0; k < frames; ++k) {
     const PathCamera at = camera_along(path, path.keys.front().time + double(k) / fps, ground, request.path);
@@ -233,19 +229,18 @@ void check_view_request(const ViewRequest& request) {
                 ": expected WIDTHxHEIGHT, each 1 .. 16384 pixels");
   if (request.fov_degrees) check_field_of_view(*request.fov_degrees, "--fov");
   if (!request.path.empty() && request.frames_dir.empty()) throw Error("--path: needs --frames OUTDIR");
-  if (!request.path.empty()) read_view_path(request.path);  // a bad path file fails before the folder loads
   if (!(request.path_fps > 0 && request.path_fps <= 240)) throw Error("--fps: expected 0 .. 240 frames per second");
   if (request.repeat < 0 || request.repeat > 100000) throw Error("--repeat: expected 0 .. 100000 frames");
-  if (!(request.detail >= kMinViewDetail && request.detail <= kMaxViewDetail))
-    throw Error("--detail " + number_text(request.detail) + ": expected " + number_text(kMinViewDetail) + " .. " +
-                number_text(kMaxViewDetail) + " (1: the pack's levels at their own distances)");
+  if (!(request.settings.detail >= kMinViewDetail && request.settings.detail <= kMaxViewDetail))
+    throw Error("--detail " + number_text(request.settings.detail) + ": expected " + number_text(kMinViewDetail) +
+                " .. " + number_text(kMaxViewDetail) + " (1: the pack's levels at their own distances)");
   if (!request.diff.empty() && !request.compare) throw Error("--diff: needs --compare");
-  if (!(request.near_field >= 0 && request.near_field <= kMaxNearField))
-    throw Error("--near " + number_text(request.near_field) + ": expected 0 .. " + number_text(kMaxNearField) +
+  if (!(request.settings.near_field >= 0 && request.settings.near_field <= kMaxNearField))
+    throw Error("--near " + number_text(request.settings.near_field) + ": expected 0 .. " + number_text(kMaxNearField) +
                 " meters (0: LDIs everywhere)");
-  if (request.samples < 1 || request.samples > kMaxViewSamples)
-    throw Error("--spp " + std::to_string(request.samples) + ": expected 1 .. " + std::to_string(kMaxViewSamples) +
-                " samples per pixel");
+  if (request.settings.samples < 1 || request.settings.samples > kMaxViewSamples)
+    throw Error("--spp " + std::to_string(request.settings.samples) + ": expected 1 .. " +
+                std::to_string(kMaxViewSamples) + " samples per pixel");
   if (request.truth_samples < 1 || request.truth_samples > kMaxReferenceSamples)
     throw Error("--truth-spp " + std::to_string(request.truth_samples) + ": expected 1 .. " +
                 std::to_string(kMaxReferenceSamples) + " samples per pixel");
@@ -263,20 +258,17 @@ std::shared_ptr<const ViewWorld> load_view_world(const ViewRequest& request) {
   });
 }
 
-int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewRequest& request) {
+int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewRequest& request, const ViewPath* path) {
   const ViewCamera camera = view_camera(*world, request);
   const int width = request.width ? request.width : world->scene().render.width;
   const int height = request.height ? request.height : world->scene().render.height;
 
   if (!request.path.empty()) {
-    play_path(world, request, width, height, camera.fov_degrees);
+    play_path(world, request, path ? *path : read_view_path(request.path), width, height, camera.fov_degrees);
     return 0;
   }
   LdiRenderer renderer(world, width, height);
-  renderer.set_detail(request.detail);
-  renderer.set_near_field(request.near_field);
-  renderer.set_engine(request.engine);
-  renderer.set_samples(request.samples);
+  renderer.apply(request.settings);
   const ViewFrameStats stats =
       request.stats ? measure_view(renderer, camera, request.repeat ? request.repeat : 200) : renderer.render(camera);
   if (!request.out.empty()) {

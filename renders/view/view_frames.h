@@ -11,6 +11,7 @@
 #include "renders/trace/embree_reference.h"
 #include "renders/trace/image_compare.h"
 #include "renders/view/ldi_renderer.h"
+#include "renders/view/view_path.h"
 
 namespace wangscape {
 
@@ -30,18 +31,15 @@ struct ViewRequest {
   std::filesystem::path path;        // keyframes JSON
   std::filesystem::path frames_dir;  // where the path's frames go
   double path_fps = 24;
-  std::string script;                         // window: scripted input (docs/viewer.md)
-  std::filesystem::path record;               // window: where K's keyframes go (empty: path.json)
-  bool compare = false;                       // also ray trace the frame with Embree and compare
-  std::filesystem::path diff;                 // with compare: the difference image
-  int truth_samples = kDefaultTruthSamples;   // with compare: the truth's samples per pixel
-  std::filesystem::path truth_out;            // with compare: where the truth image goes (empty: none)
-  std::filesystem::path side_by_side;         // with compare: the frame beside the truth (empty: none)
-  int threads = 0;                            // 0 = all cores
-  double detail = 1;                          // LdiRenderer::set_detail
-  double near_field = kDefaultNearField;      // LdiRenderer::set_near_field (meters; 0: LDIs only)
-  ViewEngine engine = ViewEngine::automatic;  // --engine: LdiRenderer::set_engine
-  int samples = 1;                            // --spp: LdiRenderer::set_samples
+  std::string script;                        // window: scripted input (docs/viewer.md)
+  std::filesystem::path record;              // window: where K's keyframes go (empty: path.json)
+  bool compare = false;                      // also ray trace the frame with Embree and compare
+  std::filesystem::path diff;                // with compare: the difference image
+  int truth_samples = kDefaultTruthSamples;  // with compare: the truth's samples per pixel
+  std::filesystem::path truth_out;           // with compare: where the truth image goes (empty: none)
+  std::filesystem::path side_by_side;        // with compare: the frame beside the truth (empty: none)
+  int threads = 0;                           // 0 = all cores
+  ViewSettings settings;                     // --detail, --near, --engine, --spp
   bool quiet = false;
 };
 
@@ -59,7 +57,9 @@ bool wants_window(const ViewRequest& request);
 std::shared_ptr<const ViewWorld> load_view_world(const ViewRequest& request);
 // Offline frame(s), statistics, comparison or path playback, as the request says; prints
 // figures to stdout. Returns the exit code (0). Throws Error for bad input.
-int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewRequest& request);
+// `path`: the request's path file already read (read_view_path), or null to read it here.
+int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewRequest& request,
+                    const ViewPath* path = nullptr);
 
 // The renderer's last frame (drawn from `camera`) against the truth, the Embree reference of the
 // same camera and size ray traced with the light the pack was shaded with at `samples_per_pixel`

@@ -305,15 +305,8 @@ class WalkRecorder {
 void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& start,
                      const ViewWindowOptions& options) {
   const std::vector<ScriptStep> script = parse_script(options.script);
-  const auto make_renderer = [&](int width, int height) {
-    auto made = std::make_unique<LdiRenderer>(world, width, height);
-    made->set_detail(options.detail);
-    made->set_near_field(options.near_field);
-    made->set_engine(options.engine);
-    made->set_samples(options.samples);
-    return made;
-  };
-  auto renderer = make_renderer(options.width, options.height);
+  LdiRenderer renderer(world, options.width, options.height);
+  renderer.apply(options.settings);
   SdlSession sdl(options.width, options.height);
   if (options.script.empty()) SDL_SetRelativeMouseMode(SDL_TRUE);  // mouse look (a script moves it itself)
 
@@ -375,9 +368,9 @@ void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& s
       if (k == SDLK_k && !e.key.repeat) keyframe = true;
     }
     if (!running) break;
-    if (new_width > 0 && (new_width != renderer->width() || new_height != renderer->height())) {
+    if (new_width > 0 && (new_width != renderer.width() || new_height != renderer.height())) {
       // Frames at the window's new size (not the old frame stretched).
-      renderer = make_renderer(new_width, new_height);
+      renderer.resize(new_width, new_height);
       sdl.make_texture(new_width, new_height);
       shown = ImageRgb8(new_width, new_height);
     }
@@ -388,18 +381,18 @@ void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& s
     walk_time += dt;
     if (keyframe) recorder.drop(*world, walker.camera, walk_time);
 
-    const ViewFrameStats& stats = renderer->render(walker.camera);
+    const ViewFrameStats& stats = renderer.render(walker.camera);
     if (screenshot) {
       char name[32];
       std::snprintf(name, sizeof name, "view-%04d.png", ++screenshots);
-      write_image(options.screenshot_dir / name, renderer->image());  // the frame, without the overlay
+      write_image(options.screenshot_dir / name, renderer.image());  // the frame, without the overlay
       if (!options.quiet) std::printf("%s\n", (options.screenshot_dir / name).string().c_str());
     }
     // The overlay: a smoothed frame time and depth-pixel rate.
     shown_ms = shown_ms == 0 ? stats.frame_ms : shown_ms * 0.9 + stats.frame_ms * 0.1;
     const double rate = stats.frame_ms > 0 ? double(stats.depth_pixels) / stats.frame_ms / 1e3 : 0;  // M/s
     shown_rate = shown_rate == 0 ? rate : shown_rate * 0.9 + rate * 0.1;
-    shown.pixels = renderer->image().pixels;
+    shown.pixels = renderer.image().pixels;
     char text[64];
     std::snprintf(text, sizeof text, "%.1f MS  %.1f MDP/S  %s%s", shown_ms, shown_rate, walker.fly ? "FLY" : "WALK",
                   recorder.size() ? ("  KEYS " + std::to_string(recorder.size())).c_str() : "");

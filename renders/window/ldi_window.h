@@ -17,10 +17,7 @@ inline constexpr int kDefaultWindowWidth = 1280, kDefaultWindowHeight = 720;
 
 struct ViewWindowOptions {
   int width = 640, height = 360;
-  double detail = 1;                          // LdiRenderer::set_detail
-  double near_field = kDefaultNearField;      // LdiRenderer::set_near_field
-  ViewEngine engine = ViewEngine::automatic;  // LdiRenderer::set_engine
-  int samples = 1;                            // LdiRenderer::set_samples
+  ViewSettings settings;
   // "W*30,mouse:40:0,screenshot,Escape": KEY*N holds KEY for N frames, KEY alone one frame,
   // mouse:DX:DY moves the mouse, screenshot presses F12, wait*N waits N frames. Scripted
   // frames advance time by 1/30 s each, so a script gives the same frames on any machine.

@@ -18,8 +18,11 @@ int run_view(const ViewRequest& request) {
   std::optional<tbb::global_control> threads;
   if (request.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(request.threads));
 
+  // A bad path file fails before the folder loads.
+  std::optional<ViewPath> path;
+  if (!request.path.empty()) path = read_view_path(request.path);
   const auto world = load_view_world(request);
-  if (!window) return run_view_frames(world, request);
+  if (!window) return run_view_frames(world, request, path ? &*path : nullptr);
   const ViewCamera camera = view_camera(*world, request);
   ViewWindowOptions options;
   options.width = request.width ? request.width : kDefaultWindowWidth;
@@ -27,10 +30,7 @@ int run_view(const ViewRequest& request) {
   if (!request.record.empty()) options.record = request.record;
   options.script = request.script;
   options.quiet = request.quiet;
-  options.detail = request.detail;
-  options.near_field = request.near_field;
-  options.engine = request.engine;
-  options.samples = request.samples;
+  options.settings = request.settings;
   run_view_window(world, camera, options);
   return 0;
 }
