@@ -9,15 +9,13 @@
 namespace wangscape {
 
 namespace {
-// Also registers the temporary for removal on an interrupt, after clearing the folder of
-// dead runs' temporaries. `keep_extension`: ".tmp-<pid>-NAME", for writers that pick the format
-// from the extension (OIIO, a renderer); else ".NAME.tmp-<pid>", which no reader of the folder
-// takes for content (its extension is the pid, not .csv or .png), even when a killed run left it.
-std::filesystem::path temporary_beside(const std::filesystem::path& path, bool keep_extension) {
+// ".NAME.tmp-<pid>", which no reader of the folder takes for content (hidden, and its extension
+// is the pid, not .csv or .png), even when a killed run left it. Also registers the temporary
+// for removal on an interrupt, after clearing the folder of dead runs' temporaries.
+std::filesystem::path temporary_beside(const std::filesystem::path& path) {
   remove_stale_temporaries(path.parent_path());
-  const std::string pid = std::to_string(::getpid()), name = path.filename().string();
   std::filesystem::path temp = path;
-  temp.replace_filename(keep_extension ? ".tmp-" + pid + "-" + name : "." + name + ".tmp-" + pid);
+  temp.replace_filename("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()));
   register_temporary(temp);
   return temp;
 }
@@ -40,8 +38,7 @@ void remove_temporary(const std::filesystem::path& temp) {
 }
 }  // namespace
 
-AtomicFile::AtomicFile(std::filesystem::path path)
-    : path_(std::move(path)), temp_path_(temporary_beside(path_, false)) {
+AtomicFile::AtomicFile(std::filesystem::path path) : path_(std::move(path)), temp_path_(temporary_beside(path_)) {
   stream_.open(temp_path_, std::ios::binary | std::ios::trunc);
   if (!stream_) {
     unregister_temporary(temp_path_);
@@ -70,8 +67,7 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
   file.commit();
 }
 
-AtomicPath::AtomicPath(std::filesystem::path path)
-    : path_(std::move(path)), temp_path_(temporary_beside(path_, true)) {}
+AtomicPath::AtomicPath(std::filesystem::path path) : path_(std::move(path)), temp_path_(temporary_beside(path_)) {}
 
 AtomicPath::~AtomicPath() {
   if (committed_) return;

@@ -39,9 +39,10 @@ class AtomicFile {
 // Writes `contents` to `path` atomically.
 void write_file_atomically(const std::filesystem::path& path, const std::string& contents);
 
-// For outputs produced by another library (OIIO, a renderer): a temporary path with the
-// same extension (".tmp-<pid>-<name>": they pick the format from it), renamed into place by
-// commit(); removed on destruction otherwise.
+// For outputs produced by another library (OIIO, a renderer): a temporary path named as
+// AtomicFile's (".<name>.tmp-<pid>"), renamed into place by commit(); removed on destruction
+// otherwise. The temporary does not carry the target's extension: tell the writer the format
+// (OIIO's create() by the target's name, POV-Ray's +FN and stdout, Blender's file_format).
 class AtomicPath {
  public:
   explicit AtomicPath(std::filesystem::path path);

@@ -43,6 +43,7 @@ if blend_path:
 scene.render.image_settings.file_format = "PNG"
 scene.render.image_settings.color_mode = "RGB"
 scene.render.image_settings.color_depth = "8"
+scene.render.use_file_extension = False  # the temporary's name is not the image's
 scene.render.filepath = image_path
 start = time.perf_counter()
 bpy.ops.render.render(write_still=True)

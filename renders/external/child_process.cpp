@@ -38,7 +38,8 @@ std::string ChildExit::describe() const {
 }
 
 ChildExit run_logged(const std::vector<std::string>& args, const std::filesystem::path& log,
-                     const std::filesystem::path& working_dir, const std::function<void()>& while_running) {
+                     const std::filesystem::path& working_dir, const std::function<void()>& while_running,
+                     const std::filesystem::path& output) {
   // Everything the child needs, prepared before fork (only async-signal-safe calls after it).
   std::vector<std::string> owned = args;
   std::vector<char*> argv;
@@ -46,6 +47,7 @@ ChildExit run_logged(const std::vector<std::string>& args, const std::filesystem
   argv.push_back(nullptr);
   const std::string log_string = log.string();
   const std::string dir_string = working_dir.string();
+  const std::string output_string = output.string();
 
   const auto start = std::chrono::steady_clock::now();
   const pid_t pid = ::fork();
@@ -55,8 +57,15 @@ ChildExit run_logged(const std::vector<std::string>& args, const std::filesystem
     const int fd = ::open(log_string.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
     if (fd < 0) ::_exit(126);
     if (!dir_string.empty() && ::chdir(dir_string.c_str()) != 0) ::_exit(126);
-    ::dup2(fd, STDOUT_FILENO);
     ::dup2(fd, STDERR_FILENO);
+    if (output_string.empty()) {
+      ::dup2(fd, STDOUT_FILENO);
+    } else {
+      const int out_fd = ::open(output_string.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      if (out_fd < 0) ::_exit(126);
+      ::dup2(out_fd, STDOUT_FILENO);
+      ::close(out_fd);
+    }
     ::close(fd);
     const int null_fd = ::open("/dev/null", O_RDONLY);
     if (null_fd >= 0) ::dup2(null_fd, STDIN_FILENO);

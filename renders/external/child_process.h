@@ -24,9 +24,11 @@ struct ChildExit {
 // Runs argv[0] (a path) with argv, stdin from /dev/null, stdout and stderr appended to
 // `log`, in `working_dir` (empty: the current one). Waits for it, calling `while_running`
 // (if set) about five times a second, e.g. to report progress read from the log. Throws
-// std::runtime_error only when the process cannot be started.
+// std::runtime_error only when the process cannot be started. With `output` set, stdout goes
+// to that file instead (truncated), e.g. an image the child writes to stdout.
 ChildExit run_logged(const std::vector<std::string>& argv, const std::filesystem::path& log,
-                     const std::filesystem::path& working_dir = {}, const std::function<void()>& while_running = {});
+                     const std::filesystem::path& working_dir = {}, const std::function<void()>& while_running = {},
+                     const std::filesystem::path& output = {});
 
 // The last `max_bytes` bytes of the file `path` (empty when it cannot be read).
 std::string read_log_tail(const std::filesystem::path& path, std::size_t max_bytes);

@@ -53,18 +53,12 @@ PovrayRenderResult render_povray(const std::filesystem::path& dir_in, const Povr
   PovrayRenderResult result{dir / options.image_name, dir / "povray.log", 0};
   AtomicPath image(result.image);
   AtomicPath log(result.log);
-  // POV-Ray's state file beside the temporary image: removed after the run or on an interrupt.
-  const AtomicPath pov_state(dir / (std::filesystem::path(options.image_name).stem().string() + ".pov-state"));
 
-  // Output to a temporary name, renamed into place only when POV-Ray succeeds.
-  // POV-Ray rejoins its arguments and splits them at spaces: paths go quoted.
-  std::vector<std::string> args{povray.string(),
-                                "scene.ini",
-                                "+O" + povray_quoted_path(image.temp_path().filename()),
-                                "+FN",
-                                "-D",
-                                "-P",
-                                "+L" + povray_quoted_path(dir)};
+  // The PNG goes to stdout (+O-), captured in a temporary renamed into place only when POV-Ray
+  // succeeds: given a file name, POV-Ray appends ".png" to any name not ending in it, so a killed
+  // run would leave a ".png" behind. POV-Ray rejoins its arguments and splits them at spaces:
+  // paths go quoted.
+  std::vector<std::string> args{povray.string(), "scene.ini", "+O-", "+FN", "-D", "-P", "+L" + povray_quoted_path(dir)};
   if (options.width > 0) args.push_back("+W" + std::to_string(options.width));
   if (options.height > 0) args.push_back("+H" + std::to_string(options.height));
   if (options.threads > 0) args.push_back("+WT" + std::to_string(options.threads));
@@ -74,8 +68,8 @@ PovrayRenderResult render_povray(const std::filesystem::path& dir_in, const Povr
   };
   ChildExit exit;
   try {
-    exit =
-        run_logged(args, log.temp_path(), dir, options.on_progress ? std::function<void()>(report_progress) : nullptr);
+    exit = run_logged(args, log.temp_path(), dir,
+                      options.on_progress ? std::function<void()>(report_progress) : nullptr, image.temp_path());
   } catch (const std::runtime_error& e) {
     throw Error("render: POV-Ray: " + std::string(e.what()));
   }
@@ -84,7 +78,9 @@ PovrayRenderResult render_povray(const std::filesystem::path& dir_in, const Povr
   const bool log_written = std::filesystem::exists(log.temp_path());
   if (log_written) log.commit();
   const bool exited_ok = exit.exited && exit.status == 0;
-  if (!exited_ok || !std::filesystem::exists(image.temp_path())) {
+  std::error_code size_error;
+  const bool image_written = std::filesystem::file_size(image.temp_path(), size_error) > 0 && !size_error;
+  if (!exited_ok || !image_written) {
     const std::string how = exit.describe();
     const std::string tail = log_written ? last_log_lines(result.log, 8) : std::string();
     throw Error("render: POV-Ray " + how + " rendering '" + (dir / "scene.pov").string() + "'" +

@@ -29,6 +29,12 @@ hostile_test(interrupt_build_sigterm 0 "SIGTERM -> exit 143"
 hostile_test(interrupt_render_sigterm 0 "SIGTERM -> exit 143"
              sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$2\" --out \"$1\" && exec $3 TERM 143 \"$1\" '.*tmp-*' \"$0\" --quiet render \"$1\" --width 1600 --height 1200"
              "${WANGSCAPE_BIN}" "${run_dir}/render" "${run_dir}/pov.toml" "sh ${CMAKE_CURRENT_SOURCE_DIR}/interrupt.sh")
+# SIGKILL during a POV-Ray render: no cleanup runs, and what stays is hidden temporaries whose
+# names do not end in .png (POV-Ray writes its image to stdout; given a name it appends .png).
+set(kill_check "sh ${CMAKE_CURRENT_SOURCE_DIR}/kill_leaves_no_content.sh")
+hostile_test(kill_render_leaves_no_png 0 "no [*][.]png"
+             sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$2\" --out \"$1\" && exec $3 \"$1\" '.*tmp-*' .png \"$0\" --quiet render \"$1\" --width 1600 --height 1200"
+             "${WANGSCAPE_BIN}" "${run_dir}/render_kill" "${run_dir}/pov.toml" "${kill_check}")
 
 # A full disk (the file-size limit) during a PNG: an error naming the file, nothing published.
 # (No ';' in these scripts: CMake would split the argument there.)
