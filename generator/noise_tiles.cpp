@@ -54,7 +54,10 @@ NoiseTileSet::NoiseTileSet(const TileSet& set, const NoiseTileOptions& options)
 
   for (std::size_t k = 0; k < table_.size(); ++k) {
     const double angle = 2 * std::numbers::pi * (static_cast<double>(k) + 0.5) / static_cast<double>(table_.size());
-    table_[k] = {static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle))};
+    // The value from a hash of k, so a point's value does not follow its gradient's angle.
+    const double unit = static_cast<double>(mix(k) >> 11) / static_cast<double>(std::uint64_t{1} << 53);
+    table_[k] = {static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle)),
+                 kPointValue * static_cast<float>(2 * unit - 1)};
   }
   float weights = 0, w = 1;
   for (int level = 0; level < levels_; ++level, w *= 0.5f) {

@@ -7,15 +7,12 @@
 // shared gradient for every corner when the set has no corner colors). Perlin noise on a lattice
 // line depends only on the gradients on that line, so two tiles that agree on an edge key agree
 // in value and in gradient all along that edge: seamless by construction (Maung 2012, section III).
-// Corner-colored sets are Maung 2012's "corner tiling method": n^2 edge keys from n corner colors.
 //
-// Turbulence (Maung 2012, section V): each octave has its own gradients, stored as mip levels;
-// level l has lattice >> l cells per tile side, down to 4 x 4 (128 cells: 6 levels). Octave k
-// (k = 0 coarsest, amplitude 2^-k) reads level levels - 1 - k.
-//
-// Coordinates: tile-local (u, v) in [0, 1]^2, u east, v north; world (x, y), x east, y north,
-// in the caller's units (meters for the ground), tile (i, j) covering
-// [i, i + 1) x [j, j + 1) times tile_size, as in generator/tiling.h.
+// Every lattice point carries a value besides its gradient (value-gradient noise): plain
+// gradient noise is zero at every lattice point, and the zero lines of its turbulence run through
+// them, so the lattice shows as straight creases along the axes (issue 23: the command's preview
+// held 1.26 times as much spectral energy along the axes as along the diagonals; 1.10 with point
+// values; docs/texture-tiles.md).
 #pragma once
 
 #include <algorithm>
@@ -69,8 +66,20 @@ class NoiseTileSet {
 
   // Gradient (unit vector) at lattice point (px, py), 0 <= px, py <= cells(level), px east, py north.
   std::array<float, 2> gradient(std::uint32_t tile, int level, int px, int py) const {
-    return table_[lattice_point(tile, level, px, py)];
+    const LatticePoint& p = table_[lattice_point(tile, level, px, py)];
+    return {p.gx, p.gy};
   }
+  // The point's value, in [-kPointValue, kPointValue] (before the scale to [-1, 1]: kValueScale).
+  float point_value(std::uint32_t tile, int level, int px, int py) const {
+    return table_[lattice_point(tile, level, px, py)].value;
+  }
+  // Lattice point values are uniform in [-kPointValue, kPointValue]. Untiled turbulence of this
+  // kind has an axis-to-diagonal energy ratio of 1.24 with 0, 1.05 with 0.4 and 1.18 with 0.7
+  // (the value noise's own creases come back; docs/texture-tiles.md).
+  static constexpr float kPointValue = 0.4f;
+  // Gradient noise with unit gradients stays within +-sqrt(1/2), the interpolated point values
+  // within +-kPointValue: this scale maps their sum to [-1, 1].
+  static constexpr float kValueScale = 1 / (std::numbers::sqrt2_v<float> / 2 + kPointValue);
 
   // Perlin noise (quintic fade) of `tile` at `level` at tile-local (u, v) in [0, 1]^2.
   NoiseSample sample(std::uint32_t tile, int level, float u, float v) const;
@@ -93,7 +102,10 @@ class NoiseTileSet {
   int lattice_ = 0, levels_ = 0;
   std::uint64_t seed_ = 0;
   float norm_ = 1;  // 1 / sum of the octave weights
-  std::array<std::array<float, 2>, 256> table_{};
+  struct LatticePoint {
+    float gx = 0, gy = 0, value = 0;
+  };
+  std::array<LatticePoint, 256> table_{};
   std::array<std::size_t, 16> level_offset_{};
   std::size_t tile_stride_ = 0;
   std::vector<std::uint8_t> points_;  // per tile, per level, rows south to north: table indices
@@ -245,25 +257,24 @@ inline NoiseSample NoiseTileSet::sample(std::uint32_t tile, int level, float u, 
   const std::uint8_t* row =
       &points_[tile * tile_stride_ + level_offset_[static_cast<std::size_t>(level)] +
                static_cast<std::size_t>(cy) * static_cast<std::size_t>(n + 1) + static_cast<std::size_t>(cx)];
-  const std::array<float, 2>& g00 = table_[row[0]];
-  const std::array<float, 2>& g10 = table_[row[1]];
-  const std::array<float, 2>& g01 = table_[row[n + 1]];
-  const std::array<float, 2>& g11 = table_[row[n + 2]];
-  const float n00 = g00[0] * fx + g00[1] * fy;
-  const float n10 = g10[0] * (fx - 1) + g10[1] * fy;
-  const float n01 = g01[0] * fx + g01[1] * (fy - 1);
-  const float n11 = g11[0] * (fx - 1) + g11[1] * (fy - 1);
+  const LatticePoint& g00 = table_[row[0]];
+  const LatticePoint& g10 = table_[row[1]];
+  const LatticePoint& g01 = table_[row[n + 1]];
+  const LatticePoint& g11 = table_[row[n + 2]];
+  // Each corner's ramp: its value plus its gradient times the offset from it.
+  const float n00 = g00.value + g00.gx * fx + g00.gy * fy;
+  const float n10 = g10.value + g10.gx * (fx - 1) + g10.gy * fy;
+  const float n01 = g01.value + g01.gx * fx + g01.gy * (fy - 1);
+  const float n11 = g11.value + g11.gx * (fx - 1) + g11.gy * (fy - 1);
   const auto fade = [](float t) { return t * t * t * (t * (t * 6 - 15) + 10); };
   const auto dfade = [](float t) { return 30 * t * t * (t - 1) * (t - 1); };
   const float sx = fade(fx), sy = fade(fy), dsx = dfade(fx), dsy = dfade(fy);
   const float a = n00 + sx * (n10 - n00), b = n01 + sx * (n11 - n01);
-  const float dax = g00[0] + sx * (g10[0] - g00[0]) + dsx * (n10 - n00);
-  const float dbx = g01[0] + sx * (g11[0] - g01[0]) + dsx * (n11 - n01);
-  const float day = g00[1] + sx * (g10[1] - g00[1]), dby = g01[1] + sx * (g11[1] - g01[1]);
-  // sqrt 2 maps the range of 2D Perlin noise with unit gradients, +-sqrt(1/2), to +-1.
-  constexpr float kScale = std::numbers::sqrt2_v<float>;
-  const float per_side = kScale * static_cast<float>(n);
-  return {kScale * (a + sy * (b - a)), per_side * (dax + sy * (dbx - dax)),
+  const float dax = g00.gx + sx * (g10.gx - g00.gx) + dsx * (n10 - n00);
+  const float dbx = g01.gx + sx * (g11.gx - g01.gx) + dsx * (n11 - n01);
+  const float day = g00.gy + sx * (g10.gy - g00.gy), dby = g01.gy + sx * (g11.gy - g01.gy);
+  const float per_side = kValueScale * static_cast<float>(n);
+  return {kValueScale * (a + sy * (b - a)), per_side * (dax + sy * (dbx - dax)),
           per_side * (day + sy * (dby - day) + dsy * (b - a))};
 }
 

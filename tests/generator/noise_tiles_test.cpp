@@ -8,12 +8,15 @@
 #include <string>
 
 #include "generator/tiling_stats.h"
+#include "tests/generator/noise_reference.h"
 #include "tests/generator/test_support.h"
 
 namespace wangscape {
 namespace {
 
 using testing::error_of;
+using testing::LatticePointAt;
+using testing::reference_noise;
 
 // Float precision for a noise value (|value| <= 1) and for its gradient on an n-cell lattice
 // (per tile side, so of order n).
@@ -117,22 +120,6 @@ TEST(NoiseTiles, TheGradientIsTheDerivativeOfTheValue) {
   }
 }
 
-// Reference Perlin noise, written independently of the kernel: each lattice corner's ramp
-// g . (p - c) weighted by fade(1 - |dx|) fade(1 - |dy|). Lattice coordinates; value scaled to +-1.
-using GradientAt = std::function<std::array<float, 2>(std::int64_t, std::int64_t)>;
-double reference_perlin(double gx, double gy, const GradientAt& gradient) {
-  const auto fade = [](double t) { return t * t * t * (t * (t * 6 - 15) + 10); };
-  const double cx = std::floor(gx), cy = std::floor(gy);
-  double sum = 0;
-  for (int dy = 0; dy <= 1; ++dy)
-    for (int dx = 0; dx <= 1; ++dx) {
-      const double ox = gx - (cx + dx), oy = gy - (cy + dy);
-      const std::array<float, 2> g = gradient(static_cast<std::int64_t>(cx) + dx, static_cast<std::int64_t>(cy) + dy);
-      sum += (g[0] * ox + g[1] * oy) * fade(1 - std::abs(ox)) * fade(1 - std::abs(oy));
-    }
-  return std::sqrt(2.0) * sum;
-}
-
 std::int64_t floor_div(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
 TEST(NoiseTiles, TurbulenceMipsAgreeWithADirectEvaluation) {
@@ -152,19 +139,23 @@ TEST(NoiseTiles, TurbulenceMipsAgreeWithADirectEvaluation) {
       const int n = tiles.cells(level);
       const std::int64_t i = floor_div(px, n), j = floor_div(py, n);
       const auto lx = static_cast<int>(px - i * n), ly = static_cast<int>(py - j * n);
-      const std::array<float, 2> g = tiles.gradient(field.lookup().tile_at(i, j), level, lx, ly);
+      const std::uint32_t tile = field.lookup().tile_at(i, j);
+      const std::array<float, 2> g = tiles.gradient(tile, level, lx, ly);
+      const float value = tiles.point_value(tile, level, lx, ly);
       if (lx == 0) {
         EXPECT_EQ(g, tiles.gradient(field.lookup().tile_at(i - 1, j), level, n, ly));
+        EXPECT_EQ(value, tiles.point_value(field.lookup().tile_at(i - 1, j), level, n, ly));
       }
       if (ly == 0) {
         EXPECT_EQ(g, tiles.gradient(field.lookup().tile_at(i, j - 1), level, lx, n));
+        EXPECT_EQ(value, tiles.point_value(field.lookup().tile_at(i, j - 1), level, lx, n));
       }
-      return g;
+      return std::array<float, 3>{g[0], g[1], value};
     };
   };
   const auto octave = [&](double x, double y, int level) {
     const double scale = tiles.cells(level) / tile_size;
-    return reference_perlin(x * scale, y * scale, global_gradient(level));
+    return reference_noise(x * scale, y * scale, global_gradient(level));
   };
   // The documented sum: octave k at t = t0 + k reads level L-1-t, linear in t between levels.
   const auto reference = [&](double x, double y, bool absolute, double t0) {
@@ -223,21 +214,11 @@ Tiling quantised_field(const std::function<double(double, double)>& value, int s
 
 TEST(NoiseTiles, ALargeTilingIsNoMorePeriodicThanUntiledNoise) {
   // One sample per lattice cell (lattice 16, tile size 16), 256 x 256 samples = 16 x 16 tiles.
-  std::array<std::array<float, 2>, 256> table;
-  for (std::size_t k = 0; k < table.size(); ++k) {
-    const double angle = 2 * std::numbers::pi * (static_cast<double>(k) + 0.5) / 256.0;
-    table[k] = {static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle))};
-  }
   const auto score = [](const auto& value) { return periodicity_score(quantised_field(value, 256)); };
   const TileSet one = make_tileset("one", {Tile::edges(0, 0, 0, 0)}, "one");
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-    const GradientAt hashed = [&](std::int64_t px, std::int64_t py) {
-      std::seed_seq s{static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), static_cast<std::uint32_t>(seed)};
-      std::array<std::uint32_t, 1> out{};
-      s.generate(out.begin(), out.end());
-      return table[out[0] & 255];
-    };
-    const double untiled = score([&](double x, double y) { return reference_perlin(x, y, hashed); }).score;
+    const LatticePointAt hashed = testing::untiled_lattice(seed);
+    const double untiled = score([&](double x, double y) { return reference_noise(x, y, hashed); }).score;
     // Three corner colors (9 edge keys) or four edge colors: at the level of untiled noise.
     for (const char* name : {"corner-3", "complete-edge-4"}) {
       const NoiseField tiled = make_noise_field(builtin_tileset(name), {.seed = seed}, seed, 16.0);
