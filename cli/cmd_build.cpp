@@ -18,6 +18,11 @@ void run_build(const SceneConfig& config, const std::filesystem::path& out_dir, 
   const WriteReport report(global.quiet || !say_written);
   SceneFolderObserver observer;
   std::unique_ptr<Progress> progress;
+  if (!global.quiet)
+    observer.warning = [&](const std::string& message) {
+      progress.reset();
+      std::fprintf(stderr, "wangscape: warning: %s\n", message.c_str());
+    };
   if (chatty(global)) {
     observer.stage = [&](const std::string& message) {
       progress.reset();

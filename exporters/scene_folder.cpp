@@ -65,8 +65,9 @@ void publish(const fs::path& staging, const fs::path& out_dir, const SceneFolder
     }
     if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP)
       throw Error(out_dir, "", std::string("cannot swap the new build in: ") + std::strerror(errno));
-    say(observer, "this filesystem cannot exchange two folders at once (" + std::string(std::strerror(errno)) +
-                      "); replacing " + out_dir.string() + " with two renames");
+    if (observer.warning)
+      observer.warning("this filesystem cannot exchange two folders at once (" + std::string(std::strerror(errno)) +
+                       "); replacing " + out_dir.string() + " with two renames");
     const fs::path old = sibling(out_dir, "old");
     fs::remove_all(old, ec);
     fs::rename(out_dir, old, ec);

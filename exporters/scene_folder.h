@@ -18,6 +18,7 @@ namespace wangscape {
 struct SceneFolderObserver {
   StageObserver stage;                           // "writing POV-Ray scene ..."
   std::function<void(double fraction)> placing;  // 0..1 of the field's rows placed and written
+  StageObserver warning;                         // what the user should know even off a terminal
 };
 
 struct SceneFolderSummary {

@@ -63,6 +63,13 @@ if(STRACE)
   set_tests_properties(hostile_rebuild_swaps_in_one_exchange PROPERTIES LABELS "cli;hostile" TIMEOUT 60)
 endif()
 
+# Where the filesystem refuses the exchange (bindfs, FUSE: EINVAL), the rebuild falls back to
+# two renames and says so.
+add_test(NAME hostile_rebuild_swap_fallback
+         COMMAND sh "${CMAKE_CURRENT_SOURCE_DIR}/swap_fallback.sh" "${WANGSCAPE_BIN}" "${hostile_dir}/swap.toml"
+                 "${hostile_dir}/swap_fallback")
+set_tests_properties(hostile_rebuild_swap_fallback PROPERTIES LABELS "cli;hostile" TIMEOUT 60 SKIP_RETURN_CODE 77)
+
 # A refused build leaves no parent folders it made (here POV-Ray refuses the folder's name, after
 # the parents were made for its staging folder).
 add_test(NAME hostile_build_refused_leaves_no_parents
