@@ -12,4 +12,9 @@ namespace wangscape {
 // `keep_newlines`, '\n' stays (for messages that quote several lines of a tool's log).
 std::string printable(std::string_view text, bool keep_newlines = false);
 
+// `text` as valid UTF-8: each byte that does not begin or continue a well-formed sequence (an
+// overlong form, a surrogate, beyond U+10FFFF, a lone 0xFF from a Latin-1 file) becomes U+FFFD,
+// as JSON output does, so text files we write (scene.pov's comments) stay UTF-8.
+std::string valid_utf8(std::string_view text);
+
 }  // namespace wangscape

@@ -195,7 +195,8 @@ void check_povray_mesh(const Mesh& mesh, const std::string& what) {
 
 // ---- the scene file ---------------------------------------------------------------------------
 
-std::string comment_safe(std::string text) {
+std::string comment_safe(std::string_view source) {
+  std::string text = valid_utf8(source);  // names from a DEM's CRS may be Latin-1
   std::replace(text.begin(), text.end(), '\n', ' ');
   std::replace(text.begin(), text.end(), '\r', ' ');
   return text;

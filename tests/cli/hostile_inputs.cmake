@@ -70,6 +70,12 @@ add_test(NAME hostile_rebuild_swap_fallback
                  "${hostile_dir}/swap_fallback")
 set_tests_properties(hostile_rebuild_swap_fallback PROPERTIES LABELS "cli;hostile" TIMEOUT 60 SKIP_RETURN_CODE 77)
 
+# A DEM whose CRS name is not UTF-8 (byte 0xFF): JSON gets U+FFFD, scene.pov stays UTF-8.
+add_test(NAME hostile_crs_not_utf8
+         COMMAND sh "${CMAKE_CURRENT_SOURCE_DIR}/crs_not_utf8.sh" "${WANGSCAPE_BIN}" "${PROJECT_SOURCE_DIR}"
+                 "${hostile_dir}/crs_not_utf8")
+set_tests_properties(hostile_crs_not_utf8 PROPERTIES LABELS "cli;hostile" TIMEOUT 60)
+
 # A refused build leaves no parent folders it made (here POV-Ray refuses the folder's name, after
 # the parents were made for its staging folder).
 add_test(NAME hostile_build_refused_leaves_no_parents
