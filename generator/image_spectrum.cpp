@@ -1,6 +1,7 @@
 #include "generator/image_spectrum.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <complex>
@@ -126,10 +127,25 @@ double shifted_correlation(const GrayImage& image, int dx, int dy) {
   return va > 0 && vb > 0 ? cov / std::sqrt(va * vb) : 0;
 }
 
+namespace {
+constexpr std::array<std::array<int, 2>, 4> kTileDirections = {{{1, 0}, {0, 1}, {1, 1}, {1, -1}}};
+}  // namespace
+
 double tile_repetition(const GrayImage& image, int period) {
   double worst = 0;
-  for (const auto& [dx, dy] : {std::array<int, 2>{period, 0}, {0, period}, {period, period}, {period, -period}})
-    worst = std::max(worst, shifted_correlation(image, dx, dy));
+  for (const auto& [dx, dy] : kTileDirections)
+    worst = std::max(worst, shifted_correlation(image, dx * period, dy * period));
+  return worst;
+}
+
+double tile_period_peak(const GrayImage& image, int period) {
+  const int shorter = period * 7 / 8, longer = (period * 9 + 7) / 8;
+  double worst = 0;
+  for (const auto& [dx, dy] : kTileDirections) {
+    const double around = 0.5 * (shifted_correlation(image, dx * shorter, dy * shorter) +
+                                 shifted_correlation(image, dx * longer, dy * longer));
+    worst = std::max(worst, shifted_correlation(image, dx * period, dy * period) - around);
+  }
   return worst;
 }
 

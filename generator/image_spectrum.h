@@ -6,7 +6,8 @@
 //   blocks put energy on the axes; isotropic texture gives about 1.
 // - tile_repetition: how much of a preview repeats at a shift of whole tiles (the correlation of
 //   the picture with itself shifted by one tile, the largest over the four directions); 0 for a
-//   texture that never repeats, 1 for one tile repeated.
+//   texture that never repeats, 1 for one tile repeated. tile_period_peak: the same, less what
+//   the picture correlates at shifts a little shorter and longer than a tile.
 //
 // Images are grey values (any scale), row-major, top row first. Pure functions, thread-safe.
 #pragma once
@@ -52,5 +53,11 @@ double shifted_correlation(const GrayImage& image, int dx, int dy);
 
 // The largest shifted_correlation over the shifts (p, 0), (0, p), (p, p), (p, -p), p = period.
 double tile_repetition(const GrayImage& image, int period);
+
+// The repetition that belongs to the tile grid: over the same four directions, the largest
+// excess of the correlation at one tile's shift over the mean of those at 7/8 and 9/8 of it.
+// Texture that is merely coherent over a tile (large patches, a smooth boundary between two
+// exemplars) correlates alike at the three shifts and scores near 0; repeated tiles score up to 1.
+double tile_period_peak(const GrayImage& image, int period);
 
 }  // namespace wangscape

@@ -1,10 +1,13 @@
 #include "generator/texture_tiles.h"
 
+#include "generator/noise_tiles.h"
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 
 namespace wangscape {
@@ -43,121 +46,34 @@ enum Quadrant : int { kNEq = 0, kSEq, kSWq, kNWq };
 constexpr std::array<int, 4> kFirstSlot = {kN, kS, kS, kN};
 constexpr std::array<int, 4> kSecondSlot = {kE, kE, kW, kW};
 
-struct Diamond {
-  int orientation = 0;                // 0: N/S edge, halves west/east; 1: E/W edge, halves north/south
-  std::size_t first = 0, second = 0;  // windows of the west (north) and east (south) halves
-  bool mixed() const { return first != second; }
-};
-
-// What does not change during the search.
+// What does not change during one exemplar's search. Every diamond key of the set (orientation,
+// edge color, the corner marks at the edge's two ends) owns one window of that exemplar.
 struct Problem {
   int size = 0, half = 0, band = 0, separation = 0;
+  int exemplar = 0;
   std::span<const ImageRgb8> exemplars;
-  std::vector<Diamond> diamonds;
-  std::vector<std::array<std::size_t, 4>> tile_diamonds;   // per tile, per slot
-  std::vector<std::vector<std::size_t>> window_diamonds;   // diamonds reading each window
+  std::vector<std::array<std::size_t, 4>> tile_windows;    // per tile, per slot
   std::vector<std::vector<std::size_t>> window_tiles;      // tiles reading each window
   std::vector<std::vector<std::size_t>> window_quadrants;  // tile * 4 + quadrant of the quadrants reading each window
 };
 
 struct Layout {
   std::vector<TextureWindow> windows;
-  std::vector<std::vector<int>> cuts;  // per mixed diamond: one threshold per row across the edge
 };
-
-// The slot's window-relative offset of tile pixel (x, y): the inverse of texture_source_pixel.
-std::array<int, 2> slot_offset(int size, int slot, int x, int y) {
-  const TextureWindow origin{0, 0, 0};
-  return texture_source_pixel(size, origin, slot, x, y);
-}
-
-const std::uint8_t* window_pixel(const Problem& p, const TextureWindow& w, int dx, int dy) {
-  const ImageRgb8& image = p.exemplars[static_cast<std::size_t>(w.exemplar)];
-  return &image.pixels[image.offset(w.x + dx, w.y + dy)];
-}
-
-// The window a diamond shows at window-relative (dx, dy): its mixed diamonds' cut across the edge.
-std::size_t diamond_window(const Problem& p, const Layout& layout, std::size_t diamond, int dx, int dy) {
-  const Diamond& d = p.diamonds[diamond];
-  if (!d.mixed()) return d.first;
-  const int along = d.orientation == 0 ? dx : dy, across = d.orientation == 0 ? dy : dx;
-  return along < layout.cuts[diamond][static_cast<std::size_t>(across + p.half)] ? d.first : d.second;
-}
 
 struct Source {
   std::size_t window = 0;
   int slot = 0;
 };
 
-Source pixel_source(const Problem& p, const Layout& layout, std::size_t tile, int slot, int x, int y) {
-  const auto [dx, dy] = slot_offset(p.size, slot, x, y);
-  return {diamond_window(p, layout, p.tile_diamonds[tile][static_cast<std::size_t>(slot)], dx, dy), slot};
+Source pixel_source(const Problem& p, std::size_t tile, int slot) {
+  return {p.tile_windows[tile][static_cast<std::size_t>(slot)], slot};
 }
 
 const std::uint8_t* source_color(const Problem& p, const Layout& layout, const Source& s, int x, int y) {
   const auto [ex, ey] = texture_source_pixel(p.size, layout.windows[s.window], s.slot, x, y);
   const ImageRgb8& image = p.exemplars[static_cast<std::size_t>(layout.windows[s.window].exemplar)];
   return &image.pixels[image.offset(ex, ey)];
-}
-
-// The cut joining a mixed diamond's halves: per row across the edge a threshold c in
-// [-band, band] along it (first half where along < c), rows moving by at most one pixel. Returns
-// the cost of the seam pairs it leaves (over the whole diamond); writes the thresholds to `cut`.
-std::uint64_t bisector_cut(const Problem& p, const Layout& layout, std::size_t diamond, std::vector<int>* cut) {
-  const Diamond& d = p.diamonds[diamond];
-  const TextureWindow& a = layout.windows[d.first];
-  const TextureWindow& b = layout.windows[d.second];
-  const int band = p.band, states = 2 * band + 1, rows = p.size;
-  // Row costs for along in [-band - 1, band].
-  const auto row_errors = [&](int row, std::vector<std::uint64_t>& e) {
-    const int across = row - p.half;
-    for (int along = -band - 1; along <= band; ++along) {
-      const int dx = d.orientation == 0 ? along : across, dy = d.orientation == 0 ? across : along;
-      e[static_cast<std::size_t>(along + band + 1)] =
-          static_cast<std::uint64_t>(square_difference(window_pixel(p, a, dx, dy), window_pixel(p, b, dx, dy)));
-    }
-  };
-  std::vector<std::uint64_t> e(static_cast<std::size_t>(states + 1)), e_next(e.size());
-  const auto at = [&](const std::vector<std::uint64_t>& errors, int along) {
-    return errors[static_cast<std::size_t>(along + band + 1)];
-  };
-  std::vector<std::uint64_t> cost(static_cast<std::size_t>(states)), next(cost.size());
-  std::vector<std::int8_t> back(static_cast<std::size_t>(rows * states), 0);
-  row_errors(0, e);
-  for (int c = -band; c <= band; ++c) cost[static_cast<std::size_t>(c + band)] = at(e, c - 1) + at(e, c);
-  for (int row = 1; row < rows; ++row) {
-    row_errors(row, e_next);
-    for (int c = -band; c <= band; ++c) {
-      std::uint64_t best = kInfinite;
-      std::int8_t from = 0;
-      // The cut crosses the edge itself straight (rows half - 1 and half, one in each tile), so
-      // the pixels facing each other across the edge read the same window.
-      const int steps = row == p.half ? 0 : 1;
-      for (int step = -steps; step <= steps; ++step) {
-        const int previous = c + step;
-        if (previous < -band || previous > band) continue;
-        // A step leaves one vertical seam pair, in the column between the two thresholds.
-        const int column = std::min(c, previous);
-        const std::uint64_t move = step == 0 ? 0 : at(e, column) + at(e_next, column);
-        const std::uint64_t total = cost[static_cast<std::size_t>(previous + band)] + move;
-        if (total < best) best = total, from = static_cast<std::int8_t>(step);
-      }
-      next[static_cast<std::size_t>(c + band)] = best + at(e_next, c - 1) + at(e_next, c);
-      back[static_cast<std::size_t>(row * states + c + band)] = from;
-    }
-    std::swap(cost, next);
-    std::swap(e, e_next);
-  }
-  const auto end = std::min_element(cost.begin(), cost.end());
-  if (cut) {
-    cut->assign(static_cast<std::size_t>(rows), 0);
-    int c = static_cast<int>(end - cost.begin()) - band;
-    for (int row = rows - 1; row >= 0; --row) {
-      (*cut)[static_cast<std::size_t>(row)] = c;
-      c += back[static_cast<std::size_t>(row * states + c + band)];
-    }
-  }
-  return *end;
 }
 
 // Tile pixel of quadrant-local (a, b): a pixels from the centre towards the vertical edge, b
@@ -182,17 +98,14 @@ std::uint64_t quadrant_cut(const Problem& p, const Layout& layout, std::size_t t
   const auto limit = [&](int k) { return std::min(band, length(k) - 2); };
   // Per anti-diagonal, pixel errors for q in [-(band + 2), band + 2].
   const int reach = band + 2, span = 2 * reach + 1;
-  // A slot whose diamond is one window maps tile pixels to exemplar bytes by a fixed offset:
-  // the fast path. Mixed diamonds go through their cut.
+  // A slot maps tile pixels to exemplar bytes by a fixed offset.
   struct Fetch {
     const std::uint8_t* pixels = nullptr;
     std::ptrdiff_t origin = 0, width = 0;  // byte offset of tile pixel (0, 0); exemplar width
   };
   const auto fetch = [&](int slot) {
     Fetch f;
-    const Diamond& d = p.diamonds[p.tile_diamonds[tile][static_cast<std::size_t>(slot)]];
-    if (d.mixed()) return f;
-    const TextureWindow& w = layout.windows[d.first];
+    const TextureWindow& w = layout.windows[p.tile_windows[tile][static_cast<std::size_t>(slot)]];
     const ImageRgb8& image = p.exemplars[static_cast<std::size_t>(w.exemplar)];
     const auto [x0, y0] = texture_source_pixel(p.size, w, slot, 0, 0);
     f.pixels = image.pixels.data();
@@ -201,9 +114,8 @@ std::uint64_t quadrant_cut(const Problem& p, const Layout& layout, std::size_t t
     return f;
   };
   const Fetch first_fetch = fetch(first_slot), second_fetch = fetch(second_slot);
-  const auto color = [&](const Fetch& f, int slot, int x, int y) {
-    if (f.pixels) return f.pixels + f.origin + (static_cast<std::ptrdiff_t>(y) * f.width + x) * 3;
-    return source_color(p, layout, pixel_source(p, layout, tile, slot, x, y), x, y);
+  const auto color = [&](const Fetch& f, int x, int y) {
+    return f.pixels + f.origin + (static_cast<std::ptrdiff_t>(y) * f.width + x) * 3;
   };
   const auto corner = quadrant_pixel(p.half, quadrant, 0, 0);  // no structured binding: clang 14 cannot capture one
   const int x0 = corner[0], y0 = corner[1];
@@ -214,8 +126,8 @@ std::uint64_t quadrant_cut(const Problem& p, const Layout& layout, std::size_t t
     const int extent = std::min(length(k) - 1, reach);
     for (int q = ((extent - k) & 1) ? 1 - extent : -extent; q <= extent; q += 2) {
       const int x = x0 + step_x * ((k + q) / 2), y = y0 + step_y * ((k - q) / 2);
-      e[static_cast<std::size_t>(q + reach)] = static_cast<std::uint64_t>(
-          square_difference(color(first_fetch, first_slot, x, y), color(second_fetch, second_slot, x, y)));
+      e[static_cast<std::size_t>(q + reach)] =
+          static_cast<std::uint64_t>(square_difference(color(first_fetch, x, y), color(second_fetch, x, y)));
     }
   };
   const int states = 2 * band + 3, offset = band + 1;  // c in [-band - 1, band + 1]
@@ -266,8 +178,8 @@ std::uint64_t centre_pairs(const Problem& p, const Layout& layout, std::size_t t
   std::uint64_t total = 0;
   for (const int x : {p.half - 1, p.half}) {
     const int y_north = p.half - 1, y_south = p.half;
-    const Source n = pixel_source(p, layout, tile, kN, x, y_north);
-    const Source s = pixel_source(p, layout, tile, kS, x, y_south);
+    const Source n = pixel_source(p, tile, kN);
+    const Source s = pixel_source(p, tile, kS);
     total += static_cast<std::uint64_t>(
         square_difference(source_color(p, layout, n, x, y_north), source_color(p, layout, s, x, y_north)) +
         square_difference(source_color(p, layout, n, x, y_south), source_color(p, layout, s, x, y_south)));
@@ -304,16 +216,162 @@ TextureWindow random_window(const Problem& p, int exemplar, Draws& draws) {
 
 }  // namespace
 
-std::size_t TextureTileSet::window_index(int orientation, int color, int mark) const {
-  const int horizontal = set.has_edges ? set.horizontal_colors : 1;
-  return static_cast<std::size_t>(((orientation == 0 ? 0 : horizontal) + color) * marks + mark);
-}
-
 std::uint64_t TextureTileSet::total_error() const {
   std::uint64_t total = 0;
   for (const TextureTile& t : tiles) total += t.error;
   return total;
 }
+
+namespace {
+
+// Windows keep p.separation apart when they can: from half a tile, halved while the exemplar has
+// no room, down to the floor. Throws Error naming the exemplar when even the floor has no room.
+Layout place_windows(Problem& p, std::size_t window_count, int floor, std::uint64_t seed, const std::string& where) {
+  Layout layout;
+  layout.windows.resize(window_count);
+  for (p.separation = std::max(floor, p.size / 2);; p.separation = std::max(floor, p.separation / 2)) {
+    bool all = true;
+    for (std::size_t w = 0; w < window_count && all; ++w) {
+      Draws draws(seed, 0x1000000 + (static_cast<std::uint64_t>(p.exemplar) << 20) + w);
+      bool placed = false;
+      for (int attempt = 0; attempt < 2000 && !placed; ++attempt) {
+        const TextureWindow at = random_window(p, p.exemplar, draws);
+        layout.windows[w] = at;
+        // Windows after w are not placed yet: check against the placed ones only.
+        Layout placed_only;
+        placed_only.windows.assign(layout.windows.begin(), layout.windows.begin() + static_cast<std::ptrdiff_t>(w + 1));
+        placed = well_separated(p, placed_only, w, at);
+      }
+      all = placed;
+    }
+    if (all) return layout;
+    if (p.separation == floor)
+      throw Error(where + ": exemplar " + std::to_string(p.exemplar + 1) + " has no room for " +
+                  std::to_string(window_count) + " windows of " + std::to_string(p.size) + " pixels kept " +
+                  std::to_string(floor) +
+                  " pixels apart; use a larger exemplar, smaller tiles or a smaller separation");
+  }
+}
+
+// The sample search (Cohen 2003, section 3.2) over one exemplar's windows: per window,
+// candidates in parallel; the cheapest (first on ties) replaces the window when it lowers the cost
+// of the quadrants that read it.
+void search_windows(const Problem& p, Layout& layout, const TextureTileOptions& options, TextureTileReport& stats) {
+  const std::size_t tile_count = p.tile_windows.size();
+  std::vector<std::uint64_t> centre_costs(tile_count, 0), quadrant_costs(tile_count * 4, 0);
+  tbb::parallel_for(std::size_t{0}, tile_count, [&](std::size_t t) {
+    centre_costs[t] = centre_pairs(p, layout, t);
+    for (int q = 0; q < 4; ++q)
+      quadrant_costs[t * 4 + static_cast<std::size_t>(q)] = quadrant_cut(p, layout, t, q, nullptr);
+  });
+  const auto objective = [&] {
+    std::uint64_t total = 0;
+    for (const auto* costs : {&centre_costs, &quadrant_costs})
+      for (const std::uint64_t c : *costs) total += c;
+    return total;
+  };
+  stats.initial_cost += objective();
+  struct Trial {
+    TextureWindow at;
+    std::uint64_t cost = kInfinite;
+    std::vector<std::uint64_t> centre_costs, quadrant_costs;
+  };
+  for (int round = 0; round < options.rounds; ++round)
+    for (std::size_t w = 0; w < layout.windows.size(); ++w) {
+      const std::vector<std::size_t>& tiles = p.window_tiles[w];
+      const std::vector<std::size_t>& quadrants = p.window_quadrants[w];
+      if (tiles.empty()) continue;
+      std::uint64_t current = 0;
+      for (const std::size_t t : tiles) current += centre_costs[t];
+      for (const std::size_t q : quadrants) current += quadrant_costs[q];
+      std::vector<Trial> trials(static_cast<std::size_t>(options.candidates));
+      Draws draws(options.seed,
+                  (static_cast<std::uint64_t>(round) << 32) + (static_cast<std::uint64_t>(p.exemplar) << 24) + w);
+      for (Trial& trial : trials) {
+        trial.at = layout.windows[w];
+        for (int attempt = 0; attempt < 64; ++attempt) {
+          const TextureWindow at = random_window(p, p.exemplar, draws);
+          if (well_separated(p, layout, w, at)) {
+            trial.at = at;
+            trial.cost = 0;
+            break;
+          }
+        }
+      }
+      tbb::parallel_for(std::size_t{0}, trials.size(), [&](std::size_t k) {
+        Trial& trial = trials[k];
+        if (trial.cost >= kInfinite) return;
+        Layout local = layout;
+        local.windows[w] = trial.at;
+        for (const std::size_t t : tiles) {
+          trial.centre_costs.push_back(centre_pairs(p, local, t));
+          trial.cost += trial.centre_costs.back();
+        }
+        for (const std::size_t q : quadrants) {
+          trial.quadrant_costs.push_back(quadrant_cut(p, local, q / 4, static_cast<int>(q % 4), nullptr));
+          trial.cost += trial.quadrant_costs.back();
+        }
+      });
+      stats.candidates_tried += options.candidates;
+      std::size_t best = 0;
+      for (std::size_t k = 1; k < trials.size(); ++k)
+        if (trials[k].cost < trials[best].cost) best = k;
+      if (trials[best].cost >= current) continue;
+      ++stats.moves_accepted;
+      const Trial& chosen = trials[best];
+      layout.windows[w] = chosen.at;
+      for (std::size_t k = 0; k < tiles.size(); ++k) centre_costs[tiles[k]] = chosen.centre_costs[k];
+      for (std::size_t k = 0; k < quadrants.size(); ++k) quadrant_costs[quadrants[k]] = chosen.quadrant_costs[k];
+    }
+  stats.final_cost += objective();
+}
+
+// Per pixel of tile t, row-major: the source the quadrant cuts give it.
+std::vector<Source> tile_sources(const Problem& p, const Layout& layout, std::size_t t) {
+  std::vector<Source> sources(static_cast<std::size_t>(p.size) * static_cast<std::size_t>(p.size));
+  std::vector<int> cut;
+  for (int quadrant = 0; quadrant < 4; ++quadrant) {
+    quadrant_cut(p, layout, t, quadrant, &cut);
+    for (int b = 0; b < p.half; ++b)
+      for (int a = 0; a < p.half; ++a) {
+        const auto [x, y] = quadrant_pixel(p.half, quadrant, a, b);
+        const bool first = a - b < cut[static_cast<std::size_t>(a + b)];
+        const int slot =
+            first ? kFirstSlot[static_cast<std::size_t>(quadrant)] : kSecondSlot[static_cast<std::size_t>(quadrant)];
+        sources[static_cast<std::size_t>(y) * static_cast<std::size_t>(p.size) + static_cast<std::size_t>(x)] =
+            pixel_source(p, t, slot);
+      }
+  }
+  return sources;
+}
+
+// Which exemplar a pixel of a corner-marked tile shows (Cohen 2003, section 3.5, with a boundary
+// that is not the tile grid): the corner marks (exemplar index of each corner) interpolated with
+// the quintic fade, plus fbm noise tiles of the same set scaled by kBoundaryNoise and by a factor
+// that is 0 at the corners and 1 on the midlines, is >= 1/2 for the second exemplar. Both terms
+// agree across every shared edge, so the boundary is seamless; the noise bends it well away from
+// the tile midlines, and pixels within 1/16 tile of a corner keep the corner's exemplar (|noise| <= 1).
+constexpr float kBoundaryNoise = 1.0f;
+
+bool second_exemplar(const NoiseTileSet& noise, std::uint32_t tile, const std::array<float, 4>& marks, int size, int x,
+                     int y) {
+  // Border pixels read the boundary on the edge itself, where both tiles agree, so the two pixels
+  // facing each other across an edge show the same exemplar (and, each quilting being seamless,
+  // continue each other).
+  const auto at = [size](int k) {
+    return k == 0 ? 0.f : k == size - 1 ? 1.f : (static_cast<float>(k) + 0.5f) / static_cast<float>(size);
+  };
+  const float u = at(x), v = 1 - at(y);  // north up
+  const auto fade = [](float t) { return t * t * t * (t * (t * 6 - 15) + 10); };
+  const float fu = fade(u), fv = fade(v);
+  // marks: sw, se, nw, ne
+  const float south = marks[0] + fu * (marks[1] - marks[0]), north = marks[2] + fu * (marks[3] - marks[2]);
+  const float corners = 1 - (1 - 4 * u * (1 - u)) * (1 - 4 * v * (1 - v));
+  const float value = south + fv * (north - south) + kBoundaryNoise * corners * noise.fractal(tile, u, v, false);
+  return value >= 0.5f;
+}
+
+}  // namespace
 
 TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8> exemplars,
                                   const TextureTileOptions& options, TextureTileReport* report) {
@@ -337,19 +395,17 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
   result.set = set;
   result.tile_size = size;
   result.marks = set.has_corners ? std::max(1, set.corner_colors) : 1;
-  const int horizontal = set.has_edges ? set.horizontal_colors : 1, vertical = set.has_edges ? set.vertical_colors : 1;
-  const std::size_t window_count = static_cast<std::size_t>((horizontal + vertical) * result.marks);
+  // Two exemplars in a corner-marked set: one quilting per exemplar, joined per pixel by the
+  // marks' boundary. Otherwise one quilting of the first exemplar.
+  const int layers = set.has_corners && exemplars.size() == 2 ? 2 : 1;
 
-  Problem p;
-  p.size = size;
-  p.half = size / 2;
-  p.band = options.band > 0 ? options.band : std::max(2, size / 16);
-  p.separation = options.min_separation > 0 ? options.min_separation : size / 8;
-  p.exemplars = exemplars;
-  p.window_diamonds.resize(window_count);
-  p.window_tiles.resize(window_count);
-  p.window_quadrants.resize(window_count);
-  std::map<std::array<int, 4>, std::size_t> diamond_ids;
+  // Diamond keys, in order of first use: every key owns one window per layer.
+  Problem shape;
+  shape.size = size;
+  shape.half = size / 2;
+  shape.band = options.band > 0 ? options.band : std::max(2, size / 16);
+  shape.exemplars = exemplars;
+  std::map<std::array<int, 4>, std::size_t> window_ids;
   const auto color = [](int c) { return c < 0 ? 0 : c; };
   for (std::size_t t = 0; t < set.size(); ++t) {
     const Tile& tile = set.tiles[t];
@@ -359,168 +415,77 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
     std::array<std::size_t, 4> slots{};
     for (int slot = 0; slot < 4; ++slot) {
       const int orientation = slot == kN || slot == kS ? 0 : 1;
-      const int edge = color(tile.colors[static_cast<std::size_t>(slot)]);
-      const int m1 = color(ends[static_cast<std::size_t>(slot)][0]),
-                m2 = color(ends[static_cast<std::size_t>(slot)][1]);
-      const auto [it, added] = diamond_ids.try_emplace({orientation, edge, m1, m2}, p.diamonds.size());
+      const std::array<int, 4> key = {orientation, color(tile.colors[static_cast<std::size_t>(slot)]),
+                                      color(ends[static_cast<std::size_t>(slot)][0]),
+                                      color(ends[static_cast<std::size_t>(slot)][1])};
+      const auto [it, added] = window_ids.try_emplace(key, window_ids.size());
       if (added) {
-        const Diamond d{orientation, result.window_index(orientation, edge, m1),
-                        result.window_index(orientation, edge, m2)};
-        p.diamonds.push_back(d);
-        p.window_diamonds[d.first].push_back(it->second);
-        if (d.mixed()) p.window_diamonds[d.second].push_back(it->second);
+        shape.window_tiles.emplace_back();
+        shape.window_quadrants.emplace_back();
       }
-      slots[static_cast<std::size_t>(slot)] = it->second;
-      const Diamond& d = p.diamonds[it->second];
-      for (const std::size_t w : {d.first, d.second}) {
-        if (p.window_tiles[w].empty() || p.window_tiles[w].back() != t) p.window_tiles[w].push_back(t);
-        for (const int q : kSlotQuadrants[static_cast<std::size_t>(slot)])
-          p.window_quadrants[w].push_back(t * 4 + static_cast<std::size_t>(q));
-      }
+      const std::size_t w = it->second;
+      slots[static_cast<std::size_t>(slot)] = w;
+      if (shape.window_tiles[w].empty() || shape.window_tiles[w].back() != t) shape.window_tiles[w].push_back(t);
+      for (const int q : kSlotQuadrants[static_cast<std::size_t>(slot)])
+        shape.window_quadrants[w].push_back(t * 4 + static_cast<std::size_t>(q));
     }
-    p.tile_diamonds.push_back(slots);
+    shape.tile_windows.push_back(slots);
   }
-  for (std::vector<std::size_t>& quadrants : p.window_quadrants) {
+  for (std::vector<std::size_t>& quadrants : shape.window_quadrants) {
     std::sort(quadrants.begin(), quadrants.end());
     quadrants.erase(std::unique(quadrants.begin(), quadrants.end()), quadrants.end());
   }
+  const std::size_t window_count = window_ids.size();
+  // An explicit separation is a floor the windows must keep; by default they come as close as they must.
+  const int floor = options.min_separation > 0 ? options.min_separation : 1;
 
-  // Initial windows: random, well separated; window w reads exemplar (its mark) mod exemplars.
-  Layout layout;
-  layout.windows.resize(window_count);
-  layout.cuts.resize(p.diamonds.size());
-  for (std::size_t w = 0; w < window_count; ++w) {
-    const int exemplar =
-        static_cast<int>(static_cast<std::size_t>(w % static_cast<std::size_t>(result.marks)) % exemplars.size());
-    Draws draws(options.seed, 0x1000000 + w);
-    bool placed = false;
-    for (int attempt = 0; attempt < 10000 && !placed; ++attempt) {
-      const TextureWindow at = random_window(p, exemplar, draws);
-      layout.windows[w] = at;
-      // Windows after w are not placed yet: check against the placed ones only.
-      Layout placed_only;
-      placed_only.windows.assign(layout.windows.begin(), layout.windows.begin() + static_cast<std::ptrdiff_t>(w + 1));
-      placed = well_separated(p, placed_only, w, at);
-    }
-    if (!placed)
-      throw Error(where + ": exemplar " + std::to_string(exemplar + 1) + " has no room for " +
-                  std::to_string(window_count) + " windows of " + std::to_string(size) + " pixels kept " +
-                  std::to_string(p.separation) +
-                  " pixels apart; use a larger exemplar, smaller tiles or a smaller separation");
-  }
-  std::vector<std::uint64_t> diamond_cost(p.diamonds.size(), 0), centre_costs(set.size(), 0);
-  std::vector<std::uint64_t> quadrant_costs(set.size() * 4, 0);
-  for (std::size_t d = 0; d < p.diamonds.size(); ++d)
-    if (p.diamonds[d].mixed()) diamond_cost[d] = bisector_cut(p, layout, d, &layout.cuts[d]);
-  tbb::parallel_for(std::size_t{0}, set.size(), [&](std::size_t t) {
-    centre_costs[t] = centre_pairs(p, layout, t);
-    for (int q = 0; q < 4; ++q)
-      quadrant_costs[t * 4 + static_cast<std::size_t>(q)] = quadrant_cut(p, layout, t, q, nullptr);
-  });
-  const auto objective = [&] {
-    std::uint64_t total = 0;
-    for (const auto* costs : {&diamond_cost, &centre_costs, &quadrant_costs})
-      for (const std::uint64_t c : *costs) total += c;
-    return total;
-  };
   TextureTileReport stats;
-  stats.initial_cost = objective();
-
-  // The search: per window, candidates in parallel; the cheapest (first on ties) replaces the
-  // window when it lowers the cost of the tiles and diamonds that read it.
-  struct Trial {
-    TextureWindow at;
-    std::uint64_t cost = kInfinite;
-    std::vector<std::vector<int>> cuts;  // of the window's mixed diamonds
-    std::vector<std::uint64_t> diamond_costs, centre_costs, quadrant_costs;
-  };
-  for (int round = 0; round < options.rounds; ++round)
-    for (std::size_t w = 0; w < window_count; ++w) {
-      const std::vector<std::size_t>& diamonds = p.window_diamonds[w];
-      const std::vector<std::size_t>& tiles = p.window_tiles[w];
-      const std::vector<std::size_t>& quadrants = p.window_quadrants[w];
-      if (tiles.empty()) continue;
-      std::uint64_t current = 0;
-      for (const std::size_t d : diamonds) current += diamond_cost[d];
-      for (const std::size_t t : tiles) current += centre_costs[t];
-      for (const std::size_t q : quadrants) current += quadrant_costs[q];
-      std::vector<Trial> trials(static_cast<std::size_t>(options.candidates));
-      Draws draws(options.seed, (static_cast<std::uint64_t>(round) << 32) + w);
-      for (Trial& trial : trials) {
-        trial.at = layout.windows[w];
-        for (int attempt = 0; attempt < 64; ++attempt) {
-          const TextureWindow at = random_window(p, layout.windows[w].exemplar, draws);
-          if (well_separated(p, layout, w, at)) {
-            trial.at = at;
-            trial.cost = 0;
-            break;
-          }
-        }
-      }
-      tbb::parallel_for(std::size_t{0}, trials.size(), [&](std::size_t k) {
-        Trial& trial = trials[k];
-        if (trial.cost >= kInfinite) return;
-        Layout local = layout;
-        local.windows[w] = trial.at;
-        for (const std::size_t d : diamonds) {
-          const std::uint64_t c = p.diamonds[d].mixed() ? bisector_cut(p, local, d, &local.cuts[d]) : 0;
-          trial.diamond_costs.push_back(c);
-          trial.cuts.push_back(local.cuts[d]);
-          trial.cost += c;
-        }
-        for (const std::size_t t : tiles) {
-          trial.centre_costs.push_back(centre_pairs(p, local, t));
-          trial.cost += trial.centre_costs.back();
-        }
-        for (const std::size_t q : quadrants) {
-          trial.quadrant_costs.push_back(quadrant_cut(p, local, q / 4, static_cast<int>(q % 4), nullptr));
-          trial.cost += trial.quadrant_costs.back();
-        }
-      });
-      stats.candidates_tried += options.candidates;
-      std::size_t best = 0;
-      for (std::size_t k = 1; k < trials.size(); ++k)
-        if (trials[k].cost < trials[best].cost) best = k;
-      if (trials[best].cost >= current) continue;
-      ++stats.moves_accepted;
-      Trial& chosen = trials[best];
-      layout.windows[w] = chosen.at;
-      for (std::size_t k = 0; k < diamonds.size(); ++k) {
-        layout.cuts[diamonds[k]] = std::move(chosen.cuts[k]);
-        diamond_cost[diamonds[k]] = chosen.diamond_costs[k];
-      }
-      for (std::size_t k = 0; k < tiles.size(); ++k) centre_costs[tiles[k]] = chosen.centre_costs[k];
-      for (std::size_t k = 0; k < quadrants.size(); ++k) quadrant_costs[quadrants[k]] = chosen.quadrant_costs[k];
-    }
-  stats.final_cost = objective();
+  std::vector<Problem> problems;
+  std::vector<Layout> layouts;
+  for (int layer = 0; layer < layers; ++layer) {
+    Problem p = shape;
+    p.exemplar = layer;
+    Layout layout = place_windows(p, window_count, floor, options.seed, where);
+    search_windows(p, layout, options, stats);
+    result.windows.insert(result.windows.end(), layout.windows.begin(), layout.windows.end());
+    problems.push_back(std::move(p));
+    layouts.push_back(std::move(layout));
+  }
   if (report) *report = stats;
 
-  // The tiles: labels from the cuts, pixels from the sources, and the seam cost they leave.
-  result.windows = layout.windows;
+  // The tiles: per pixel the layer the marks' boundary picks, its source there, and the seam
+  // cost the cuts and the boundary leave.
+  const std::optional<NoiseTileSet> boundary =
+      layers == 2 ? std::optional<NoiseTileSet>(NoiseTileSet(set, {.lattice = 8, .octaves = 2, .seed = options.seed}))
+                  : std::nullopt;
   result.tiles.resize(set.size());
   tbb::parallel_for(std::size_t{0}, set.size(), [&](std::size_t t) {
     TextureTile& out = result.tiles[t];
     out.image = ImageRgb8(size, size);
     out.source.assign(static_cast<std::size_t>(size) * static_cast<std::size_t>(size), 0);
-    std::vector<Source> sources(out.source.size());
-    std::vector<int> cut;
-    for (int quadrant = 0; quadrant < 4; ++quadrant) {
-      quadrant_cut(p, layout, t, quadrant, &cut);
-      for (int b = 0; b < p.half; ++b)
-        for (int a = 0; a < p.half; ++a) {
-          const auto [x, y] = quadrant_pixel(p.half, quadrant, a, b);
-          const bool first = a - b < cut[static_cast<std::size_t>(a + b)];
-          const int slot =
-              first ? kFirstSlot[static_cast<std::size_t>(quadrant)] : kSecondSlot[static_cast<std::size_t>(quadrant)];
-          const Source s = pixel_source(p, layout, t, slot, x, y);
-          const std::size_t o =
-              static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x);
-          sources[o] = s;
-          out.source[o] = static_cast<std::uint16_t>(s.window * 4 + static_cast<std::size_t>(s.slot));
-          const std::uint8_t* c = source_color(p, layout, s, x, y);
-          out.image.set(x, y, {c[0], c[1], c[2]});
-        }
-    }
+    std::vector<std::vector<Source>> sources;
+    for (int layer = 0; layer < layers; ++layer)
+      sources.push_back(
+          tile_sources(problems[static_cast<std::size_t>(layer)], layouts[static_cast<std::size_t>(layer)], t));
+    const Tile& tile = set.tiles[t];
+    const auto mark = [&](int c) { return static_cast<float>(color(c) % 2); };
+    const std::array<float, 4> marks = {mark(tile.sw()), mark(tile.se()), mark(tile.nw()), mark(tile.ne())};
+    std::vector<int> layer_of(out.source.size(), 0);
+    const auto color_of = [&](int layer, const Source& s, int x, int y) {
+      return source_color(problems[static_cast<std::size_t>(layer)], layouts[static_cast<std::size_t>(layer)], s, x, y);
+    };
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) {
+        const std::size_t o =
+            static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x);
+        const int layer = boundary && second_exemplar(*boundary, static_cast<std::uint32_t>(t), marks, size, x, y);
+        layer_of[o] = layer;
+        const Source& s = sources[static_cast<std::size_t>(layer)][o];
+        out.source[o] = static_cast<std::uint16_t>((static_cast<std::size_t>(layer) * window_count + s.window) * 4 +
+                                                   static_cast<std::size_t>(s.slot));
+        const std::uint8_t* c = color_of(layer, s, x, y);
+        out.image.set(x, y, {c[0], c[1], c[2]});
+      }
     for (int y = 0; y < size; ++y)
       for (int x = 0; x < size; ++x) {
         const std::size_t o =
@@ -530,11 +495,11 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
           const std::size_t n =
               static_cast<std::size_t>(ny) * static_cast<std::size_t>(size) + static_cast<std::size_t>(nx);
           if (out.source[o] == out.source[n]) continue;
-          const Source& a = sources[o];
-          const Source& b = sources[n];
-          out.error += static_cast<std::uint64_t>(
-              square_difference(source_color(p, layout, a, x, y), source_color(p, layout, b, x, y)) +
-              square_difference(source_color(p, layout, a, nx, ny), source_color(p, layout, b, nx, ny)));
+          const int la = layer_of[o], lb = layer_of[n];
+          const Source& a = sources[static_cast<std::size_t>(la)][o];
+          const Source& b = sources[static_cast<std::size_t>(lb)][n];
+          out.error += static_cast<std::uint64_t>(square_difference(color_of(la, a, x, y), color_of(lb, b, x, y)) +
+                                                  square_difference(color_of(la, a, nx, ny), color_of(lb, b, nx, ny)));
         }
       }
   });

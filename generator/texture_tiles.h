@@ -12,12 +12,16 @@
 // edge's diamond. The corner pixel of a tile lies on two edges; it takes the N or S diamond, so
 // only the 2 x 2 pixels around a tiling vertex can differ across a vertical edge.
 //
-// Corner-colored sets (Cohen 2003, sections 3.4-3.5): windows are keyed by (edge color, corner
-// mark), and each half of an edge's diamond is read from the window of the mark at that end (a
-// horizontal edge's west half from its west corner's mark), the two halves joined by one more
-// cut across the edge, shared by both tiles. Mark m reads exemplar m mod exemplars.size(): with
-// two exemplars and marked corners (cohen8-corners, corner-2) the texture changes from one
-// exemplar to the other around marked vertices, so a tiling can follow a boundary.
+// Every diamond key (orientation, edge color and, in corner-colored sets, the corner marks at the
+// edge's two ends) owns its own window, so no two keys show the same piece of the exemplar; the
+// windows of one exemplar start half a tile apart (also at the offsets where diamonds meet) and
+// come closer only when the exemplar has no room.
+//
+// Two exemplars in a corner-colored set (cohen8-corners, corner-K; Cohen 2003, section 3.5):
+// the tiles are quilted once from each exemplar, and each pixel shows the exemplar that the
+// corner marks (mark m: exemplar m mod 2) interpolated across the tile, bent by seamless noise
+// tiles of the same set, choose there. The boundary between the two exemplars is seamless and
+// wanders away from the tile grid; pixels near a corner keep the corner's exemplar.
 //
 // Seam cost (the error reported): over all pairs of 4-neighbour pixels p, q of a tile whose
 // sources differ, |A(p) - B(p)|^2 + |A(q) - B(q)|^2, where A, B are the two sources (exemplar
@@ -42,9 +46,11 @@ struct TextureTileOptions {
   // `candidates` random positions per window and keeps the one that lowers the summed cut cost.
   int rounds = 3;
   int candidates = 24;
-  // Windows of one exemplar stay this far apart (Chebyshev, pixels), also from the offsets at
-  // which two diamonds meet in a tile, so no two diamonds are one contiguous piece of the
-  // exemplar (which would make a near-periodic texture). 0 = tile_size / 8.
+  // Windows of one exemplar stay at least this far apart (Chebyshev, pixels), also from the
+  // offsets at which two diamonds meet in a tile, so no two diamonds are one contiguous piece of
+  // the exemplar (which would make a near-periodic texture). They start half a tile apart and
+  // come closer, halving, only while the exemplar has no room, down to this floor (0: down to 1 pixel; with
+  // a floor, an exemplar without room for it is an error).
   int min_separation = 0;
   std::uint64_t seed = 1;
 };
@@ -67,17 +73,16 @@ struct TextureTileSet {
   TileSet set;
   int tile_size = 0;
   int marks = 1;  // corner marks (the set's corner colors, 1 when it has none)
+  // Per exemplar quilted (one, or two for a corner-colored set with two exemplars), one window
+  // per diamond key, in order of the key's first use in set.tiles.
   std::vector<TextureWindow> windows;
   std::vector<TextureTile> tiles;  // per tile of set.tiles
 
-  // Window of the edges of `orientation` (0: N/S edges, 1: E/W edges) with edge color `color`
-  // (0 in corner sets) at an end with corner mark `mark` (0 in plain edge sets).
-  std::size_t window_index(int orientation, int color, int mark) const;
   std::uint64_t total_error() const;
 };
 
 struct TextureTileReport {
-  std::uint64_t initial_cost = 0;  // the search objective (sum of the cuts' costs) before the search
+  std::uint64_t initial_cost = 0;  // the search objective (sum of the cuts' costs, all exemplars) before the search
   std::uint64_t final_cost = 0;    // ... and after it
   int candidates_tried = 0;
   int moves_accepted = 0;

@@ -1,9 +1,12 @@
-// Wangscape exemplar: meadow soil with grass, seen straight down (1 x 1 unit of ground).
+// Wangscape exemplar: meadow soil with grass, seen straight down (Side x Side units of ground).
 // Render: see README.md in this folder.
 #version 3.7;
 global_settings { assumed_gamma 1.0 }
 
-camera { orthographic location <0.5, 5, 0.5> look_at <0.5, 0, 0.5> right <1, 0, 0> up <0, 0, 1> }
+// 192 pixels per unit: rendered at 512 x 512 pixels, Side = 512 / 192 (a varied exemplar that
+// holds many well-separated windows; issue 23).
+#declare Side = 512 / 192;
+camera { orthographic location <Side / 2, 5, Side / 2> look_at <Side / 2, 0, Side / 2> right <Side, 0, 0> up <0, 0, Side> }
 light_source { <-3, 8, 4> color rgb <1.0, 0.97, 0.9> * 1.1 }
 light_source { <4, 6, -2> color rgb <0.55, 0.6, 0.7> * 0.5 shadowless }
 
@@ -22,9 +25,9 @@ plane { y, 0
 #declare R = seed(2026);
 #declare Blade = cone { <0, 0, 0>, 0.006, <0, 0.12, 0>, 0.0005 }
 #declare N = 0;
-#while (N < 2600)
-  #declare X = rand(R) * 1.2 - 0.1;
-  #declare Z = rand(R) * 1.2 - 0.1;
+#while (N < 2600 * Side * Side)
+  #declare X = rand(R) * (Side + 0.2) - 0.1;
+  #declare Z = rand(R) * (Side + 0.2) - 0.1;
   #declare Patch = 0.5 + 0.5 * sin(X * 9.0 + 2.0 * cos(Z * 7.0));  // denser in patches
   #if (rand(R) < 0.35 + 0.65 * Patch)
     #declare Shade = rand(R);

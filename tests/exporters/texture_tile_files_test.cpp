@@ -50,7 +50,7 @@ TEST(TextureTileFiles, NoiseTilesRoundTripAs16BitPngs) {
 TEST(TextureTileFiles, TextureTilesFromTheShippedExemplarsRoundTripAsPngs) {
   const std::filesystem::path exemplars = std::filesystem::path(WANGSCAPE_SOURCE_DIR) / "templates" / "exemplars";
   const std::vector<ImageRgb8> images = {read_image(exemplars / "meadow.png"), read_image(exemplars / "pumice.png")};
-  ASSERT_EQ(images[0].width, 192);
+  ASSERT_EQ(images[0].width, 512);
   const TileSet set = builtin_tileset("corner-2");
   TextureTileOptions options;
   options.tile_size = 64;
