@@ -1,14 +1,19 @@
 // Texture tiles: seconds to build the 8- and 18-tile sets of 256 x 256 pixels with the default
 // sample search (Cohen 2003: about 3 s and 15 s at 2 GHz; the goal here: < 1 s and < 3 s), and the
 // 64 corner-marked tiles from two exemplars. Noise tiles: samples per second of the O(1)
-// evaluator over an unbounded hashed tiling, what renderers call per sample.
+// evaluator over an unbounded hashed tiling, what renderers call per sample. Fidelity (issue 23):
+// the previews' visible structure per set (generator/image_spectrum.h), as counters.
 #include <benchmark/benchmark.h>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
+#include "exporters/image_io.h"
+#include "generator/image_spectrum.h"
 #include "generator/noise_tiles.h"
 #include "generator/texture_tiles.h"
+#include "generator/tiling.h"
 
 namespace {
 
@@ -86,6 +91,76 @@ void BM_NoisePreviewTurbulence(benchmark::State& state) {
   state.SetLabel("samples/s = items_per_second (wall clock); 6 octaves");
 }
 
+// The `texture tiles --size 64 --preview 1024x512` picture of a set from the shipped exemplars
+// (meadow; pumice for the corner marks), means over seeds 1-3: the axis-to-diagonal spectral
+// energy ratio, the correlation at one tile's shift and its excess over 7/8 and 9/8 of a tile.
+void run_texture_preview(benchmark::State& state, const char* set_name, int exemplar_count) {
+  const std::string folder = std::string(WANGSCAPE_SOURCE_DIR) + "/templates/exemplars/";
+  std::vector<ImageRgb8> exemplars = {read_image(folder + "meadow.png")};
+  if (exemplar_count == 2) exemplars.push_back(read_image(folder + "pumice.png"));
+  constexpr int kSeeds = 3;
+  double axis = 0, repetition = 0, peak = 0;
+  for (auto _ : state) {
+    axis = repetition = peak = 0;
+    for (int seed = 1; seed <= kSeeds; ++seed) {
+      TextureTileOptions options;
+      options.tile_size = 64;
+      options.seed = static_cast<std::uint64_t>(seed);
+      const TextureTileSet tiles = make_texture_tiles(builtin_tileset(set_name), exemplars, options);
+      TilingOptions tiling;
+      tiling.seed = static_cast<std::uint64_t>(seed);
+      const GrayImage preview = to_gray(draw_texture_tiling(tiles, make_tiling(tiles.set, 16, 8, tiling)));
+      axis += axis_energy_ratio(preview) / kSeeds;
+      repetition += tile_repetition(preview, 64) / kSeeds;
+      peak += tile_period_peak(preview, 64) / kSeeds;
+    }
+  }
+  state.counters["tiles"] = static_cast<double>(builtin_tileset(set_name).size());
+  state.counters["axis_ratio"] = axis;
+  state.counters["repetition"] = repetition;
+  state.counters["tile_peak"] = peak;
+}
+
+// The `noise tiles --lattice 32 --octaves 3 --preview 1024x512` picture (turbulence over the
+// set's scanline tiling, 128 pixels per tile), mean axis ratio over seeds 1-4.
+void run_noise_preview(benchmark::State& state, const char* set_name) {
+  constexpr int kSeeds = 4, kTile = 128;
+  double axis = 0, repetition = 0;
+  for (auto _ : state) {
+    axis = repetition = 0;
+    for (int seed = 1; seed <= kSeeds; ++seed) {
+      const NoiseTileSet tiles(builtin_tileset(set_name),
+                               {.lattice = 32, .octaves = 3, .seed = static_cast<std::uint64_t>(seed)});
+      TilingOptions tiling;
+      tiling.seed = static_cast<std::uint64_t>(seed);
+      const WindowNoise field(tiles, WindowTiles{make_tiling(tiles.set(), 8, 4, tiling)}, 1.0);
+      GrayImage preview{1024, 512, std::vector<float>(1024 * 512)};
+      for (int y = 0; y < 512; ++y)
+        for (int x = 0; x < 1024; ++x)
+          preview.values[static_cast<std::size_t>(y) * 1024 + static_cast<std::size_t>(x)] =
+              field.turbulence((x + 0.5) / kTile, (512 - y - 0.5) / kTile);
+      axis += axis_energy_ratio(preview) / kSeeds;
+      repetition += tile_repetition(preview, kTile) / kSeeds;
+    }
+  }
+  state.counters["tiles"] = static_cast<double>(builtin_tileset(set_name).size());
+  state.counters["axis_ratio"] = axis;
+  state.counters["repetition"] = repetition;
+}
+
+void BM_TexturePreviewCohen8(benchmark::State& state) { run_texture_preview(state, "cohen8", 1); }
+void BM_TexturePreviewCohen18(benchmark::State& state) { run_texture_preview(state, "cohen18", 1); }
+void BM_TexturePreviewCompleteEdge3(benchmark::State& state) { run_texture_preview(state, "complete-edge-3", 1); }
+void BM_TexturePreviewCorner2TwoExemplars(benchmark::State& state) { run_texture_preview(state, "corner-2", 2); }
+void BM_TexturePreviewCohen8CornersTwoExemplars(benchmark::State& state) {
+  run_texture_preview(state, "cohen8-corners", 2);
+}
+void BM_TexturePreviewCorner3TwoExemplars(benchmark::State& state) { run_texture_preview(state, "corner-3", 2); }
+void BM_NoisePreviewCorner2(benchmark::State& state) { run_noise_preview(state, "corner-2"); }
+void BM_NoisePreviewCorner3(benchmark::State& state) { run_noise_preview(state, "corner-3"); }
+void BM_NoisePreviewCompleteEdge2(benchmark::State& state) { run_noise_preview(state, "complete-edge-2"); }
+void BM_NoisePreviewCompleteEdge4(benchmark::State& state) { run_noise_preview(state, "complete-edge-4"); }
+
 void BM_NoiseOneLevel(benchmark::State& state) { run_noise(state, NoisePattern::noise); }
 void BM_NoiseTurbulence(benchmark::State& state) { run_noise(state, NoisePattern::turbulence); }
 void BM_NoiseMarble(benchmark::State& state) { run_noise(state, NoisePattern::marble); }
@@ -97,6 +172,16 @@ BENCHMARK(BM_NoiseOneLevel)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_NoiseTurbulence)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_NoiseMarble)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_NoisePreviewTurbulence)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_TexturePreviewCohen8)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_TexturePreviewCohen18)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_TexturePreviewCompleteEdge3)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_TexturePreviewCorner2TwoExemplars)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_TexturePreviewCohen8CornersTwoExemplars)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_TexturePreviewCorner3TwoExemplars)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_NoisePreviewCorner2)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_NoisePreviewCorner3)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_NoisePreviewCompleteEdge2)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_NoisePreviewCompleteEdge4)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
 

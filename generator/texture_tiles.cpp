@@ -347,11 +347,13 @@ std::vector<Source> tile_sources(const Problem& p, const Layout& layout, std::si
 
 // Which exemplar a pixel of a corner-marked tile shows (Cohen 2003, section 3.5, with a boundary
 // that is not the tile grid): the corner marks (exemplar index of each corner) interpolated with
-// the quintic fade, plus fbm noise tiles of the same set scaled by kBoundaryNoise and by a factor
-// that is 0 at the corners and 1 on the midlines, is >= 1/2 for the second exemplar. Both terms
-// agree across every shared edge, so the boundary is seamless; the noise bends it well away from
-// the tile midlines, and pixels within 1/16 tile of a corner keep the corner's exemplar (|noise| <= 1).
-constexpr float kBoundaryNoise = 1.0f;
+// the quintic fade, plus noise tiles of the same set (4 cells per tile side) scaled by
+// kBoundaryNoise and by a factor that is 0 at the corners and 1 at the centre, is >= 1/2 for the
+// second exemplar. Both terms agree across every shared edge, so the boundary is seamless; the
+// noise bends it away from the tile midlines (fbm of 4 and 8 cells at 0.4 left straight boundaries
+// along them; 2.0 scattered islands of one exemplar in the other), and pixels within 1/16 tile of a
+// corner keep the corner's exemplar (|noise| <= 1, the factor <= 0.234 there).
+constexpr float kBoundaryNoise = 1.2f;
 
 bool second_exemplar(const NoiseTileSet& noise, std::uint32_t tile, const std::array<float, 4>& marks, int size, int x,
                      int y) {
@@ -366,8 +368,8 @@ bool second_exemplar(const NoiseTileSet& noise, std::uint32_t tile, const std::a
   const float fu = fade(u), fv = fade(v);
   // marks: sw, se, nw, ne
   const float south = marks[0] + fu * (marks[1] - marks[0]), north = marks[2] + fu * (marks[3] - marks[2]);
-  const float corners = 1 - (1 - 4 * u * (1 - u)) * (1 - 4 * v * (1 - v));
-  const float value = south + fv * (north - south) + kBoundaryNoise * corners * noise.fractal(tile, u, v, false);
+  const float corners = 2 * (u * (1 - u) + v * (1 - v));
+  const float value = south + fv * (north - south) + kBoundaryNoise * corners * noise.sample(tile, 0, u, v).value;
   return value >= 0.5f;
 }
 
@@ -456,7 +458,7 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
   // The tiles: per pixel the layer the marks' boundary picks, its source there, and the seam
   // cost the cuts and the boundary leave.
   const std::optional<NoiseTileSet> boundary =
-      layers == 2 ? std::optional<NoiseTileSet>(NoiseTileSet(set, {.lattice = 8, .octaves = 2, .seed = options.seed}))
+      layers == 2 ? std::optional<NoiseTileSet>(NoiseTileSet(set, {.lattice = 4, .octaves = 1, .seed = options.seed}))
                   : std::nullopt;
   result.tiles.resize(set.size());
   tbb::parallel_for(std::size_t{0}, set.size(), [&](std::size_t t) {
