@@ -414,8 +414,10 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage, const Sc
     auto bake = bake_ground(*look, ground, ground_config.bake_pixels);
     if (far_texture) {
       say(stage, "painting the field beyond " + significant_text(field->view->options().far, 6) + " m into the ground");
-      const std::vector<Mesh> full(scene.models.begin(), scene.models.begin() + std::ptrdiff_t(field->filled.variants));
-      paint_far_field(bake, *field, FieldTexture(*field, full, field->view->far_view_direction(), scene.sun),
+      // What would stand there: the proxies (the full models when the scene has none).
+      const auto first = scene.models.begin() + std::ptrdiff_t(field->proxy_offset);
+      const std::vector<Mesh> beyond(first, first + std::ptrdiff_t(field->filled.variants));
+      paint_far_field(bake, *field, FieldTexture(*field, beyond, field->view->far_view_direction(), scene.sun),
                       *field->view);
     }
     scene.ground_texture = std::make_shared<const GroundBake>(std::move(bake));
