@@ -5,8 +5,10 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -345,6 +347,89 @@ std::vector<Source> tile_sources(const Problem& p, const Layout& layout, std::si
   return sources;
 }
 
+// A tile's own interior: a patch of the exemplar (a window read through slot N, so the whole
+// tile is one straight copy of it) over the tile's middle, inside a closed cut around the tile
+// centre. Tiles that share their edges' diamonds then still differ inside: with K colors per
+// edge, a neighbour shares each diamond with probability ~1/K, and without interiors a 2-color
+// set repeated half of its picture at one tile's shift.
+struct Interior {
+  TextureWindow window;     // read through kN
+  std::vector<int> radius;  // per angle step: pixels whose centre is closer to the tile centre are inside
+  std::uint64_t cost = kInfinite;
+};
+
+constexpr int kInteriorAngles = 128;
+
+int angle_step(double dx, double dy) {
+  const double turn = std::atan2(dy, dx) / (2 * std::numbers::pi);
+  return static_cast<int>(std::lround((turn < 0 ? turn + 1 : turn) * kInteriorAngles)) % kInteriorAngles;
+}
+
+bool inside(const Interior& interior, int size, int x, int y) {
+  const double dx = x + 0.5 - size / 2.0, dy = y + 0.5 - size / 2.0;
+  return std::hypot(dx, dy) < interior.radius[static_cast<std::size_t>(angle_step(dx, dy))];
+}
+
+// The cheapest closed cut around the tile centre between `base` (the tile's sources without an
+// interior) and the patch of `window`: per angle step a radius in [size / 4, size / 2 - 3] (the
+// border rows keep their diamonds), neighbouring steps differing by at most one pixel, the last
+// step next to the first (dynamic programming per first radius). The cost is the seam pairs
+// across the cut, |patch - base|^2 on both pixels of each pair.
+Interior interior_cut(const Problem& p, const Layout& layout, const std::vector<Source>& base,
+                      const TextureWindow& window) {
+  const int lo = p.size * 3 / 8, hi = p.half - 3, states = hi - lo + 1;
+  const ImageRgb8& image = p.exemplars[static_cast<std::size_t>(window.exemplar)];
+  const auto error_at = [&](double radius, double angle) {
+    const int x = std::clamp(static_cast<int>(std::floor(p.half + radius * std::cos(angle))), 0, p.size - 1);
+    const int y = std::clamp(static_cast<int>(std::floor(p.half + radius * std::sin(angle))), 0, p.size - 1);
+    const auto [ex, ey] = texture_source_pixel(p.size, window, kN, x, y);
+    const Source& s =
+        base[static_cast<std::size_t>(y) * static_cast<std::size_t>(p.size) + static_cast<std::size_t>(x)];
+    return static_cast<std::uint64_t>(
+        square_difference(&image.pixels[image.offset(ex, ey)], source_color(p, layout, s, x, y)));
+  };
+  std::vector<std::uint64_t> errors(static_cast<std::size_t>(kInteriorAngles * states));
+  for (int k = 0; k < kInteriorAngles; ++k) {
+    const double angle = 2 * std::numbers::pi * k / kInteriorAngles;
+    for (int r = lo; r <= hi; ++r)
+      errors[static_cast<std::size_t>(k * states + r - lo)] = error_at(r - 0.5, angle) + error_at(r + 0.5, angle);
+  }
+  Interior best;
+  best.window = window;
+  std::vector<std::uint64_t> cost(static_cast<std::size_t>(states)), next(cost.size());
+  std::vector<std::int8_t> back(static_cast<std::size_t>(kInteriorAngles * states));
+  for (int first = 0; first < states; ++first) {
+    std::fill(cost.begin(), cost.end(), kInfinite);
+    cost[static_cast<std::size_t>(first)] = errors[static_cast<std::size_t>(first)];
+    for (int k = 1; k < kInteriorAngles; ++k) {
+      for (int r = 0; r < states; ++r) {
+        std::uint64_t low = kInfinite;
+        std::int8_t from = 0;
+        for (int step = -1; step <= 1; ++step) {
+          const int q = r + step;
+          if (q < 0 || q >= states || cost[static_cast<std::size_t>(q)] >= low) continue;
+          low = cost[static_cast<std::size_t>(q)];
+          from = static_cast<std::int8_t>(step);
+        }
+        next[static_cast<std::size_t>(r)] =
+            low >= kInfinite ? kInfinite : low + errors[static_cast<std::size_t>(k * states + r)];
+        back[static_cast<std::size_t>(k * states + r)] = from;
+      }
+      std::swap(cost, next);
+    }
+    for (int last = std::max(0, first - 1); last <= std::min(states - 1, first + 1); ++last) {
+      if (cost[static_cast<std::size_t>(last)] >= best.cost) continue;
+      best.cost = cost[static_cast<std::size_t>(last)];
+      best.radius.assign(kInteriorAngles, 0);
+      for (int k = kInteriorAngles - 1, r = last; k >= 0; --k) {
+        best.radius[static_cast<std::size_t>(k)] = r + lo;
+        r += back[static_cast<std::size_t>(k * states + r)];
+      }
+    }
+  }
+  return best;
+}
+
 // Which exemplar a pixel of a corner-marked tile shows (Cohen 2003, section 3.5, with a boundary
 // that is not the tile grid): the corner marks (exemplar index of each corner) interpolated with
 // the quintic fade, plus noise tiles of the same set (4 cells per tile side) scaled by
@@ -444,14 +529,41 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
   TextureTileReport stats;
   std::vector<Problem> problems;
   std::vector<Layout> layouts;
+  // Per layer, per tile: its sources, the interior over the diamonds.
+  std::vector<std::vector<std::vector<Source>>> layer_sources;
+  const std::size_t block = window_count + set.size();  // windows per layer: the keys', then the interiors
+  if (static_cast<std::size_t>(layers) * block * 4 > 65536)
+    throw Error(where + ": " + std::to_string(set.size()) + " tiles; texture tiles hold at most 8000");
   for (int layer = 0; layer < layers; ++layer) {
     Problem p = shape;
     p.exemplar = layer;
     Layout layout = place_windows(p, window_count, floor, options.seed, where);
     search_windows(p, layout, options, stats);
+    std::vector<std::vector<Source>> sources(set.size());
+    std::vector<Interior> interiors(set.size());
+    tbb::parallel_for(std::size_t{0}, set.size(), [&](std::size_t t) {
+      sources[t] = tile_sources(p, layout, t);
+      // A few random patches (a quarter of the window search's candidates), the cheapest cut kept.
+      Draws draws(options.seed, (std::uint64_t{1} << 48) + (static_cast<std::uint64_t>(layer) << 32) + t);
+      for (int c = 0; c < std::max(1, options.candidates / 4); ++c) {
+        TextureWindow window = random_window(p, layer, draws);
+        window.y -= p.half;  // read through kN: rows [y, y + size) are the patch centred on the draw
+        Interior candidate = interior_cut(p, layout, sources[t], window);
+        if (candidate.cost < interiors[t].cost) interiors[t] = std::move(candidate);
+      }
+    });
+    for (std::size_t t = 0; t < set.size(); ++t) {
+      layout.windows.push_back(interiors[t].window);
+      for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x)
+          if (inside(interiors[t], size, x, y))
+            sources[t][static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x)] = {
+                window_count + t, kN};
+    }
     result.windows.insert(result.windows.end(), layout.windows.begin(), layout.windows.end());
     problems.push_back(std::move(p));
     layouts.push_back(std::move(layout));
+    layer_sources.push_back(std::move(sources));
   }
   if (report) *report = stats;
 
@@ -466,9 +578,7 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
     out.image = ImageRgb8(size, size);
     out.source.assign(static_cast<std::size_t>(size) * static_cast<std::size_t>(size), 0);
     std::vector<std::vector<Source>> sources;
-    for (int layer = 0; layer < layers; ++layer)
-      sources.push_back(
-          tile_sources(problems[static_cast<std::size_t>(layer)], layouts[static_cast<std::size_t>(layer)], t));
+    for (int layer = 0; layer < layers; ++layer) sources.push_back(layer_sources[static_cast<std::size_t>(layer)][t]);
     const Tile& tile = set.tiles[t];
     const auto mark = [&](int c) { return static_cast<float>(color(c) % 2); };
     const std::array<float, 4> marks = {mark(tile.sw()), mark(tile.se()), mark(tile.nw()), mark(tile.ne())};
@@ -483,7 +593,7 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
         const int layer = boundary && second_exemplar(*boundary, static_cast<std::uint32_t>(t), marks, size, x, y);
         layer_of[o] = layer;
         const Source& s = sources[static_cast<std::size_t>(layer)][o];
-        out.source[o] = static_cast<std::uint16_t>((static_cast<std::size_t>(layer) * window_count + s.window) * 4 +
+        out.source[o] = static_cast<std::uint16_t>((static_cast<std::size_t>(layer) * block + s.window) * 4 +
                                                    static_cast<std::size_t>(s.slot));
         const std::uint8_t* c = color_of(layer, s, x, y);
         out.image.set(x, y, {c[0], c[1], c[2]});

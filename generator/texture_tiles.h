@@ -17,6 +17,12 @@
 // windows of one exemplar start half a tile apart (also at the offsets where diamonds meet) and
 // come closer only when the exemplar has no room.
 //
+// Every tile also has an interior of its own (issue 23): a patch of the exemplar over the tile's
+// middle, inside a closed minimum-error cut around the tile centre at 3/8 to 1/2 - 3 pixels of
+// a tile side (the border rows keep their diamonds, so tiles stay seamless). With K colors per
+// edge a neighbour shares each diamond with probability ~1/K; the interiors lower what repeats at
+// one tile's shift (cohen8: 0.52 to 0.30, docs/texture-tiles.md).
+//
 // Two exemplars in a corner-colored set (cohen8-corners, corner-K; Cohen 2003, section 3.5):
 // the tiles are quilted once from each exemplar, and each pixel shows the exemplar that the
 // corner marks (mark m: exemplar m mod 2) interpolated across the tile, bent by seamless noise
@@ -81,6 +87,8 @@ struct TextureTileSet {
   std::uint64_t total_error() const;
 };
 
+// The sample search over the diamonds' windows; the tiles' interiors, chosen after it, are not in
+// these costs.
 struct TextureTileReport {
   std::uint64_t initial_cost = 0;  // the search objective (sum of the cuts' costs, all exemplars) before the search
   std::uint64_t final_cost = 0;    // ... and after it

@@ -186,8 +186,9 @@ TEST(TextureTiles, TheSampleSearchLowersTheCutCost) {
   EXPECT_LT(report.final_cost, report.initial_cost);
   EXPECT_GT(report.moves_accepted, 0);
   EXPECT_EQ(report.candidates_tried, 3 * 12 * 4);  // 4 windows: 2 N/S colors, 2 E/W colors
-  // Without mixed diamonds the search objective is exactly the seam cost the tiles report.
-  EXPECT_EQ(report.final_cost, tiles.total_error());
+  // The tiles' own interiors come after the search and cover the diamonds' cuts in the middle:
+  // the search objective is the cost of the diamonds' cuts alone, not the tiles' seam cost.
+  EXPECT_GT(tiles.total_error(), 0u);
 }
 
 TEST(TextureTiles, MarkedCornersReadTheSecondExemplar) {
