@@ -378,6 +378,7 @@ bool inside(const Interior& interior, int size, int x, int y) {
 Interior interior_cut(const Problem& p, const Layout& layout, const std::vector<Source>& base,
                       const TextureWindow& window) {
   const int lo = p.size * 3 / 8, hi = p.half - 3, states = hi - lo + 1;
+  if (states < 1) return {window, std::vector<int>(kInteriorAngles, 0), 0};  // under 24 pixels: no room, no interior
   const ImageRgb8& image = p.exemplars[static_cast<std::size_t>(window.exemplar)];
   const auto error_at = [&](double radius, double angle) {
     const int x = std::clamp(static_cast<int>(std::floor(p.half + radius * std::cos(angle))), 0, p.size - 1);

@@ -219,6 +219,19 @@ TEST(TextureTiles, ThePreviewLaysTheTilesNorthUp) {
   EXPECT_EQ(image.at(128 + 9, 64 + 3), tiles.tiles[tiling.at(2, 0)].image.at(9, 3));
 }
 
+TEST(TextureTiles, TilesUnder24PixelsHaveNoInteriorAndStillJoin) {
+  TextureTileOptions options = small_options(6);
+  options.tile_size = 16;
+  const TileSet set = builtin_tileset("cohen8");
+  const TextureTileSet tiles = make_texture_tiles(set, meadow(), options);
+  for (const TextureTile& tile : tiles.tiles)
+    for (const std::uint16_t code : tile.source) EXPECT_LT(code / 4u, 4u);  // the 4 diamonds' windows only
+  const Tiling tiling = make_tiling(set, 6, 5, {});
+  for (int j = 0; j < tiling.height; ++j)
+    for (int i = 0; i + 1 < tiling.width; ++i)
+      EXPECT_EQ(edge_seam(tiles, meadow(), tiling.at(i, j), tiling.at(i + 1, j), true), 0u);
+}
+
 TEST(TextureTiles, BadInputIsNamed) {
   const TileSet set = builtin_tileset("cohen8");
   TextureTileOptions options = small_options(1);
