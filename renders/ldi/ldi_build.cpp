@@ -716,21 +716,39 @@ LdiPackInfo ldi_pack_info(const FilledTileSet& filled, std::span<const Mesh> mod
   return info;
 }
 
-std::vector<LdiImage> build_tile_ldis(const FilledTileSet& filled, std::span<const Mesh> models,
-                                      const LdiBuildOptions& options, std::size_t tile, LdiBuildReport* report) {
+namespace {
+// One tile's LDIs at `levels` (null: the view's own), with its own Embree device.
+std::vector<LdiImage> build_one_tile(const FilledTileSet& filled, std::span<const Mesh> models,
+                                     const LdiBuildOptions& options, std::size_t tile, const LdiLevels* levels,
+                                     LdiBuildReport* report) {
   const auto start = std::chrono::steady_clock::now();
   check_inputs(filled, models, options);
   if (tile >= filled.tiles.size())
     throw Error("LDI build: no tile " + std::to_string(tile) + " in " + filled.set.describe());
-  const LdiLevels levels = ldi_levels(options.view, options.tile_size, ldi_prism_top(filled, models));
+  const LdiLevels own =
+      levels ? LdiLevels{} : ldi_levels(options.view, options.tile_size, ldi_prism_top(filled, models));
   Device device;
   const std::vector<Scene> prototypes = prototype_scenes(device, models);
   std::vector<LdiImage> out;
   Counters counters;
   std::mutex mutex;
-  build_tile(device, prototypes, filled, models, options, levels, tile, out, counters, mutex, {});
+  build_tile(device, prototypes, filled, models, options, levels ? *levels : own, tile, out, counters, mutex, {});
   fill_report(report, counters, out.size(), start);
   return out;
+}
+}  // namespace
+
+std::vector<LdiImage> build_tile_ldis(const FilledTileSet& filled, std::span<const Mesh> models,
+                                      const LdiBuildOptions& options, std::size_t tile, LdiBuildReport* report) {
+  return build_one_tile(filled, models, options, tile, nullptr, report);
+}
+
+std::vector<LdiImage> build_tile_ldis(const FilledTileSet& filled, std::span<const Mesh> models,
+                                      LdiBuildOptions options, std::size_t tile, const LdiLevels& levels) {
+  if (levels.elevations.size() != levels.resolutions.size() || levels.distances.size() != levels.resolutions.size())
+    throw Error("LDI build: the levels' resolutions, distances and elevations differ in number");
+  options.view.levels = int(levels.resolutions.size());
+  return build_one_tile(filled, models, options, tile, &levels, nullptr);
 }
 
 LdiBuildReport build_ldi_pack(const FilledTileSet& filled, std::span<const Mesh> models, const LdiBuildOptions& options,

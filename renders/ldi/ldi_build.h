@@ -112,6 +112,11 @@ std::vector<LdiImage> build_tile_ldis(const FilledTileSet& filled, std::span<con
                                       const LdiBuildOptions& options, std::size_t tile,
                                       LdiBuildReport* report = nullptr);
 
+// The same at levels of the caller's (resolutions and elevations; e.g. the view's steep set,
+// seen from above): options.view.levels is taken from `levels`, its other view settings ignored.
+std::vector<LdiImage> build_tile_ldis(const FilledTileSet& filled, std::span<const Mesh> models,
+                                      LdiBuildOptions options, std::size_t tile, const LdiLevels& levels);
+
 // The pack header of a build with these inputs.
 LdiPackInfo ldi_pack_info(const FilledTileSet& filled, std::span<const Mesh> models, const LdiBuildOptions& options);
 

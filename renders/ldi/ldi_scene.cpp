@@ -1,5 +1,6 @@
 #include "renders/ldi/ldi_scene.h"
 
+#include <span>
 #include <utility>
 
 #include "scene/scene.h"
@@ -14,26 +15,44 @@ LdiBuildReport build_scene_ldi_pack(const SceneConfig& config, const std::filesy
   return build_scene_ldi_pack(scene, out, std::move(options), observer);
 }
 
-LdiBuildReport build_scene_ldi_pack(const Scene& scene, const std::filesystem::path& out, LdiBuildOptions options,
-                                    const LdiSceneObserver& observer) {
+namespace {
+// What the LDIs of a scene are sampled from: its filled set with the yaw placement gives each
+// instance, and the full models (never the proxies camera-aware export appends: the LDIs are per
+// tile at their own levels of detail).
+struct SceneLdiInputs {
+  FilledTileSet filled;
+  std::span<const Mesh> models;
+};
+
+SceneLdiInputs scene_ldi_inputs(const Scene& scene, LdiBuildOptions& options) {
   if (!scene.field || scene.models.empty())
     throw Error("scene '" + scene.name + "': no field of flowers to sample into LDIs");
   const SceneField& field = *scene.field;
-  FilledTileSet filled = field.filled;
-  for (auto& points : filled.tiles)  // the yaw placement gives each instance
+  SceneLdiInputs inputs{field.filled, scene.models};
+  for (auto& points : inputs.filled.tiles)
     for (TilePoint& p : points) p.yaw = field.yaw_of(p.yaw);
+  if (field.proxy_offset != 0) inputs.models = inputs.models.first(field.proxy_offset);
   options.tile_size = field.placement.tile_size;
   options.shading = with_sun(options.shading, scene.sun);
+  return inputs;
+}
+}  // namespace
+
+LdiBuildReport build_scene_ldi_pack(const Scene& scene, const std::filesystem::path& out, LdiBuildOptions options,
+                                    const LdiSceneObserver& observer) {
+  const SceneLdiInputs inputs = scene_ldi_inputs(scene, options);
   if (observer.progress) options.progress = observer.progress;
   if (observer.stage)
-    observer.stage("sampling " + std::to_string(filled.tiles.size()) + " tiles x " +
+    observer.stage("sampling " + std::to_string(inputs.filled.tiles.size()) + " tiles x " +
                    std::to_string(options.view.levels) + " levels x " + std::to_string(options.view.directions) +
                    " directions into " + out.string());
-  // The LDIs are per tile at their own levels of detail: the full models, never the proxies
-  // camera-aware export appends.
-  if (field.proxy_offset == 0) return build_ldi_pack(filled, scene.models, options, out);
-  const std::vector<Mesh> full(scene.models.begin(), scene.models.begin() + std::ptrdiff_t(field.proxy_offset));
-  return build_ldi_pack(filled, full, options, out);
+  return build_ldi_pack(inputs.filled, inputs.models, options, out);
+}
+
+std::vector<LdiImage> build_scene_tile_ldis(const Scene& scene, LdiBuildOptions options, std::size_t tile,
+                                            const LdiLevels& levels) {
+  const SceneLdiInputs inputs = scene_ldi_inputs(scene, options);
+  return build_tile_ldis(inputs.filled, inputs.models, options, tile, levels);
 }
 
 LdiBuildOptions ldi_options(const SceneConfig& config) {

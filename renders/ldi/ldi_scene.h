@@ -32,4 +32,9 @@ LdiBuildReport build_scene_ldi_pack(const SceneConfig& config, const std::filesy
 LdiBuildReport build_scene_ldi_pack(const Scene& scene, const std::filesystem::path& out, LdiBuildOptions options,
                                     const LdiSceneObserver& observer = {});
 
+// The LDIs of one tile of the scene's set at levels of the caller's (the view's steep set), with
+// the same inputs as the scene's pack (its points' yaw, tile size, sun, full models).
+std::vector<LdiImage> build_scene_tile_ldis(const Scene& scene, LdiBuildOptions options, std::size_t tile,
+                                            const LdiLevels& levels);
+
 }  // namespace wangscape

@@ -34,6 +34,8 @@ namespace {
 constexpr float kNear = 0.05f;             // meters: the near plane
 constexpr float kSplatScale = 1.5f;        // splat side over the projected depth-pixel size (measured: no holes)
 constexpr int kMaxSplat = 24;              // pixels
+constexpr std::uint32_t kSteepLevels = 3;  // the pack's coarsest levels the steep sets stand in for
+constexpr double kSteepTolerance = 1.0;    // degrees a view may be steeper than the LDIs it draws
 constexpr float kLevelBlendStart = 0.75f;  // of a level's range: where dithering into the next level starts
 constexpr float kDirectionBand = 0.08f;    // of the angle between two directions: dithered either side of the bisector
 // ViewEngine::automatic samples the near field with a grid of this many rays across and down.
@@ -114,6 +116,7 @@ struct LdiRenderer::Impl {
   // Per placed tile, this frame (structure of arrays).
   std::vector<float> distance, far_from, far_r, far_g, far_b, far_cover;
   std::vector<std::uint8_t> level_a, level_b, dir_a, dir_b;
+  std::vector<std::uint8_t> steep;  // 0: the pack; k: the world's steep set k - 1 (seen from above)
   std::vector<float> level_b_weight, dir_b_weight;
   std::vector<double> direction_east, direction_north;  // the pack's ray directions, horizontal unit
   // Terrain vertices in camera space; the chunks drawn, nearest first, and their distances.
@@ -169,7 +172,7 @@ LdiRenderer::LdiRenderer(std::shared_ptr<const ViewWorld> world, int width, int 
   for (auto* v :
        {&m.distance, &m.far_from, &m.far_r, &m.far_g, &m.far_b, &m.far_cover, &m.level_b_weight, &m.dir_b_weight})
     v->assign(n, 0);
-  for (auto* v : {&m.level_a, &m.level_b, &m.dir_a, &m.dir_b}) v->assign(n, 0);
+  for (auto* v : {&m.level_a, &m.level_b, &m.dir_a, &m.dir_b, &m.steep}) v->assign(n, 0);
   order_.reserve(n);
   const std::size_t vertices = world_->terrain().x.size();
   m.vx.assign(vertices, 0);
@@ -386,6 +389,20 @@ void LdiRenderer::choose_tiles() {
     }
     m.level_a[t] = std::uint8_t(a);
     m.level_b[t] = std::uint8_t(std::min(a + 1, drawn_levels));
+    // Seen from above, for the coarsest levels and the far steps: the LDIs (the pack's or a steep
+    // set's) of the lowest elevation not below the view's to the tile. Sampled from higher than
+    // the eye, a one-layer LDI's samples cover the tile's top; from lower, they stand on its near
+    // side with a gap behind (the streaks along the tile grid).
+    const double rise = m.eye[2] - ground - 0.5 * top;
+    const double horizontal = std::hypot(x0 + s / 2 - m.eye[0], y0 + s / 2 - m.eye[1]);
+    const double view_elevation = std::atan2(rise, horizontal) * 180 / std::numbers::pi;
+    m.steep[t] = 0;
+    if (a + kSteepLevels >= levels && view_elevation > double(info.elevations.back()) + kSteepTolerance) {
+      const auto& sets = ViewWorld::steep_elevations();  // ascending
+      std::size_t k = 0;
+      while (k + 1 < sets.size() && view_elevation > double(sets[k]) + kSteepTolerance) ++k;
+      m.steep[t] = std::uint8_t(k + 1);
+    }
     m.level_b_weight[t] = wb;
     m.far_from[t] = a >= drawn_levels ? 0.0f : (a + 1 == drawn_levels ? 1.0f - wb : 2.0f);
 
@@ -435,6 +452,8 @@ void LdiRenderer::choose_tiles() {
     if (a < drawn_levels && !near && (mask_.empty() || (t < mask_.size() && mask_[t])))
       order_.push_back(std::uint32_t(t));
   }
+  if (std::any_of(order_.begin(), order_.end(), [&](std::uint32_t t) { return m.steep[t] != 0; }))
+    world.prepare_steep();
   // Back to front (the farthest first; ties by index).
   std::sort(order_.begin(), order_.end(), [&](std::uint32_t p, std::uint32_t q) {
     return m.distance[p] != m.distance[q] ? m.distance[p] > m.distance[q] : p < q;
@@ -475,8 +494,10 @@ void LdiRenderer::warp_tiles() {
           for (const Part& part : parts) {
             if (!(part.to > part.from) || part.level >= drawn_levels) continue;
             const bool far = part.level >= levels;
-            const LdiView v = far ? world.far_ldi(tiles.tile[t], part.direction, part.level - levels)
-                                  : pack.ldi(tiles.tile[t], part.level, part.direction);
+            const LdiView v = m.steep[t] ? world.steep_ldi(m.steep[t] - 1u, tiles.tile[t], part.direction,
+                                                           far ? part.level - levels + 1 : 0)
+                              : far      ? world.far_ldi(tiles.tile[t], part.direction, part.level - levels)
+                                         : pack.ldi(tiles.tile[t], part.level, part.direction);
             const LdiFrame& f = *v.frame;
             Warp w;
             const double p = f.pixel_size;

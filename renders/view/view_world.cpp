@@ -338,6 +338,41 @@ LdiView ViewWorld::far_ldi(std::uint32_t tile, std::uint32_t direction, std::uin
   return far_ldis_[(std::size_t(tile) * pack_->info().directions + direction) * far_steps_ + step].view();
 }
 
+void ViewWorld::prepare_steep() const {
+  std::call_once(steep_once_, [this] {
+    const LdiPackInfo& info = pack_->info();
+    LdiBuildOptions options;
+    options.shading = shading_;
+    options.view.head_height = info.head_height;
+    options.view.directions = int(info.directions);
+    LdiLevels steep;  // one level per steep set, each at the coarsest level's resolution
+    steep.prism_top = info.prism_top;
+    for (const float elevation : steep_elevations()) {
+      steep.resolutions.push_back(info.resolutions.back());
+      steep.distances.push_back(info.level_distances.back());
+      steep.elevations.push_back(elevation);
+    }
+    const std::size_t per_set = std::size_t(info.tiles) * info.directions * (far_steps_ + 1);
+    std::vector<LdiImage> built(steep_elevations().size() * per_set);
+    for (std::uint32_t t = 0; t < info.tiles; ++t) {
+      std::vector<LdiImage> tile = build_scene_tile_ldis(scene_, options, t, steep);  // level-major
+      for (LdiImage& ldi : tile) {
+        const std::size_t at = (std::size_t(ldi.frame.level) * info.tiles + t) * info.directions + ldi.frame.direction;
+        LdiImage* slots = &built[at * (far_steps_ + 1)];
+        slots[0] = std::move(ldi);
+        for (std::uint32_t k = 0; k < far_steps_; ++k) slots[k + 1] = one_layer_ldi(slots[0].view(), 2 << k);
+      }
+    }
+    steep_ldis_ = std::move(built);
+  });
+}
+
+LdiView ViewWorld::steep_ldi(std::uint32_t set, std::uint32_t tile, std::uint32_t direction, std::uint32_t step) const {
+  const LdiPackInfo& info = pack_->info();
+  const std::size_t at = (std::size_t(set) * info.tiles + tile) * info.directions + direction;
+  return steep_ldis_[at * (far_steps_ + 1) + step].view();
+}
+
 double ViewWorld::ground_height(double x, double y, double fallback) const {
   return scene_.field->ground.height(x, y).value_or(fallback);
 }

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -76,6 +77,17 @@ class ViewWorld {
   // and is drawn over twice the distance of step k - 1; beyond the last step, the far colors.
   std::uint32_t far_steps() const { return far_steps_; }
   LdiView far_ldi(std::uint32_t tile, std::uint32_t direction, std::uint32_t step) const;
+  // Seen from above, the pack's LDIs (sampled from head height, a few degrees below the horizon)
+  // and the one-layer far steps made from them show their columns: a far step holds each
+  // column's front sample, on the tile's near side, so from higher up every tile shows a band of
+  // flowers and a gap behind it, rows along the tile grid converging on the vanishing point. The
+  // steep sets: per elevation of steep_elevations() (degrees below the horizon), per (set tile,
+  // direction), one LDI sampled at that elevation at the coarsest level's resolution (step 0)
+  // and its one-layer far steps (step k + 1 as far step k). Sampled on first use
+  // (prepare_steep(); about a second for the default scene), then immutable; thread-safe.
+  static constexpr std::array<float, 3> steep_elevations() { return {6.5f, 13.0f, 30.0f}; }
+  void prepare_steep() const;
+  LdiView steep_ldi(std::uint32_t set, std::uint32_t tile, std::uint32_t direction, std::uint32_t step) const;
   // The ground's height (meters) at (x, y), or `fallback` off the ground.
   double ground_height(double x, double y, double fallback) const;
   // Linear base color of the ground at (x, y): the baked ground texture (bilinear), or the
@@ -102,6 +114,9 @@ class ViewWorld {
   std::vector<std::array<float, 4>> far_;
   std::uint32_t far_steps_ = 0;
   std::vector<LdiImage> far_ldis_;  // (tile * directions + direction) * far_steps_ + step
+  mutable std::once_flag steep_once_;
+  // ((set * tiles + tile) * directions + direction) * (far_steps_ + 1) + step
+  mutable std::vector<LdiImage> steep_ldis_;
   std::array<float, 3> sun_{0, 0, 1};
   ShadingSettings shading_;
   ShadingSettings sun_shading_;
