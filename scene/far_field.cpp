@@ -140,7 +140,13 @@ struct DepthRaster {
     for (std::size_t f = 0; f < flowers.size(); ++f) {
       const Mesh& mesh = *flowers[f].mesh;
       p.resize(mesh.positions.size());
-      for (std::size_t v = 0; v < p.size(); ++v) p[v] = project(flowers[f].world(mesh.positions[v]));
+      double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
+      for (std::size_t v = 0; v < p.size(); ++v) {
+        p[v] = project(flowers[f].world(mesh.positions[v]));
+        lo_x = std::min(lo_x, p[v][0]), hi_x = std::max(hi_x, p[v][0]);
+        lo_y = std::min(lo_y, p[v][1]), hi_y = std::max(hi_y, p[v][1]);
+      }
+      if (hi_x < 0 || hi_y < 0 || lo_x >= columns || lo_y >= rows) continue;  // off the raster
       for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         const auto& tri = mesh.triangles[t];
         const Vector3d &A = p[tri[0]], &B = p[tri[1]], &C = p[tri[2]];
@@ -238,14 +244,16 @@ CanopyLook look_at_canopy(const std::vector<PlacedFlower>& flowers, double side,
   const Vector3d view{heading[0] * cosine, heading[1] * cosine, -sine};
   const Vector3d across{-heading[1], heading[0], 0};
   // Rays by (across, where they pass the canopy's top along the heading); each row of cells is
-  // kCell of the picture high, kCell / sine along the ground.
+  // kCell / sine long along the ground.
   const double path = top * cotangent;  // along the ground, from the top of the canopy to the ground
   const double reach = side / 2 - std::min(2.0, side / 8);  // inside the square whatever the heading
   const double half_width = reach / 2, first = -reach * 0.9, last = reach * 0.9 - path;
   if (last <= first) return {};
+  // Rows of cells kCell of the picture high; at most kMaxRows of them (plenty for a mean).
+  constexpr int kMaxRows = 512;
   const double row_step = kCell / sine;
   DepthRaster raster(static_cast<int>(2 * half_width / kCell),
-                     std::max(1, static_cast<int>((last - first) / row_step)));
+                     std::clamp(static_cast<int>((last - first) / row_step), 1, kMaxRows));
   raster.draw(flowers, [&](const Vector3d& p) {
     const double along = dot(p, heading) - (top - p[2]) * cotangent;
     return Vector3d{(dot(p, across) + half_width) / kCell, (along - first) / row_step, (top - p[2]) / sine};
