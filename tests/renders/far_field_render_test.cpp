@@ -6,53 +6,29 @@
 
 #include <cmath>
 #include <cstdio>
-#include <string>
 
 #include "core/color.h"
 #include "renders/trace/embree_reference.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
+#include "tests/scene/far_field_scene.h"
 
 namespace wangscape {
 namespace {
 
 // A flat 700 m field seen from 20 m above its southern part (so that the ground beyond `far` shows
-// over the near flowers), the heads turned towards the camera, the sun low in the west (as in
-// templates/scenes/whole-dem.toml).
-std::string field_scene(double far) {
-  return R"(
-[terrain]
-flat_size = 700.0
-[tiles]
-tile_size = 4.0
-points_per_tile = 20
-relaxation_rounds = 0
-seed = 7
-[models]
-variants = 3
-triangle_budget = 600
-seed = 3
-facing = 170.0
-facing_jitter = 35.0
-[camera]
-position = [0.0, -300.0, 20.0]
-target = [0.0, 0.0, 0.0]
-fov = 50.0
-[sun]
-azimuth = 277.0
-elevation = 22.0
-[image]
-width = 192
-height = 108
-[ground]
-bake_pixels = 256
-[camera_aware]
-near = 10.0
-far = )" +
-         std::to_string(far) + "\nproxy_triangles = 400\n";
+// over the near flowers), the heads turned towards the camera.
+Scene scene_of(double far) {
+  testing::FarFieldScene scene;
+  scene.flat_size = 700;
+  scene.facing = 170;
+  scene.camera = "[0.0, -300.0, 20.0]";
+  scene.target = "[0.0, 0.0, 0.0]";
+  scene.far = far;
+  scene.width = 192;
+  scene.height = 108;
+  return make_scene(parse_scene_config(testing::far_field_scene_text(scene), "test.toml", "."));
 }
-
-Scene scene_of(double far) { return make_scene(parse_scene_config(field_scene(far), "test.toml", ".")); }
 
 ReferenceImage render(const Scene& scene) {
   ReferenceOptions options;

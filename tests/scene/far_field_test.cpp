@@ -10,39 +10,16 @@
 #include "scene/far_field.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
+#include "tests/scene/far_field_scene.h"
 
 namespace wangscape {
 namespace {
 
 // A flat field seen from its southern edge looking north; heads facing `facing` degrees.
 Scene field_facing(double facing) {
-  const std::string text = R"(
-[terrain]
-flat_size = 200.0
-[tiles]
-tile_size = 4.0
-points_per_tile = 20
-relaxation_rounds = 0
-seed = 7
-[models]
-variants = 3
-triangle_budget = 600
-facing = )" + std::to_string(facing) +
-                           R"(
-facing_jitter = 20.0
-[camera]
-position = [0.0, -90.0, 2.4]
-target = [0.0, 0.0, 2.0]
-[sun]
-azimuth = 277.0
-elevation = 22.0
-[ground]
-bake_pixels = 64
-[camera_aware]
-far = 40.0
-proxy_triangles = 400
-)";
-  return make_scene(parse_scene_config(text, "test.toml", "."));
+  testing::FarFieldScene scene;
+  scene.facing = facing;
+  return make_scene(parse_scene_config(testing::far_field_scene_text(scene), "test.toml", "."));
 }
 
 FieldTexture texture_of(const Scene& scene) {
