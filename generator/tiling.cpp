@@ -622,22 +622,16 @@ std::uint32_t HashedTiling::color_at(std::int64_t x, std::int64_t y, std::uint32
 std::uint32_t HashedTiling::corner_at(std::int64_t x, std::int64_t y, std::uint32_t alphabet) const {
   const auto plain = [&](std::int64_t px, std::int64_t py) { return point_hash(row_key(py, kCornerSalt), px); };
   if (!forbid_) return hashed_color(plain(x, y), alphabet);
-  // Odd vertices differ from their even neighbour to the west (odd x) or south (odd y), so no
-  // three vertices in a row or column share a color; odd-odd vertices avoid both.
+  // Two tiles side by side are identical only when both rows of their corners hold three equal
+  // colors, and one of two neighbouring rows is even: so in even rows each odd vertex differs from
+  // the even one to its west, and in even columns from the one to its south. Odd rows and columns
+  // go free. (Every row and column paired, odd-odd vertices avoiding both, laid a stronger
+  // lattice: corner-2 at 128 x 128 scored 0.148, now 0.086, against 0.013 without the option.)
   const auto base = [&](std::int64_t px, std::int64_t py) { return hashed_color(plain(px, py), alphabet); };
   const bool odd_x = is_odd(x), odd_y = is_odd(y);
-  if (!odd_x && !odd_y) return base(x, y);
   if (odd_x && !odd_y) return color_other_than(plain(x, y), base(x - 1, y), alphabet);
   if (!odd_x && odd_y) return color_other_than(plain(x, y), base(x, y - 1), alphabet);
-  const std::uint32_t west = color_other_than(plain(x - 1, y), base(x - 1, y - 1), alphabet);
-  const std::uint32_t south = color_other_than(plain(x, y - 1), base(x - 1, y - 1), alphabet);
-  if (west == south) return color_other_than(plain(x, y), west, alphabet);
-  // Two colors to avoid (alphabet >= 3 here: with two colors west == south always).
-  std::uint32_t c = hashed_color(plain(x, y), alphabet - 2);
-  const std::uint32_t low = std::min(west, south), high = std::max(west, south);
-  if (c >= low) ++c;
-  if (c >= high) ++c;
-  return c;
+  return base(x, y);
 }
 
 std::uint32_t HashedTiling::tile_at(std::int64_t i, std::int64_t j) const {

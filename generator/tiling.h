@@ -89,9 +89,9 @@ class HashedTiling {
  public:
   // Throws Error "tile set '<name>': hash tiling needs a complete set; missing
   // (N,E,S,W)=(1,0,0,1)" (or (NE,SE,SW,NW)=...) when the set is not complete.
-  // forbid_identical_neighbours: odd-indexed edge (corner) colors are drawn different from the
-  // even one before them along their line, so no two neighbouring tiles are identical; still
-  // O(1) per tile. Needs at least two colors per alphabet.
+  // forbid_identical_neighbours: odd-indexed edge colors are drawn different from the even one
+  // before them along their line (corners: along even rows and even columns only), so no two
+  // neighbouring tiles are identical; still O(1) per tile. Needs at least two colors per alphabet.
   HashedTiling(const TileSet& set, std::uint64_t seed, bool forbid_identical_neighbours = false);
 
   std::uint32_t tile_at(std::int64_t i, std::int64_t j) const;
