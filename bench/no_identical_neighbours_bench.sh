@@ -3,8 +3,12 @@
 # generator/tiling_stats.h) with and without --no-identical-neighbours, averaged over SEEDS seeds,
 # for each set in SETS, algorithm in ALGORITHMS and size in SIZES (issue 23, item 3). A score is
 # mostly noise below 64 x 64 (about 0.07 at 32 x 32 for any stochastic tiling); compare means.
+# Stops on any failure (a set the algorithm cannot tile, a binary being relinked: run it under
+# the build lock). Figures at load 2.3-2.8 (10 seeds, plain against forbidden, 128 x 128):
+# scanline cohen8 0.0154 / 0.0346, cohen12 0.0454 / 0.0348, owen12 0.0690 / 0.0519;
+# hash complete-edge-2 0.0092 / 0.0616, corner-2 0.0125 / 0.0864, corner-3 0.0048 / 0.0106.
 #   sh bench/no_identical_neighbours_bench.sh
-#   SETS="cohen8" SIZES="256" SEEDS=5 sh bench/no_identical_neighbours_bench.sh
+#   SETS="complete-edge-2 corner-2" ALGORITHMS=hash sh bench/no_identical_neighbours_bench.sh
 set -eu
 bin=${1:-build/release/cli/wangscape}
 sets=${SETS:-cohen8 cohen12 cohen18 owen12 complete-edge-2 corner-2}
@@ -18,6 +22,10 @@ mean() {  # SET ALGORITHM SIZE [FLAG]
   while [ "$seed" -le "$seeds" ]; do
     score=$("$bin" tiling --set "$1" --algorithm "$2" --size "$3x$3" --seed "$seed" --json ${4:-} |
       sed -n 's/^ *"periodicity": *\([0-9.eE+-]*\),*$/\1/p')
+    if [ -z "$score" ]; then
+      echo "bench/no_identical_neighbours_bench.sh: no score from $bin tiling --set $1 --algorithm $2 --seed $seed" >&2
+      exit 1
+    fi
     total=$(awk -v a="$total" -v b="$score" 'BEGIN { printf "%.6f", a + b }')
     seed=$((seed + 1))
   done
@@ -27,8 +35,9 @@ printf '%-16s %-12s %5s  %-8s %-8s\n' set algorithm size plain forbid
 for set in $sets; do
   for algorithm in $algorithms; do
     for size in $sizes; do
-      printf '%-16s %-12s %5s  %-8s %-8s\n' "$set" "$algorithm" "$size" "$(mean "$set" "$algorithm" "$size")" \
-        "$(mean "$set" "$algorithm" "$size" --no-identical-neighbours)"
+      plain=$(mean "$set" "$algorithm" "$size")  # an assignment, so that set -e stops on a failure
+      forbid=$(mean "$set" "$algorithm" "$size" --no-identical-neighbours)
+      printf '%-16s %-12s %5s  %-8s %-8s\n' "$set" "$algorithm" "$size" "$plain" "$forbid"
     done
   done
 done
