@@ -31,11 +31,14 @@ using namespace view_detail;
 
 namespace {
 
-constexpr float kNear = 0.05f;             // meters: the near plane
-constexpr float kSplatScale = 1.5f;        // splat side over the projected depth-pixel size (measured: no holes)
+constexpr float kNear = 0.05f;       // meters: the near plane
+constexpr float kSplatScale = 1.5f;  // splat side over the projected depth-pixel size (measured: no holes)
+// A far step's samples are blocks kept with their cover's probability: a larger splat than the
+// block would add its excess to the cover (1.5^2 = 2.25 times: a sparse field drawn dense).
+constexpr float kFarSplatScale = 1.0f;
 constexpr int kMaxSplat = 24;              // pixels
 constexpr std::uint32_t kSteepLevels = 3;  // the pack's coarsest levels the steep sets stand in for
-constexpr double kSteepTolerance = 1.0;    // degrees a view may be steeper than the LDIs it draws
+constexpr double kSteepTolerance = 0.0;    // degrees a view may be steeper than the LDIs it draws
 constexpr float kLevelBlendStart = 0.75f;  // of a level's range: where dithering into the next level starts
 constexpr float kDirectionBand = 0.08f;    // of the angle between two directions: dithered either side of the bisector
 // ViewEngine::automatic samples the near field with a grid of this many rays across and down.
@@ -397,7 +400,9 @@ void LdiRenderer::choose_tiles() {
     const double horizontal = std::hypot(x0 + s / 2 - m.eye[0], y0 + s / 2 - m.eye[1]);
     const double view_elevation = std::atan2(rise, horizontal) * 180 / std::numbers::pi;
     m.steep[t] = 0;
-    if (a + kSteepLevels >= levels && view_elevation > double(info.elevations.back()) + kSteepTolerance) {
+    // (The pack's own elevation for the level drawn: from head height, never steeper.)
+    const double pack_elevation = double(info.elevations[std::min(a, levels - 1)]);
+    if (a + kSteepLevels >= levels && view_elevation > pack_elevation + kSteepTolerance) {
       const auto& sets = ViewWorld::steep_elevations();  // ascending
       std::size_t k = 0;
       while (k + 1 < sets.size() && view_elevation > double(sets[k]) + kSteepTolerance) ++k;
@@ -521,7 +526,7 @@ void LdiRenderer::warp_tiles() {
             w.depth_scale = f.depth_range / 65535.0f;
             // (A far LDI holds no ground samples: its low samples are flowers.)
             w.ground_below = far ? -std::numeric_limits<float>::infinity() : kGroundEpsilon + 0.75f * f.pixel_size;
-            w.splat = float(p) * m.focal * kSplatScale;
+            w.splat = float(p) * m.focal * (far ? kFarSplatScale : kSplatScale);
             w.owned = owned_thresholds(part.from, part.to);
             // The eye in the LDI's frame (unsheared: the shear moves samples, not the order).
             const V3 eye_local{m.eye[0] - tiles.x0[t] - f.origin[0], m.eye[1] - tiles.y0[t] - f.origin[1],

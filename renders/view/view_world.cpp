@@ -28,10 +28,24 @@ constexpr float kCanopyShare = 0.55f;  // of the prism top: the far field's colo
 // level's resolution, each over twice the distance of the one before.
 constexpr std::uint32_t kFarSteps = 5;
 
-// itself), kept where an ordered threshold of the block is below their share of the block, so
+// itself), kept where the block's hashed threshold is below their share of the block, so
 // that the tile's cover is kept on average. Each sample sits at its block's centre.
+// A block's keep threshold in (0, 1): white noise hashed from the block and the LDI (an ordered
+// dither is the same in every tile, so its pattern and its seams at the tile's sides repeat with
+// the tiles: rows along the tile grid).
+float block_threshold(std::uint32_t x, std::uint32_t y, std::uint32_t salt) {
+  std::uint64_t h = (std::uint64_t(x) << 32 | y) ^ (std::uint64_t(salt) * 0x9E3779B97F4A7C15ull);
+  h ^= h >> 33;
+  h *= 0xff51afd7ed558ccdull;
+  h ^= h >> 33;
+  h *= 0xc4ceb9fe1a85ec53ull;
+  h ^= h >> 33;
+  return (float(h >> 40) + 0.5f) / float(1u << 24);
+}
+
 LdiImage one_layer_ldi(const LdiView& v, int factor) {
   const LdiFrame& f = *v.frame;
+  const std::uint32_t salt = (f.tile * 64 + f.direction) * 64 + std::uint32_t(factor);
   LdiImage out;
   out.frame = f;
   out.frame.width = (f.width + std::uint32_t(factor) - 1) / std::uint32_t(factor);
@@ -60,7 +74,7 @@ LdiImage one_layer_ldi(const LdiView& v, int factor) {
     std::uint32_t first = w, last = 0;
     for (std::uint32_t x = 0; x < w; ++x) {
       const Block& b = blocks[std::size_t(y) * w + x];
-      if (b.flowers == 0 || double(b.flowers) / area <= threshold(int(x), int(y))) continue;
+      if (b.flowers == 0 || double(b.flowers) / area <= block_threshold(x, y, salt)) continue;
       first = std::min(first, x);
       last = x;
     }
@@ -69,7 +83,7 @@ LdiImage one_layer_ldi(const LdiView& v, int factor) {
                            std::uint32_t(out.depth_pixels.size())});
       for (std::uint32_t x = first; x <= last; ++x) {
         const Block& b = blocks[std::size_t(y) * w + x];
-        const bool kept = b.flowers > 0 && double(b.flowers) / area > threshold(int(x), int(y));
+        const bool kept = b.flowers > 0 && double(b.flowers) / area > block_threshold(x, y, salt);
         out.counts.push_back(kept ? 1 : 0);
         if (!kept) continue;
         const double n = double(b.flowers);
