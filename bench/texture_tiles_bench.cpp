@@ -98,27 +98,12 @@ void run_texture_preview(benchmark::State& state, const char* set_name, int exem
   const std::string folder = std::string(WANGSCAPE_SOURCE_DIR) + "/templates/exemplars/";
   std::vector<ImageRgb8> exemplars = {read_image(folder + "meadow.png")};
   if (exemplar_count == 2) exemplars.push_back(read_image(folder + "pumice.png"));
-  constexpr int kSeeds = 3;
-  double axis = 0, repetition = 0, peak = 0;
-  for (auto _ : state) {
-    axis = repetition = peak = 0;
-    for (int seed = 1; seed <= kSeeds; ++seed) {
-      TextureTileOptions options;
-      options.tile_size = 64;
-      options.seed = static_cast<std::uint64_t>(seed);
-      const TextureTileSet tiles = make_texture_tiles(builtin_tileset(set_name), exemplars, options);
-      TilingOptions tiling;
-      tiling.seed = static_cast<std::uint64_t>(seed);
-      const GrayImage preview = to_gray(draw_texture_tiling(tiles, make_tiling(tiles.set, 16, 8, tiling)));
-      axis += axis_energy_ratio(preview) / kSeeds;
-      repetition += tile_repetition(preview, 64) / kSeeds;
-      peak += tile_period_peak(preview, 64) / kSeeds;
-    }
-  }
+  TexturePreviewFigures figures;
+  for (auto _ : state) figures = texture_preview_figures(builtin_tileset(set_name), exemplars, 3);
   state.counters["tiles"] = static_cast<double>(builtin_tileset(set_name).size());
-  state.counters["axis_ratio"] = axis;
-  state.counters["repetition"] = repetition;
-  state.counters["tile_peak"] = peak;
+  state.counters["axis_ratio"] = figures.axis_ratio;
+  state.counters["repetition"] = figures.repetition;
+  state.counters["tile_peak"] = figures.peak;
 }
 
 // The `noise tiles --lattice 32 --octaves 3 --preview 1024x512` picture (turbulence over the

@@ -1,6 +1,8 @@
 #include "generator/texture_tiles.h"
 
+#include "generator/image_spectrum.h"
 #include "generator/noise_tiles.h"
+#include "generator/tiling.h"
 
 #include <tbb/parallel_for.h>
 
@@ -640,6 +642,24 @@ ImageRgb8 draw_texture_tiling(const TextureTileSet& tiles, const Tiling& tiling)
     }
   });
   return image;
+}
+
+TexturePreviewFigures texture_preview_figures(const TileSet& set, std::span<const ImageRgb8> exemplars, int seeds) {
+  TexturePreviewFigures mean;
+  constexpr int kTile = 64;
+  for (int seed = 1; seed <= seeds; ++seed) {
+    TextureTileOptions options;
+    options.tile_size = kTile;
+    options.seed = static_cast<std::uint64_t>(seed);
+    const TextureTileSet tiles = make_texture_tiles(set, exemplars, options);
+    TilingOptions tiling;
+    tiling.seed = static_cast<std::uint64_t>(seed);
+    const GrayImage preview = to_gray(draw_texture_tiling(tiles, make_tiling(tiles.set, 16, 8, tiling)));
+    mean.axis_ratio += axis_energy_ratio(preview) / seeds;
+    mean.repetition += tile_repetition(preview, kTile) / seeds;
+    mean.peak += tile_period_peak(preview, kTile) / seeds;
+  }
+  return mean;
 }
 
 }  // namespace wangscape

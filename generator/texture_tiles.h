@@ -123,4 +123,13 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
 // Error when the image would exceed 2^28 pixels or a tile index is out of range.
 ImageRgb8 draw_texture_tiling(const TextureTileSet& tiles, const Tiling& tiling);
 
+// The figures of the `texture tiles --size 64 --preview 1024x512` picture (16 x 8 tiles of 64
+// pixels over the set's default tiling) of `set` from `exemplars`, means over seeds 1..seeds:
+// generator/image_spectrum.h's axis-to-diagonal energy ratio, repetition at one tile's shift and
+// tile-period peak, of its luma. What the benchmark reports and the tests bound.
+struct TexturePreviewFigures {
+  double axis_ratio = 0, repetition = 0, peak = 0;
+};
+TexturePreviewFigures texture_preview_figures(const TileSet& set, std::span<const ImageRgb8> exemplars, int seeds);
+
 }  // namespace wangscape

@@ -279,8 +279,8 @@ CanopyLook look_at_canopy(const std::vector<PlacedFlower>& flowers, double side,
       const double depth = raster.depth[c];
       const double z = top - depth * sine;
       const double along = first + (row + 0.5) * row_step + (top - z) * cotangent;
-      const double side = (column + 0.5) * kCell - half_width;
-      const Vector3d point{heading[0] * along + across[0] * side, heading[1] * along + across[1] * side, z};
+      const double offset = (column + 0.5) * kCell - half_width;  // across the view
+      const Vector3d point{heading[0] * along + across[0] * offset, heading[1] * along + across[1] * offset, z};
       const std::size_t m =
           raster.triangle[c] < mesh.triangle_material.size() ? mesh.triangle_material[raster.triangle[c]] : 0;
       const bool has_material = m < mesh.materials.size();

@@ -44,29 +44,12 @@ ImageRgb8 stones(std::uint64_t seed, Rgb8 ground, Rgb8 stone, int side = 512) {
   return image;
 }
 
-struct Figures {
-  double axis_ratio = 0, repetition = 0, peak = 0;  // axis ratio: printed, not bounded (the two
-  // exemplars' regions follow the vertex grid at large scale whatever their boundary's shape)
-};
-
-// The command's preview, luma, averaged over seeds 1..seeds.
-Figures preview_figures(const char* set_name, const std::vector<ImageRgb8>& exemplars, int seeds) {
-  Figures mean;
-  for (int seed = 1; seed <= seeds; ++seed) {
-    TextureTileOptions options;
-    options.tile_size = 64;
-    options.seed = static_cast<std::uint64_t>(seed);
-    const TextureTileSet tiles = make_texture_tiles(builtin_tileset(set_name), exemplars, options);
-    TilingOptions tiling;
-    tiling.seed = static_cast<std::uint64_t>(seed);
-    const GrayImage preview = to_gray(draw_texture_tiling(tiles, make_tiling(tiles.set, 16, 8, tiling)));
-    mean.axis_ratio += axis_energy_ratio(preview) / seeds;
-    mean.repetition += tile_repetition(preview, 64) / seeds;
-    mean.peak += tile_period_peak(preview, 64) / seeds;
-  }
-  std::printf("%s: axis ratio %.3f, repetition at one tile %.3f, tile-period peak %.3f\n", set_name, mean.axis_ratio,
-              mean.repetition, mean.peak);
-  return mean;
+// The command's preview's figures, printed.
+TexturePreviewFigures preview_figures(const char* set_name, const std::vector<ImageRgb8>& exemplars, int seeds) {
+  const TexturePreviewFigures f = texture_preview_figures(builtin_tileset(set_name), exemplars, seeds);
+  std::printf("%s: axis ratio %.3f, repetition at one tile %.3f, tile-period peak %.3f\n", set_name, f.axis_ratio,
+              f.repetition, f.peak);
+  return f;
 }
 
 TEST(TexturePreview, TwoExemplarTilesShowNeitherTheGridNorRepeatedTiles) {
@@ -74,7 +57,7 @@ TEST(TexturePreview, TwoExemplarTilesShowNeitherTheGridNorRepeatedTiles) {
                                             stones(2, {150, 145, 135}, {215, 210, 200})};
   // Before (4 windows for the whole set, exemplars switching on the tile midlines): repetition at
   // one tile 0.254, tile-period peak 0.224 over seeds 1-3; after: 0.111 and 0.076.
-  const Figures f = preview_figures("corner-2", exemplars, 3);
+  const TexturePreviewFigures f = preview_figures("corner-2", exemplars, 3);
   EXPECT_LT(f.peak, 0.15);
   EXPECT_LT(f.repetition, 0.2);
 }
@@ -84,7 +67,7 @@ TEST(TexturePreview, OneExemplarTilesRepeatLessThanTheirSharedDiamonds) {
   // probability 1/2, and without interiors of their own half the picture repeated at one tile's
   // shift (0.514 over seeds 1-3); with them 0.273.
   const std::vector<ImageRgb8> exemplar = {stones(3, {90, 110, 50}, {120, 150, 70})};
-  const Figures f = preview_figures("cohen8", exemplar, 3);
+  const TexturePreviewFigures f = preview_figures("cohen8", exemplar, 3);
   EXPECT_LT(f.repetition, 0.4);
 }
 
