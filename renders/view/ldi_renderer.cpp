@@ -119,7 +119,10 @@ struct LdiRenderer::Impl {
   // Per placed tile, this frame (structure of arrays).
   std::vector<float> distance, far_from, far_r, far_g, far_b, far_cover;
   std::vector<std::uint8_t> level_a, level_b, dir_a, dir_b;
-  std::vector<std::uint8_t> steep;  // 0: the pack; k: the world's steep set k - 1 (seen from above)
+  // Seen from above: 0 the pack, k the world's steep set k - 1; the tile's samples are drawn
+  // from `steep` and, a share steep_low_weight of them, from the next lower one, steep_low.
+  std::vector<std::uint8_t> steep, steep_low;
+  std::vector<float> steep_low_weight;
   std::vector<float> level_b_weight, dir_b_weight;
   std::vector<double> direction_east, direction_north;  // the pack's ray directions, horizontal unit
   // Terrain vertices in camera space; the chunks drawn, nearest first, and their distances.
@@ -172,10 +175,10 @@ LdiRenderer::LdiRenderer(std::shared_ptr<const ViewWorld> world, int width, int 
   resize(width, height);
   Impl& m = *impl_;
   const std::size_t n = world_->tiles().size();
-  for (auto* v :
-       {&m.distance, &m.far_from, &m.far_r, &m.far_g, &m.far_b, &m.far_cover, &m.level_b_weight, &m.dir_b_weight})
+  for (auto* v : {&m.distance, &m.far_from, &m.far_r, &m.far_g, &m.far_b, &m.far_cover, &m.level_b_weight,
+                  &m.dir_b_weight, &m.steep_low_weight})
     v->assign(n, 0);
-  for (auto* v : {&m.level_a, &m.level_b, &m.dir_a, &m.dir_b, &m.steep}) v->assign(n, 0);
+  for (auto* v : {&m.level_a, &m.level_b, &m.dir_a, &m.dir_b, &m.steep, &m.steep_low}) v->assign(n, 0);
   order_.reserve(n);
   const std::size_t vertices = world_->terrain().x.size();
   m.vx.assign(vertices, 0);
@@ -393,13 +396,16 @@ void LdiRenderer::choose_tiles() {
     m.level_a[t] = std::uint8_t(a);
     m.level_b[t] = std::uint8_t(std::min(a + 1, drawn_levels));
     // Seen from above, for the coarsest levels and the far steps: the LDIs (the pack's or a steep
-    // set's) of the lowest elevation not below the view's to the tile. Sampled from higher than
-    // the eye, a one-layer LDI's samples cover the tile's top; from lower, they stand on its near
-    // side with a gap behind (the streaks along the tile grid).
+    // set's) of the lowest elevation not below the view's to the tile, dithered with the next
+    // lower steep set in proportion to how near the view's elevation is to its (a hard switch
+    // showed as a seam). Sampled from higher than the eye, a one-layer LDI's samples cover the
+    // tile's top; from lower, they stand on its near side with a gap behind (the streaks along
+    // the tile grid).
     const double rise = m.eye[2] - ground - 0.5 * top;
     const double horizontal = std::hypot(x0 + s / 2 - m.eye[0], y0 + s / 2 - m.eye[1]);
     const double view_elevation = std::atan2(rise, horizontal) * 180 / std::numbers::pi;
-    m.steep[t] = 0;
+    m.steep[t] = m.steep_low[t] = 0;
+    m.steep_low_weight[t] = 0;
     // (The pack's own elevation for the level drawn: from head height, never steeper.)
     const double pack_elevation = double(info.elevations[std::min(a, levels - 1)]);
     if (a + kSteepLevels >= levels && view_elevation > pack_elevation + kSteepTolerance) {
@@ -407,6 +413,12 @@ void LdiRenderer::choose_tiles() {
       std::size_t k = 0;
       while (k + 1 < sets.size() && view_elevation > double(sets[k]) + kSteepTolerance) ++k;
       m.steep[t] = std::uint8_t(k + 1);
+      m.steep_low[t] = std::uint8_t(k);
+      // (Not with the pack's: its far steps, sampled lower, would bring their rows back.)
+      if (k > 0) {
+        const double low = double(sets[k - 1]), high = double(sets[k]);
+        m.steep_low_weight[t] = float(std::clamp((high - view_elevation) / (high - low), 0.0, 1.0));
+      }
     }
     m.level_b_weight[t] = wb;
     m.far_from[t] = a >= drawn_levels ? 0.0f : (a + 1 == drawn_levels ? 1.0f - wb : 2.0f);
@@ -496,13 +508,20 @@ void LdiRenderer::warp_tiles() {
                                  {la, m.dir_b[t], split * (1 - wd), split},
                                  {lb, m.dir_a[t], split, split + wl * (1 - wd)},
                                  {lb, m.dir_b[t], split + wl * (1 - wd), 1}};
-          for (const Part& part : parts) {
+          // Each part's slice split again between the tile's two elevation sets.
+          const float low_share = m.steep_low_weight[t];
+          for (int slice = 0; slice < 8; ++slice) {
+            const Part& whole = parts[slice / 2];
+            const float cut = whole.from + (whole.to - whole.from) * (1 - low_share);
+            const bool lower = slice % 2 == 1;
+            const Part part{whole.level, whole.direction, lower ? cut : whole.from, lower ? whole.to : cut};
             if (!(part.to > part.from) || part.level >= drawn_levels) continue;
             const bool far = part.level >= levels;
-            const LdiView v = m.steep[t] ? world.steep_ldi(m.steep[t] - 1u, tiles.tile[t], part.direction,
-                                                           far ? part.level - levels + 1 : 0)
-                              : far      ? world.far_ldi(tiles.tile[t], part.direction, part.level - levels)
-                                         : pack.ldi(tiles.tile[t], part.level, part.direction);
+            const std::uint8_t set = lower ? m.steep_low[t] : m.steep[t];
+            const LdiView v =
+                set   ? world.steep_ldi(set - 1u, tiles.tile[t], part.direction, far ? part.level - levels + 1 : 0)
+                : far ? world.far_ldi(tiles.tile[t], part.direction, part.level - levels)
+                      : pack.ldi(tiles.tile[t], part.level, part.direction);
             const LdiFrame& f = *v.frame;
             Warp w;
             const double p = f.pixel_size;
