@@ -7,25 +7,20 @@
 #include <cstring>
 #include <string>
 
+#include "core/hash.h"
+
 namespace wangscape {
 
 namespace {
-
-std::uint64_t mix(std::uint64_t z) {
-  z += 0x9E3779B97F4A7C15ull;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
 
 // What a border or interior gradient is keyed by; salts keep the kinds apart.
 enum class Part : std::uint64_t { corner = 1, horizontal_edge, vertical_edge, interior };
 
 std::uint8_t gradient_index(std::uint64_t seed, int level, Part part, std::uint64_t key, int position) {
-  std::uint64_t h = mix(seed ^ (static_cast<std::uint64_t>(part) << 56));
-  h = mix(h ^ static_cast<std::uint64_t>(level));
-  h = mix(h ^ key);
-  return static_cast<std::uint8_t>(mix(h ^ static_cast<std::uint64_t>(position)) >> 56);
+  std::uint64_t h = mix64(seed ^ (static_cast<std::uint64_t>(part) << 56));
+  h = mix64(h ^ static_cast<std::uint64_t>(level));
+  h = mix64(h ^ key);
+  return static_cast<std::uint8_t>(mix64(h ^ static_cast<std::uint64_t>(position)) >> 56);
 }
 
 constexpr std::array<const char*, 5> kPatternNames = {"noise", "fbm", "turbulence", "marble", "wood"};
@@ -55,7 +50,7 @@ NoiseTileSet::NoiseTileSet(const TileSet& set, const NoiseTileOptions& options)
   for (std::size_t k = 0; k < table_.size(); ++k) {
     const double angle = 2 * std::numbers::pi * (static_cast<double>(k) + 0.5) / static_cast<double>(table_.size());
     // The value from a hash of k, so a point's value does not follow its gradient's angle.
-    const double unit = static_cast<double>(mix(k) >> 11) / static_cast<double>(std::uint64_t{1} << 53);
+    const double unit = static_cast<double>(mix64(k) >> 11) / static_cast<double>(std::uint64_t{1} << 53);
     table_[k] = {static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle)),
                  kPointValue * static_cast<float>(2 * unit - 1)};
   }

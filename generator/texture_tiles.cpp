@@ -1,5 +1,6 @@
 #include "generator/texture_tiles.h"
 
+#include "core/hash.h"
 #include "generator/image_spectrum.h"
 #include "generator/noise_tiles.h"
 #include "generator/tiling.h"
@@ -20,19 +21,12 @@ namespace {
 
 constexpr std::uint64_t kInfinite = std::numeric_limits<std::uint64_t>::max() / 4;
 
-std::uint64_t mix(std::uint64_t z) {
-  z += 0x9E3779B97F4A7C15ull;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-
 // Deterministic draws from one (seed, stream) pair, so parallel work never shares a generator.
 class Draws {
  public:
-  Draws(std::uint64_t seed, std::uint64_t stream) : state_(mix(seed ^ mix(stream))) {}
+  Draws(std::uint64_t seed, std::uint64_t stream) : state_(mix64(seed ^ mix64(stream))) {}
   int uniform(int lo, int hi) {  // inclusive
-    return lo + static_cast<int>(mix(state_++) % static_cast<std::uint64_t>(hi - lo + 1));
+    return lo + static_cast<int>(mix64(state_++) % static_cast<std::uint64_t>(hi - lo + 1));
   }
 
  private:

@@ -9,6 +9,8 @@
 #include <set>
 #include <string>
 
+#include "core/hash.h"
+
 namespace wangscape {
 
 namespace {
@@ -41,14 +43,12 @@ std::string describe_colors(const std::vector<int>& slots, const std::array<std:
   return text;
 }
 
+// SplitMix64's generator: mix64 of the state, which then steps.
 std::uint64_t splitmix64(std::uint64_t& state) {
-  std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
+  const std::uint64_t z = mix64(state);
+  state += 0x9E3779B97F4A7C15ull;
+  return z;
 }
-
-std::uint64_t mix64(std::uint64_t z) { return splitmix64(z); }
 
 // lowbias32 (Chris Wellons): a cheap 32-bit bijection with good avalanche; vectorises.
 inline std::uint32_t mix32(std::uint32_t x) {

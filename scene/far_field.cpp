@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "core/color.h"
+#include "core/hash.h"
 #include "core/vecmath.h"
 #include "generator/tiling.h"
 #include "scene/camera_view.h"
@@ -223,13 +224,6 @@ class SunMap {
   std::array<double, 2> lo_{1e30, 1e30}, hi_{-1e30, -1e30};
   std::unique_ptr<DepthRaster> raster_;
 };
-
-std::uint64_t mix64(std::uint64_t z) {
-  z += 0x9E3779B97F4A7C15ull;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
 
 // Sunflower yellow (a petal's base color), the part of the canopy that shows as specks from afar.
 bool is_yellow(const Vec3f& base) { return base[0] > 0.3f && base[1] > 0.4f * base[0] && base[2] < 0.3f * base[1]; }
@@ -462,7 +456,7 @@ void paint_far_field(GroundBake& bake, const SceneField& field, const FieldTextu
       // The bake is far coarser than a head: each pixel shows the yellow of the petals or the rest
       // of the canopy, as often as the canopy shows them (a hash of the pixel: the same bytes on
       // any thread count), so the field keeps its mean color and its specks of yellow.
-      const auto speck = static_cast<float>(mix64((std::uint64_t(row) << 32) ^ std::uint64_t(col)) >> 40) / 16777216.f;
+      const auto speck = unit_float(mix64((std::uint64_t(row) << 32) ^ std::uint64_t(col)));
       const FieldSplat& canopy = speck < look.yellow.coverage ? look.yellow : look.rest;
       // Where the masks or a sparse tile leave less of the field, less of it shows.
       const float a = fade * std::min(1.f, look.coverage * cover / (kSub * kSub) / mean_cover);

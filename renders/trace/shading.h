@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 
+#include "core/hash.h"
 #include "scene/shading.h"
 #include "templates/mesh.h"
 
@@ -48,16 +49,6 @@ int shade_in_the_open16(RTCSceneTy* scene, const ShadingSettings& settings, cons
 // Linear RGB (times exposure) to 8-bit sRGB, clamped.
 std::array<std::uint8_t, 3> to_srgb8(const Vec3f& linear);
 
-// ---- deterministic random numbers shared by the samplers ----
-
-// SplitMix64's finaliser: a well-mixed 64-bit hash of x.
-constexpr std::uint64_t mix64(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ull;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-  return x ^ (x >> 31);
-}
-// A uniform float in [0, 1) from the top 24 bits of h.
-constexpr float unit_float(std::uint64_t h) { return static_cast<float>(h >> 40) * (1.0f / 16777216.0f); }
+// (The samplers' deterministic random numbers: mix64 and unit_float of core/hash.h.)
 
 }  // namespace wangscape

@@ -38,7 +38,6 @@ constexpr float kSplatScale = 1.5f;  // splat side over the projected depth-pixe
 constexpr float kFarSplatScale = 1.0f;
 constexpr int kMaxSplat = 24;              // pixels
 constexpr std::uint32_t kSteepLevels = 3;  // the pack's coarsest levels the steep sets stand in for
-constexpr double kSteepTolerance = 0.0;    // degrees a view may be steeper than the LDIs it draws
 // Of the span between two steep sets' elevations, the lower part over which the lower set fades
 // out (a dithered blend warps both sets' LDIs: in all the span it cost 58 -> 92 ms a frame from
 // 25 m up at 1280 x 720).
@@ -344,7 +343,7 @@ void LdiRenderer::begin_frame(const ViewCamera& camera) {
   std::fill(m.zbuffer.begin(), m.zbuffer.end(), kEmpty);
   m.depth_pixels = 0;
   stats_.depth_pixels = 0;
-  stats_.tiles_drawn = stats_.tiles_culled = stats_.near_tiles = stats_.tiles_occluded = 0;
+  stats_.tiles_drawn = stats_.tiles_culled = stats_.steep_tiles = stats_.near_tiles = stats_.tiles_occluded = 0;
   std::fill(stats_.levels.begin(), stats_.levels.end(), 0);
   order_.clear();
 }
@@ -411,10 +410,10 @@ void LdiRenderer::choose_tiles() {
     m.steep_low_weight[t] = 0;
     // (The pack's own elevation for the level drawn: from head height, never steeper.)
     const double pack_elevation = double(info.elevations[std::min(a, levels - 1)]);
-    if (a + kSteepLevels >= levels && view_elevation > pack_elevation + kSteepTolerance) {
+    if (a + kSteepLevels >= levels && view_elevation > pack_elevation) {
       const auto& sets = ViewWorld::steep_elevations();  // ascending
       std::size_t k = 0;
-      while (k + 1 < sets.size() && view_elevation > double(sets[k]) + kSteepTolerance) ++k;
+      while (k + 1 < sets.size() && view_elevation > double(sets[k])) ++k;
       m.steep[t] = std::uint8_t(k + 1);
       m.steep_low[t] = std::uint8_t(k);
       // (Not with the pack's: its far steps, sampled lower, would bring their rows back.)
@@ -470,6 +469,7 @@ void LdiRenderer::choose_tiles() {
     ++stats_.levels[std::min(a, levels)];
     const bool near = d < near_field_;  // ray traced from the real flowers instead (trace_near_field)
     stats_.near_tiles += near;
+    stats_.steep_tiles += m.steep[t] != 0;
     if (a < drawn_levels && !near && (mask_.empty() || (t < mask_.size() && mask_[t])))
       order_.push_back(std::uint32_t(t));
   }

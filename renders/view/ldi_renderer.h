@@ -53,6 +53,7 @@ struct ViewFrameStats {
   std::uint64_t depth_pixels = 0;    // depth pixels warped
   std::uint64_t tiles_drawn = 0;     // in the frustum: drawn as LDIs or as far-field color
   std::uint64_t tiles_culled = 0;    // outside the frustum
+  std::uint64_t steep_tiles = 0;     // of those drawn, from the world's steep sets (seen from above)
   std::uint64_t near_tiles = 0;      // in the frustum or not, within the near field: ray traced
   std::uint64_t near_rays = 0;       // rays the near field cast (primary and shadow)
   std::uint64_t tiles_occluded = 0;  // LDI tiles not warped: wholly behind the near field

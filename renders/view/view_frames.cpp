@@ -218,8 +218,8 @@ std::string view_stats_json(const ViewFrameStats& stats) {
   return "{\"frame_ms\": " + number_text(stats.frame_ms) + ", \"fps\": " + number_text(fps) +
          ", \"depth_pixels\": " + std::to_string(stats.depth_pixels) +
          ", \"tiles\": {\"drawn\": " + std::to_string(stats.tiles_drawn) +
-         ", \"culled\": " + std::to_string(stats.tiles_culled) + "}, \"levels\": [" + levels +
-         "], \"ray_cast\": " + (stats.ray_cast ? "true" : "false") + "}";
+         ", \"culled\": " + std::to_string(stats.tiles_culled) + ", \"steep\": " + std::to_string(stats.steep_tiles) +
+         "}, \"levels\": [" + levels + "], \"ray_cast\": " + (stats.ray_cast ? "true" : "false") + "}";
 }
 
 void check_view_request(const ViewRequest& request) {
@@ -297,7 +297,9 @@ int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewReq
                   static_cast<unsigned long long>(stats.tiles_occluded));
       std::printf("depth pixels: %llu (%.1f M/s)\n", static_cast<unsigned long long>(stats.depth_pixels),
                   stats.frame_ms > 0 ? double(stats.depth_pixels) / stats.frame_ms / 1e3 : 0.0);
-      std::printf("tiles: %llu drawn, %llu culled\n", static_cast<unsigned long long>(stats.tiles_drawn),
+      std::printf("tiles: %llu drawn (%llu from the steep sets, seen from above), %llu culled\n",
+                  static_cast<unsigned long long>(stats.tiles_drawn),
+                  static_cast<unsigned long long>(stats.steep_tiles),
                   static_cast<unsigned long long>(stats.tiles_culled));
       std::string levels;
       for (std::uint64_t n : stats.levels) levels += (levels.empty() ? "" : ", ") + std::to_string(n);

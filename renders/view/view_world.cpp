@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/hash.h"
 #include "exporters/folder_state.h"
 #include "exporters/scene_folder.h"
 #include "generator/placement.h"
@@ -34,13 +35,7 @@ constexpr std::uint32_t kFarSteps = 5;
 // dither is the same in every tile, so its pattern and its seams at the tile's sides repeat with
 // the tiles: rows along the tile grid).
 float block_threshold(std::uint32_t x, std::uint32_t y, std::uint32_t salt) {
-  std::uint64_t h = (std::uint64_t(x) << 32 | y) ^ (std::uint64_t(salt) * 0x9E3779B97F4A7C15ull);
-  h ^= h >> 33;
-  h *= 0xff51afd7ed558ccdull;
-  h ^= h >> 33;
-  h *= 0xc4ceb9fe1a85ec53ull;
-  h ^= h >> 33;
-  return (float(h >> 40) + 0.5f) / float(1u << 24);
+  return unit_float(mix64(mix64(salt) ^ (std::uint64_t(x) << 32 | y))) + 0.5f / 16777216.0f;  // in (0, 1)
 }
 
 LdiImage one_layer_ldi(const LdiView& v, int factor) {

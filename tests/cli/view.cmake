@@ -35,7 +35,7 @@ view_sh_test(stats_json "^ok 36 levels 3$"
   "${CMAKE_CURRENT_LIST_DIR}/view_stats_check.py")
 
 # A camera looking away from the field: every tile culled, no depth pixel.
-view_test(looking_away ${cli_expect} 0 "\"depth_pixels\": 0, \"tiles\": \\{\"drawn\": 0, \"culled\": 36\\}"
+view_test(looking_away ${cli_expect} 0 "\"depth_pixels\": 0, \"tiles\": \\{\"drawn\": 0, \"culled\": 36, \"steep\": 0\\}"
   "${WANGSCAPE_BIN}" --quiet view "${view_folder}" --camera 0,-20 --look-at 0,-40,1.7 --size 32x24 --stats --json --repeat 1)
 
 # A flythrough: 0.3 s at 10 frames/s is 4 frames, and the .mp4 through ffmpeg.

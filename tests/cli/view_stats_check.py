@@ -6,7 +6,8 @@ import sys
 stats = json.loads(sys.stdin.read())
 assert list(stats) == ["frame_ms", "fps", "depth_pixels", "tiles", "levels", "ray_cast"], list(stats)
 assert isinstance(stats["ray_cast"], bool), stats
-assert list(stats["tiles"]) == ["drawn", "culled"], list(stats["tiles"])
+assert list(stats["tiles"]) == ["drawn", "culled", "steep"], list(stats["tiles"])
+assert 0 <= stats["tiles"]["steep"] <= stats["tiles"]["drawn"], stats["tiles"]
 assert all(isinstance(n, int) for n in stats["levels"]), stats["levels"]
 assert sum(stats["levels"]) == stats["tiles"]["drawn"], stats
 assert stats["frame_ms"] > 0 and stats["fps"] > 0, stats
