@@ -96,7 +96,49 @@ TileSet cohen8_corner_tileset(bool full) {
   return make_tileset(name, std::move(tiles), name);
 }
 
+// Culik's 13 tiles, derived from the construction rather than typed in: every tile that some
+// rational x = p/q in [1/3, 2] makes at some column k. A row of x = p/q repeats every 2q columns
+// (k x and k f(x) both gain whole numbers), and denominators up to 24 already give all 13 (tests
+// check the count, and that tilings use each one).
+TileSet culik13_tileset() {
+  std::set<std::array<std::int8_t, kSlotCount>> found;
+  constexpr std::int64_t kLargestDenominator = 24;
+  for (std::int64_t q = 1; q <= kLargestDenominator; ++q)
+    for (std::int64_t p = (q + 2) / 3; p <= 2 * q; ++p) {  // p/q in [1/3, 2]
+      const bool triples = 3 * p <= 2 * q;
+      // y = f(x) = y_p / y_q
+      const std::int64_t y_p = triples ? 3 * p : p, y_q = triples ? q : 2 * q;
+      const bool next_triples = 3 * y_p <= 2 * y_q;
+      for (std::int64_t k = 0; k < 2 * q; ++k)
+        if (const auto tile =
+                culik_tile(triples, next_triples, {k * p / q, (k + 1) * p / q, k * y_p / y_q, (k + 1) * y_p / y_q}))
+          found.insert(tile->colors);
+    }
+  std::vector<Tile> tiles;
+  for (const auto& colors : found) tiles.push_back(Tile{colors});
+  return make_tileset("culik13", std::move(tiles), "culik13");
+}
+
 }  // namespace
+
+std::optional<Tile> culik_tile(bool triples, bool next_triples, const std::array<std::int64_t, 4>& floors) {
+  const auto [x0, x1, y0, y1] = floors;
+  // Digits 0..2; a 0 that a halving row reads is color 3.
+  const auto digit_color = [](std::int64_t digit, bool read_by_tripling) {
+    return digit == 0 && !read_by_tripling ? std::int64_t{3} : digit;
+  };
+  // Tripling carries 3 floor(k x) - floor(k y) in {0, -1, -2} -> 0, 1, 2; halving carries
+  // floor(k x) / 2 - floor(k y) in {0, 1/2} -> 3, 4.
+  const auto carry_color = [&](std::int64_t x_floor, std::int64_t y_floor) {
+    return triples ? y_floor - 3 * x_floor : 3 + x_floor - 2 * y_floor;
+  };
+  const std::int64_t n = digit_color(y1 - y0, next_triples), s = digit_color(x1 - x0, triples);
+  const std::int64_t e = carry_color(x1, y1), w = carry_color(x0, y0);
+  const auto within = [](std::int64_t c, std::int64_t lo, std::int64_t hi) { return c >= lo && c <= hi; };
+  const bool carries_fit = triples ? within(e, 0, 2) && within(w, 0, 2) : within(e, 3, 4) && within(w, 3, 4);
+  if (!carries_fit || !within(n, 0, 3) || !within(s, 0, 3)) return std::nullopt;
+  return Tile::edges(static_cast<int>(n), static_cast<int>(e), static_cast<int>(s), static_cast<int>(w));
+}
 
 TileSet cohen_tileset(std::string name, int horizontal, int vertical) {
   // For each (N, W) pair and a coin b: E = (2N + W + b) mod vertical, S = (N + b) mod
@@ -150,8 +192,8 @@ TileSet make_tileset(std::string name, std::vector<Tile> tiles, std::string_view
 }
 
 bool is_builtin_tileset(std::string_view name) {
-  static const std::set<std::string_view> kFixed = {"cohen8", "cohen12",        "cohen18",
-                                                    "owen12", "cohen8-corners", "cohen8-corners-full"};
+  static const std::set<std::string_view> kFixed = {
+      "cohen8", "cohen12", "cohen18", "owen12", "cohen8-corners", "cohen8-corners-full", "culik13"};
   if (kFixed.count(name)) return true;
   const int edge_k = parse_suffix_count(name, "complete-edge-");
   const int corner_k = parse_suffix_count(name, "corner-");
@@ -165,19 +207,21 @@ TileSet builtin_tileset(std::string_view name) {
   if (name == "owen12") return owen12_tileset();
   if (name == "cohen8-corners") return cohen8_corner_tileset(false);
   if (name == "cohen8-corners-full") return cohen8_corner_tileset(true);
+  if (name == "culik13") return culik13_tileset();
   // K up to 8: K^4 tiles (4096 at K = 8) is already far more than anyone fills with content.
   if (const int k = parse_suffix_count(name, "complete-edge-"); k >= 2 && k <= 8) return complete_edge_tileset(k);
   if (const int k = parse_suffix_count(name, "corner-"); k >= 2 && k <= 8) return complete_corner_tileset(k);
   throw Error("unknown tile set '" + std::string(name) +
               "'; expected a JSON file or one of cohen8, cohen12, cohen18, owen12, "
-              "complete-edge-K, corner-K (K = 2..8), cohen8-corners, cohen8-corners-full");
+              "complete-edge-K, corner-K (K = 2..8), cohen8-corners, cohen8-corners-full, culik13");
 }
 
 std::string TileSet::describe() const { return "tile set '" + (source.empty() ? name : source) + "'"; }
 
 std::vector<std::string> builtin_tileset_names() {
   return {"cohen8",          "cohen12",  "cohen18",  "owen12",         "complete-edge-2",
-          "complete-edge-3", "corner-2", "corner-3", "cohen8-corners", "cohen8-corners-full"};
+          "complete-edge-3", "corner-2", "corner-3", "cohen8-corners", "cohen8-corners-full",
+          "culik13"};
 }
 
 }  // namespace wangscape

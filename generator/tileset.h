@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -64,7 +65,7 @@ struct TileSet {
 TileSet make_tileset(std::string name, std::vector<Tile> tiles, std::string_view source);
 
 // The built-in sets by name: cohen8, cohen12, cohen18, owen12, complete-edge-K,
-// corner-K, cohen8-corners (64 tiles), cohen8-corners-full (128 tiles).
+// corner-K, cohen8-corners (64 tiles), cohen8-corners-full (128 tiles), culik13 (aperiodic).
 // Throws Error naming the unknown set.
 TileSet builtin_tileset(std::string_view name);
 bool is_builtin_tileset(std::string_view name);
@@ -74,5 +75,19 @@ std::vector<std::string> builtin_tileset_names();
 // two tiles for every (N, W) pair, and every pair of adjacent edges (NW, NE, SW, SE)
 // appears on exactly two tiles, so scanline tiling works from any corner.
 TileSet cohen_tileset(std::string name, int horizontal, int vertical);
+
+// Culik's strictly aperiodic set of 13 tiles (Culik 1996, after Kari 1996). A row of tiles
+// multiplies a real x by 3 (x in [1/3, 2/3]) or by 1/2 (x in (2/3, 2]): its S edges read x's
+// balanced representation B_k(x) = floor((k + 1) x) - floor(k x) (k the column), its N edges write
+// that of y = f(x), and each W/E edge carries q floor(k x) - floor(k y) (q the multiplier), so every
+// tile has q S + W = N + E. Colors: N/S 0, 1, 2 are digits, 3 is a digit 0 that a halving row reads
+// (without it the halving tile 0/0 with equal carries would tile the plane alone); W/E 0, 1, 2 are
+// the tripling carries 0, -1, -2 and 3, 4 the halving carries 0, 1/2.
+inline constexpr int kCulikTiles = 13;
+
+// The tile at column k of a row whose multiplier is 3 (`triples`) or 1/2, under a row that
+// `next_triples`, from floor(k x), floor((k + 1) x), floor(k y), floor((k + 1) y) (y = f(x)).
+// Nothing when the floors give a carry outside the set's (y not exactly f(x)).
+std::optional<Tile> culik_tile(bool triples, bool next_triples, const std::array<std::int64_t, 4>& floors);
 
 }  // namespace wangscape

@@ -8,6 +8,7 @@
 #include <numeric>
 #include <set>
 #include <string>
+#include <tuple>
 
 #include "core/hash.h"
 
@@ -447,6 +448,13 @@ class SweepTiler {
   bool spare_bits_left_ = false;
 };
 
+// Whether `set` holds exactly Culik's 13 tiles, in any order.
+bool is_culik13(const TileSet& set) {
+  static const TileSet culik = builtin_tileset("culik13");
+  return set.size() == culik.size() && set.has_edges && !set.has_corners &&
+         std::is_permutation(set.tiles.begin(), set.tiles.end(), culik.tiles.begin());
+}
+
 void check_size(const TileSet& set, int width, int height) {
   if (width <= 0 || height <= 0)
     throw Error(set.describe() + ": tiling size " + std::to_string(width) + "x" + std::to_string(height) +
@@ -463,6 +471,11 @@ void check_window(const TileSet& set, int width, int height, const TilingOptions
     throw Error(set.describe() + ": a " + std::to_string(width) + "x" + std::to_string(height) + " window at origin " +
                 std::to_string(options.origin_i) + "," + std::to_string(options.origin_j) +
                 " reaches beyond tile coordinate +-2^60, the largest a tiling addresses");
+  // The other algorithms would stop at the first pair of neighbours with no tile between them.
+  if (options.algorithm != TilingAlgorithm::aperiodic && is_culik13(set))
+    throw Error(set.describe() + ": Culik's aperiodic set cannot be laid by the " +
+                std::string(to_string(options.algorithm)) +
+                " algorithm (some neighbours have no tile between them); expected the aperiodic algorithm");
 }
 
 // Rows of hashed tiles computed in parallel this many at a time when streaming.
@@ -478,6 +491,8 @@ std::string_view to_string(TilingAlgorithm algorithm) {
       return "bottom-left";
     case TilingAlgorithm::hash:
       return "hash";
+    case TilingAlgorithm::aperiodic:
+      return "aperiodic";
   }
   return "?";
 }
@@ -490,7 +505,8 @@ std::optional<TilingAlgorithm> find_tiling_algorithm(std::string_view text) {
 
 TilingAlgorithm parse_tiling_algorithm(std::string_view text) {
   if (const auto a = find_tiling_algorithm(text)) return *a;
-  throw Error("unknown tiling algorithm '" + std::string(text) + "'; expected scanline, bottom-left or hash");
+  throw Error("unknown tiling algorithm '" + std::string(text) +
+              "'; expected scanline, bottom-left, hash or aperiodic");
 }
 
 std::vector<std::string> tiling_algorithm_names() {
@@ -600,41 +616,371 @@ static inline std::uint32_t color_other_than(std::uint32_t hash, std::uint32_t a
 namespace {
 constexpr std::uint64_t kEdgeSalt = 0x3C6EF372FE94F82Bull;
 constexpr std::uint64_t kCornerSalt = 0xA54FF53A5F1D36F1ull;
-// Floor parity of a tile-grid index (two's complement: odd negatives have bit 0 set too).
-bool is_odd(std::int64_t v) { return (v & 1) != 0; }
+constexpr std::uint64_t kRepairSalt = 0x6A09E667F3BCC909ull;
+
+// forbid_identical_neighbours on hashed tilings (HashedTiling::fill_window): the plain hashed colors,
+// repaired where neighbours come out identical. Rounds: every pair of identical neighbours redraws
+// one color they share (a new color, hashed from seed, round and place), all pairs at once; the
+// first rounds also redraw, with a chance, a color of tiles alike at kTiltOffsets (a tile that
+// differs from both its neighbours is more often alike to the tile two steps on: about +0.012 in
+// the periodicity at (2, 0) and (0, 2) for complete-edge-2, +0.014 at (1, 1) for corner-2; the
+// tilt cancels it). What the rounds leave (about 1 pair in 10^5 for corner-2) an exact repair of
+// the 4 x 4 block around it clears.
+constexpr int kRepairRounds = 6;
+constexpr int kTiltRounds = 2;
+constexpr std::uint32_t kTiltChance = 1288490189u;  // 0.3 of 2^32
+constexpr int kRepairBlock = 4;
+// How far (tiles) a color's final value may depend on the plain colors: 3 per tilt round, 2 per
+// other round, then the block it lies in and the pairs around that block.
+constexpr int kRepairMargin = 3 * kTiltRounds + 2 * (kRepairRounds - kTiltRounds) + 2 * kRepairBlock + 2;
+
+struct Offset {
+  int di, dj;
+};
+constexpr std::array<Offset, 2> kEdgeTiltOffsets{{{2, 0}, {0, 2}}};
+constexpr std::array<Offset, 4> kCornerTiltOffsets{{{2, 0}, {0, 2}, {1, 1}, {-1, 1}}};
+
+std::int64_t floor_div(std::int64_t a, std::int64_t b) { return a / b - ((a % b != 0 && (a < 0) != (b < 0)) ? 1 : 0); }
+
+// A draw of the repair, keyed by seed, round, what is drawn and where.
+std::uint64_t repair_hash(std::uint64_t seed, int round, int what, std::int64_t x, std::int64_t y) {
+  const std::uint64_t key = mix64(seed ^ kRepairSalt ^ static_cast<std::uint64_t>(round * 64 + what));
+  return mix64(mix64(key ^ static_cast<std::uint64_t>(x)) ^ static_cast<std::uint64_t>(y));
+}
+
+// The colors of a window of tiles being repaired: horizontal edges H(i, y) (tile (i, j) has S = H(i,
+// j), N = H(i, j + 1)), vertical edges V(x, j) (W = V(i, j), E = V(i + 1, j)) and corners C(x, y)
+// (SW = C(i, j)), in local coordinates; (0, 0) is tile (i0, j0).
+struct ColorPatch {
+  enum Kind : int { kHorizontal, kVertical, kCorner };
+  struct Element {
+    int kind, x, y;
+  };
+
+  std::int64_t i0 = 0, j0 = 0;
+  int width = 0, height = 0;
+  bool edges = false, corners = false;
+  std::vector<std::uint8_t> horizontal, vertical, corner;
+
+  std::uint8_t& at(const Element& e) {
+    if (e.kind == kHorizontal) return horizontal[static_cast<std::size_t>(e.y) * width + e.x];
+    if (e.kind == kVertical) return vertical[static_cast<std::size_t>(e.y) * (width + 1) + e.x];
+    return corner[static_cast<std::size_t>(e.y) * (width + 1) + e.x];
+  }
+  std::array<std::uint32_t, kSlotCount> colors(int i, int j) const {
+    std::array<std::uint32_t, kSlotCount> c{};
+    const auto w = static_cast<std::size_t>(width);
+    const auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
+    if (edges) {
+      c[kS] = horizontal[uj * w + ui];
+      c[kN] = horizontal[(uj + 1) * w + ui];
+      c[kW] = vertical[uj * (w + 1) + ui];
+      c[kE] = vertical[uj * (w + 1) + ui + 1];
+    }
+    if (corners) {
+      c[kSW] = corner[uj * (w + 1) + ui];
+      c[kSE] = corner[uj * (w + 1) + ui + 1];
+      c[kNW] = corner[(uj + 1) * (w + 1) + ui];
+      c[kNE] = corner[(uj + 1) * (w + 1) + ui + 1];
+    }
+    return c;
+  }
+  // All colors of a tile in one word: equal words, identical tiles.
+  std::uint64_t key(int i, int j) const {
+    std::uint64_t k = 0;
+    for (const std::uint32_t c : colors(i, j)) k = (k << 8) | c;
+    return k;
+  }
+  // The tile's edges (S, N, W, E) and corners (SW, SE, NW, NE) the set colors.
+  int elements_of(int i, int j, std::array<Element, 8>& out) const {
+    int n = 0;
+    if (edges)
+      for (const Element e : {Element{kHorizontal, i, j}, Element{kHorizontal, i, j + 1}, Element{kVertical, i, j},
+                              Element{kVertical, i + 1, j}})
+        out[static_cast<std::size_t>(n++)] = e;
+    if (corners)
+      for (const Element e : {Element{kCorner, i, j}, Element{kCorner, i + 1, j}, Element{kCorner, i, j + 1},
+                              Element{kCorner, i + 1, j + 1}})
+        out[static_cast<std::size_t>(n++)] = e;
+    return n;
+  }
+  // What tile (i, j) shares with its eastern (east) or northern neighbour.
+  int shared_with(int i, int j, bool east, std::array<Element, 8>& out) const {
+    int n = 0;
+    if (edges)
+      out[static_cast<std::size_t>(n++)] = east ? Element{kVertical, i + 1, j} : Element{kHorizontal, i, j + 1};
+    if (corners) {
+      out[static_cast<std::size_t>(n++)] = Element{kCorner, i + 1, j + 1};
+      out[static_cast<std::size_t>(n++)] = east ? Element{kCorner, i + 1, j} : Element{kCorner, i, j + 1};
+    }
+    return n;
+  }
+  std::int64_t global_x(const Element& e) const { return i0 + e.x; }
+  std::int64_t global_y(const Element& e) const { return j0 + e.y; }
+};
+
+// Tile (i, j) equals its mirror across its vertical axis (W = E and the corners likewise): a tile
+// that does not can equal neither neighbour east or west, whatever they are. across_vertical false:
+// the same across the horizontal axis, for neighbours north and south.
+bool is_mirror(const std::array<std::uint32_t, kSlotCount>& c, bool across_vertical) {
+  if (across_vertical) return c[kW] == c[kE] && c[kNW] == c[kNE] && c[kSW] == c[kSE];
+  return c[kN] == c[kS] && c[kNW] == c[kSW] && c[kNE] == c[kSE];
+}
+
+// Redraws the colors inside the block of tiles [bi, bi + B) x [bj, bj + B) (not those on its
+// border, which neighbouring blocks share) so that no two neighbours in it are identical and no
+// tile on its border is its own mirror towards the outside (so it equals no outside neighbour,
+// whatever that one's colors). Backtracking in a fixed order, colors tried from a hashed start:
+// deterministic. Always succeeds with two or more colors per slot (edges: W != E on the west and
+// east columns, a middle edge breaking any three equal; corners: checked exhaustively for two
+// colors by a scratch program, see docs/tileset-format.md); throws if it ever does not.
+void repair_block(ColorPatch& patch, int bi, int bj, std::uint64_t seed,
+                  const std::array<std::uint32_t, kSlotCount>& radix) {
+  using Element = ColorPatch::Element;
+  constexpr int B = kRepairBlock;
+  std::vector<Element> free_elements;
+  for (int a = 1; a < B; ++a)
+    for (int b = 0; b < B; ++b) {
+      if (patch.edges) {
+        free_elements.push_back({ColorPatch::kVertical, bi + a, bj + b});
+        free_elements.push_back({ColorPatch::kHorizontal, bi + b, bj + a});
+      }
+      if (patch.corners && b > 0) free_elements.push_back({ColorPatch::kCorner, bi + b, bj + a});
+    }
+  const auto index_of = [&](const Element& e) {
+    for (std::size_t k = 0; k < free_elements.size(); ++k)
+      if (free_elements[k].kind == e.kind && free_elements[k].x == e.x && free_elements[k].y == e.y)
+        return static_cast<int>(k);
+    return -1;
+  };
+  // Checks: a pair of tiles in the block (kind 0, with the one east or north), or a border tile
+  // that must not be its own mirror (kind 1 across the vertical axis, 2 across the horizontal).
+  struct Check {
+    int kind, i, j, i2, j2, last;
+  };
+  std::vector<Check> checks;
+  const auto last_free = [&](int i, int j) {
+    std::array<Element, 8> own{};
+    int last = -1;
+    const int n = patch.elements_of(i, j, own);
+    for (int k = 0; k < n; ++k) last = std::max(last, index_of(own[static_cast<std::size_t>(k)]));
+    return last;
+  };
+  for (int j = bj; j < bj + B; ++j)
+    for (int i = bi; i < bi + B; ++i) {
+      if (i + 1 < bi + B) checks.push_back({0, i, j, i + 1, j, std::max(last_free(i, j), last_free(i + 1, j))});
+      if (j + 1 < bj + B) checks.push_back({0, i, j, i, j + 1, std::max(last_free(i, j), last_free(i, j + 1))});
+      if (i == bi || i == bi + B - 1) checks.push_back({1, i, j, i, j, last_free(i, j)});
+      if (j == bj || j == bj + B - 1) checks.push_back({2, i, j, i, j, last_free(i, j)});
+    }
+  const auto passes = [&](int depth) {
+    for (const Check& c : checks) {
+      if (c.last != depth) continue;
+      if (c.kind == 0 ? patch.key(c.i, c.j) == patch.key(c.i2, c.j2) : is_mirror(patch.colors(c.i, c.j), c.kind == 1))
+        return false;
+    }
+    return true;
+  };
+  const auto alphabet = [&](const Element& e) {
+    return e.kind == ColorPatch::kHorizontal ? radix[kN] : e.kind == ColorPatch::kVertical ? radix[kE] : radix[kNE];
+  };
+  const int count = static_cast<int>(free_elements.size());
+  std::vector<std::uint32_t> start(free_elements.size()), tried(free_elements.size(), 0);
+  for (int k = 0; k < count; ++k) {
+    const Element& e = free_elements[static_cast<std::size_t>(k)];
+    start[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(
+        repair_hash(seed, kRepairRounds, e.kind, patch.global_x(e), patch.global_y(e)) % alphabet(e));
+  }
+  int depth = 0;
+  for (std::uint64_t steps = 0; depth < count; ++steps) {
+    if (depth < 0 || steps > (1u << 22))
+      throw Error("hashed tiling: cannot forbid identical neighbours in the block at tile (" +
+                  std::to_string(patch.i0 + bi) + ", " + std::to_string(patch.j0 + bj) + ")");
+    const auto d = static_cast<std::size_t>(depth);
+    const Element& e = free_elements[d];
+    if (tried[d] == alphabet(e)) {  // every color failed: back up
+      tried[d] = 0;
+      --depth;
+      continue;
+    }
+    patch.at(e) = static_cast<std::uint8_t>((start[d] + tried[d]++) % alphabet(e));
+    if (passes(depth)) ++depth;
+  }
+}
+
 }  // namespace
 
 std::uint32_t HashedTiling::color_at(std::int64_t x, std::int64_t y, std::uint32_t alphabet) const {
-  const auto plain = [&](std::int64_t px, std::int64_t py) {
-    return hashed_color(point_hash(row_key(py, kEdgeSalt), px), alphabet);
-  };
-  if (!forbid_) return plain(x, y);
-  // Identical neighbours need three equal edge colors in a row along the line of edges; making
-  // every odd edge (by index along that line) differ from the even one before it rules it out.
-  const bool vertical_edge = (x & 1) == 0;  // at (2i, 2j+1)
-  if (vertical_edge && is_odd(x / 2))
-    return color_other_than(point_hash(row_key(y, kEdgeSalt), x), plain(x - 2, y), alphabet);
-  if (!vertical_edge && is_odd(y / 2))
-    return color_other_than(point_hash(row_key(y, kEdgeSalt), x), plain(x, y - 2), alphabet);
-  return plain(x, y);
+  return hashed_color(point_hash(row_key(y, kEdgeSalt), x), alphabet);
 }
 
 std::uint32_t HashedTiling::corner_at(std::int64_t x, std::int64_t y, std::uint32_t alphabet) const {
-  const auto plain = [&](std::int64_t px, std::int64_t py) { return point_hash(row_key(py, kCornerSalt), px); };
-  if (!forbid_) return hashed_color(plain(x, y), alphabet);
-  // Two tiles side by side are identical only when both rows of their corners hold three equal
-  // colors, and one of two neighbouring rows is even: so in even rows each odd vertex differs from
-  // the even one to its west, and in even columns from the one to its south. Odd rows and columns
-  // go free. (Every row and column paired, odd-odd vertices avoiding both, laid a stronger
-  // lattice: corner-2 at 128 x 128 scored 0.148, now 0.086, against 0.013 without the option.)
-  const auto base = [&](std::int64_t px, std::int64_t py) { return hashed_color(plain(px, py), alphabet); };
-  const bool odd_x = is_odd(x), odd_y = is_odd(y);
-  if (odd_x && !odd_y) return color_other_than(plain(x, y), base(x - 1, y), alphabet);
-  if (!odd_x && odd_y) return color_other_than(plain(x, y), base(x, y - 1), alphabet);
-  return base(x, y);
+  return hashed_color(point_hash(row_key(y, kCornerSalt), x), alphabet);
 }
 
+// Forbidding identical neighbours by a rule that treats every place alike and looks a bounded
+// distance cannot work (the constant coloring has no image without identical neighbours), and
+// the rule used until issue 23 (odd edges differ from the even one before them, corners along even
+// rows and columns) laid a lattice of period 2 (complete-edge-2 at 128 x 128: periodicity 0.062
+// against 0.009 without the option). The repair below changes only colors near identical
+// neighbours, and the exact block repair, tied to a lattice of blocks, acts almost never.
+void HashedTiling::fill_window(std::int64_t first_i, std::int64_t first_j, int width, int height,
+                               std::span<std::uint16_t> out) const {
+  const auto w = static_cast<std::size_t>(width);
+  if (!forbid_) {
+    for (int r = 0; r < height; ++r) fill_row(first_i, first_j + r, out.subspan(static_cast<std::size_t>(r) * w, w));
+    return;
+  }
+  constexpr int m = kRepairMargin;
+  ColorPatch patch;
+  patch.i0 = first_i - m;
+  patch.j0 = first_j - m;
+  patch.width = width + 2 * m;
+  patch.height = height + 2 * m;
+  patch.edges = has_edges_;
+  patch.corners = has_corners_;
+  const auto pw = static_cast<std::size_t>(patch.width), ph = static_cast<std::size_t>(patch.height);
+  if (has_edges_) {
+    patch.horizontal.resize((ph + 1) * pw);
+    patch.vertical.resize(ph * (pw + 1));
+    for (std::size_t y = 0; y <= ph; ++y) {
+      const std::int64_t gy = patch.j0 + static_cast<std::int64_t>(y);
+      for (std::size_t i = 0; i < pw; ++i)
+        patch.horizontal[y * pw + i] =
+            static_cast<std::uint8_t>(color_at(2 * (patch.i0 + static_cast<std::int64_t>(i)) + 1, 2 * gy, radix_[kN]));
+      if (y == ph) break;
+      for (std::size_t x = 0; x <= pw; ++x)
+        patch.vertical[y * (pw + 1) + x] =
+            static_cast<std::uint8_t>(color_at(2 * (patch.i0 + static_cast<std::int64_t>(x)), 2 * gy + 1, radix_[kE]));
+    }
+  }
+  if (has_corners_) {
+    patch.corner.resize((ph + 1) * (pw + 1));
+    for (std::size_t y = 0; y <= ph; ++y)
+      for (std::size_t x = 0; x <= pw; ++x)
+        patch.corner[y * (pw + 1) + x] = static_cast<std::uint8_t>(
+            corner_at(patch.i0 + static_cast<std::int64_t>(x), patch.j0 + static_cast<std::int64_t>(y), radix_[kNE]));
+  }
+  using Element = ColorPatch::Element;
+  const auto alphabet = [&](const Element& e) {
+    return e.kind == ColorPatch::kHorizontal ? radix_[kN] : e.kind == ColorPatch::kVertical ? radix_[kE] : radix_[kNE];
+  };
+  std::vector<std::uint64_t> keys(pw * ph);
+  const auto compute_keys = [&] {
+    for (int j = 0; j < patch.height; ++j)
+      for (int i = 0; i < patch.width; ++i)
+        keys[static_cast<std::size_t>(j) * pw + static_cast<std::size_t>(i)] = patch.key(i, j);
+  };
+  const auto key = [&](int i, int j) { return keys[static_cast<std::size_t>(j) * pw + static_cast<std::size_t>(i)]; };
+  const std::span<const Offset> tilt_offsets =
+      has_corners_ ? std::span<const Offset>(kCornerTiltOffsets) : std::span<const Offset>(kEdgeTiltOffsets);
+  std::vector<Element> redraw;
+  std::array<Element, 8> choices{};
+  for (int round = 0; round < kRepairRounds; ++round) {
+    compute_keys();
+    redraw.clear();
+    for (int j = 0; j < patch.height; ++j)
+      for (int i = 0; i < patch.width; ++i) {
+        const std::int64_t gi = patch.i0 + i, gj = patch.j0 + j;
+        for (const bool east : {true, false}) {
+          const int i2 = east ? i + 1 : i, j2 = east ? j : j + 1;
+          if (i2 >= patch.width || j2 >= patch.height || key(i, j) != key(i2, j2)) continue;
+          const int n = patch.shared_with(i, j, east, choices);
+          redraw.push_back(choices[repair_hash(seed_, round, east ? 1 : 2, gi, gj) % static_cast<std::uint64_t>(n)]);
+        }
+        if (round >= kTiltRounds) continue;
+        for (std::size_t o = 0; o < tilt_offsets.size(); ++o) {
+          const int i2 = i + tilt_offsets[o].di, j2 = j + tilt_offsets[o].dj;
+          if (i2 < 0 || i2 >= patch.width || j2 >= patch.height || key(i, j) != key(i2, j2)) continue;
+          const std::uint64_t h = repair_hash(seed_, round, 3 + static_cast<int>(o), gi, gj);
+          if (static_cast<std::uint32_t>(h) >= kTiltChance) continue;
+          const bool second = ((h >> 32) & 1) != 0;
+          const int n = patch.elements_of(second ? i2 : i, second ? j2 : j, choices);
+          redraw.push_back(choices[(h >> 33) % static_cast<std::uint64_t>(n)]);
+        }
+      }
+    // Each color drawn once per round, however many pairs chose it: sort out the repeats.
+    std::sort(redraw.begin(), redraw.end(), [](const Element& a, const Element& b) {
+      return std::tie(a.kind, a.y, a.x) < std::tie(b.kind, b.y, b.x);
+    });
+    for (std::size_t k = 0; k < redraw.size(); ++k) {
+      const Element& e = redraw[k];
+      if (k > 0 && e.kind == redraw[k - 1].kind && e.x == redraw[k - 1].x && e.y == redraw[k - 1].y) continue;
+      std::uint8_t& color = patch.at(e);
+      color = static_cast<std::uint8_t>(color_other_than(
+          static_cast<std::uint32_t>(repair_hash(seed_, round, 16 + e.kind, patch.global_x(e), patch.global_y(e))),
+          color, alphabet(e)));
+    }
+  }
+  // What is left: exact repairs of the blocks (on a fixed lattice of kRepairBlock tiles) that hold a
+  // tile of an identical pair. Blocks reaching into the margin's outer part are not needed.
+  compute_keys();
+  const std::int64_t first_block_i = floor_div(patch.i0, kRepairBlock),
+                     first_block_j = floor_div(patch.j0, kRepairBlock);
+  const auto block_i = [&](int i) { return static_cast<int>(floor_div(patch.i0 + i, kRepairBlock) - first_block_i); };
+  const auto block_j = [&](int j) { return static_cast<int>(floor_div(patch.j0 + j, kRepairBlock) - first_block_j); };
+  const int blocks_w = block_i(patch.width - 1) + 1, blocks_h = block_j(patch.height - 1) + 1;
+  std::vector<std::uint8_t> flagged(static_cast<std::size_t>(blocks_w) * static_cast<std::size_t>(blocks_h), 0);
+  const auto flag = [&](int i, int j) {
+    flagged[static_cast<std::size_t>(block_j(j)) * static_cast<std::size_t>(blocks_w) +
+            static_cast<std::size_t>(block_i(i))] = 1;
+  };
+  for (int j = 0; j < patch.height; ++j)
+    for (int i = 0; i < patch.width; ++i) {
+      if (i + 1 < patch.width && key(i, j) == key(i + 1, j)) {
+        flag(i, j);
+        flag(i + 1, j);
+      }
+      if (j + 1 < patch.height && key(i, j) == key(i, j + 1)) {
+        flag(i, j);
+        flag(i, j + 1);
+      }
+    }
+  for (int by = 0; by < blocks_h; ++by)
+    for (int bx = 0; bx < blocks_w; ++bx) {
+      if (!flagged[static_cast<std::size_t>(by) * static_cast<std::size_t>(blocks_w) + static_cast<std::size_t>(bx)])
+        continue;
+      const auto bi = static_cast<int>((first_block_i + bx) * kRepairBlock - patch.i0);
+      const auto bj = static_cast<int>((first_block_j + by) * kRepairBlock - patch.j0);
+      if (bi < 1 || bj < 1 || bi + kRepairBlock + 1 > patch.width || bj + kRepairBlock + 1 > patch.height) continue;
+      repair_block(patch, bi, bj, seed_, radix_);
+    }
+  for (int r = 0; r < height; ++r)
+    for (int k = 0; k < width; ++k)
+      out[static_cast<std::size_t>(r) * w + static_cast<std::size_t>(k)] = lookup_[code(patch.colors(k + m, r + m))];
+}
+
+namespace {
+// Rows first_j .. first_j + rows - 1 of a hashed window `width` tiles wide from origin_i into out,
+// in parallel: row by row, or, repaired (forbid), in pieces of kRepairPiece columns, each computed
+// with its margin.
+void fill_hashed_rows(const HashedTiling& hashed, bool forbid, std::int64_t origin_i, std::int64_t first_j, int width,
+                      int rows, std::span<std::uint16_t> out) {
+  const auto w = static_cast<std::size_t>(width);
+  if (!forbid) {
+    tbb::parallel_for(0, rows, [&](int r) {
+      hashed.fill_row(origin_i, first_j + r, out.subspan(static_cast<std::size_t>(r) * w, w));
+    });
+    return;
+  }
+  constexpr int kRepairPiece = 128;
+  tbb::parallel_for(0, (width + kRepairPiece - 1) / kRepairPiece, [&](int piece) {
+    const int first = piece * kRepairPiece, count = std::min(kRepairPiece, width - first);
+    std::vector<std::uint16_t> tiles(static_cast<std::size_t>(count) * static_cast<std::size_t>(rows));
+    hashed.fill_window(origin_i + first, first_j, count, rows, tiles);
+    for (int r = 0; r < rows; ++r)
+      std::copy_n(tiles.begin() + static_cast<std::ptrdiff_t>(r) * count, count,
+                  out.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(r) * w) + first);
+  });
+}
+}  // namespace
+
 std::uint32_t HashedTiling::tile_at(std::int64_t i, std::int64_t j) const {
+  if (forbid_) {
+    std::array<std::uint16_t, 1> tile{};
+    fill_window(i, j, 1, 1, tile);
+    return tile[0];
+  }
   std::array<std::uint32_t, kSlotCount> colors{};
   if (has_edges_) {
     colors[kN] = color_at(2 * i + 1, 2 * j + 2, radix_[kN]);
@@ -652,7 +998,11 @@ std::uint32_t HashedTiling::tile_at(std::int64_t i, std::int64_t j) const {
 }
 
 void HashedTiling::fill_row(std::int64_t first_i, std::int64_t j, std::span<std::uint16_t> out) const {
-  if (forbid_ || has_corners_ == has_edges_) {
+  if (forbid_) {
+    fill_window(first_i, j, static_cast<int>(out.size()), 1, out);
+    return;
+  }
+  if (has_corners_ == has_edges_) {
     for (std::size_t k = 0; k < out.size(); ++k)
       out[k] = static_cast<std::uint16_t>(tile_at(first_i + static_cast<std::int64_t>(k), j));
     return;
@@ -684,6 +1034,155 @@ void HashedTiling::fill_row(std::int64_t first_i, std::int64_t j, std::span<std:
 }
 
 // ---------------------------------------------------------------------------------------------
+// Aperiodic tiling of Culik's 13 tiles.
+
+namespace {
+
+using u128 = unsigned __int128;
+using i128 = __int128;
+
+// A real (or a column times a real) in fixed point: whole + fraction / 2^128. Reals of the orbit lie
+// in [1/3, 2]; products k x of a column k (|k| < 2^61) keep their floor in `whole`.
+struct Fixed {
+  i128 whole = 0;
+  u128 fraction = 0;
+
+  void add(const Fixed& other) {
+    fraction += other.fraction;
+    whole += other.whole + (fraction < other.fraction ? 1 : 0);
+  }
+};
+
+// k x, exactly.
+Fixed times(std::int64_t k, const Fixed& x) {
+  const u128 m = k < 0 ? u128(0) - u128(k) : u128(k);  // |k|, fits 64 bits
+  const u128 low_part = m * static_cast<std::uint64_t>(x.fraction);
+  const u128 high_part = m * static_cast<std::uint64_t>(x.fraction >> 64);
+  Fixed product;
+  product.fraction = low_part + (high_part << 64);
+  product.whole =
+      static_cast<i128>(m) * x.whole + static_cast<i128>(high_part >> 64) + (product.fraction < low_part ? 1 : 0);
+  if (k >= 0) return product;
+  // -(w + f) = -(w + 1) + (1 - f) when f > 0.
+  if (product.fraction != 0) {
+    product.fraction = u128(0) - product.fraction;
+    product.whole = -product.whole - 1;
+  } else {
+    product.whole = -product.whole;
+  }
+  return product;
+}
+
+// Culik's rows: see culik_tile. Row r reads x_r on its S edges and writes x_{r+1} = f(x_r) on its N
+// edges; x_0 is drawn from the seed in [1/3, 2) with 128 fraction bits. Tripling is exact; halving
+// drops the last bit when it is set, rounding down or, when that would turn a tile of the row into
+// none of the set, up. Either way the tiling stays valid: the rows an edge joins read the same real.
+// Column k = origin_i + local i, so windows side by side with one seed continue one tiling.
+class CulikTiler {
+ public:
+  CulikTiler(const TileSet& set, const TilingOptions& options, int width) : set_(set), first_column_(options.origin_i) {
+    if (!is_culik13(set))
+      throw Error(set.describe() +
+                  ": the aperiodic algorithm tiles only Culik's 13-tile set (culik13); expected that set, or "
+                  "the scanline, bottom-left or hash algorithm for this one");
+    index_.fill(kMissing);
+    for (std::size_t t = 0; t < set.size(); ++t) index_[code(set.tiles[t])] = static_cast<std::uint16_t>(t);
+    if (options.forbid_identical_neighbours)
+      throw Error(set.describe() +
+                  ": the aperiodic algorithm cannot forbid identical neighbours (Culik's "
+                  "construction fixes every tile)");
+    std::uint64_t state = mix64(options.seed ^ 0xC011C13A9E810D1Cull);
+    // Uniform in [0, 2), redrawn below 1/3 (floor(2^128 / 3) + 1 = 0x55..56).
+    const u128 third = (u128(0x5555555555555555ull) << 64) | 0x5555555555555556ull;
+    do {
+      x_.whole = splitmix64(state) & 1;
+      const std::uint64_t high = splitmix64(state);  // two statements: a fixed order of draws
+      x_.fraction = (u128(high) << 64) | splitmix64(state);
+    } while (x_.whole == 0 && x_.fraction < third);
+    x_floors_ = floors(x_, width);
+  }
+
+  // Fills the next row north.
+  void next_row(std::span<std::uint16_t> row) {
+    const bool triples = triples_at(x_);
+    std::array<Fixed, 2> candidates{};
+    std::size_t count = 1;
+    if (triples) {
+      candidates[0] = tripled(x_);
+    } else {
+      candidates[0] = halved(x_);
+      if ((x_.fraction & 1) != 0) {  // the dropped bit: down, else up
+        candidates[1] = candidates[0];
+        candidates[1].add(Fixed{0, 1});
+        count = 2;
+      }
+    }
+    for (std::size_t c = 0; c < count; ++c) {
+      std::vector<std::int64_t> y_floors = floors(candidates[c], static_cast<int>(row.size()));
+      if (!fill(row, triples, triples_at(candidates[c]), y_floors)) continue;
+      x_ = candidates[c];
+      x_floors_ = std::move(y_floors);
+      ++rows_done_;
+      return;
+    }
+    throw Error(set_.describe() + ": aperiodic row " + std::to_string(rows_done_) +
+                " has no tiles at 128-bit precision for either rounding of its real; try another --seed");
+  }
+
+ private:
+  static constexpr std::uint16_t kMissing = 0xFFFF;
+  // Tiles indexed by their colors, N and S < 4, E and W < 5.
+  static std::size_t code(const Tile& t) {
+    return static_cast<std::size_t>(((t.n() * 5 + t.e()) * 4 + t.s()) * 5 + t.w());
+  }
+
+  // x <= 2/3: x has no whole part and 3 x.fraction <= 2^129, i.e. x.fraction <= floor(2^129 / 3) = 0xAA..AA.
+  static bool triples_at(const Fixed& x) {
+    const u128 two_thirds = (u128(0xAAAAAAAAAAAAAAAAull) << 64) | 0xAAAAAAAAAAAAAAAAull;
+    return x.whole == 0 && x.fraction <= two_thirds;
+  }
+  static Fixed tripled(const Fixed& x) {
+    Fixed y = x;
+    y.add(x);
+    y.add(x);
+    return y;
+  }
+  // x / 2 rounded down.
+  static Fixed halved(const Fixed& x) { return {x.whole >> 1, (x.fraction >> 1) | (u128(x.whole & 1) << 127)}; }
+
+  // floor(k x) for the columns k = first .. first + width (each tile's west and east edge).
+  std::vector<std::int64_t> floors(const Fixed& x, int width) const {
+    std::vector<std::int64_t> out(static_cast<std::size_t>(width) + 1);
+    Fixed product = times(first_column_, x);
+    for (std::int64_t& f : out) {
+      f = static_cast<std::int64_t>(product.whole);
+      product.add(x);
+    }
+    return out;
+  }
+
+  // The row's tiles, false when one is not in the set.
+  bool fill(std::span<std::uint16_t> row, bool triples, bool next_triples, const std::vector<std::int64_t>& y_floors) {
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      const auto tile =
+          culik_tile(triples, next_triples, {x_floors_[i], x_floors_[i + 1], y_floors[i], y_floors[i + 1]});
+      if (!tile || index_[code(*tile)] == kMissing) return false;
+      row[i] = index_[code(*tile)];
+    }
+    return true;
+  }
+
+  const TileSet& set_;
+  std::int64_t first_column_ = 0;
+  std::array<std::uint16_t, 4 * 5 * 4 * 5> index_{};
+  Fixed x_;
+  std::vector<std::int64_t> x_floors_;
+  int rows_done_ = 0;
+};
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
 
 void stream_tiling(const TileSet& set, int width, int height, const TilingOptions& options, const TilingRowSink& row) {
   check_window(set, width, height, options);
@@ -693,12 +1192,19 @@ void stream_tiling(const TileSet& set, int width, int height, const TilingOption
     std::vector<std::uint16_t> block(w * kHashRowBlock);
     for (int first = 0; first < height; first += kHashRowBlock) {
       const int rows = std::min(kHashRowBlock, height - first);
-      tbb::parallel_for(0, rows, [&](int r) {
-        hashed.fill_row(options.origin_i, options.origin_j + first + r,
-                        std::span(block.data() + static_cast<std::size_t>(r) * w, w));
-      });
+      fill_hashed_rows(hashed, options.forbid_identical_neighbours, options.origin_i, options.origin_j + first, width,
+                       rows, block);
       for (int r = 0; r < rows; ++r)
         row(first + r, std::span<const std::uint16_t>(block.data() + static_cast<std::size_t>(r) * w, w));
+    }
+    return;
+  }
+  if (options.algorithm == TilingAlgorithm::aperiodic) {
+    CulikTiler tiler(set, options, width);
+    std::vector<std::uint16_t> current(w);
+    for (int r = 0; r < height; ++r) {
+      tiler.next_row(current);
+      row(r, current);
     }
     return;
   }
@@ -746,6 +1252,13 @@ Tiling make_tiling(const TileSet& set, int width, int height, const TilingOption
   tiling.tiles.resize(w * static_cast<std::size_t>(height));
   if (options.algorithm == TilingAlgorithm::hash) {
     const HashedTiling hashed(set, options.seed, options.forbid_identical_neighbours);
+    if (options.forbid_identical_neighbours) {
+      for (int first = 0; first < height; first += kHashRowBlock)
+        fill_hashed_rows(hashed, true, options.origin_i, options.origin_j + first, width,
+                         std::min(kHashRowBlock, height - first),
+                         std::span(tiling.tiles).subspan(static_cast<std::size_t>(first) * w));
+      return tiling;
+    }
     tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
       for (int r = rows.begin(); r < rows.end(); ++r)
         hashed.fill_row(options.origin_i, options.origin_j + r,

@@ -1,12 +1,14 @@
 // Wang tilings: windows of the plane covered with tiles of a TileSet so that every shared
 // edge (and corner, for corner-coded sets) matches. Coordinates: tile (i, j), i grows east,
-// j grows north. Three algorithms:
+// j grows north. Four algorithms:
 //  - scanline (Cohen 2003, steps 1-5): rows from north to south, each row west to east; every
 //    tile is drawn at random among those matching its northern and western neighbours;
 //  - bottom_left (Shade 2002): the same from the south-west corner, rows south to north, each
 //    tile matching its southern and western neighbours;
 //  - hash (Wang tiles blog): edge (or corner) colors are hashed from their position, so any tile
-//    is known in O(1) without its neighbours; needs a complete set.
+//    is known in O(1) without its neighbours; needs a complete set;
+//  - aperiodic (Culik 1996): Culik's 13 tiles only, built row by row from the orbit of a real
+//    number under his multiplier (see culik_tile); never periodic.
 #pragma once
 
 #include <array>
@@ -22,12 +24,12 @@
 
 namespace wangscape {
 
-enum class TilingAlgorithm { scanline, bottom_left, hash };
+enum class TilingAlgorithm { scanline, bottom_left, hash, aperiodic };
 
-inline constexpr std::array<TilingAlgorithm, 3> kTilingAlgorithms{TilingAlgorithm::scanline,
-                                                                  TilingAlgorithm::bottom_left, TilingAlgorithm::hash};
+inline constexpr std::array<TilingAlgorithm, 4> kTilingAlgorithms{
+    TilingAlgorithm::scanline, TilingAlgorithm::bottom_left, TilingAlgorithm::hash, TilingAlgorithm::aperiodic};
 
-// "scanline", "bottom-left", "hash"; parse throws Error naming the value.
+// "scanline", "bottom-left", "hash", "aperiodic"; parse throws Error naming the value.
 std::string_view to_string(TilingAlgorithm algorithm);
 TilingAlgorithm parse_tiling_algorithm(std::string_view text);
 // The algorithm `text` names, or nothing (for readers that word their own error, with a line).
@@ -40,9 +42,11 @@ struct TilingOptions {
   std::uint64_t seed = 1;
   // As in Owen: no tile equals its western or northern (southern for bottom_left) neighbour.
   // For hash tilings, no tile equals any of its four neighbours (re-hashing the colors).
+  // Aperiodic tilings refuse it: the construction fixes every tile.
   bool forbid_identical_neighbours = false;
-  // Tile coordinates of the window's south-west tile. Only hash tilings depend on it (other
-  // algorithms just label their window with it). |i|, |j| stay within kMaxTileCoordinate.
+  // Tile coordinates of the window's south-west tile. Hash tilings depend on both; aperiodic ones
+  // on origin_i (windows side by side with one seed continue each other); other algorithms just
+  // label their window with it. |i|, |j| stay within kMaxTileCoordinate.
   std::int64_t origin_i = 0, origin_j = 0;
 };
 
@@ -69,7 +73,7 @@ struct Tiling {
 Tiling make_tiling(const TileSet& set, int width, int height, const TilingOptions& options);
 
 // Row-streaming variant for windows too large to hold: calls `row(local_j, tiles)` once per row,
-// in the algorithm's order (scanline: north to south; bottom_left and hash: south to north).
+// in the algorithm's order (scanline: north to south; the others: south to north).
 // Memory is O(width). Produces exactly the rows make_tiling would.
 using TilingRowSink = std::function<void(int local_j, std::span<const std::uint16_t> tiles)>;
 void stream_tiling(const TileSet& set, int width, int height, const TilingOptions& options, const TilingRowSink& row);
@@ -89,9 +93,11 @@ class HashedTiling {
  public:
   // Throws Error "tile set '<name>': hash tiling needs a complete set; missing
   // (N,E,S,W)=(1,0,0,1)" (or (NE,SE,SW,NW)=...) when the set is not complete.
-  // forbid_identical_neighbours: odd-indexed edge colors are drawn different from the even one
-  // before them along their line (corners: along even rows and even columns only), so no two
-  // neighbouring tiles are identical; still O(1) per tile. Needs at least two colors per alphabet.
+  // forbid_identical_neighbours: the hashed colors are repaired where neighbours come out
+  // identical (rounds of redrawing a color they share, then an exact repair of the 4 x 4 block
+  // around what is left; see fill_window), so no two neighbouring tiles are identical. Still O(1)
+  // per tile and deterministic, but each call computes a margin of 24 tiles around its window: ask
+  // for windows (fill_window, make_tiling), not single tiles. Needs at least two colors per alphabet.
   HashedTiling(const TileSet& set, std::uint64_t seed, bool forbid_identical_neighbours = false);
 
   std::uint32_t tile_at(std::int64_t i, std::int64_t j) const;
@@ -101,9 +107,14 @@ class HashedTiling {
   std::uint32_t tile_with_colors(const std::array<std::uint32_t, kSlotCount>& colors) const;
   // Tiles (first_i + k, j) for k in [0, out.size()). Thread-safe (const).
   void fill_row(std::int64_t first_i, std::int64_t j, std::span<std::uint16_t> out) const;
+  // Tiles (first_i + k, first_j + r) into out[r * width + k], r < height, k < width; the same tiles
+  // as fill_row and tile_at. Thread-safe (const).
+  void fill_window(std::int64_t first_i, std::int64_t first_j, int width, int height,
+                   std::span<std::uint16_t> out) const;
 
   // Edge color at a doubled-grid point, corner color at a lattice vertex, drawn from
-  // `alphabet` colors; exposed for tests.
+  // `alphabet` colors, before any repair for forbid_identical_neighbours; exposed for tests and
+  // for callers that hash corner marks the same way.
   std::uint32_t color_at(std::int64_t x, std::int64_t y, std::uint32_t alphabet) const;
   std::uint32_t corner_at(std::int64_t x, std::int64_t y, std::uint32_t alphabet) const;
 

@@ -69,8 +69,9 @@ TEST(PoissonTiles, NoPairCloserThanPackingDiameterInAnyTilingOfEveryBuiltinSet) 
       for (std::uint64_t tiling_seed = 1; tiling_seed <= 2; ++tiling_seed) {
         TilingOptions options;
         options.seed = tiling_seed * 31 + seed;
-        const Tiling scanline = make_tiling(set, 32, 32, options);
-        EXPECT_EQ(close_pairs_in_tiling(filled, scanline, diameter), 0) << "scanline";
+        if (name == "culik13") options.algorithm = TilingAlgorithm::aperiodic;  // its only algorithm
+        const Tiling swept = make_tiling(set, 32, 32, options);
+        EXPECT_EQ(close_pairs_in_tiling(filled, swept, diameter), 0) << to_string(options.algorithm);
         if (complete) {
           options.algorithm = TilingAlgorithm::hash;
           options.origin_i = -1000 * static_cast<std::int64_t>(tiling_seed);
