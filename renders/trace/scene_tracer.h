@@ -30,6 +30,14 @@ class SceneTracer {
   // Layout::part: the flowers traced from now on (the previous ones dropped); a rebuild of the top
   // level only (the models and the terrain stay built). Not thread-safe with tracing.
   void set_flowers(const InstanceStream& flowers);
+  // For shading without sky rays (the view's near field): estimates the share of the sky the
+  // surfaces see among the flowers traced now, so that surface() then carries it
+  // (SurfaceSample::sky; 1 where nothing was estimated). Each side of each model triangle, once,
+  // from `rays` sky rays (`shading`'s ao_distance) per side spread over up to `instances` flowers
+  // of that model: self-shadowing and the neighbours' average, not one flower's own neighbours.
+  // With `ground_cell` > 0, also the ground under the flowers on a grid of that many meters
+  // (again after each set_flowers()), from `rays` rays per point.
+  void bake_sky(const ShadingSettings& shading, double ground_cell = 0, int rays = 32, int instances = 4);
   ~SceneTracer();
   SceneTracer(const SceneTracer&) = delete;
   SceneTracer& operator=(const SceneTracer&) = delete;
@@ -59,6 +67,7 @@ class SceneTracer {
                         const GroundColors& ground) const;
 
  private:
+  void bake_ground_sky(const ShadingSettings& shading, double cell, int rays);
   struct Impl;
   const Scene& scene_;
   std::unique_ptr<Impl> impl_;

@@ -39,6 +39,13 @@ Vec3f offset_along(const Vec3f& p, const Vec3f& n, float distance) {
 
 }  // namespace
 
+Vec3f face_normal(const std::array<float, 3>& p0, const std::array<float, 3>& p1, const std::array<float, 3>& p2) {
+  const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+  const double e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+  return {float(e1[1] * e2[2] - e1[2] * e2[1]), float(e1[2] * e2[0] - e1[0] * e2[2]),
+          float(e1[0] * e2[1] - e1[1] * e2[0])};
+}
+
 void model_surface(const Mesh& mesh, unsigned prim, float u, float v, float cos_yaw, float sin_yaw,
                    SurfaceSample& out) {
   const auto& tri = mesh.triangles[prim];
@@ -48,13 +55,7 @@ void model_surface(const Mesh& mesh, unsigned prim, float u, float v, float cos_
     for (std::size_t c = 0; c < 3; ++c)
       n[c] = w0 * mesh.normals[tri[0]][c] + u * mesh.normals[tri[1]][c] + v * mesh.normals[tri[2]][c];
   } else {
-    const auto& p0 = mesh.positions[tri[0]];
-    const auto& p1 = mesh.positions[tri[1]];
-    const auto& p2 = mesh.positions[tri[2]];
-    const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
-    const double e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-    n = {float(e1[1] * e2[2] - e1[2] * e2[1]), float(e1[2] * e2[0] - e1[0] * e2[2]),
-         float(e1[0] * e2[1] - e1[1] * e2[0])};
+    n = face_normal(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
   }
   const Vec3f r{cos_yaw * n[0] - sin_yaw * n[1], sin_yaw * n[0] + cos_yaw * n[1], n[2]};
   const float len = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
@@ -66,6 +67,50 @@ void model_surface(const Mesh& mesh, unsigned prim, float u, float v, float cos_
       out.translucency = mesh.materials[slot].translucency;
     }
   }
+}
+
+float open_sky_share(RTCSceneTy* scene, const ShadingSettings& s, const Vec3f& p, const Vec3f& n,
+                     std::uint64_t random) {
+  if (s.ao_rays <= 0) return 1.0f;
+  // Cosine-weighted directions over the hemisphere of n, so the unoccluded fraction is the
+  // irradiance share of a uniform sky. Frame from Duff et al. 2017 (no branch on n's axis).
+  const float sign = std::copysign(1.0f, n[2]);
+  const float a = -1.0f / (sign + n[2]), b = n[0] * n[1] * a;
+  const Vec3f t{1.0f + sign * n[0] * n[0] * a, sign * b, -sign * n[0]};
+  const Vec3f bt{b, sign + n[1] * n[1] * a, -n[1]};
+  const Vec3f from = offset_along(p, n, s.ray_offset);
+  // Eight rays from one point at a time: one rtcOccluded8 packet (measured faster than singles).
+  int open = 0;
+  for (int k0 = 0; k0 < s.ao_rays; k0 += 8) {
+    alignas(32) RTCRay8 packet{};
+    alignas(32) int valid[8];
+    for (int l = 0; l < 8; ++l) {
+      const int k = k0 + l;
+      valid[l] = k < s.ao_rays ? -1 : 0;
+      if (k >= s.ao_rays) continue;
+      const std::uint64_t h = mix64(random + static_cast<std::uint64_t>(k) * 0x632be59bd9b4e019ull);
+      // Stratified in the first coordinate so few rays still cover the hemisphere.
+      const float u1 = (static_cast<float>(k) + unit_float(h)) / static_cast<float>(s.ao_rays);
+      const float u2 = unit_float(mix64(h));
+      const float r = std::sqrt(u1), phi = 2.0f * std::numbers::pi_v<float> * u2;
+      const float x = r * std::cos(phi), y = r * std::sin(phi), z = std::sqrt(std::max(0.0f, 1.0f - u1));
+      packet.org_x[l] = from[0];
+      packet.org_y[l] = from[1];
+      packet.org_z[l] = from[2];
+      packet.dir_x[l] = x * t[0] + y * bt[0] + z * n[0];
+      packet.dir_y[l] = x * t[1] + y * bt[1] + z * n[1];
+      packet.dir_z[l] = x * t[2] + y * bt[2] + z * n[2];
+      packet.tnear[l] = 0.0f;
+      packet.tfar[l] = s.ao_distance;
+      packet.mask[l] = 0xffffffffu;
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcOccluded8(valid, scene, &context, &packet);
+    for (int l = 0; l < 8; ++l)
+      if (valid[l] != 0 && packet.tfar[l] >= 0.0f) ++open;  // tfar becomes -inf on a hit
+  }
+  return static_cast<float>(open) / static_cast<float>(s.ao_rays);
 }
 
 int shade_in_the_open16(RTCSceneTy* scene, const ShadingSettings& s, const SurfaceSample* samples, const bool* valid,
@@ -102,7 +147,7 @@ int shade_in_the_open16(RTCSceneTy* scene, const ShadingSettings& s, const Surfa
   for (int l = 0; l < 16; ++l) {
     if (!valid[l]) continue;
     if (active[l] != 0 && packet.tfar[l] < 0.0f) sun[l] = 0;  // tfar becomes -inf on a hit
-    out[l] = lit(s, samples[l].base_color, sun[l], 1.0f);
+    out[l] = lit(s, samples[l].base_color, sun[l], samples[l].sky);
   }
   return rays;
 }
@@ -122,49 +167,8 @@ Vec3f shade(RTCSceneTy* scene, const ShadingSettings& s, const SurfaceSample& sa
     if (occluded(scene, from, s.sun_direction, std::numeric_limits<float>::infinity())) sun = 0;
   }
 
-  // Sky: cosine-weighted directions over the hemisphere of n, so the unoccluded fraction is the
-  // irradiance share of a uniform sky. Frame from Duff et al. 2017 (no branch on n's axis).
-  float sky = 1.0f;
-  if (s.ao_rays > 0) {
-    const float sign = std::copysign(1.0f, n[2]);
-    const float a = -1.0f / (sign + n[2]), b = n[0] * n[1] * a;
-    const Vec3f t{1.0f + sign * n[0] * n[0] * a, sign * b, -sign * n[0]};
-    const Vec3f bt{b, sign + n[1] * n[1] * a, -n[1]};
-    const Vec3f from = offset_along(p, n, s.ray_offset);
-    // Eight rays from one point at a time: one rtcOccluded8 packet (measured faster than singles).
-    int open = 0;
-    for (int k0 = 0; k0 < s.ao_rays; k0 += 8) {
-      alignas(32) RTCRay8 packet{};
-      alignas(32) int valid[8];
-      for (int l = 0; l < 8; ++l) {
-        const int k = k0 + l;
-        valid[l] = k < s.ao_rays ? -1 : 0;
-        if (k >= s.ao_rays) continue;
-        const std::uint64_t h = mix64(random + static_cast<std::uint64_t>(k) * 0x632be59bd9b4e019ull);
-        // Stratified in the first coordinate so few rays still cover the hemisphere.
-        const float u1 = (static_cast<float>(k) + unit_float(h)) / static_cast<float>(s.ao_rays);
-        const float u2 = unit_float(mix64(h));
-        const float r = std::sqrt(u1), phi = 2.0f * std::numbers::pi_v<float> * u2;
-        const float x = r * std::cos(phi), y = r * std::sin(phi), z = std::sqrt(std::max(0.0f, 1.0f - u1));
-        packet.org_x[l] = from[0];
-        packet.org_y[l] = from[1];
-        packet.org_z[l] = from[2];
-        packet.dir_x[l] = x * t[0] + y * bt[0] + z * n[0];
-        packet.dir_y[l] = x * t[1] + y * bt[1] + z * n[1];
-        packet.dir_z[l] = x * t[2] + y * bt[2] + z * n[2];
-        packet.tnear[l] = 0.0f;
-        packet.tfar[l] = s.ao_distance;
-        packet.mask[l] = 0xffffffffu;
-      }
-      RTCIntersectContext context;
-      rtcInitIntersectContext(&context);
-      rtcOccluded8(valid, scene, &context, &packet);
-      for (int l = 0; l < 8; ++l)
-        if (valid[l] != 0 && packet.tfar[l] >= 0.0f) ++open;  // tfar becomes -inf on a hit
-    }
-    sky = static_cast<float>(open) / static_cast<float>(s.ao_rays);
-    rays += s.ao_rays;
-  }
+  const float sky = s.ao_rays > 0 ? open_sky_share(scene, s, p, n, random) : sample.sky;
+  rays += std::max(s.ao_rays, 0);
 
   if (rays_cast) *rays_cast = rays;
   return lit(s, sample.base_color, sun, sky);

@@ -24,7 +24,13 @@ struct SurfaceSample {
   Vec3f normal{0, 0, 1};               // unit, turned towards the viewer (surfaces are two-sided)
   Vec3f base_color{0.5f, 0.5f, 0.5f};  // linear RGB
   float translucency = 0;              // 0..1 of the sun on the back that comes through
+  // The share of the open sky this point sees, used where no sky rays are cast (ao_rays = 0):
+  // 1 under the open sky, or an estimate made beforehand (SceneTracer::bake_sky).
+  float sky = 1;
 };
+
+// The normal of the triangle (a, b, c) by its winding, not made unit (its length: twice the area).
+Vec3f face_normal(const std::array<float, 3>& a, const std::array<float, 3>& b, const std::array<float, 3>& c);
 
 // The surface of triangle `prim` of a model hit at barycentric (u, v): the normal (smooth where
 // the mesh has normals, else the triangle's), turned by the instance's yaw about +z and made unit
@@ -40,9 +46,15 @@ void model_surface(const Mesh& mesh, unsigned prim, float u, float v, float cos_
 Vec3f shade(RTCSceneTy* scene, const ShadingSettings& settings, const SurfaceSample& sample, std::uint64_t random,
             int* rays_cast = nullptr);
 
-// shade() of up to 16 samples under the open sky (settings.ao_rays is not used: no sky rays),
-// their sun-shadow rays cast as one rtcOccluded16 packet: the same colors shade() gives each with
-// ao_rays = 0. Samples whose `valid` entry is false are skipped. Returns the rays cast.
+// The share of the sky a point at `position` facing unit `normal` sees: settings.ao_rays
+// cosine-weighted rays over the hemisphere of `normal`, each open unless something lies within
+// settings.ao_distance (1 when ao_rays is 0); `random` seeds the directions.
+float open_sky_share(RTCSceneTy* scene, const ShadingSettings& settings, const Vec3f& position, const Vec3f& normal,
+                     std::uint64_t random);
+
+// shade() of up to 16 samples with no sky rays (settings.ao_rays is not used: each sample's own
+// `sky` share), their sun-shadow rays cast as one rtcOccluded16 packet: the same colors shade()
+// gives each with ao_rays = 0. Samples whose `valid` entry is false are skipped. Returns the rays cast.
 int shade_in_the_open16(RTCSceneTy* scene, const ShadingSettings& settings, const SurfaceSample* samples,
                         const bool* valid, Vec3f* out);
 
