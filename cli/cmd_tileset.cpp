@@ -79,7 +79,7 @@ void register_tileset_command(CLI::App& app, const GlobalOptions& global) {
   auto options = std::make_shared<TilesetOptions>();
   sub->add_option("--set", options->set,
                   "Built-in set (cohen8, cohen12, cohen18, owen12, complete-edge-K, corner-K, cohen8-corners, "
-                  "cohen8-corners-full) or a JSON file (docs/tileset-format.md)")
+                  "cohen8-corners-full, culik13: aperiodic) or a JSON file (docs/tileset-format.md)")
       ->capture_default_str();
   sub->add_flag("--json", options->json, "Print the set as JSON");
   sub->add_option("--sheet", options->sheet, "Draw the set's tiles with their edge/corner colors into this PNG");

@@ -1,4 +1,4 @@
-// wangscape tiling --set NAME|FILE --size WxH --seed S [--algorithm scanline|bottom-left|hash]
+// wangscape tiling --set NAME|FILE --size WxH --seed S [--algorithm scanline|bottom-left|hash|aperiodic]
 //   [--origin I,J] [--no-identical-neighbours] [--out FILE.png|FILE.csv] [--stats] [--json]
 #include <fmt/core.h>
 
@@ -90,8 +90,8 @@ void register_tiling_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   sub->add_option("--seed", options->seed, "Random seed")->check(seed_number())->capture_default_str();
   sub->add_option("--algorithm", options->algorithm,
-                  "scanline (north-west to south-east), bottom-left (south-west start) or hash (O(1) random access, "
-                  "complete sets)")
+                  "scanline (north-west to south-east), bottom-left (south-west start), hash (O(1) random access, "
+                  "complete sets) or aperiodic (Culik's strictly aperiodic culik13 only)")
       ->check(CLI::IsMember(tiling_algorithm_names()))
       ->capture_default_str();
   sub->add_option("--origin", options->origin, "Tile coordinates I,J of the window's south-west tile (i east, j north)")
@@ -106,10 +106,12 @@ void register_tiling_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   sub->add_flag("--stats", options->stats, "Print validity, tile frequencies, identical-neighbour rate, periodicity");
   sub->add_flag("--json", options->json, "Print the statistics as JSON");
-  set_help_footer(sub, "--out FILE: a PNG tile map (north up) or a CSV of i,j,tile; --stats: statistics on stdout",
-                  {"wangscape tiling --set cohen8 --size 64x64 --seed 3 --out map.png --stats",
-                   "wangscape tiling --set complete-edge-2 --algorithm hash --origin -1000,250 --size 32x32 --out "
-                   "window.csv"});
+  set_help_footer(
+      sub, "--out FILE: a PNG tile map (north up) or a CSV of i,j,tile; --stats: statistics on stdout",
+      {"wangscape tiling --set cohen8 --size 64x64 --seed 3 --out map.png --stats",
+       "wangscape tiling --set complete-edge-2 --algorithm hash --origin -1000,250 --size 32x32 --out "
+       "window.csv",
+       "wangscape tiling --set culik13 --algorithm aperiodic --size 256x256 --seed 2 --out culik.png --json"});
   sub->callback([options, &global] { run(*options, global); });
 }
 

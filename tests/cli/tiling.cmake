@@ -1,6 +1,7 @@
 # wangscape tileset / tiling, run for real: output shapes, files, exit codes, no partial files.
 # The checks live in tiling/check.cmake (one MODE per test).
-foreach(mode IN ITEMS tileset_json tileset_sheet tiling_outputs hash_window stats_json usage_errors runtime_errors)
+foreach(mode IN ITEMS tileset_json tileset_sheet tiling_outputs hash_window stats_json aperiodic usage_errors
+                      runtime_errors)
   add_test(NAME cli_tiling_${mode}
     COMMAND ${CMAKE_COMMAND} -DBIN=${WANGSCAPE_BIN} -DSCRATCH=${CLI_SCRATCH}/tiling_${mode} -DMODE=${mode}
             -P ${CMAKE_CURRENT_LIST_DIR}/tiling/check.cmake)
