@@ -34,6 +34,8 @@ void BM_ScanlineCohen18(benchmark::State& state) { run(state, "cohen18", TilingA
 void BM_BottomLeftCohen8(benchmark::State& state) { run(state, "cohen8", TilingAlgorithm::bottom_left); }
 void BM_HashCompleteEdge2(benchmark::State& state) { run(state, "complete-edge-2", TilingAlgorithm::hash); }
 void BM_HashCorner2(benchmark::State& state) { run(state, "corner-2", TilingAlgorithm::hash); }
+// Culik's aperiodic 13 tiles, one row at a time from a real in 128-bit fixed point.
+void BM_AperiodicCulik13(benchmark::State& state) { run(state, "culik13", TilingAlgorithm::aperiodic); }
 
 // The whole tiling in memory (2 bytes per tile): what `wangscape tiling` does.
 void BM_MakeTilingHashCompleteEdge2(benchmark::State& state) {
@@ -49,6 +51,7 @@ BENCHMARK(BM_ScanlineCohen18)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_BottomLeftCohen8)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_HashCompleteEdge2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_HashCorner2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_AperiodicCulik13)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_MakeTilingHashCompleteEdge2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
