@@ -31,22 +31,6 @@ struct SceneTracer::Impl {
   std::vector<std::array<float, 3>> position;  // shifted frame
   // bake_sky: per model, per triangle, the sky share of its front (the mesh's winding) and back.
   std::vector<std::vector<std::array<float, 2>>> model_sky;
-  // bake_sky with a ground cell: the ground's sky share at the nodes of a grid of `cell` meters
-  // from (x0, y0) (shifted frame), row-major; empty when not estimated.
-  struct GroundSky {
-    double x0 = 0, y0 = 0, cell = 0;
-    int nx = 0, ny = 0;
-    std::vector<float> share;
-    float at(double x, double y) const {  // bilinear; the open sky off the grid
-      const double gx = (x - x0) / cell, gy = (y - y0) / cell;
-      if (share.empty() || !(gx >= 0 && gy >= 0 && gx <= nx - 1 && gy <= ny - 1)) return 1.0f;
-      const int i = std::min(int(gx), nx - 2), j = std::min(int(gy), ny - 2);
-      const float fx = float(gx - i), fy = float(gy - j);
-      const auto node = [&](int a, int b) { return share[std::size_t(b) * std::size_t(nx) + std::size_t(a)]; };
-      return (1 - fy) * ((1 - fx) * node(i, j) + fx * node(i + 1, j)) +
-             fy * ((1 - fx) * node(i, j + 1) + fx * node(i + 1, j + 1));
-    }
-  } ground_sky;
   V3 origin{};
 
   void add_flowers(const Scene& scene, const InstanceBatch& batch) {
@@ -124,7 +108,6 @@ void SceneTracer::set_flowers(const InstanceStream& flowers) {
   t.sin_yaw.clear();
   t.scale.clear();
   t.position.clear();
-  t.ground_sky = {};
   if (t.terrain) {
     RTCGeometry g = rtcNewGeometry(t.device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(g, t.terrain->get());
@@ -140,10 +123,8 @@ void SceneTracer::set_flowers(const InstanceStream& flowers) {
   t.device.check("building the scene");
 }
 
-void SceneTracer::bake_sky(const ShadingSettings& shading, double ground_cell, int rays, int instances) {
+void SceneTracer::bake_sky(const ShadingSettings& shading, int rays, int instances) {
   Impl& t = *impl_;
-  if (ground_cell > 0) bake_ground_sky(shading, ground_cell, rays);
-  if (!t.model_sky.empty()) return;
   const std::size_t models = scene_.models.size();
   // Up to `instances` flowers of each model, spread over the order they were placed in.
   std::vector<std::vector<std::size_t>> all(models), chosen(models);
@@ -190,45 +171,6 @@ void SceneTracer::bake_sky(const ShadingSettings& shading, double ground_cell, i
         });
   }
   t.device.check("estimating the flowers' share of the sky");
-}
-
-void SceneTracer::bake_ground_sky(const ShadingSettings& shading, double cell, int rays) {
-  Impl& t = *impl_;
-  if (t.position.empty() || scene_.terrain.positions.empty()) return;
-  double min_x = t.position[0][0], max_x = min_x, min_y = t.position[0][1], max_y = min_y;
-  for (const auto& p : t.position) {
-    min_x = std::min(min_x, double(p[0]));
-    max_x = std::max(max_x, double(p[0]));
-    min_y = std::min(min_y, double(p[1]));
-    max_y = std::max(max_y, double(p[1]));
-  }
-  float lowest = std::numeric_limits<float>::infinity();
-  for (const auto& p : scene_.terrain.positions) lowest = std::min(lowest, float(double(p[2]) - t.origin[2]));
-  Impl::GroundSky g;
-  g.cell = cell;
-  g.x0 = min_x - 1.0;  // the leaves' reach past the stems
-  g.y0 = min_y - 1.0;
-  g.nx = int(std::ceil((max_x + 1.0 - g.x0) / cell)) + 1;
-  g.ny = int(std::ceil((max_y + 1.0 - g.y0) / cell)) + 1;
-  g.share.assign(std::size_t(g.nx) * std::size_t(g.ny), 1.0f);
-  ShadingSettings per_point = shading;
-  per_point.ao_rays = rays;
-  tbb::parallel_for(tbb::blocked_range<int>(0, g.ny), [&](const tbb::blocked_range<int>& r) {
-    for (int j = r.begin(); j != r.end(); ++j)
-      for (int i = 0; i < g.nx; ++i) {
-        // The ground point: what a ray up from below the lowest terrain meets first (the
-        // flowers stand on the ground, so the terrain's underside).
-        const double x = g.x0 + i * cell, y = g.y0 + j * cell;
-        const auto up = intersect({x, y, double(lowest) - 1.0}, {0, 0, 1});
-        if (!up || (up->inst != kTerrainId && up->inst != RTC_INVALID_GEOMETRY_ID)) continue;
-        const Vec3f at{float(x), float(y), float(double(lowest) - 1.0 + up->t)};
-        g.share[std::size_t(j) * std::size_t(g.nx) + std::size_t(i)] =
-            open_sky_share(t.top->get(), per_point, at, Vec3f{0, 0, 1},
-                           mix64((std::uint64_t(std::uint32_t(i)) << 32) ^ std::uint64_t(std::uint32_t(j))));
-      }
-  });
-  t.device.check("estimating the ground's share of the sky");
-  t.ground_sky = std::move(g);
 }
 
 SceneTracer::~SceneTracer() = default;
@@ -306,7 +248,6 @@ SurfaceSample SceneTracer::surface(const Hit& h, const V3& from, const V3& d, co
     model_surface(scene_.terrain, h.prim, h.u, h.v, 1.0f, 0.0f, s);
     s.base_color = ground.at(double(s.position[0]) + t.origin[0], double(s.position[1]) + t.origin[1]);
     s.translucency = 0;
-    s.sky = t.ground_sky.at(s.position[0], s.position[1]);
   }
   // Two-sided: turn the normal towards the viewer.
   if (s.normal[0] * d[0] + s.normal[1] * d[1] + s.normal[2] * d[2] > 0)

@@ -36,8 +36,7 @@ constexpr float kNear = 0.05f;  // meters: the near plane
 // rays met the same ground (shaded with the flowers' shadows and sky share) the rasterized ground
 // does not win by rounding: without it, a speckle of the two over the near field's ground.
 constexpr float kTerrainDepthBias = 1.0f / 4096;
-constexpr double kNearGroundSkyCell = 0.25;  // meters: the near field's grid of the ground's sky share
-constexpr float kSplatScale = 1.5f;          // splat side over the projected depth-pixel size (measured: no holes)
+constexpr float kSplatScale = 1.5f;  // splat side over the projected depth-pixel size (measured: no holes)
 // A far step's samples are blocks kept with their cover's probability: a larger splat than the
 // block would add its excess to the cover (1.5^2 = 2.25 times: a sparse field drawn dense).
 constexpr float kFarSplatScale = 1.0f;
@@ -994,13 +993,29 @@ double LdiRenderer::place_near_field() {
     m.near_tracer = std::make_unique<SceneTracer>(
         world.scene(), std::array<double, 3>{(area.min_x + area.max_x) / 2, (area.min_y + area.max_y) / 2, m.eye[2]},
         SceneTracer::Layout::part);
+    // The models' sky share among the flowers of one fixed place (the placed tile nearest the
+    // field's centre), so that a frame does not depend on where the view started.
+    const double cx = (area.min_x + area.max_x) / 2, cy = (area.min_y + area.max_y) / 2;
+    std::optional<std::array<double, 2>> sample_at;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::int64_t j = 0; j < world.grid_height(); ++j)
+      for (std::int64_t i = 0; i < world.grid_width(); ++i) {
+        if (world.grid()[std::size_t(j * world.grid_width() + i)] < 0) continue;
+        const double x = (double(world.grid_i0() + i) + 0.5) * s, y = (double(world.grid_j0() + j) + 0.5) * s;
+        const double d2 = (x - cx) * (x - cx) + (y - cy) * (y - cy);
+        if (d2 < best) best = d2, sample_at = std::array<double, 2>{x, y};
+      }
+    if (sample_at && world.sun_shading().ao_rays > 0) {  // (a scene without sky rays sees the open sky)
+      const auto [x, y] = *sample_at;
+      const Extent sample_window{std::floor((x - margin) / s) * s, std::floor((y - margin) / s) * s,
+                                 std::ceil((x + margin) / s) * s, std::ceil((y + margin) / s) * s};
+      m.near_tracer->set_flowers([&](const InstanceSink& sink) { field.place_in(sample_window, sink); });
+      m.near_tracer->bake_sky(world.sun_shading());
+    }
   }
   if (m.near_window != window) {
     m.near_tracer->set_flowers([&](const InstanceSink& sink) { field.place_in(window, sink); });
     m.near_window = window;
-    // The sky share of the ground under these flowers, and of each model's triangles among the
-    // first flowers placed (they stand for all).
-    m.near_tracer->bake_sky(world.sun_shading(), kNearGroundSkyCell);
   }
   return reach;
 }

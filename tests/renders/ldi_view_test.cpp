@@ -280,8 +280,29 @@ TEST(ldi_view_near, NearTilesAreNotWarpedAndTheFrameIsCloserToTheTruth) {
   EXPECT_GT(with_near.comparison.psnr_db, with_ldis.comparison.psnr_db + 2)
       << with_near.comparison.psnr_db << " dB against " << with_ldis.comparison.psnr_db;
   EXPECT_GT(with_near.comparison.ssim, with_ldis.comparison.ssim + 0.1);
-  EXPECT_LT(with_near.exact.psnr_db - with_near.comparison.psnr_db, 2.0);
+  // Issue 22's goal: within 1 dB and 0.03 of SSIM of the exact one-sample image. Measured: 0.53 dB
+  // and 0.002 with the flowers' baked sky share; 1.43 dB and 0.127 under the open sky with the
+  // rasterized ground speckled over the near field's.
+  EXPECT_LT(with_near.exact.psnr_db - with_near.comparison.psnr_db, 1.0)
+      << with_near.comparison.psnr_db << " dB against exact " << with_near.exact.psnr_db;
+  EXPECT_LT(with_near.exact.ssim - with_near.comparison.ssim, 0.03)
+      << with_near.comparison.ssim << " against exact " << with_near.exact.ssim;
   EXPECT_LT(with_near.comparison.holes.holes, with_ldis.comparison.holes.holes);
+}
+
+// The flowers' sky share is estimated among the flowers of one fixed place, not wherever the
+// view happened to start: the same frame either way.
+TEST(ldi_view_near, AFrameDoesNotDependOnWhereTheViewStarted) {
+  // A field three near-field windows long (at 2 m, a window is about 25 m across).
+  const auto world = tiny_world("[-36.0, -12.0, 36.0, 12.0]", "long", "90.0");
+  const ViewCamera camera = looking(-28, -2, 1.5, -20, 3, 0.9);
+  LdiRenderer direct(world, 120, 80), elsewhere_first(world, 120, 80);
+  direct.set_near_field(2);
+  elsewhere_first.set_near_field(2);
+  direct.render(camera);
+  elsewhere_first.render(looking(28, 2, 1.5, 20, -3, 0.9));
+  elsewhere_first.render(camera);
+  EXPECT_EQ(direct.image().pixels, elsewhere_first.image().pixels);
 }
 
 TEST(ldi_view_near, ADistanceOutOfRangeIsRefused) {
