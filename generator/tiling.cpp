@@ -630,9 +630,10 @@ constexpr int kRepairRounds = 6;
 constexpr int kTiltRounds = 2;
 constexpr std::uint32_t kTiltChance = 1288490189u;  // 0.3 of 2^32
 constexpr int kRepairBlock = 4;
-// How far (tiles) a color's final value may depend on the plain colors: 3 per tilt round, 2 per
-// other round, then the block it lies in and the pairs around that block.
-constexpr int kRepairMargin = 3 * kTiltRounds + 2 * (kRepairRounds - kTiltRounds) + 2 * kRepairBlock + 2;
+// How far (tiles) a color's final value may depend on the plain colors: 3 per tilt round (a
+// color of a tile alike to one two tiles on), 1 per other round (a color two identical tiles
+// share), then the block its tile lies in, the pairs around that block and their colors.
+constexpr int kRepairMargin = 3 * kTiltRounds + (kRepairRounds - kTiltRounds) + kRepairBlock + 2;
 
 struct Offset {
   int di, dj;
@@ -866,10 +867,15 @@ void HashedTiling::fill_window(std::int64_t first_i, std::int64_t first_j, int w
     return e.kind == ColorPatch::kHorizontal ? radix_[kN] : e.kind == ColorPatch::kVertical ? radix_[kE] : radix_[kNE];
   };
   std::vector<std::uint64_t> keys(pw * ph);
+  // Each round works on the tiles whose colors are still right: `skip` tiles in from every side.
+  int skip = 0;
   const auto compute_keys = [&] {
-    for (int j = 0; j < patch.height; ++j)
-      for (int i = 0; i < patch.width; ++i)
+    for (int j = skip; j < patch.height - skip; ++j)
+      for (int i = skip; i < patch.width - skip; ++i)
         keys[static_cast<std::size_t>(j) * pw + static_cast<std::size_t>(i)] = patch.key(i, j);
+  };
+  const auto inside = [&](int i, int j) {
+    return i >= skip && j >= skip && i < patch.width - skip && j < patch.height - skip;
   };
   const auto key = [&](int i, int j) { return keys[static_cast<std::size_t>(j) * pw + static_cast<std::size_t>(i)]; };
   const std::span<const Offset> tilt_offsets =
@@ -879,19 +885,19 @@ void HashedTiling::fill_window(std::int64_t first_i, std::int64_t first_j, int w
   for (int round = 0; round < kRepairRounds; ++round) {
     compute_keys();
     redraw.clear();
-    for (int j = 0; j < patch.height; ++j)
-      for (int i = 0; i < patch.width; ++i) {
+    for (int j = skip; j < patch.height - skip; ++j)
+      for (int i = skip; i < patch.width - skip; ++i) {
         const std::int64_t gi = patch.i0 + i, gj = patch.j0 + j;
         for (const bool east : {true, false}) {
           const int i2 = east ? i + 1 : i, j2 = east ? j : j + 1;
-          if (i2 >= patch.width || j2 >= patch.height || key(i, j) != key(i2, j2)) continue;
+          if (!inside(i2, j2) || key(i, j) != key(i2, j2)) continue;
           const int n = patch.shared_with(i, j, east, choices);
           redraw.push_back(choices[repair_hash(seed_, round, east ? 1 : 2, gi, gj) % static_cast<std::uint64_t>(n)]);
         }
         if (round >= kTiltRounds) continue;
         for (std::size_t o = 0; o < tilt_offsets.size(); ++o) {
           const int i2 = i + tilt_offsets[o].di, j2 = j + tilt_offsets[o].dj;
-          if (i2 < 0 || i2 >= patch.width || j2 >= patch.height || key(i, j) != key(i2, j2)) continue;
+          if (!inside(i2, j2) || key(i, j) != key(i2, j2)) continue;
           const std::uint64_t h = repair_hash(seed_, round, 3 + static_cast<int>(o), gi, gj);
           if (static_cast<std::uint32_t>(h) >= kTiltChance) continue;
           const bool second = ((h >> 32) & 1) != 0;
@@ -911,6 +917,7 @@ void HashedTiling::fill_window(std::int64_t first_i, std::int64_t first_j, int w
           static_cast<std::uint32_t>(repair_hash(seed_, round, 16 + e.kind, patch.global_x(e), patch.global_y(e))),
           color, alphabet(e)));
     }
+    skip += round < kTiltRounds ? 3 : 1;
   }
   // What is left: exact repairs of the blocks (on a fixed lattice of kRepairBlock tiles) that hold a
   // tile of an identical pair. Blocks reaching into the margin's outer part are not needed.
@@ -925,13 +932,13 @@ void HashedTiling::fill_window(std::int64_t first_i, std::int64_t first_j, int w
     flagged[static_cast<std::size_t>(block_j(j)) * static_cast<std::size_t>(blocks_w) +
             static_cast<std::size_t>(block_i(i))] = 1;
   };
-  for (int j = 0; j < patch.height; ++j)
-    for (int i = 0; i < patch.width; ++i) {
-      if (i + 1 < patch.width && key(i, j) == key(i + 1, j)) {
+  for (int j = skip; j < patch.height - skip; ++j)
+    for (int i = skip; i < patch.width - skip; ++i) {
+      if (inside(i + 1, j) && key(i, j) == key(i + 1, j)) {
         flag(i, j);
         flag(i + 1, j);
       }
-      if (j + 1 < patch.height && key(i, j) == key(i, j + 1)) {
+      if (inside(i, j + 1) && key(i, j) == key(i, j + 1)) {
         flag(i, j);
         flag(i, j + 1);
       }
@@ -942,7 +949,7 @@ void HashedTiling::fill_window(std::int64_t first_i, std::int64_t first_j, int w
         continue;
       const auto bi = static_cast<int>((first_block_i + bx) * kRepairBlock - patch.i0);
       const auto bj = static_cast<int>((first_block_j + by) * kRepairBlock - patch.j0);
-      if (bi < 1 || bj < 1 || bi + kRepairBlock + 1 > patch.width || bj + kRepairBlock + 1 > patch.height) continue;
+      if (!inside(bi - 1, bj - 1) || !inside(bi + kRepairBlock, bj + kRepairBlock)) continue;
       repair_block(patch, bi, bj, seed_, radix_);
     }
   for (int r = 0; r < height; ++r)
