@@ -4,6 +4,7 @@
 // (issue 23, item 3).
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
 
 #include "generator/tiling.h"
@@ -52,14 +53,22 @@ TEST(NoIdenticalNeighbours, AddLittleStructureToCohen8) {
   }
 }
 
-TEST(NoIdenticalNeighbours, HashedCornerTilingsPairHalfTheLines) {
-  // A hashed tiling forbids identical neighbours by making colors differ from their neighbour on
-  // a fixed lattice, which shows; pairing only the even rows and columns of corners (what two
-  // tiles side by side or one above the other always share one of) halves it. Before: corner-2
-  // 0.148 at 128 x 128 (0.013 without the option), corner-3 0.019 (0.005).
-  EXPECT_LT(mean_periodicity("corner-2", TilingAlgorithm::hash, 128, true), 0.1);
-  EXPECT_LT(mean_periodicity("corner-3", TilingAlgorithm::hash, 128, true), 0.014);
-  for (const char* name : {"corner-2", "corner-3"}) {
+TEST(NoIdenticalNeighbours, HashedTilingsAddLittleStructure) {
+  // Until issue 23 a hashed tiling forbade identical neighbours by making colors differ from their
+  // neighbour on a fixed lattice, which showed at 128 x 128: complete-edge-2 0.062 against 0.009
+  // without the option, corner-2 0.086 (0.148 before pairing only even lines) against 0.013,
+  // corner-3 0.011 against 0.005. Now the colors are repaired only around identical pairs (rounds
+  // of redrawing a shared color, with a tilt against tiles alike two steps apart): within 15 %
+  // of the plain tiling's score over seeds 1-12 (the mean at 64 and 128 rises 4-15 % with two
+  // colors; uniform draws among all tilings without identical neighbours rise as much).
+  for (const char* set : {"complete-edge-2", "corner-2", "corner-3"})
+    for (const int size : {64, 128}) {
+      const double plain = mean_periodicity(set, TilingAlgorithm::hash, size, false);
+      const double forbidden = mean_periodicity(set, TilingAlgorithm::hash, size, true);
+      std::printf("%s %d x %d: %.4f without, %.4f with the option\n", set, size, size, plain, forbidden);
+      EXPECT_LT(forbidden, 1.25 * plain) << set << " " << size << " x " << size;
+    }
+  for (const char* name : {"complete-edge-2", "corner-2", "corner-3"}) {
     TilingOptions options;
     options.algorithm = TilingAlgorithm::hash;
     options.forbid_identical_neighbours = true;
