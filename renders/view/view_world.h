@@ -85,7 +85,7 @@ class ViewWorld {
   // direction), one LDI sampled at that elevation at the coarsest level's resolution (step 0)
   // and its one-layer far steps (step k + 1 as far step k). Sampled on first use
   // (prepare_steep(); about a second for the default scene), then immutable; thread-safe.
-  static constexpr std::array<float, 3> steep_elevations() { return {6.5f, 13.0f, 30.0f}; }
+  static constexpr std::array<float, 5> steep_elevations() { return {6.5f, 9.0f, 13.0f, 19.0f, 30.0f}; }
   void prepare_steep() const;
   LdiView steep_ldi(std::uint32_t set, std::uint32_t tile, std::uint32_t direction, std::uint32_t step) const;
   // The ground's height (meters) at (x, y), or `fallback` off the ground.
