@@ -101,7 +101,8 @@ void register_scatter_command(CLI::App& app, const GlobalOptions& global) {
                   "Refuse to place more than N instances (default: no cap; the free disk space is checked)")
       ->check(CLI::PositiveNumber);
   sub->add_option("--seed", options->seed, "Tiling seed")->check(seed_number())->capture_default_str();
-  sub->add_option("--algorithm", options->algorithm, "Tiling: scanline, bottom-left or hash (complete sets)")
+  sub->add_option("--algorithm", options->algorithm,
+                  "Tiling: scanline, bottom-left, hash (complete sets) or aperiodic (culik13)")
       ->check(CLI::IsMember(tiling_algorithm_names()))
       ->capture_default_str();
   sub->add_flag("--metrics", options->metrics, "Print quality figures (rho, NN distances, densities, spectrum)");

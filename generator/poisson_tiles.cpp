@@ -619,7 +619,7 @@ struct SampleTiling {
 
 SampleTiling sample_tiling(const TileSet& set, std::uint64_t seed) {
   SampleTiling sample;
-  for (TilingAlgorithm algorithm : {TilingAlgorithm::scanline, TilingAlgorithm::bottom_left, TilingAlgorithm::hash}) {
+  for (const TilingAlgorithm algorithm : kTilingAlgorithms) {  // the first that can lay the set
     try {
       TilingOptions options;
       options.algorithm = algorithm;
