@@ -17,11 +17,12 @@
 // windows of one exemplar start half a tile apart (also at the offsets where diamonds meet) and
 // come closer only when the exemplar has no room.
 //
-// Every tile also has an interior of its own (issue 23): a patch of the exemplar over the tile's
-// middle, inside a closed minimum-error cut around the tile centre at 3/8 to 1/2 - 3 pixels of
-// a tile side (the border rows keep their diamonds, so tiles stay seamless). With K colors per
+// Every tile also has an interior of its own (issue 23): a patch of the exemplar over all of the
+// tile but its border row, inside a closed minimum-error cut that runs 1 to 1 + T/16 pixels in
+// from the edges (the border row keeps its diamonds, so tiles stay seamless). With K colors per
 // edge a neighbour shares each diamond with probability ~1/K; the interiors lower what repeats at
-// one tile's shift (cohen8: 0.52 to 0.30, docs/texture-tiles.md).
+// one tile's shift (cohen8: 0.52 to 0.31 with a disc of radius 3/8 to 1/2 tile, 0.21 now;
+// docs/texture-tiles.md).
 //
 // Two exemplars in a corner-colored set (cohen8-corners, corner-K; Cohen 2003, section 3.5):
 // the tiles are quilted once from each exemplar, and each pixel shows the exemplar that the
