@@ -29,7 +29,8 @@ struct SceneTracer::Impl {
   std::vector<std::uint16_t> variant;
   std::vector<float> cos_yaw, sin_yaw, scale;
   std::vector<std::array<float, 3>> position;  // shifted frame
-  // bake_sky: per model, per triangle, the sky share of its front (the mesh's winding) and back.
+  // bake_sky: per model, per vertex, the sky share of the front (the triangles' winding) and the
+  // back, interpolated across a triangle (per triangle, a leaf showed its facets).
   std::vector<std::vector<std::array<float, 2>>> model_sky;
   V3 origin{};
 
@@ -137,8 +138,8 @@ void SceneTracer::bake_sky(const ShadingSettings& shading, int rays, int instanc
   t.model_sky.assign(models, {});
   for (std::size_t v = 0; v < models; ++v) {
     const Mesh& mesh = scene_.models[v];
-    auto& sky = t.model_sky[v];
-    sky.assign(mesh.triangles.size(), {1.0f, 1.0f});
+    std::vector<std::array<float, 2>> sky(mesh.triangles.size(), {1.0f, 1.0f});  // per triangle
+    t.model_sky[v].assign(mesh.positions.size(), {1.0f, 1.0f});
     if (chosen[v].empty()) continue;
     ShadingSettings per_flower = shading;
     per_flower.ao_rays = std::max(1, rays / int(chosen[v].size()));
@@ -169,6 +170,20 @@ void SceneTracer::bake_sky(const ShadingSettings& shading, int rays, int instanc
             }
           }
         });
+    // To the vertices: the mean of the triangles around each, weighted by their areas.
+    std::vector<std::array<double, 3>> sum(mesh.positions.size(), {0, 0, 0});  // front, back, weight
+    for (std::size_t p = 0; p < mesh.triangles.size(); ++p) {
+      const auto& tri = mesh.triangles[p];
+      const Vec3f n = face_normal(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
+      const double area = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
+      for (const auto corner : tri) {
+        sum[corner][0] += area * sky[p][0];
+        sum[corner][1] += area * sky[p][1];
+        sum[corner][2] += area;
+      }
+    }
+    for (std::size_t i = 0; i < sum.size(); ++i)
+      if (sum[i][2] > 0) t.model_sky[v][i] = {float(sum[i][0] / sum[i][2]), float(sum[i][1] / sum[i][2])};
   }
   t.device.check("estimating the flowers' share of the sky");
 }
@@ -242,7 +257,9 @@ SurfaceSample SceneTracer::surface(const Hit& h, const V3& from, const V3& d, co
       const Vec3f n = face_normal(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
       const double yawed[2] = {t.cos_yaw[f] * n[0] - t.sin_yaw[f] * n[1], t.sin_yaw[f] * n[0] + t.cos_yaw[f] * n[1]};
       const bool back = yawed[0] * d[0] + yawed[1] * d[1] + double(n[2]) * d[2] > 0;
-      s.sky = t.model_sky[t.variant[f]][h.prim][back ? 1 : 0];
+      const auto& sky = t.model_sky[t.variant[f]];
+      const std::size_t side = back ? 1 : 0;
+      s.sky = (1 - h.u - h.v) * sky[tri[0]][side] + h.u * sky[tri[1]][side] + h.v * sky[tri[2]][side];
     }
   } else {
     model_surface(scene_.terrain, h.prim, h.u, h.v, 1.0f, 0.0f, s);
