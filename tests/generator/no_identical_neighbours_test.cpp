@@ -43,13 +43,16 @@ TEST(NoIdenticalNeighbours, AddNoStructureToTwelveTileSets) {
 TEST(NoIdenticalNeighbours, AddLittleStructureToCohen8) {
   // Two candidates per (north, west): a forbidden neighbour often forces the choice. Drawing each
   // tile uniformly among the rest raised the score at 128 x 128 from 0.015 to 0.057 (scanline);
-  // each row uniform among those that may follow: 0.035. What is left is the constraint's own:
-  // tilings drawn near uniformly among all without identical neighbours (Metropolis moves on a
-  // torus) score 0.032 there too, so the bound is above it.
+  // each row uniform among those that may follow: 0.035, the peak at (0, 2), as near-uniform
+  // tilings without identical neighbours (Metropolis moves on a torus) score 0.032. Each row
+  // drawn with less weight on tiles equal to those two rows back (and beside them) and two columns
+  // aside in the previous row: 0.018, peaks at noise offsets.
   for (const TilingAlgorithm algorithm : {TilingAlgorithm::scanline, TilingAlgorithm::bottom_left}) {
     const double plain = mean_periodicity("cohen8", algorithm, 128, false);
     const double forbidden = mean_periodicity("cohen8", algorithm, 128, true);
-    EXPECT_LT(forbidden - plain, 0.025) << to_string(algorithm) << ": " << forbidden << " against " << plain;
+    std::printf("cohen8 %s 128 x 128: %.4f without, %.4f with the option\n", std::string(to_string(algorithm)).c_str(),
+                plain, forbidden);
+    EXPECT_LT(forbidden - plain, 0.006) << to_string(algorithm) << ": " << forbidden << " against " << plain;
   }
 }
 
