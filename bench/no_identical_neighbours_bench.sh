@@ -5,7 +5,8 @@
 # mostly noise below 64 x 64 (about 0.07 at 32 x 32 for any stochastic tiling); compare means.
 # Stops on any failure (a set the algorithm cannot tile, a binary being relinked: run it under
 # the build lock). Figures at load 2.3-2.8 (10 seeds, plain against forbidden, 128 x 128):
-# scanline cohen8 0.0154 / 0.0346, cohen12 0.0454 / 0.0348, owen12 0.0690 / 0.0519. Hashed
+# scanline cohen8 0.0154 / 0.0346 (0.0179 with issue 23's weighted rows, load 3.2), cohen12
+# 0.0454 / 0.0348, owen12 0.0690 / 0.0519. Hashed
 # tilings, repaired around identical neighbours since issue 23 (20 seeds, load 1.3-4.0, 128 x 128):
 # complete-edge-2 0.0091 / 0.0103, corner-2 0.0125 / 0.0132, corner-3 0.0046 / 0.0048 (the old
 # lattice rule: 0.0616, 0.0864, 0.0106); 32 and 64 in docs/tileset-format.md.
