@@ -66,18 +66,25 @@ TileRange clip_range(const TileRange& part, const TileRange& whole) {
   return r;
 }
 
-RowTiles::RowTiles(const TileSet& set, const TileRange& range, const PlacementOptions& options) : range_(range) {
-  if (options.algorithm == TilingAlgorithm::hash) {
+RowTiles::RowTiles(const TileSet& set, const TileRange& range, const PlacementOptions& options)
+    : RowTiles(set, range, options, range) {}
+
+RowTiles::RowTiles(const TileSet& set, const TileRange& range, const PlacementOptions& options, const TileRange& needed)
+    : range_(range) {
+  const bool hashed = options.algorithm == TilingAlgorithm::hash;
+  if (hashed && !options.forbid_identical_neighbours) {
     hashed_.emplace(set, options.seed);
     return;
   }
+  // A hashed tiling is the same wherever its window starts: only the part asked for.
+  const TileRange part = hashed ? clip_range(needed, range) : range;
   TilingOptions tiling_options;
   tiling_options.algorithm = options.algorithm;
   tiling_options.seed = options.seed;
   tiling_options.forbid_identical_neighbours = options.forbid_identical_neighbours;
-  tiling_options.origin_i = range.i0;
-  tiling_options.origin_j = range.j0;
-  tiling_.emplace(make_tiling(set, range.width(), range.height(), tiling_options));
+  tiling_options.origin_i = part.i0;
+  tiling_options.origin_j = part.j0;
+  tiling_.emplace(make_tiling(set, part.width(), part.height(), tiling_options));
 }
 
 void RowTiles::row(int r, std::span<std::uint16_t> out, int c) const {
@@ -85,8 +92,9 @@ void RowTiles::row(int r, std::span<std::uint16_t> out, int c) const {
     hashed_->fill_row(range_.i0 + c, range_.j0 + r, out);
     return;
   }
-  const auto* start = tiling_->tiles.data() + static_cast<std::size_t>(r) * static_cast<std::size_t>(range_.width()) +
-                      static_cast<std::size_t>(c);
+  const std::int64_t i = range_.i0 + c - tiling_->origin_i, j = range_.j0 + r - tiling_->origin_j;
+  const auto* start = tiling_->tiles.data() + static_cast<std::size_t>(j) * static_cast<std::size_t>(tiling_->width) +
+                      static_cast<std::size_t>(i);
   std::copy(start, start + out.size(), out.begin());
 }
 

@@ -83,10 +83,14 @@ TileRange tile_range(const Extent& area, double tile_size);
 TileRange clip_range(const TileRange& part, const TileRange& whole);
 
 // Tiles of the area row by row (local row r = tile row j0 + r): computed up front for scanline
-// and bottom-left tilings (2 bytes per tile), per row on demand for hashed ones.
+// and bottom-left tilings (2 bytes per tile), per row on demand for hashed ones, and up front for
+// the part of `range` in `needed` for hashed ones without identical neighbours (their repair looks
+// 16 tiles around each window: once for the window, not per row). Rows outside `needed` are then
+// not available.
 class RowTiles {
  public:
   RowTiles(const TileSet& set, const TileRange& range, const PlacementOptions& options);
+  RowTiles(const TileSet& set, const TileRange& range, const PlacementOptions& options, const TileRange& needed);
   // Tiles of local row r from local column c into out (at most range.width() - c).
   void row(int r, std::span<std::uint16_t> out, int c = 0) const;
 
@@ -115,7 +119,7 @@ PlacementStats place_instances(const FilledTileSet& filled, const G& ground, con
   PlacementStats stats;
   if (range.width() <= 0 || range.height() <= 0) return stats;
   const PlacementTable table(filled);
-  const RowTiles rows(filled.set, whole, options);
+  const RowTiles rows(filled.set, whole, options, range);
   const double s = options.tile_size;
   const auto* world = options.world_attributes ? &*options.world_attributes : nullptr;
 

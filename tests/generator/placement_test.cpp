@@ -95,6 +95,42 @@ TEST(Placement, HashedTilesCoverTheSameGroundInEveryWindow) {
   }
 }
 
+// With no identical neighbours, a hashed placement lays the tiles `tiling --algorithm hash
+// --no-identical-neighbours` gives there (it laid the plain hashed tiles, neighbours alike), in a
+// window of the area as in the whole.
+TEST(Placement, HashedTilesWithoutIdenticalNeighboursAreTheTilingsInEveryWindow) {
+  const FilledTileSet& filled = filled_set("complete-edge-2");
+  PlacementOptions options;
+  options.algorithm = TilingAlgorithm::hash;
+  options.forbid_identical_neighbours = true;
+  options.tile_size = 2;
+  options.seed = 7;
+  TilingOptions tiling_options;
+  tiling_options.algorithm = TilingAlgorithm::hash;
+  tiling_options.forbid_identical_neighbours = true;
+  tiling_options.seed = 7;
+  tiling_options.origin_i = -10;
+  tiling_options.origin_j = -10;
+  const Tiling tiling = make_tiling(filled.set, 20, 20, tiling_options);
+  for (const Extent window : {Extent{-20, -20, 20, 20}, Extent{-6, 2, 10, 14}}) {
+    options.window = window;
+    std::size_t placed = 0;
+    place_instances(filled, FlatGround{{-20, -20, 20, 20}, 0.0}, options, [&](const InstanceBatch& b) {
+      for (const auto& [x, y, z, yaw, scale, variant, tile] : collect(b)) {
+        const int i = static_cast<int>(std::floor(x / 2.0)) + 10, j = static_cast<int>(std::floor(y / 2.0)) + 10;
+        EXPECT_EQ(tile, tiling.at(i, j)) << "at tile (" << i - 10 << ", " << j - 10 << ")";
+        ++placed;
+      }
+    });
+    EXPECT_GT(placed, 100u);
+  }
+  for (int j = 0; j < 20; ++j)
+    for (int i = 0; i + 1 < 20; ++i) {
+      EXPECT_NE(tiling.at(i, j), tiling.at(i + 1, j));
+      EXPECT_NE(tiling.at(j, i), tiling.at(j, i + 1));
+    }
+}
+
 TEST(Placement, TileAndPointFiltersDropWhatTheyReject) {
   const FilledTileSet& filled = filled_set("cohen8");
   const FlatGround ground{{0, 0, 40, 40}, 1.0};
