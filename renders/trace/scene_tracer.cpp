@@ -32,6 +32,8 @@ struct SceneTracer::Impl {
   // bake_sky: per model, per vertex, the sky share of the front (the triangles' winding) and the
   // back, interpolated across a triangle (per triangle, a leaf showed its facets).
   std::vector<std::vector<std::array<float, 2>>> model_sky;
+  // bake_sky: per model, per triangle, its normal by winding (face_normal), which side a ray sees.
+  std::vector<std::vector<Vec3f>> model_faces;
   V3 origin{};
 
   void add_flowers(const Scene& scene, const InstanceBatch& batch) {
@@ -126,6 +128,7 @@ void SceneTracer::set_flowers(const InstanceStream& flowers) {
 
 void SceneTracer::bake_sky(const ShadingSettings& shading, int rays, int instances) {
   Impl& t = *impl_;
+  if (shading.ao_rays <= 0) return;  // a scene lit without sky rays sees the open sky
   const std::size_t models = scene_.models.size();
   // Up to `instances` flowers of each model, spread over the order they were placed in.
   std::vector<std::vector<std::size_t>> all(models), chosen(models);
@@ -136,8 +139,15 @@ void SceneTracer::bake_sky(const ShadingSettings& shading, int rays, int instanc
       if (chosen[v].empty() || chosen[v].back() != pick) chosen[v].push_back(pick);
     }
   t.model_sky.assign(models, {});
+  t.model_faces.assign(models, {});
   for (std::size_t v = 0; v < models; ++v) {
     const Mesh& mesh = scene_.models[v];
+    std::vector<Vec3f>& faces = t.model_faces[v];
+    faces.resize(mesh.triangles.size());
+    for (std::size_t p = 0; p < faces.size(); ++p) {
+      const auto& tri = mesh.triangles[p];
+      faces[p] = face_normal(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
+    }
     std::vector<std::array<float, 2>> sky(mesh.triangles.size(), {1.0f, 1.0f});  // per triangle
     t.model_sky[v].assign(mesh.positions.size(), {1.0f, 1.0f});
     if (chosen[v].empty()) continue;
@@ -148,15 +158,15 @@ void SceneTracer::bake_sky(const ShadingSettings& shading, int rays, int instanc
           for (std::size_t p = r.begin(); p != r.end(); ++p) {
             const auto& tri = mesh.triangles[p];
             const auto &a = mesh.positions[tri[0]], &b = mesh.positions[tri[1]], &c = mesh.positions[tri[2]];
-            Vec3f n = face_normal(a, b, c);
+            Vec3f n = faces[p];
             const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
             if (!(length > 0)) continue;  // degenerate: the open sky
             for (float& x : n) x /= length;
+            const float centre[3] = {(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3, (a[2] + b[2] + c[2]) / 3};
             for (int side = 0; side < 2; ++side) {
               float open = 0;
               for (const std::size_t f : chosen[v]) {
                 const float cy = t.cos_yaw[f], sy = t.sin_yaw[f], k = t.scale[f];
-                const float centre[3] = {(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3, (a[2] + b[2] + c[2]) / 3};
                 const Vec3f at{t.position[f][0] + k * (cy * centre[0] - sy * centre[1]),
                                t.position[f][1] + k * (sy * centre[0] + cy * centre[1]),
                                t.position[f][2] + k * centre[2]};
@@ -173,10 +183,9 @@ void SceneTracer::bake_sky(const ShadingSettings& shading, int rays, int instanc
     // To the vertices: the mean of the triangles around each, weighted by their areas.
     std::vector<std::array<double, 3>> sum(mesh.positions.size(), {0, 0, 0});  // front, back, weight
     for (std::size_t p = 0; p < mesh.triangles.size(); ++p) {
-      const auto& tri = mesh.triangles[p];
-      const Vec3f n = face_normal(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
+      const Vec3f& n = faces[p];
       const double area = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
-      for (const auto corner : tri) {
+      for (const auto corner : mesh.triangles[p]) {
         sum[corner][0] += area * sky[p][0];
         sum[corner][1] += area * sky[p][1];
         sum[corner][2] += area;
@@ -254,7 +263,7 @@ SurfaceSample SceneTracer::surface(const Hit& h, const V3& from, const V3& d, co
     if (!t.model_sky.empty()) {
       // The side the ray sees: the back where the triangle's winding faces away from the ray.
       const auto& tri = mesh.triangles[h.prim];
-      const Vec3f n = face_normal(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
+      const Vec3f& n = t.model_faces[t.variant[f]][h.prim];
       const double yawed[2] = {t.cos_yaw[f] * n[0] - t.sin_yaw[f] * n[1], t.sin_yaw[f] * n[0] + t.cos_yaw[f] * n[1]};
       const bool back = yawed[0] * d[0] + yawed[1] * d[1] + double(n[2]) * d[2] > 0;
       const auto& sky = t.model_sky[t.variant[f]];

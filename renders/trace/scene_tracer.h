@@ -32,10 +32,9 @@ class SceneTracer {
   void set_flowers(const InstanceStream& flowers);
   // For shading without sky rays (the view's near field): estimates the share of the sky each
   // side of each model triangle sees among the flowers traced now, from `rays` sky rays
-  // (`shading`'s ao_distance) per side spread over up to `instances` flowers of that model, so
-  // that a flower's surface() then carries it (SurfaceSample::sky; 1 before, and on the ground:
-  // the ground's own share, baked the same way on a 25 cm grid, changed the near field's frames
-  // by 0.02 dB and cost 40-150 ms each time the eye crossed into another window of tiles).
+  // (`shading`'s ao_distance) per side spread over up to `instances` flowers of that model, and
+  // carries it to the vertices, so that a flower's surface() then carries it, interpolated
+  // (SurfaceSample::sky; 1 before, on the ground, and when `shading` has no sky rays).
   // Self-shadowing and the neighbours' average are in it; one flower's own neighbours are not.
   void bake_sky(const ShadingSettings& shading, int rays = 32, int instances = 4);
   ~SceneTracer();

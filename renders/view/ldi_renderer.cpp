@@ -990,12 +990,11 @@ double LdiRenderer::place_near_field() {
                       std::ceil((m.eye[0] + margin) / s) * s, std::ceil((m.eye[1] + margin) / s) * s};
   if (!m.near_tracer) {
     const Extent& area = world.scene().field_area;
-    m.near_tracer = std::make_unique<SceneTracer>(
-        world.scene(), std::array<double, 3>{(area.min_x + area.max_x) / 2, (area.min_y + area.max_y) / 2, m.eye[2]},
-        SceneTracer::Layout::part);
+    const double cx = (area.min_x + area.max_x) / 2, cy = (area.min_y + area.max_y) / 2;
+    m.near_tracer = std::make_unique<SceneTracer>(world.scene(), std::array<double, 3>{cx, cy, m.eye[2]},
+                                                  SceneTracer::Layout::part);
     // The models' sky share among the flowers of one fixed place (the placed tile nearest the
     // field's centre), so that a frame does not depend on where the view started.
-    const double cx = (area.min_x + area.max_x) / 2, cy = (area.min_y + area.max_y) / 2;
     std::optional<std::array<double, 2>> sample_at;
     double best = std::numeric_limits<double>::infinity();
     for (std::int64_t j = 0; j < world.grid_height(); ++j)
@@ -1005,7 +1004,7 @@ double LdiRenderer::place_near_field() {
         const double d2 = (x - cx) * (x - cx) + (y - cy) * (y - cy);
         if (d2 < best) best = d2, sample_at = std::array<double, 2>{x, y};
       }
-    if (sample_at && world.sun_shading().ao_rays > 0) {  // (a scene without sky rays sees the open sky)
+    if (sample_at) {
       const auto [x, y] = *sample_at;
       const Extent sample_window{std::floor((x - margin) / s) * s, std::floor((y - margin) / s) * s,
                                  std::ceil((x + margin) / s) * s, std::ceil((y + margin) / s) * s};
