@@ -19,9 +19,13 @@ PlacementTable::PlacementTable(const FilledTileSet& filled) {
       yaw.push_back(p.yaw);
       scale.push_back(p.scale);
       variant.push_back(p.variant);
+      species.push_back(p.species);
+      rank.push_back(p.rank);
     }
     first.push_back(static_cast<std::uint32_t>(x.size()));
   }
+  for (std::size_t c = 0; c < std::max<std::size_t>(filled.classes.size(), 1); ++c)
+    class_variants.push_back(class_variant_range(filled, static_cast<int>(c)));
 }
 
 void resize_batch(InstanceBatch& batch, std::size_t n) {

@@ -12,6 +12,8 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "generator/ground.h"
@@ -68,6 +70,10 @@ struct PlacementTable {
   std::vector<std::uint32_t> first;  // tile t's points are [first[t], first[t+1])
   std::vector<float> x, y, yaw, scale;
   std::vector<std::uint16_t> variant;
+  std::vector<std::uint8_t> species;  // the point's class
+  std::vector<float> rank;            // progressive order in [0, 1) (TilePoint::rank)
+  // Per class: first variant and count (interior variation draws inside the point's class).
+  std::vector<std::pair<int, int>> class_variants;
   std::size_t max_points_per_tile = 0;
   explicit PlacementTable(const FilledTileSet& filled);
 };
@@ -105,7 +111,9 @@ void resize_batch(InstanceBatch& batch, std::size_t n);
 
 // Lays the tiling over `ground` and calls sink(const InstanceBatch&) once per batch.
 //  tile_filter(const TileCell&) -> bool: a tile is instantiated only if it holds;
-//  point_filter(x, y, z) -> bool (meters): an instance is kept only if it holds.
+//  point_filter(x, y, z) -> bool (meters), or point_filter(x, y, z, species, rank) -> bool (the
+//  point's class and progressive rank, for per-class rules and density): an instance is kept
+//  only if it holds.
 // Every instance gets z = ground.height(x, y); points where the ground has no height are dropped.
 // The filters and the ground are called from several threads at once.
 template <Ground G, class Sink, class TileFilter = KeepAllTiles, class PointFilter = KeepAllPoints>
@@ -176,16 +184,26 @@ PlacementStats place_instances(const FilledTileSet& filled, const G& ground, con
             for (std::uint32_t k = table.first[t]; k < table.first[t + 1]; ++k) {
               const double x = x0 + table.x[k] * s, y = y0 + table.y[k] * s;
               const std::optional<double> z = ground.height(x, y);
-              if (!z || !point_filter(x, y, *z)) continue;
+              if (!z) continue;
+              if constexpr (std::is_invocable_r_v<bool, PointFilter&, double, double, double, std::uint8_t, float>) {
+                if (!point_filter(x, y, *z, table.species[k], table.rank[k])) continue;
+              } else {
+                if (!point_filter(x, y, *z)) continue;
+              }
               ox[n] = static_cast<float>(x);
               oy[n] = static_cast<float>(y);
               oz[n] = static_cast<float>(*z);
               if (world) {
-                const PointAttributes a = world_point_attributes(world->seed, i, j, k - table.first[t], world->variants,
+                // One class: the options' variant count (as before classes); several: the
+                // point's class range.
+                const bool by_class = table.class_variants.size() > 1;
+                const auto [first_variant, variant_count] =
+                    by_class ? table.class_variants[table.species[k]] : std::pair{0, world->variants};
+                const PointAttributes a = world_point_attributes(world->seed, i, j, k - table.first[t], variant_count,
                                                                  world->min_scale, world->max_scale);
                 oyaw[n] = a.yaw;
                 oscale[n] = a.scale;
-                ovariant[n] = a.variant;
+                ovariant[n] = static_cast<std::uint16_t>(first_variant + a.variant);
               } else {
                 oyaw[n] = table.yaw[k];
                 oscale[n] = table.scale[k];

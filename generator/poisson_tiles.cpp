@@ -709,6 +709,12 @@ PoissonFillEstimate estimate_poisson_fill(const TileSet& set, const PoissonFillO
   return estimate;
 }
 
+std::pair<int, int> class_variant_range(const FilledTileSet& filled, int species) {
+  if (species >= 0 && static_cast<std::size_t>(species) < filled.class_variants.size())
+    return filled.class_variants[static_cast<std::size_t>(species)];
+  return {0, filled.variants};
+}
+
 double hexagonal_spacing(double area, double count) { return std::sqrt(2.0 * area / (std::sqrt(3.0) * count)); }
 
 PointAttributes point_attributes(std::uint64_t seed, std::uint32_t id, int variants, double min_scale,
@@ -898,6 +904,8 @@ FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& o
   filled.radius_packing = 0.5 * rep.final_min_distance * (1.0 - 1e-6);
   filled.radius_tight = tight;
   filled.shared_width = w;
+  filled.classes = {{filled.radius_packing, filled.radius_tight}};
+  filled.class_variants = {{0, filled.variants}};
   if (report) *report = rep;
   return filled;
 }

@@ -18,12 +18,25 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "generator/image.h"
 #include "generator/tileset.h"
 
 namespace wangscape {
+
+// One class (species) of a multi-class fill (Shade 2002, section 3, generalised to classes).
+// Two points of classes a and b keep at least packing_a + packing_b apart (plus the larger of
+// exclusion[a][b] and exclusion[b][a]) in every valid tiling, across every edge and corner.
+struct PoissonClass {
+  double share = 1;               // relative density: this class's share of points_per_tile (shares are normalised)
+  double packing_radius = 0;      // tile sides; 0 = from the class's own density like the single class (dart_rho)
+  double tight_radius = 0;        // tile sides; 0 = tight_fraction x packing radius. Never crosses a tile corner
+  int variants = 1;               // model variants; TilePoint::variant counts across classes (c's follow c-1's)
+  bool edge_objects = false;      // the class's points sit across edges (in the shared strips), never across a corner
+  std::vector<double> exclusion;  // optional, per other class k: extra minimum centre distance to k (tile sides)
+};
 
 struct PoissonFillOptions {
   // Target number of points whose centre lies in each tile.
@@ -47,6 +60,8 @@ struct PoissonFillOptions {
   // Per-point attributes: variant in 0..variants-1, yaw uniform in [0, 2 pi), scale uniform.
   int variants = 11;
   double min_scale = 0.85, max_scale = 1.15;
+  // Several classes sharing the tiles; empty = one class, the single-class fill (variants above).
+  std::vector<PoissonClass> classes;
 };
 
 struct TilePoint {
@@ -57,6 +72,9 @@ struct TilePoint {
   // The point's identity: the same id in several tiles is one replicated point, and its
   // attributes are a function of (seed, id) only.
   std::uint32_t id = 0;
+  std::uint8_t species = 0;  // the point's class (index into PoissonFillOptions::classes)
+  // Progressive order in [0, 1): the points with rank < d are Poisson at d x the density.
+  float rank = 0;
   bool operator==(const TilePoint&) const = default;
 };
 
@@ -66,9 +84,19 @@ struct FilledTileSet {
   double radius_packing = 0;  // half the minimum distance between points of any valid tiling (tile sides)
   double radius_tight = 0;    // flower extent; never crosses a tile corner in plain edge sets (tile sides)
   double shared_width = 0;    // width w of the shared edge strips and corner squares (tile sides)
-  int variants = 1;
+  int variants = 1;           // total over the classes
   std::vector<std::vector<TilePoint>> tiles;  // per tile of set.tiles, sorted by id
+  // Per class: its packing and tight radius (tile sides); one entry for a single-class fill.
+  struct ClassRadii {
+    double packing = 0, tight = 0;
+  };
+  std::vector<ClassRadii> classes;
+  // Per class: its first variant and its variant count (variants follow class by class).
+  std::vector<std::pair<int, int>> class_variants;
 };
+
+// Class `species`'s first variant and its number of variants (a single-class set: 0, variants).
+std::pair<int, int> class_variant_range(const FilledTileSet& filled, int species);
 
 // What the fill did, for benchmarks and the CLI.
 struct PoissonFillReport {
