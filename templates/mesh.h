@@ -40,6 +40,12 @@ struct MeshExtent {
   std::array<float, 3> max{};
 };
 
+// A generated model (grass clump, wildflower) and its extent: extent.radius is its tight radius.
+struct PlantModel {
+  Mesh mesh;
+  MeshExtent extent;
+};
+
 // Measures the extent of every vertex; an empty mesh gives all zeros.
 MeshExtent measure_extent(const Mesh& mesh);
 

@@ -152,4 +152,45 @@ inline Vec3 bent_arc(Vec3 origin, Vec3 out, Vec3 up, double length, double start
   return origin + (out * along + up * across) * length;
 }
 
+// Lets what hangs below the ground (a drooping leaf's tip, a blade bent over) lie on it: z = 0.
+inline void rest_on_ground(Mesh& mesh) {
+  for (auto& p : mesh.positions) p[2] = std::max(p[2], 0.0f);
+}
+
+// ---- flower heads ----
+
+// A ray petal, ligule or bract of a flower head.
+struct PetalShape {
+  double angle;   // radians around the head axis
+  double length;  // meters
+  double width;   // meters
+  double lift;    // radians, base angle out of the disk plane (+ toward the facing side)
+  double curl;    // radians, added bend toward the back over the petal's length
+  double twist;   // relative, tilts one edge forward and the other back
+};
+
+// Head frame: `right` x `up_in_disk` = facing.
+struct HeadFrame {
+  Vec3 center, facing, right, up_in_disk;
+  Vec3 radial(double angle) const { return right * std::cos(angle) + up_in_disk * std::sin(angle); }
+};
+
+// A ray petal or bract: leaves the head at `base` along radial direction `out`, bends back,
+// cupped and twisted; the front side faces `facing`.
+inline void add_petal(MeshBuilder& builder, const HeadFrame& head, const PetalShape& petal, Vec3 base, int rows,
+                      int columns, std::uint16_t material, double cup) {
+  const Vec3 out = head.radial(petal.angle);
+  const Vec3 across = cross(head.facing, out);
+  builder.sheet(rows, columns, material, [&](double s, double q01) {
+    const double q = 2 * q01 - 1;  // -1 .. 1 across the petal
+    const Vec3 axis = bent_arc(base, out, head.facing, petal.length, petal.lift, petal.curl, s);
+    const double angle = petal.lift + petal.curl * s;
+    const Vec3 front = head.facing * std::cos(angle) - out * std::sin(angle);
+    // Narrow at the base, widest a third of the way out, pointed (never zero: no slivers).
+    const double profile = std::max(0.12, std::pow(std::sin(kPi * std::pow(s, 0.65)), 0.8));
+    const double half_width = 0.5 * petal.width * profile;
+    return axis + across * (q * half_width) + front * (half_width * (cup * q * q + petal.twist * s * q));
+  });
+}
+
 }  // namespace wangscape::model_geometry
