@@ -30,15 +30,6 @@ struct LeafShape {
   double roll;            // radians, blade turned about its midrib
 };
 
-struct PetalShape {
-  double angle;   // radians around the head axis
-  double length;  // meters
-  double width;   // meters
-  double lift;    // radians, base angle out of the disk plane (+ toward the facing side)
-  double curl;    // radians, added bend toward the back over the petal's length
-  double twist;   // relative, tilts one edge forward and the other back
-};
-
 struct SunflowerShape {
   Vec3 head_center;         // meters
   Vec3 facing;              // unit
@@ -189,30 +180,6 @@ Tessellation plan_tessellation(const SunflowerShape& shape, std::size_t budget) 
   const std::size_t rest = budget - std::min(budget, non_floret_triangles(t, shape));
   t.floret_count = int(rest / kFloretSides);
   return t;
-}
-
-// Head frame: `right` x `up_in_disk` = facing.
-struct HeadFrame {
-  Vec3 center, facing, right, up_in_disk;
-  Vec3 radial(double angle) const { return right * std::cos(angle) + up_in_disk * std::sin(angle); }
-};
-
-// A ray petal or bract: leaves the head at `base` along radial direction `out`, bends back,
-// cupped and twisted; the front side faces `facing`.
-void add_petal(MeshBuilder& builder, const HeadFrame& head, const PetalShape& petal, Vec3 base, int rows, int columns,
-               SunflowerMaterial material, double cup) {
-  const Vec3 out = head.radial(petal.angle);
-  const Vec3 across = cross(head.facing, out);
-  builder.sheet(rows, columns, material, [&](double s, double q01) {
-    const double q = 2 * q01 - 1;  // -1 .. 1 across the petal
-    const Vec3 axis = bent_arc(base, out, head.facing, petal.length, petal.lift, petal.curl, s);
-    const double angle = petal.lift + petal.curl * s;
-    const Vec3 front = head.facing * std::cos(angle) - out * std::sin(angle);
-    // Narrow at the base, widest a third of the way out, pointed (never zero: no slivers).
-    const double profile = std::max(0.12, std::pow(std::sin(kPi * std::pow(s, 0.65)), 0.8));
-    const double half_width = 0.5 * petal.width * profile;
-    return axis + across * (q * half_width) + front * (half_width * (cup * q * q + petal.twist * s * q));
-  });
 }
 
 // ---- the parts ----
