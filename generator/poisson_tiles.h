@@ -89,6 +89,8 @@ struct FilledTileSet {
   // Per class: its packing and tight radius (tile sides); one entry for a single-class fill.
   struct ClassRadii {
     double packing = 0, tight = 0;
+    bool edge_objects = false;  // the class sits across edges (PoissonClass::edge_objects)
+    double spacing = 0;         // the least distance between two points of the class (tile sides)
   };
   std::vector<ClassRadii> classes;
   // Per class: its first variant and its variant count (variants follow class by class).
@@ -146,6 +148,9 @@ class TileAdjacency {
 // The smallest distance (tile sides) between two point instances of `filled` over every pair of
 // tiles that can be neighbours (across an edge or a corner) in a valid tiling, and within tiles.
 double min_distance_over_configurations(const FilledTileSet& filled);
+// The same per pair of classes: [a * classes + b] (symmetric; classes = the largest species + 1);
+// infinity where no two such points meet within a tile side.
+std::vector<double> class_min_distances(const FilledTileSet& filled);
 
 // The attributes of point `id` (a function of the identity only).
 struct PointAttributes {
