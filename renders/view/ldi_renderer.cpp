@@ -162,6 +162,53 @@ struct LdiRenderer::Impl {
     const V3 d{x, y, z};
     return {float(dot(d, right)), float(dot(d, up)), float(dot(d, forward))};
   }
+  // The farthest depth of each block of kOcclusionBlock x kOcclusionBlock pixels of block row
+  // `by` (infinity where a pixel holds nothing yet) into block_far, sized by size_blocks().
+  int blocks_wide() const { return (width + kOcclusionBlock - 1) / kOcclusionBlock; }
+  void size_blocks() {
+    block_far.assign(std::size_t(blocks_wide()) * std::size_t((height + kOcclusionBlock - 1) / kOcclusionBlock), 0.0f);
+  }
+  void measure_block_row(int by) {
+    float* far = block_far.data() + std::size_t(by) * std::size_t(blocks_wide());
+    std::fill(far, far + blocks_wide(), 0.0f);
+    for (int y = by * kOcclusionBlock; y < std::min(height, (by + 1) * kOcclusionBlock); ++y) {
+      const std::uint64_t* row = zbuffer.data() + std::size_t(y) * std::size_t(width);
+      for (int x = 0; x < width; ++x) {
+        const float depth = row[x] == kEmpty ? std::numeric_limits<float>::infinity()
+                                             : std::bit_cast<float>(std::uint32_t(row[x] >> 32));
+        far[x / kOcclusionBlock] = std::max(far[x / kOcclusionBlock], depth);
+      }
+    }
+  }
+  // True when every block the pixel box [x0, x1] x [y0, y1] meets (clamped to the screen; none
+  // when it is off the screen) holds only depths nearer than `nearest`: whatever lies there at
+  // `nearest` or beyond is hidden.
+  bool screen_box_hidden(int x0, int y0, int x1, int y1, float nearest) const {
+    const int bx0 = std::max(0, x0) / kOcclusionBlock, by0 = std::max(0, y0) / kOcclusionBlock;
+    const int bx1 = std::min(width - 1, x1) / kOcclusionBlock, by1 = std::min(height - 1, y1) / kOcclusionBlock;
+    for (int by = by0; by <= by1; ++by)
+      for (int bx = bx0; bx <= bx1; ++bx)
+        if (!(block_far[std::size_t(by) * std::size_t(blocks_wide()) + std::size_t(bx)] < nearest)) return false;
+    return true;
+  }
+  // The same for a box in the world, its screen box widened by `margin` pixels (false when it
+  // reaches behind the eye).
+  bool box_hidden(const std::array<double, 3>& low, const std::array<double, 3>& high, int margin) const {
+    float nearest = std::numeric_limits<float>::infinity();
+    float x0 = std::numeric_limits<float>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
+    for (int k = 0; k < 8; ++k) {
+      const auto c = to_camera(k & 1 ? high[0] : low[0], k & 2 ? high[1] : low[1], k & 4 ? high[2] : low[2]);
+      if (c[2] < kNear) return false;
+      nearest = std::min(nearest, c[2]);
+      const float px = cx + focal * c[0] / c[2], py = cy - focal * c[1] / c[2];
+      x0 = std::min(x0, px);
+      x1 = std::max(x1, px);
+      y0 = std::min(y0, py);
+      y1 = std::max(y1, py);
+    }
+    return screen_box_hidden(int(std::floor(x0)) - margin, int(std::floor(y0)) - margin, int(std::ceil(x1)) + margin,
+                             int(std::ceil(y1)) + margin, nearest);
+  }
   // True when all eight corners of the box lie outside one plane of the view frustum.
   bool box_outside_frustum(const std::array<double, 3>& low, const std::array<double, 3>& high) const {
     int outside[5] = {0, 0, 0, 0, 0};
@@ -569,10 +616,13 @@ void LdiRenderer::warp_tiles() {
         }
         m.depth_pixels += counted;
       });
-  // The threads' buffers merged into the frame's, row by row, and emptied for the next frame.
-  tbb::parallel_for(tbb::blocked_range<int>(0, m.height, 8), [&](const tbb::blocked_range<int>& r) {
-    const std::size_t begin = std::size_t(r.begin()) * std::size_t(m.width);
-    const std::size_t end = std::size_t(r.end()) * std::size_t(m.width);
+  // The threads' buffers merged into the frame's, a block row at a time, and emptied for the next
+  // frame; the block row's farthest depths measured while it is in cache (the terrain's
+  // occlusion test).
+  m.size_blocks();
+  tbb::parallel_for(0, int(m.block_far.size()) / m.blocks_wide(), [&](int by) {
+    const std::size_t begin = std::size_t(by) * kOcclusionBlock * std::size_t(m.width);
+    const std::size_t end = std::size_t(std::min(m.height, (by + 1) * kOcclusionBlock)) * std::size_t(m.width);
     for (ThreadDepths& depths : m.thread_depths) {
       if (!depths.written) continue;
       std::uint64_t* own = depths.entries.data();
@@ -581,6 +631,7 @@ void LdiRenderer::warp_tiles() {
         own[i] = kEmpty;
       }
     }
+    m.measure_block_row(by);
   });
   for (ThreadDepths& depths : m.thread_depths) depths.written = false;
 }
@@ -632,6 +683,9 @@ void LdiRenderer::draw_terrain() {
     const int y0 = std::max(0, int(std::floor(std::min({ay, by, cy})))),
               y1 = std::min(m.height - 1, int(std::ceil(std::max({ay, by, cy}))));
     if (x0 > x1 || y0 > y1) return;
+    // Ground wholly behind what the LDIs and the near field drew (most of it, inside the field).
+    const float nearest = std::min({a.z, b.z, c.z}) * (1 + kTerrainDepthBias);
+    if (m.screen_box_hidden(x0, y0, x1, y1, nearest)) return;
     const float inv_area = 1.0f / area;
     const float iza = 1 / a.z, izb = 1 / b.z, izc = 1 / c.z;
     // Per row, the span where the three weights are >= 0 (each is linear in x), widened by a
@@ -639,6 +693,12 @@ void LdiRenderer::draw_terrain() {
     // triangles have bounding boxes many times their area).
     const float slope_a = (by - cy) * inv_area, slope_b = (cy - ay) * inv_area, slope_c = -slope_a - slope_b;
     for (int py = y0; py <= y1; ++py) {
+      // A large triangle: its rows a block row at a time, skipped where that row is hidden.
+      if ((py == y0 || py % kOcclusionBlock == 0) && y1 - y0 >= kOcclusionBlock &&
+          m.screen_box_hidden(x0, py, x1, py, nearest)) {
+        py = (py / kOcclusionBlock + 1) * kOcclusionBlock - 1;
+        continue;
+      }
       const float fy = float(py) + 0.5f;
       const float wa0 = (bx * (cy - fy) - (by - fy) * cx) * inv_area,
                   wb0 = (cx * (ay - fy) - (cy - fy) * ax) * inv_area;
@@ -730,7 +790,7 @@ void LdiRenderer::draw_terrain() {
   for (std::uint32_t k = 0; k < terrain.chunks.size(); ++k) {
     const ViewWorld::Terrain::Chunk& chunk = terrain.chunks[k];
     const V3 low{chunk.low[0], chunk.low[1], chunk.low[2]}, high{chunk.high[0], chunk.high[1], chunk.high[2]};
-    if (m.box_outside_frustum(low, high)) continue;
+    if (m.box_outside_frustum(low, high) || m.box_hidden(low, high, 0)) continue;
     double squared = 0;
     for (std::size_t c = 0; c < 3; ++c) {
       const double d = std::max({low[c] - m.eye[c], m.eye[c] - high[c], 0.0});
@@ -895,48 +955,14 @@ std::uint64_t LdiRenderer::cull_occluded_tiles() {
   const ViewWorld::Tiles& tiles = world.tiles();
   const double s = world.tile_size();
   const float top = world.pack().info().prism_top;
-  // The farthest depth of each block of kOcclusionBlock x kOcclusionBlock pixels (infinity where
-  // a pixel holds nothing yet).
-  const int bw = (m.width + kOcclusionBlock - 1) / kOcclusionBlock,
-            bh = (m.height + kOcclusionBlock - 1) / kOcclusionBlock;
-  m.block_far.assign(std::size_t(bw) * std::size_t(bh), 0.0f);
-  tbb::parallel_for(tbb::blocked_range<int>(0, bh), [&](const tbb::blocked_range<int>& r) {
-    for (int by = r.begin(); by != r.end(); ++by)
-      for (int y = by * kOcclusionBlock; y < std::min(m.height, (by + 1) * kOcclusionBlock); ++y) {
-        const std::uint64_t* row = m.zbuffer.data() + std::size_t(y) * std::size_t(m.width);
-        for (int x = 0; x < m.width; ++x) {
-          float& far = m.block_far[std::size_t(by) * std::size_t(bw) + std::size_t(x / kOcclusionBlock)];
-          const float depth = row[x] == kEmpty ? std::numeric_limits<float>::infinity()
-                                               : std::bit_cast<float>(std::uint32_t(row[x] >> 32));
-          far = std::max(far, depth);
-        }
-      }
-  });
+  m.size_blocks();
+  tbb::parallel_for(0, int(m.block_far.size()) / m.blocks_wide(), [&](int by) { m.measure_block_row(by); });
   const std::size_t before = order_.size();
+  // Splats reach past the projected box by up to kMaxSplat pixels.
   std::erase_if(order_, [&](std::uint32_t t) {
     const std::array<double, 3> low{tiles.x0[t], tiles.y0[t], double(tiles.z_min[t]) - 0.01};
     const std::array<double, 3> high{tiles.x0[t] + s, tiles.y0[t] + s, double(tiles.z_max[t]) + top};
-    float nearest = std::numeric_limits<float>::infinity();
-    float x0 = std::numeric_limits<float>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
-    for (int k = 0; k < 8; ++k) {
-      const auto c = m.to_camera(k & 1 ? high[0] : low[0], k & 2 ? high[1] : low[1], k & 4 ? high[2] : low[2]);
-      if (c[2] < kNear) return false;  // reaches behind the eye: no screen box to test
-      nearest = std::min(nearest, c[2]);
-      const float px = m.cx + m.focal * c[0] / c[2], py = m.cy - m.focal * c[1] / c[2];
-      x0 = std::min(x0, px);
-      x1 = std::max(x1, px);
-      y0 = std::min(y0, py);
-      y1 = std::max(y1, py);
-    }
-    // Splats reach past the projected box by up to kMaxSplat pixels.
-    const int bx0 = std::max(0, int(std::floor(x0)) - kMaxSplat) / kOcclusionBlock;
-    const int by0 = std::max(0, int(std::floor(y0)) - kMaxSplat) / kOcclusionBlock;
-    const int bx1 = std::min(m.width - 1, int(std::ceil(x1)) + kMaxSplat) / kOcclusionBlock;
-    const int by1 = std::min(m.height - 1, int(std::ceil(y1)) + kMaxSplat) / kOcclusionBlock;
-    for (int by = by0; by <= by1; ++by)
-      for (int bx = bx0; bx <= bx1; ++bx)
-        if (!(m.block_far[std::size_t(by) * std::size_t(bw) + std::size_t(bx)] < nearest)) return false;
-    return true;
+    return m.box_hidden(low, high, kMaxSplat);
   });
   return before - order_.size();
 }
