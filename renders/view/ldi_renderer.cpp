@@ -455,7 +455,8 @@ void LdiRenderer::choose_tiles() {
     // eye, a one-layer LDI's samples cover the tile's top; from lower, they stand on its near side with a gap behind
     // (the streaks along the tile grid).
     const double rise = m.eye[2] - ground - 0.5 * top;
-    const double horizontal = std::hypot(x0 + s / 2 - m.eye[0], y0 + s / 2 - m.eye[1]);
+    const double hx = x0 + s / 2 - m.eye[0], hy = y0 + s / 2 - m.eye[1];
+    const double horizontal = std::sqrt(hx * hx + hy * hy);
     const double view_elevation = std::atan2(rise, horizontal) * 180 / std::numbers::pi;
     m.steep[t] = m.steep_low[t] = 0;
     m.steep_low_weight[t] = 0;
@@ -478,7 +479,7 @@ void LdiRenderer::choose_tiles() {
     m.far_from[t] = a >= drawn_levels ? 0.0f : (a + 1 == drawn_levels ? 1.0f - wb : 2.0f);
 
     // Direction: the two whose rays are closest to the view ray (largest dot products).
-    const double vx = x0 + s / 2 - m.eye[0], vy = y0 + s / 2 - m.eye[1], vn = std::hypot(vx, vy);
+    const double vx = x0 + s / 2 - m.eye[0], vy = y0 + s / 2 - m.eye[1], vn = std::sqrt(vx * vx + vy * vy);
     const double ux = vn > 1e-9 ? vx / vn : m.forward[0], uy = vn > 1e-9 ? vy / vn : m.forward[1];
     std::uint32_t best = 0, second = 0;
     double best_dot = -2, second_dot = -2;
@@ -971,7 +972,7 @@ std::uint64_t LdiRenderer::cull_occluded_tiles() {
 // meets the terrain first: unlimited).
 static double reach_along(const V3& d, double reach) {
   if (std::isinf(reach)) return reach;
-  const double across = std::hypot(d[0], d[1]);
+  const double across = std::sqrt(d[0] * d[0] + d[1] * d[1]);
   return across > 1e-9 ? reach / across : std::numeric_limits<double>::infinity();
 }
 
