@@ -1173,14 +1173,45 @@ FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& o
   return filled;
 }
 
+namespace {
+
+// The points a tile shows: its own, and the edge objects of the tiles across its edges whose
+// discs reach into it (the same for every tile that can sit there), shifted into its frame.
+std::vector<TilePoint> points_shown(const FilledTileSet& filled, const TileAdjacency& adjacency, std::size_t t) {
+  std::vector<TilePoint> shown = filled.tiles[t];
+  for (const auto& [dx, dy] : kDirections) {
+    if (dx != 0 && dy != 0) continue;
+    const auto across = adjacency.neighbours(t, dx, dy);
+    if (across.empty()) continue;
+    for (TilePoint p : filled.tiles[across.front()]) {
+      if (p.species >= filled.classes.size() || !filled.classes[p.species].edge_objects) continue;
+      p.x += static_cast<float>(dx);
+      p.y += static_cast<float>(dy);
+      const double to_edge = dx != 0 ? std::abs(p.x - (dx > 0 ? 1.0 : 0.0)) : std::abs(p.y - (dy > 0 ? 1.0 : 0.0));
+      if (to_edge < filled.classes[p.species].tight) shown.push_back(p);
+    }
+  }
+  return shown;
+}
+
+}  // namespace
+
 ImageRgb8 draw_filled_tileset_sheet(const FilledTileSet& filled, int tile_pixels) {
   ImageRgb8 image = draw_tileset_sheet(filled.set, tile_pixels);
+  const TileAdjacency adjacency(filled.set);
+  // Class 0 green (the single-class sheet), then yellow flowers, grey-brown boulders, ...
+  constexpr std::array<Rgb8, 4> kClassColors = {{{40, 130, 40}, {215, 175, 20}, {120, 100, 85}, {60, 90, 190}}};
+  auto radii = [&](std::uint8_t species) {
+    if (species < filled.classes.size()) return filled.classes[species];
+    return FilledTileSet::ClassRadii{filled.radius_packing, filled.radius_tight, false, 2 * filled.radius_packing};
+  };
   // The same grid as draw_tileset_sheet (tiling_preview.cpp): columns ~ sqrt(n), gap, pitch.
   const int count = static_cast<int>(filled.set.size());
   const int columns = std::clamp(static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count)))), 1, 16);
   const int gap = std::max(2, tile_pixels / 8);
   const int pitch = tile_pixels + gap;
   for (int t = 0; t < count; ++t) {
+    const std::vector<TilePoint> shown = points_shown(filled, adjacency, static_cast<std::size_t>(t));
     const int x0 = gap + (t % columns) * pitch, y0 = gap + (t / columns) * pitch;
     for (int y = 0; y < tile_pixels; ++y)
       for (int x = 0; x < tile_pixels; ++x) {
@@ -1188,11 +1219,12 @@ ImageRgb8 draw_filled_tileset_sheet(const FilledTileSet& filled, int tile_pixels
         c = {static_cast<std::uint8_t>(255 - (255 - c.r) * 2 / 5), static_cast<std::uint8_t>(255 - (255 - c.g) * 2 / 5),
              static_cast<std::uint8_t>(255 - (255 - c.b) * 2 / 5)};
         const double u = (x + 0.5) / tile_pixels, v = 1.0 - (y + 0.5) / tile_pixels;  // tile-local, y north
-        for (const TilePoint& p : filled.tiles[static_cast<std::size_t>(t)]) {
+        for (const TilePoint& p : shown) {
           const double r = std::hypot(u - p.x, v - p.y);
-          if (r < filled.radius_tight)
-            c = {40, 130, 40};
-          else if (std::abs(r - filled.radius_packing) < 0.6 / tile_pixels)
+          const FilledTileSet::ClassRadii radius = radii(p.species);
+          if (r < radius.tight)
+            c = kClassColors[p.species % kClassColors.size()];
+          else if (std::abs(r - radius.packing) < 0.6 / tile_pixels)
             c = {30, 30, 30};
         }
         image.set(x0 + x, y0 + y, c);
