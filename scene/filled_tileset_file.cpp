@@ -65,6 +65,21 @@ Json filled_tileset_to_json(const FilledTileSet& filled) {
   document["radius_tight"] = filled.radius_tight;
   document["shared_width"] = filled.shared_width;
   document["variants"] = filled.variants;
+  // Several classes (species): each one's radii and variants (one class needs none: the above).
+  if (filled.classes.size() > 1) {
+    Json classes = Json::array();
+    for (std::size_t c = 0; c < filled.classes.size(); ++c) {
+      const auto& radii = filled.classes[c];
+      const auto [first, count] = class_variant_range(filled, int(c));
+      classes.push_back({{"packing", radii.packing},
+                         {"tight", radii.tight},
+                         {"edge_objects", radii.edge_objects},
+                         {"spacing", radii.spacing},
+                         {"first_variant", first},
+                         {"variants", count}});
+    }
+    document["classes"] = std::move(classes);
+  }
   for (std::size_t t = 0; t < filled.tiles.size(); ++t) {
     Json points = Json::array();
     for (const TilePoint& p : filled.tiles[t]) {
@@ -76,6 +91,8 @@ Json filled_tileset_to_json(const FilledTileSet& filled) {
       point["variant"] = p.variant;
       point["yaw"] = static_cast<double>(p.yaw);
       point["scale"] = static_cast<double>(p.scale);
+      point["rank"] = static_cast<double>(p.rank);
+      if (filled.classes.size() > 1) point["species"] = p.species;
       points.push_back(std::move(point));
     }
     tiles[t]["points"] = std::move(points);
@@ -105,6 +122,32 @@ FilledTileSet filled_tileset_from_json(const Json& document, std::string_view so
       static_cast<int>(integer_in(required(document, "variants", at, "an integer"), at, "variants", 65535));
   if (filled.variants < 1) throw Error(at + ": \"variants\" is 0; expected at least 1");
 
+  if (const auto it = document.find("classes"); it != document.end()) {
+    if (!it->is_array() || it->size() < 2 || it->size() > 255)
+      throw Error(at + ": \"classes\" is " + json_text(*it) + "; expected an array of 2 to 255 classes");
+    for (std::size_t c = 0; c < it->size(); ++c) {
+      const std::string class_at = at + ": class " + std::to_string(c);
+      const Json& k = (*it)[c];
+      if (!k.is_object()) throw Error(class_at + " is " + json_text(k) + "; expected an object");
+      FilledTileSet::ClassRadii radii;
+      radii.packing = number_in(required(k, "packing", class_at, "a number"), class_at, "packing", 0.0, 0.5, false);
+      radii.tight = number_in(required(k, "tight", class_at, "a number"), class_at, "tight", 0.0, 0.5, false);
+      radii.spacing = number_in(required(k, "spacing", class_at, "a number"), class_at, "spacing", 0.0, 1.0, false);
+      const Json& edge = required(k, "edge_objects", class_at, "true or false");
+      if (!edge.is_boolean())
+        throw Error(class_at + ": \"edge_objects\" is " + json_text(edge) + "; expected true or false");
+      radii.edge_objects = edge.get<bool>();
+      const auto first = integer_in(required(k, "first_variant", class_at, "an integer"), class_at, "first_variant",
+                                    std::uint64_t(filled.variants - 1));
+      const auto count = integer_in(required(k, "variants", class_at, "an integer"), class_at, "variants",
+                                    std::uint64_t(filled.variants) - first);
+      if (count < 1) throw Error(class_at + ": \"variants\" is 0; expected at least 1");
+      filled.classes.push_back(radii);
+      filled.class_variants.emplace_back(int(first), int(count));
+    }
+  }
+  const std::uint64_t last_species = filled.classes.empty() ? 0 : filled.classes.size() - 1;
+
   const Json& tiles = document["tiles"];
   filled.tiles.resize(tiles.size());
   for (std::size_t t = 0; t < tiles.size(); ++t) {
@@ -124,6 +167,11 @@ FilledTileSet filled_tileset_from_json(const Json& document, std::string_view so
                                                          "variant", static_cast<std::uint64_t>(filled.variants - 1)));
       tp.yaw = float_in(required(p, "yaw", point_at, "a number"), point_at, "yaw", -7.0, 7.0, false);
       tp.scale = float_in(required(p, "scale", point_at, "a number"), point_at, "scale", 1e-6, 1e6, false);
+      // Both optional: files written before classes and ranks hold one class, every point rank 0.
+      if (const auto rank = p.find("rank"); rank != p.end())
+        tp.rank = float_in(*rank, point_at, "rank", 0.0, 1.0, true);
+      if (const auto species = p.find("species"); species != p.end())
+        tp.species = static_cast<std::uint8_t>(integer_in(*species, point_at, "species", last_species));
       filled.tiles[t].push_back(tp);
     }
   }

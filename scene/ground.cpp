@@ -1,5 +1,8 @@
 #include "scene/ground.h"
 
+#include <map>
+#include <tuple>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -127,6 +130,12 @@ std::optional<double> SceneGround::slope_degrees(double x, double y) const {
   return impl_->terrain ? impl_->terrain->slope_degrees(x, y) : impl_->flat.slope_degrees(x, y);
 }
 
+std::optional<std::array<double, 3>> SceneGround::normal(double x, double y) const {
+  if (!impl_->area.contains(x, y)) return std::nullopt;
+  if (!impl_->terrain) return std::array<double, 3>{0, 0, 1};
+  return impl_->terrain->normal(x, y);
+}
+
 double SceneGround::height_or_error(double x, double y) const {
   if (const auto z = height(x, y)) return *z;
   const Extent& e = impl_->area;
@@ -185,11 +194,89 @@ Mesh SceneGround::mesh(std::size_t max_vertices) const {
   return mesh;
 }
 
+void SceneGround::refine_mesh(Mesh& mesh, const Extent& over, int k) const {
+  if (!impl_->terrain || k < 2) return;
+  const std::size_t triangle_count = mesh.triangles.size();
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<std::uint16_t> materials;
+  triangles.reserve(triangle_count);
+  materials.reserve(triangle_count);
+  // Vertices on original edges, by (lower vertex, higher vertex, steps from the lower one).
+  std::map<std::tuple<std::uint32_t, std::uint32_t, int>, std::uint32_t> edge_vertices;
+  const auto add_vertex = [&](double x, double y, double fallback_z) {
+    const auto z = height(x, y);
+    const auto n = normal(x, y);
+    mesh.positions.push_back({float(x), float(y), float(z.value_or(fallback_z))});
+    mesh.normals.push_back(n ? std::array<float, 3>{float((*n)[0]), float((*n)[1]), float((*n)[2])}
+                             : std::array<float, 3>{0, 0, 1});
+    return std::uint32_t(mesh.positions.size() - 1);
+  };
+  // The vertex `step` k-ths of the way from u to v, shared by the two triangles of the edge and
+  // computed from the lower index so both get the same bits.
+  const auto edge_vertex = [&](std::uint32_t u, std::uint32_t v, int step) {
+    if (step == 0) return u;
+    if (step == k) return v;
+    if (u > v) {
+      std::swap(u, v);
+      step = k - step;
+    }
+    const auto key = std::tuple{u, v, step};
+    if (const auto found = edge_vertices.find(key); found != edge_vertices.end()) return found->second;
+    const auto pu = mesh.positions[u], pv = mesh.positions[v];
+    const double t = double(step) / k;
+    const std::uint32_t w =
+        add_vertex(pu[0] + (pv[0] - pu[0]) * t, pu[1] + (pv[1] - pu[1]) * t, pu[2] + (pv[2] - pu[2]) * t);
+    edge_vertices.emplace(key, w);
+    return w;
+  };
+  std::vector<std::uint32_t> grid;
+  for (std::size_t t = 0; t < triangle_count; ++t) {
+    const auto [a, b, c] = mesh.triangles[t];
+    const auto pa = mesh.positions[a], pb = mesh.positions[b], pc = mesh.positions[c];
+    const Extent box{std::min({pa[0], pb[0], pc[0]}), std::min({pa[1], pb[1], pc[1]}), std::max({pa[0], pb[0], pc[0]}),
+                     std::max({pa[1], pb[1], pc[1]})};
+    if (box.intersected(over).empty()) {
+      triangles.push_back(mesh.triangles[t]);
+      materials.push_back(mesh.triangle_material[t]);
+      continue;
+    }
+    // Barycentric lattice: node (i, j) = a + i/k (b - a) + j/k (c - a), i + j <= k.
+    grid.assign(std::size_t(k + 1) * (k + 1), 0);
+    const auto node = [&](int i, int j) -> std::uint32_t& { return grid[std::size_t(j) * (k + 1) + i]; };
+    for (int j = 0; j <= k; ++j)
+      for (int i = 0; i + j <= k; ++i) {
+        if (j == 0)
+          node(i, j) = edge_vertex(a, b, i);
+        else if (i == 0)
+          node(i, j) = edge_vertex(a, c, j);
+        else if (i + j == k)
+          node(i, j) = edge_vertex(b, c, j);
+        else {
+          const double wb = double(i) / k, wc = double(j) / k, wa = 1 - wb - wc;
+          node(i, j) = add_vertex(wa * pa[0] + wb * pb[0] + wc * pc[0], wa * pa[1] + wb * pb[1] + wc * pc[1],
+                                  wa * pa[2] + wb * pb[2] + wc * pc[2]);
+        }
+      }
+    for (int j = 0; j < k; ++j)
+      for (int i = 0; i + j < k; ++i) {
+        triangles.push_back({node(i, j), node(i + 1, j), node(i, j + 1)});
+        materials.push_back(mesh.triangle_material[t]);
+        if (i + j + 1 < k) {
+          triangles.push_back({node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)});
+          materials.push_back(mesh.triangle_material[t]);
+        }
+      }
+  }
+  mesh.triangles = std::move(triangles);
+  mesh.triangle_material = std::move(materials);
+}
+
 PlacementStats SceneGround::place(const FilledTileSet& filled, const PlacementOptions& options,
                                   const std::function<void(const InstanceBatch&)>& sink,
-                                  const std::function<bool(const TileCell&)>& also) const {
+                                  const std::function<bool(const TileCell&)>& also, const PointRule& point_rule) const {
   const Impl& impl = *impl_;
   const auto asked = [&](const TileCell& cell) { return !also || also(cell); };
+  if (point_rule) return place_by_rule(filled, options, sink, asked, point_rule);
   if (!impl.terrain)  // the plane passed the masks at load
     return place_instances(filled, *this, options, sink, asked);
   const TerrainFilter& filter = *impl.filter;
@@ -202,6 +289,25 @@ PlacementStats SceneGround::place(const FilledTileSet& filled, const PlacementOp
   return place_instances(
       filled, *this, options, sink,
       [&](const TileCell& cell) { return asked(cell) && filter.tile_passes(cell.bounds); }, KeepAllPoints{});
+}
+
+// place() with a rule per point (species): the masks as place() applies them, then the rule.
+template <class TileTest>
+PlacementStats SceneGround::place_by_rule(const FilledTileSet& filled, const PlacementOptions& options,
+                                          const std::function<void(const InstanceBatch&)>& sink, const TileTest& asked,
+                                          const PointRule& point_rule) const {
+  const Impl& impl = *impl_;
+  const TerrainFilter* filter = impl.filter ? &*impl.filter : nullptr;
+  const bool fair = impl.masks.fair_edges;
+  return place_instances(
+      filled, *this, options, sink,
+      [&](const TileCell& cell) {
+        return asked(cell) &&
+               (!filter || (fair ? filter->tile_may_pass(cell.bounds) : filter->tile_passes(cell.bounds)));
+      },
+      [&](double x, double y, double z, std::uint8_t species, float rank) {
+        return (!filter || !fair || filter->point_passes(x, y, z)) && point_rule(x, y, z, species, rank);
+      });
 }
 
 bool SceneGround::flowers_grow_at(double x, double y, double z, const Extent& tile) const {

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -34,6 +35,8 @@ class SceneGround {
   Extent extent() const;
   std::optional<double> height(double x, double y) const;
   std::optional<double> slope_degrees(double x, double y) const;
+  // The ground's unit normal (pointing up) at ENU (x, y); +z on flat ground.
+  std::optional<std::array<double, 3>> normal(double x, double y) const;
 
   // The ground height at ENU (x, y) (meters, orthometric as the DEM stores it). Throws Error
   // naming the ground and why it has none there: beyond its extent (given in the message), or a
@@ -51,14 +54,25 @@ class SceneGround {
   // to stay within `max_vertices`), with smooth normals.
   Mesh mesh(std::size_t max_vertices = 1'000'000) const;
 
+  // Subdivides every triangle of `mesh` (this ground's mesh()) whose box meets `over` into
+  // k x k triangles whose new vertices stand on the ground's bilinear surface, the one
+  // placement sets flowers on: a plant a few centimetres tall sinks into a DEM cell's two flat
+  // triangles otherwise (they stray from the bilinear surface by up to a quarter of the cell's
+  // twist). Vertices on a shared edge are shared; a cell edge is straight on both surfaces, so
+  // no crack opens against the triangles left as they were. Nothing happens on flat ground.
+  void refine_mesh(Mesh& mesh, const Extent& over, int k) const;
+
   // Lays the filled tiles over the ground (placement.h) and streams the instances that pass
   // the masks: with fair edges, every tile that may pass is laid and each flower is kept only
   // if its own ground passes (the border follows the contour); without, only tiles whose whole
   // ground passes (Shade 2002, a staircase along the contour). Thread-safe.
   // `also` (optional) is asked first about every tile: a tile it refuses is never laid.
+  // `point_rule` (optional) is asked about every point the masks keep, with its species and
+  // rank (scene/species.h): a point it refuses is dropped.
+  using PointRule = std::function<bool(double x, double y, double z, std::uint8_t species, float rank)>;
   PlacementStats place(const FilledTileSet& filled, const PlacementOptions& options,
                        const std::function<void(const InstanceBatch&)>& sink,
-                       const std::function<bool(const TileCell&)>& also = {}) const;
+                       const std::function<bool(const TileCell&)>& also = {}, const PointRule& point_rule = {}) const;
   // Whether the masks let a flower grow at (x, y) on ground `z` high, in the tile `tile`
   // (the tile's whole ground is tested without fair edges, as place does).
   bool flowers_grow_at(double x, double y, double z, const Extent& tile) const;
@@ -79,6 +93,10 @@ class SceneGround {
   std::string description() const;
 
  private:
+  template <class TileTest>
+  PlacementStats place_by_rule(const FilledTileSet& filled, const PlacementOptions& options,
+                               const std::function<void(const InstanceBatch&)>& sink, const TileTest& asked,
+                               const PointRule& point_rule) const;
   struct Impl;
   std::shared_ptr<const Impl> impl_;
 };

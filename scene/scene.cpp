@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "core/number_text.h"
@@ -21,6 +22,9 @@ namespace {
 void say(const StageObserver& stage, const std::string& message) {
   if (stage) stage(message);
 }
+
+// DEM cells under a field of species are cut into this many triangles a side (30 m cells: 4 m).
+constexpr int kSpeciesGroundSubdivisions = 8;
 
 // ---- models ---------------------------------------------------------------------------------
 
@@ -68,7 +72,8 @@ void fill_field_tiles(SceneField& field, const SceneConfig& config, const TileSe
 }
 
 std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGround& ground, std::size_t model_count,
-                                       const StageObserver& stage, const FilledTileSet* prefilled) {
+                                       const std::vector<double>& species_radii, const StageObserver& stage,
+                                       const FilledTileSet* prefilled) {
   auto field = std::make_shared<SceneField>();
   field->ground = ground;
   Extent area = ground.extent();
@@ -100,6 +105,10 @@ std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGro
   fill.variants = int(std::max<std::size_t>(1, model_count));
   fill.min_scale = 1.0 - config.models.scale_jitter;
   fill.max_scale = 1.0 + config.models.scale_jitter;
+  if (!config.species.empty()) {
+    fill.classes = species_classes(config, species_radii);
+    field->species = std::make_shared<const SpeciesRules>(config, ground);
+  }
   TileSet set;
   try {
     set = load_tileset(config.tiles.set);  // a built-in name, or a tile-set JSON file
@@ -326,19 +335,24 @@ FieldReport SceneField::place_window(const std::optional<Extent>& window, const 
     }
     if (!out.empty()) sink(out);
   };
+  SceneGround::PointRule rule;
+  if (species)
+    rule = [rules = species.get()](double x, double y, double z, std::uint8_t s, float rank) {
+      return rules->keeps(x, y, z, s, rank);
+    };
   PlacementStats stats;
   if (view) {
     PlacementOptions windowed = placement;
     windowed.window = window ? window->intersected(view->window()) : view->window();
-    stats = ground.place(filled, windowed, pass_on, in_view);
+    stats = ground.place(filled, windowed, pass_on, in_view, rule);
     report.visible_tiles = visible.load();
   } else if (window) {
     PlacementOptions windowed = placement;
     windowed.window = *window;
-    stats = ground.place(filled, windowed, pass_on);
+    stats = ground.place(filled, windowed, pass_on, {}, rule);
     report.visible_tiles = report.field_tiles;
   } else {
-    stats = ground.place(filled, placement, pass_on);
+    stats = ground.place(filled, placement, pass_on, {}, rule);
     report.visible_tiles = report.field_tiles;
   }
   report.placed_tiles = stats.tiles_kept;
@@ -361,21 +375,38 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage, const Sc
   scene.terrain = ground.mesh();
   scene.georeference = ground.georeference();
 
-  say(stage, config.models.mesh.empty()
-                 ? "building " + std::to_string(config.models.variants) + " sunflower variants (" +
-                       std::to_string(config.models.triangle_budget) + " triangles each)"
-                 : "loading model " + config.models.mesh.string());
-  scene.models = make_models(config.models);
+  std::vector<double> species_radii;  // meters, each species' largest model extent
+  if (config.species.empty()) {
+    say(stage, config.models.mesh.empty()
+                   ? "building " + std::to_string(config.models.variants) + " sunflower variants (" +
+                         std::to_string(config.models.triangle_budget) + " triangles each)"
+                   : "loading model " + config.models.mesh.string());
+    scene.models = make_models(config.models);
+  } else {
+    say(stage, "building the models of " + std::to_string(config.species.size()) + " species");
+    scene.models = make_species_models(config, std::numeric_limits<std::size_t>::max(), &species_radii);
+  }
 
-  const auto field = make_field(config, ground, scene.models.size(), stage, prebuilt ? &prebuilt->filled : nullptr);
+  const auto field =
+      make_field(config, ground, scene.models.size(), species_radii, stage, prebuilt ? &prebuilt->filled : nullptr);
   scene.field = field;
   scene.field_area = *field->placement.area;
+  // Plants a few centimetres tall must stand on the mesh the renderers draw, not under it.
+  if (!config.species.empty()) ground.refine_mesh(scene.terrain, scene.field_area, kSpeciesGroundSubdivisions);
   scene.camera = make_camera(config, ground, scene.field_area);
   scene.sun = make_sun(config, ground);
   if (camera_aware(config)) {
     field->view = make_view(config, *field, scene);
     check_visible_flowers(config, *field);
-    if (config.models.mesh.empty()) {
+    if (!config.species.empty()) {
+      say(stage, "building the proxies of " + std::to_string(config.species.size()) + " species (at most " +
+                     std::to_string(config.camera_aware.proxy_triangles) + " triangles each)");
+      field->proxy_offset = scene.models.size();
+      for (auto& model : make_species_models(config, config.camera_aware.proxy_triangles)) {
+        model.name += " proxy";
+        scene.models.push_back(std::move(model));
+      }
+    } else if (config.models.mesh.empty()) {
       say(stage, "building " + std::to_string(config.models.variants) + " proxy sunflowers (" +
                      std::to_string(config.camera_aware.proxy_triangles) + " triangles each)");
       ModelsConfig proxies = config.models;

@@ -20,6 +20,7 @@
 #include "scene/ground.h"
 #include "scene/ground_look.h"
 #include "scene/scene_file.h"
+#include "scene/species.h"
 #include "scene/sun.h"
 #include "templates/mesh.h"
 
@@ -69,6 +70,8 @@ struct SceneField {
   // flowers between near and far become variant + proxy_offset, beyond far none. Empty: all.
   std::shared_ptr<const CameraView> view;
   std::size_t proxy_offset = 0;  // 0: no proxies (the full models go on to far)
+  // [[species]]: each point is kept only where its species' rules and density let it grow.
+  std::shared_ptr<const SpeciesRules> species;
 
   // Places every instance (thread-safe, deterministic).
   FieldReport place(const InstanceSink& sink) const;

@@ -19,6 +19,7 @@
 #include "core/text_file.h"
 #include "core/vecmath.h"
 #include "generator/poisson_tiles.h"
+#include "templates/plants.h"
 #include "templates/sunflower.h"
 
 namespace wangscape {
@@ -298,6 +299,151 @@ void read_models(Section s, SceneConfig& config) {
   s.reject_unknown();
 }
 
+// ---- [[species]] ----
+
+// [[x, y], ...]: at least one pair, x strictly increasing, y in [0, 1] (a density).
+std::vector<std::array<double, 2>> read_density_curve(Section& s, std::string_view key, std::string_view x_unit) {
+  std::vector<std::array<double, 2>> curve;
+  const auto* node = s.node(key);
+  if (!node) return curve;
+  const std::string expected =
+      "must be an array of [" + std::string(x_unit) + ", density] pairs, e.g. [[1000, 1], [1300, 0]]";
+  const auto* array = node->as_array();
+  if (!array || array->empty()) s.fail(*node, key, expected);
+  for (const auto& item : *array) {
+    const auto* pair = item.as_array();
+    if (!pair || pair->size() != 2) s.fail(item, key, expected);
+    std::array<double, 2> point{};
+    for (std::size_t i = 0; i < 2; ++i) {
+      const auto& v = *pair->get(i);
+      if (!(v.is_integer() || v.is_floating_point()) || !std::isfinite(*v.value<double>())) s.fail(v, key, expected);
+      point[i] = *v.value<double>();
+    }
+    if (point[1] < 0 || point[1] > 1) s.fail(item, key, "holds density " + number_text(point[1]) + "; expected 0 to 1");
+    if (!curve.empty() && !(point[0] > curve.back()[0]))
+      s.fail(item, key,
+             "must have increasing " + std::string(x_unit) + " (" + number_text(point[0]) + " follows " +
+                 number_text(curve.back()[0]) + ")");
+    curve.push_back(point);
+  }
+  return curve;
+}
+
+// Reads optional `min_key` and `max_key` in [lo, hi]; min must not be above max.
+void read_limits(Section& s, const char* min_key, const char* max_key, std::optional<double>& min,
+                 std::optional<double>& max, double lo, double hi) {
+  if (s.read(min_key, min)) s.check_range(min_key, *min, lo, hi);
+  if (s.read(max_key, max)) s.check_range(max_key, *max, lo, hi);
+  if (min && max && *min > *max) s.fail(*s.node(min_key), min_key, std::string("must not be above ") + max_key);
+}
+
+// The model of a species: a plant kind, or a mesh file with its up axis.
+void read_species_model(Section& s, SpeciesConfig& species, const SceneConfig& config) {
+  if (s.read("model", species.model) && !find_plant_kind(species.model)) {
+    const bool looks_like_file =
+        species.model.find('/') != std::string::npos || species.model.find('.') != std::string::npos;
+    if (!looks_like_file)
+      s.fail(*s.node("model"), "model",
+             "'" + species.model + "' is unknown: expected " + plant_kind_names() + " or a mesh file (.obj, .ply)");
+    species.mesh = resolve(config.base_dir, species.model);
+  }
+  std::string up_axis;
+  if (s.read("up_axis", up_axis)) {
+    if (up_axis != "z" && up_axis != "y") s.fail(*s.node("up_axis"), "up_axis", "must be \"z\" or \"y\"");
+    if (species.mesh.empty()) s.fail(*s.node("up_axis"), "up_axis", "needs a mesh file as the model");
+    species.mesh_y_up = up_axis == "y";
+  }
+  if (s.read_int("variants", species.variants, 1, 1000) && !species.mesh.empty() && species.variants != 1)
+    s.fail(*s.node("variants"), "variants", "must be 1 for a mesh file (it is one model)");
+  if (const auto kind = find_plant_kind(species.model)) {
+    const auto range = triangle_budget_range(*kind);
+    std::size_t budget = 0;
+    if (s.read_int("triangle_budget", budget, std::int64_t(range.minimum), std::int64_t(range.maximum)))
+      species.triangle_budget = budget;
+  } else if (const auto* node = s.node("triangle_budget")) {
+    s.fail(*node, "triangle_budget", "does not apply to a mesh file");
+  }
+  std::uint64_t seed = 0;
+  if (s.read_int("seed", seed, 0, std::numeric_limits<std::int64_t>::max())) species.seed = seed;
+  if (s.read("scale", species.scale)) s.check_range("scale", species.scale, 1e-6, 1e6);
+}
+
+// One [[species]] table (config.species holds those before it); the node of each exclusion
+// value is kept for the check of its name.
+SpeciesConfig read_one_species(const toml::node& node, std::size_t index, const std::string& source,
+                               SceneConfig& config, std::map<std::string, const toml::node*>& exclusion_nodes) {
+  const auto* table = node.as_table();
+  if (!table)
+    throw Error(source, std::to_string(node.source().begin.line), "'species' must be an array of tables ([[species]])");
+  SpeciesConfig species;
+  const auto* name_node = table->get("name");
+  if (!name_node || !name_node->is_string() || name_node->value<std::string>()->empty())
+    throw Error(source, std::to_string((name_node ? *name_node : node).source().begin.line),
+                "'species' number " + std::to_string(index + 1) + " needs a name (name = \"grass\")");
+  species.name = *name_node->value<std::string>();
+  for (const auto& other : config.species)
+    if (other.name == species.name)
+      throw Error(source, std::to_string(name_node->source().begin.line),
+                  "'species' name '" + species.name + "' is given twice");
+  Section s(table, "species." + species.name, source, config.key_lines);
+  s.read("name", species.name);
+  read_species_model(s, species, config);
+  if (s.read("tight_radius", species.tight_radius)) s.check_range("tight_radius", *species.tight_radius, 1e-6, 1e4);
+  if (s.read("packing_radius", species.packing_radius))
+    s.check_range("packing_radius", *species.packing_radius, 1e-6, 1e4);
+  if (s.read("share", species.share)) s.check_range("share", species.share, 1e-6, 1e6);
+  s.read("edge_objects", species.edge_objects);
+  read_limits(s, "min_height", "max_height", species.min_height, species.max_height, -1e4, 1e5);
+  read_limits(s, "min_slope", "max_slope", species.min_slope, species.max_slope, 0, 90);
+  if (s.read("aspect", species.aspect)) {
+    for (double a : *species.aspect) s.check_range("aspect", a, -360, 360);
+    if ((*species.aspect)[0] == (*species.aspect)[1])
+      s.fail(*s.node("aspect"), "aspect", "must be a range [from, to] of compass degrees, clockwise, from != to");
+  }
+  std::string mask;
+  if (s.read("mask", mask)) species.mask = resolve(config.base_dir, mask);
+  if (const auto* exclusion = s.node("exclusion")) {
+    const auto* others = exclusion->as_table();
+    if (!others) s.fail(*exclusion, "exclusion", "must be a table of species names and meters, e.g. { boulder = 1.0 }");
+    for (const auto& [other, meters] : *others) {
+      const auto value = meters.value<double>();
+      if (!(meters.is_integer() || meters.is_floating_point()) || !(*value >= 0 && *value <= 1e4))
+        s.fail(meters, "exclusion", "'" + std::string(other.str()) + "' must be meters from 0 to 10000");
+      species.exclusion.emplace_back(std::string(other.str()), *value);
+      exclusion_nodes[species.name + "\n" + std::string(other.str())] = &meters;
+    }
+  }
+  species.density_by_height = read_density_curve(s, "density_by_height", "height m");
+  species.density_by_slope = read_density_curve(s, "density_by_slope", "slope degrees");
+  s.reject_unknown();
+  return species;
+}
+
+// [[species]]: the meadow's species (none: the [models] field).
+void read_species(Section& top, SceneConfig& config, const std::string& source) {
+  const auto* node = top.node("species");
+  if (!node) return;
+  const auto* array = node->as_array();
+  if (!array) top.fail(*node, "species", "must be an array of tables ([[species]])");
+  if (array->size() > 255)
+    top.fail(*node, "species", "holds " + std::to_string(array->size()) + " species; at most 255");
+  std::map<std::string, const toml::node*> exclusion_nodes;
+  for (std::size_t i = 0; i < array->size(); ++i)
+    config.species.push_back(read_one_species(*array->get(i), i, source, config, exclusion_nodes));
+  // Names in exclusions are checked once every species is known (a later one may be named).
+  for (const auto& species : config.species)
+    for (const auto& [other, meters] : species.exclusion) {
+      const bool known = std::any_of(config.species.begin(), config.species.end(),
+                                     [&](const SpeciesConfig& s) { return s.name == other; });
+      if (!known || other == species.name)
+        throw Error(source, std::to_string(exclusion_nodes[species.name + "\n" + other]->source().begin.line),
+                    "'species." + species.name + ".exclusion' names " +
+                        (known ? "its own species '" + other + "'" : "no species '" + other + "'"));
+    }
+  if (!config.models.mesh.empty())
+    throw config.error_at("models.mesh", "cannot be given with [[species]]: give each species its model");
+}
+
 // [camera]: position and target (ENU or latitude/longitude), heading, pitch, field of view.
 void read_camera(Section s, SceneConfig& config) {
   read_camera_point(s, "position", config.camera.position, s);
@@ -448,6 +594,7 @@ SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem
   read_tiles(section("tiles"), config);
   read_masks(section("masks"), config);
   read_models(section("models"), config);
+  read_species(top, config, source);
   read_camera(section("camera"), config);
   read_sun(section("sun"), config);
   read_image(section("image"), config);

@@ -60,6 +60,31 @@ struct ModelsConfig {
   double facing_jitter = 30.0;   // degrees, +- around `facing`
 };
 
+// [[species]]: one kind of plant of a meadow (docs/scene-file.md). Several share one Poisson tile
+// set, each with its own radii, density and rules; without any the field is [models]' flowers.
+struct SpeciesConfig {
+  std::string name;                                       // unique; other species' exclusion names it
+  std::string model = "grass";                            // a plant kind (templates/plants.h) or, with `mesh`, a file
+  std::filesystem::path mesh;                             // a user OBJ/PLY instead of a plant kind
+  bool mesh_y_up = false;                                 // up_axis = "y"
+  int variants = 4;                                       // model variants (a mesh: 1)
+  std::optional<std::size_t> triangle_budget;             // per model; default: the kind's (triangle_budget_range)
+  std::optional<std::uint64_t> seed;                      // default: models.seed
+  double scale = 1.0;                                     // uniform scale of the species' models
+  std::optional<double> tight_radius;                     // meters; default: the models' extent (largest variant)
+  std::optional<double> packing_radius;                   // meters; default: from the species' density
+  double share = 1.0;                                     // relative density among the species
+  bool edge_objects = false;                              // placed across tile edges, never across a corner
+  std::optional<double> min_height, max_height;           // meters
+  std::optional<double> min_slope, max_slope;             // degrees
+  std::optional<std::array<double, 2>> aspect;            // compass degrees [from, to], clockwise (may wrap past north)
+  std::filesystem::path mask;                             // painted mask over the ground (white = grows); empty = none
+  std::vector<std::pair<std::string, double>> exclusion;  // (other species, meters kept from it)
+  // Piecewise-linear density (0..1) of the terrain: [[height m, density], ...] and [[slope
+  // degrees, density], ...], x increasing, held flat beyond the ends; both multiply.
+  std::vector<std::array<double, 2>> density_by_height, density_by_slope;
+};
+
 // [camera]: position and target, each either ENU meters or latitude/longitude; a height
 // above the ground replaces the third coordinate.
 struct CameraPoint {
@@ -152,6 +177,7 @@ struct SceneConfig {
   TilesConfig tiles;
   MasksConfig masks;
   ModelsConfig models;
+  std::vector<SpeciesConfig> species;  // [[species]], in file order (species index = class)
   CameraConfig camera;
   SunConfig sun;
   ImageConfig image;

@@ -1,0 +1,148 @@
+#include "scene/species.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "templates/mesh_io.h"
+#include "templates/plants.h"
+#include "terrain/terrain.h"
+
+namespace wangscape {
+
+std::vector<Mesh> make_species_models(const SceneConfig& config, std::size_t budget_cap,
+                                      std::vector<double>* tight_radii) {
+  std::vector<Mesh> models;
+  if (tight_radii) tight_radii->clear();
+  for (const SpeciesConfig& species : config.species) {
+    const std::string key = "species." + species.name;
+    double radius = 0;
+    if (!species.mesh.empty()) {
+      UserModelOptions options;
+      options.scale = static_cast<float>(species.scale);
+      options.y_up = species.mesh_y_up;
+      options.ground_at_origin = false;  // the file's origin is the model's ground contact point
+      Mesh mesh;
+      try {
+        mesh = load_user_model(species.mesh, options);
+      } catch (const Error& e) {
+        throw config.error_at(key + ".model", e.message());
+      }
+      if (mesh.name.empty()) mesh.name = species.name;
+      radius = measure_extent(mesh).radius;
+      models.push_back(std::move(mesh));
+    } else {
+      const PlantKind kind = *find_plant_kind(species.model);
+      const auto range = triangle_budget_range(kind);
+      const std::size_t budget = std::clamp(
+          std::min(species.triangle_budget.value_or(range.default_budget), budget_cap), range.minimum, range.maximum);
+      for (auto& model : make_plant_variants(kind, species.seed.value_or(config.models.seed), species.variants, budget,
+                                             species.scale)) {
+        radius = std::max<double>(radius, model.extent.radius);
+        model.mesh.name = species.name + "_" + model.mesh.name;
+        models.push_back(std::move(model.mesh));
+      }
+    }
+    if (tight_radii) tight_radii->push_back(radius);
+  }
+  return models;
+}
+
+std::vector<PoissonClass> species_classes(const SceneConfig& config, const std::vector<double>& tight_radii) {
+  const double tile = config.tiles.tile_size;
+  // The largest a flower grows with the scale jitter.
+  const double grown = 1 + config.models.scale_jitter;
+  std::vector<PoissonClass> classes;
+  for (std::size_t s = 0; s < config.species.size(); ++s) {
+    const SpeciesConfig& species = config.species[s];
+    PoissonClass c;
+    c.share = species.share;
+    c.variants = species.mesh.empty() ? species.variants : 1;
+    c.edge_objects = species.edge_objects;
+    c.tight_radius = species.tight_radius.value_or(tight_radii[s] * grown) / tile;
+    c.packing_radius = species.packing_radius.value_or(0) / tile;
+    if (!species.exclusion.empty()) {
+      c.exclusion.assign(config.species.size(), 0.0);
+      for (const auto& [other, meters] : species.exclusion)
+        for (std::size_t k = 0; k < config.species.size(); ++k)
+          if (config.species[k].name == other) c.exclusion[k] = meters / tile;
+    }
+    classes.push_back(std::move(c));
+  }
+  return classes;
+}
+
+double density_curve_at(const std::vector<std::array<double, 2>>& curve, double x) {
+  if (curve.empty()) return 1;
+  if (x <= curve.front()[0]) return curve.front()[1];
+  if (x >= curve.back()[0]) return curve.back()[1];
+  const auto after = std::upper_bound(curve.begin(), curve.end(), x,
+                                      [](double value, const std::array<double, 2>& p) { return value < p[0]; });
+  const auto& a = *(after - 1);
+  const auto& b = *after;
+  return a[1] + (b[1] - a[1]) * (x - a[0]) / (b[0] - a[0]);
+}
+
+double aspect_degrees(const std::array<double, 3>& n) {
+  // The normal leans downhill: its horizontal part points where the slope faces.
+  const double compass = std::atan2(n[0], n[1]) * 180 / std::numbers::pi;
+  return compass < 0 ? compass + 360 : compass;
+}
+
+bool aspect_in_range(double aspect, double from, double to) {
+  const auto wrap = [](double a) { return a - 360 * std::floor(a / 360); };
+  const double span = wrap(to - from);
+  return wrap(aspect - from) <= span;
+}
+
+SpeciesRules::SpeciesRules(const SceneConfig& config, const SceneGround& ground) : ground_(ground) {
+  for (const SpeciesConfig& species : config.species) {
+    Rule rule;
+    rule.config = species;
+    rule.needs_slope = species.min_slope || species.max_slope || !species.density_by_slope.empty();
+    if (!species.mask.empty()) {
+      if (!ground.terrain())
+        throw config.error_at("species." + species.name + ".mask", "needs a DEM (terrain.dem) to be stretched over");
+      try {
+        rule.mask = PaintedMask::load(species.mask, ground.terrain()->extent());
+      } catch (const Error& e) {
+        throw config.error_at("species." + species.name + ".mask", e.message());
+      }
+    }
+    rules_.push_back(std::move(rule));
+  }
+}
+
+bool SpeciesRules::rules_hold(std::uint8_t species, double x, double y, double z) const {
+  const Rule& rule = rules_[species];
+  const SpeciesConfig& c = rule.config;
+  if ((c.min_height && z < *c.min_height) || (c.max_height && z > *c.max_height)) return false;
+  if (rule.mask && !rule.mask->allows(x, y)) return false;
+  if (c.min_slope || c.max_slope) {
+    const auto slope = ground_.slope_degrees(x, y);
+    if (!slope || (c.min_slope && *slope < *c.min_slope) || (c.max_slope && *slope > *c.max_slope)) return false;
+  }
+  if (c.aspect) {
+    // Ground flatter than a degree faces nowhere in particular: every aspect range holds there.
+    const auto n = ground_.normal(x, y);
+    if (!n) return false;
+    const bool flat = (*n)[2] > std::cos(std::numbers::pi / 180);
+    if (!flat && !aspect_in_range(aspect_degrees(*n), (*c.aspect)[0], (*c.aspect)[1])) return false;
+  }
+  return true;
+}
+
+double SpeciesRules::density(std::uint8_t species, double x, double y, double z) const {
+  const Rule& rule = rules_[species];
+  double d = density_curve_at(rule.config.density_by_height, z);
+  if (!rule.config.density_by_slope.empty())
+    d *= density_curve_at(rule.config.density_by_slope, ground_.slope_degrees(x, y).value_or(0));
+  return d;
+}
+
+bool SpeciesRules::keeps(double x, double y, double z, std::uint8_t species, float rank) const {
+  if (species >= rules_.size()) return false;
+  return rules_hold(species, x, y, z) && double(rank) < density(species, x, y, z);
+}
+
+}  // namespace wangscape

@@ -1,0 +1,294 @@
+// [[species]] (issue 26): the scene file's species with every key and its errors naming the file,
+// line and key; the rules' pieces (density curves, aspect ranges); the meadow built from
+// templates/scenes/meadow.toml: three species in its instance stream, every rule holding on
+// every placed plant, density following the height, and small plants standing on the mesh.
+#include "scene/species.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <string>
+
+#include "scene/filled_tileset_file.h"
+#include "scene/scene.h"
+#include "scene/scene_file.h"
+
+namespace wangscape {
+namespace {
+
+SceneConfig parse(const std::string& text) { return parse_scene_config(text, "test.toml", "/base"); }
+
+std::string error_of(const std::string& text) {
+  try {
+    parse(text);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(SpeciesFile, EveryKeyIsRead) {
+  const SceneConfig c = parse(R"([[species]]
+name = "grass"
+density_by_slope = [[10.0, 1.0], [30, 0.5]]
+
+[[species]]
+name = "rock"
+model = "meshes/boulder.obj"
+up_axis = "y"
+tight_radius = 0.8
+packing_radius = 1.2
+share = 0.5
+edge_objects = true
+min_height = 900.0
+max_height = 1200.0
+min_slope = 5.0
+max_slope = 40.0
+aspect = [300.0, 60.0]
+mask = "rocks.png"
+exclusion = { grass = 1.0 }
+density_by_height = [[900.0, 0.2], [1100.0, 1.0]]
+)");
+  ASSERT_EQ(c.species.size(), 2u);
+  const SpeciesConfig& grass = c.species[0];
+  EXPECT_EQ(grass.model, "grass");
+  EXPECT_TRUE(grass.mesh.empty());
+  EXPECT_EQ(grass.variants, 4);
+  EXPECT_FALSE(grass.tight_radius);
+  EXPECT_EQ(grass.share, 1.0);
+  ASSERT_EQ(grass.density_by_slope.size(), 2u);
+  EXPECT_EQ(grass.density_by_slope[1][0], 30.0);
+  const SpeciesConfig& rock = c.species[1];
+  EXPECT_EQ(rock.mesh, std::filesystem::path("/base/meshes/boulder.obj"));
+  EXPECT_TRUE(rock.mesh_y_up);
+  EXPECT_EQ(*rock.tight_radius, 0.8);
+  EXPECT_EQ(*rock.packing_radius, 1.2);
+  EXPECT_EQ(rock.share, 0.5);
+  EXPECT_TRUE(rock.edge_objects);
+  EXPECT_EQ(*rock.min_height, 900.0);
+  EXPECT_EQ(*rock.max_slope, 40.0);
+  EXPECT_EQ((*rock.aspect)[0], 300.0);
+  EXPECT_EQ(rock.mask, std::filesystem::path("/base/rocks.png"));
+  ASSERT_EQ(rock.exclusion.size(), 1u);
+  EXPECT_EQ(rock.exclusion[0], (std::pair<std::string, double>{"grass", 1.0}));
+  EXPECT_EQ(rock.density_by_height[0][1], 0.2);
+  EXPECT_EQ(c.key_lines.at("species.rock.aspect"), 17);
+}
+
+TEST(SpeciesFile, BadValuesAreRefusedNamingFileLineAndKey) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"model = \"dandelion\"", "test.toml:3: 'species.s.model' 'dandelion' is unknown: expected \"sunflower\""},
+      {"tight_radius = 0.0", "test.toml:3: 'species.s.tight_radius' must be between"},
+      {"packing_radius = -1.0", "test.toml:3: 'species.s.packing_radius' must be between"},
+      {"share = 0", "test.toml:3: 'species.s.share' must be between"},
+      {"min_height = 10.0\nmax_height = 5.0", "test.toml:3: 'species.s.min_height' must not be above max_height"},
+      {"min_slope = 30.0\nmax_slope = 20.0", "test.toml:3: 'species.s.min_slope' must not be above max_slope"},
+      {"max_slope = 95.0", "test.toml:3: 'species.s.max_slope' must be between 0 and 90"},
+      {"aspect = [90.0, 90.0]", "test.toml:3: 'species.s.aspect' must be a range"},
+      {"aspect = [90.0]", "test.toml:3: 'species.s.aspect' must be an array of 2 numbers"},
+      {"exclusion = { t = 1.0 }", "test.toml:3: 'species.s.exclusion' names no species 't'"},
+      {"exclusion = { s = 1.0 }", "test.toml:3: 'species.s.exclusion' names its own species 's'"},
+      {"exclusion = { s = -1.0 }", "test.toml:3: 'species.s.exclusion' 's' must be meters"},
+      {"density_by_height = [[10.0, 1.0], [5.0, 0.5]]",
+       "test.toml:3: 'species.s.density_by_height' must have increasing"},
+      {"density_by_slope = [[10.0, 1.5]]", "test.toml:3: 'species.s.density_by_slope' holds density 1.5"},
+      {"density_by_slope = [10.0, 1.0]", "test.toml:3: 'species.s.density_by_slope' must be an array of [slope"},
+      {"model = \"grass\"\ntriangle_budget = 3", "test.toml:4: 'species.s.triangle_budget' must be between 24 and"},
+      {"model = \"tree.obj\"\nvariants = 3", "test.toml:4: 'species.s.variants' must be 1 for a mesh file"},
+      {"model = \"tree.obj\"\ntriangle_budget = 500", "test.toml:4: 'species.s.triangle_budget' does not apply"},
+      {"up_axis = \"y\"", "test.toml:3: 'species.s.up_axis' needs a mesh file"},
+      {"colour = 3", "test.toml:3: unknown key 'species.s.colour'"},
+  };
+  for (const auto& [lines, expected] : cases) {
+    const std::string message = error_of(std::string("[[species]]\nname = \"s\"\n") + lines + "\n");
+    EXPECT_NE(message.find(expected), std::string::npos) << lines << "\n  gave: " << message;
+  }
+  EXPECT_NE(error_of("[[species]]\nmodel = \"grass\"\n").find("test.toml:1: 'species' number 1 needs a name"),
+            std::string::npos);
+  EXPECT_NE(error_of("[[species]]\nname = \"a\"\n[[species]]\nname = \"a\"\n")
+                .find("test.toml:4: 'species' name 'a' is given twice"),
+            std::string::npos);
+  EXPECT_NE(error_of("[models]\nmesh = \"f.obj\"\n[[species]]\nname = \"a\"\n")
+                .find("test.toml:2: 'models.mesh' cannot be given with [[species]]"),
+            std::string::npos);
+}
+
+TEST(SpeciesRules, DensityCurvesArePiecewiseLinearAndFlatBeyondTheEnds) {
+  const std::vector<std::array<double, 2>> curve{{100, 0.2}, {200, 1.0}, {300, 0.0}};
+  EXPECT_EQ(density_curve_at({}, 5), 1.0);
+  EXPECT_EQ(density_curve_at(curve, 0), 0.2);
+  EXPECT_DOUBLE_EQ(density_curve_at(curve, 150), 0.6);
+  EXPECT_DOUBLE_EQ(density_curve_at(curve, 250), 0.5);
+  EXPECT_EQ(density_curve_at(curve, 1000), 0.0);
+}
+
+TEST(SpeciesRules, AspectRangesGoClockwiseAndWrapPastNorth) {
+  EXPECT_TRUE(aspect_in_range(180, 90, 270));
+  EXPECT_FALSE(aspect_in_range(0, 90, 270));
+  EXPECT_TRUE(aspect_in_range(10, 300, 60));
+  EXPECT_TRUE(aspect_in_range(350, 300, 60));
+  EXPECT_FALSE(aspect_in_range(180, 300, 60));
+  // A ground falling to the east faces east (90), to the south south (180).
+  const double s = std::sin(0.3), c = std::cos(0.3);
+  EXPECT_NEAR(aspect_degrees({s, 0, c}), 90, 1e-9);
+  EXPECT_NEAR(aspect_degrees({0, -s, c}), 180, 1e-9);
+  EXPECT_NEAR(aspect_degrees({-s, s, c}), 315, 1e-9);
+}
+
+// ---- the meadow ----
+
+struct Placed {
+  double x, y, z;
+  int species;
+};
+
+class Meadow : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    config_ = new SceneConfig(load_scene_config(data_root() / "templates/scenes/meadow.toml"));
+    scene_ = new Scene(make_scene(*config_));
+    placed_ = new std::vector<Placed>;
+    const FilledTileSet& filled = scene_->field->filled;
+    scene_->instances([&](const InstanceBatch& batch) {
+      for (std::size_t k = 0; k < batch.size(); ++k) {
+        int species = -1;
+        for (int s = 0; s < int(config_->species.size()); ++s) {
+          const auto [first, count] = class_variant_range(filled, s);
+          if (batch.variant[k] >= first && batch.variant[k] < first + count) species = s;
+        }
+        placed_->push_back({batch.x[k], batch.y[k], batch.z[k], species});
+      }
+    });
+  }
+  static void TearDownTestSuite() {
+    delete placed_;
+    delete scene_;
+    delete config_;
+  }
+  static SceneConfig* config_;
+  static Scene* scene_;
+  static std::vector<Placed>* placed_;
+};
+SceneConfig* Meadow::config_ = nullptr;
+Scene* Meadow::scene_ = nullptr;
+std::vector<Placed>* Meadow::placed_ = nullptr;
+
+TEST_F(Meadow, HasThreeSpeciesAndTheirModelsInOrder) {
+  ASSERT_EQ(config_->species.size(), 3u);
+  std::map<int, std::size_t> count;
+  for (const Placed& p : *placed_) ++count[p.species];
+  EXPECT_EQ(count.count(-1), 0u) << "an instance whose variant is no species'";
+  for (int s = 0; s < 3; ++s) EXPECT_GT(count[s], 500u) << config_->species[s].name;
+  std::size_t models = 0;
+  for (int s = 0; s < 3; ++s) {
+    const auto [first, variants] = class_variant_range(scene_->field->filled, s);
+    EXPECT_EQ(first, int(models));
+    EXPECT_EQ(variants, config_->species[s].variants);
+    for (int v = first; v < first + variants; ++v)
+      EXPECT_EQ(scene_->models[std::size_t(v)].name.rfind(config_->species[s].name + "_", 0), 0u)
+          << scene_->models[std::size_t(v)].name;
+    models += std::size_t(variants);
+  }
+  EXPECT_EQ(scene_->models.size(), models);
+}
+
+// The folder keeps the filled set as JSON: species, ranks and each class's radii and variants
+// come back as they were (a rebuilt folder places the same meadow).
+TEST_F(Meadow, FilledSetRoundTripsItsClassesThroughJson) {
+  const FilledTileSet& made = scene_->field->filled;
+  ASSERT_EQ(made.classes.size(), 3u);
+  const FilledTileSet read = filled_tileset_from_json(filled_tileset_to_json(made), "meadow");
+  EXPECT_EQ(read.tiles, made.tiles);
+  EXPECT_EQ(read.class_variants, made.class_variants);
+  ASSERT_EQ(read.classes.size(), 3u);
+  for (std::size_t c = 0; c < 3; ++c) {
+    EXPECT_EQ(read.classes[c].packing, made.classes[c].packing);
+    EXPECT_EQ(read.classes[c].tight, made.classes[c].tight);
+    EXPECT_EQ(read.classes[c].spacing, made.classes[c].spacing);
+  }
+}
+
+// Checked here from the ground itself (height, slope, normal), not through SpeciesRules.
+TEST_F(Meadow, EveryRuleHoldsOnEveryPlacedPlant) {
+  const SceneGround& ground = scene_->field->ground;
+  std::size_t checked = 0;
+  for (const Placed& p : *placed_) {
+    ASSERT_GE(p.species, 0);
+    const SpeciesConfig& c = config_->species[std::size_t(p.species)];
+    SCOPED_TRACE(c.name);
+    if (c.max_height) {
+      EXPECT_LE(p.z, *c.max_height + 1e-3);
+    }
+    if (c.min_height) {
+      EXPECT_GE(p.z, *c.min_height - 1e-3);
+    }
+    if (c.max_slope) {
+      EXPECT_LE(*ground.slope_degrees(p.x, p.y), *c.max_slope + 0.01);
+    }
+    if (c.aspect) {
+      const auto n = *ground.normal(p.x, p.y);
+      const double compass = std::fmod(std::atan2(n[0], n[1]) * 180 / std::numbers::pi + 360, 360);
+      const double from = (*c.aspect)[0], span = std::fmod((*c.aspect)[1] - from + 360, 360);
+      if (n[2] < std::cos(std::numbers::pi / 180)) {
+        EXPECT_LE(std::fmod(compass - from + 360, 360), span + 0.01);
+      }
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 10000u);
+  // The rules bind: some of each ruled species' ground is refused (the meadow is not all of it).
+  std::map<int, double> highest;
+  for (const Placed& p : *placed_) highest[p.species] = std::max(highest[p.species], p.z);
+  EXPECT_LT(highest[2], highest[0] - 5) << "sunflowers reach as high as grass: max_height does not bind";
+}
+
+// density_by_height: dandelions stand thinner on the low ground (0.3 at 995 m) than on the top.
+TEST_F(Meadow, DensityFollowsTheHeight) {
+  std::size_t low[2] = {0, 0}, high[2] = {0, 0};  // grass, dandelion
+  for (const Placed& p : *placed_) {
+    if (p.species > 1) continue;
+    if (p.z < 997) ++low[p.species];
+    if (p.z > 1012) ++high[p.species];
+  }
+  ASSERT_GT(low[0], 200u);
+  ASSERT_GT(high[0], 200u);
+  // Per grass clump (which has no height rule) to cancel the areas' sizes and slopes.
+  const double low_ratio = double(low[1]) / double(low[0]), high_ratio = double(high[1]) / double(high[0]);
+  EXPECT_LT(low_ratio, 0.6 * high_ratio) << low_ratio << " vs " << high_ratio;
+}
+
+// Small plants stand on the mesh the renderers draw: the terrain mesh under the field follows
+// the bilinear ground within 2 cm at every plant (it strayed by decimeters per DEM cell).
+TEST_F(Meadow, PlantsStandOnTheTerrainMesh) {
+  const Mesh& terrain = scene_->terrain;
+  // The mesh's height at (x, y): the triangle containing it (brute force over the field's).
+  std::vector<std::size_t> under;
+  const Extent area = scene_->field_area;
+  for (std::size_t t = 0; t < terrain.triangles.size(); ++t) {
+    const auto& p = terrain.positions[terrain.triangles[t][0]];
+    if (p[0] > area.min_x - 40 && p[0] < area.max_x + 40 && p[1] > area.min_y - 40 && p[1] < area.max_y + 40)
+      under.push_back(t);
+  }
+  double worst = 0;
+  for (std::size_t k = 0; k < placed_->size(); k += 97) {
+    const Placed& p = (*placed_)[k];
+    for (std::size_t t : under) {
+      const auto& a = terrain.positions[terrain.triangles[t][0]];
+      const auto& b = terrain.positions[terrain.triangles[t][1]];
+      const auto& c = terrain.positions[terrain.triangles[t][2]];
+      const double d = (b[1] - c[1]) * (a[0] - c[0]) + (c[0] - b[0]) * (a[1] - c[1]);
+      const double wa = ((b[1] - c[1]) * (p.x - c[0]) + (c[0] - b[0]) * (p.y - c[1])) / d;
+      const double wb = ((c[1] - a[1]) * (p.x - c[0]) + (a[0] - c[0]) * (p.y - c[1])) / d;
+      const double wc = 1 - wa - wb;
+      if (wa < -1e-6 || wb < -1e-6 || wc < -1e-6) continue;
+      worst = std::max(worst, std::abs(wa * a[2] + wb * b[2] + wc * c[2] - p.z));
+      break;
+    }
+  }
+  EXPECT_LT(worst, 0.02);
+}
+
+}  // namespace
+}  // namespace wangscape
