@@ -3,11 +3,16 @@
 //    ~1 M points, darts alone and relaxed; the corner sets for the corner densities; a Bridson
 //    sampler (30 candidates) and scipy.stats.qmc.PoissonDisk (bench/scipy_poisson.py, 100 k points)
 //    as peers: points/s, rho, mean NN distance;
-//  - Google Benchmark timings: scattering tiles over a plane in memory (points/s), filling and
-//    relaxing the 8-tile set.
+//  - several classes (issue 26): a meadow-like set of grass, flowers and a few boulders per class
+//    (fill share, rho, edge / corner density), the progressive rank's thinning at d = 1, 0.5,
+//    0.25, 0.125 against a random subset (rho, mean NN, low-frequency power, anisotropy) and
+//    across a density ramp;
+//  - Google Benchmark timings: scattering tiles over a plane in memory (points/s; one class and
+//    the three-class meadow), filling and relaxing the 8-tile set, filling the meadow set.
 // Options besides Google Benchmark's: --scipy-points N (0 skips the scipy peer), --figures-only.
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +24,7 @@
 #include "generator/placement.h"
 #include "generator/point_metrics.h"
 #include "generator/poisson_tiles.h"
+#include "generator/tiling.h"
 
 namespace wangscape {
 namespace {
@@ -133,6 +139,134 @@ std::size_t bridson(double side, double r, int k, std::uint64_t seed, std::vecto
   return px.size();
 }
 
+// Grass, flowers kept 0.05 tile sides off the boulders, a few boulders (packing radius 0.08).
+PoissonFillOptions meadow_options(int points_per_tile, std::uint64_t seed = 1) {
+  PoissonFillOptions options;
+  options.points_per_tile = points_per_tile;
+  options.seed = seed;
+  options.classes = {PoissonClass{.share = 0.7, .variants = 4, .exclusion = {}},
+                     PoissonClass{.share = 0.25, .variants = 3, .exclusion = {0.0, 0.0, 0.05}},
+                     PoissonClass{.share = 0.05, .packing_radius = 0.08, .variants = 2, .exclusion = {}}};
+  return options;
+}
+
+// The points of a 64 x 64 scanline tiling (tile side 1) that `keep(x, p)` keeps.
+template <class Keep>
+void kept_points(const FilledTileSet& filled, std::uint64_t seed, Keep keep, std::vector<float>& x,
+                 std::vector<float>& y) {
+  TilingOptions options;
+  options.seed = seed;
+  const Tiling tiling = make_tiling(filled.set, 64, 64, options);
+  x.clear();
+  y.clear();
+  for (int j = 0; j < tiling.height; ++j)
+    for (int i = 0; i < tiling.width; ++i)
+      for (const TilePoint& p : filled.tiles[tiling.at(i, j)])
+        if (keep(i + double(p.x), p)) {
+          x.push_back(static_cast<float>(i + p.x));
+          y.push_back(static_cast<float>(j + p.y));
+        }
+}
+
+// Mean power below half the peak frequency (1 = white noise; blue noise is well below).
+double low_frequency_power(const RadialSpectrum& s) {
+  double sum = 0;
+  int n = 0;
+  for (std::size_t k = 0; k < s.frequency.size(); ++k)
+    if (s.frequency[k] < 0.5 * s.peak_frequency) sum += s.power[k], ++n;
+  return n ? sum / n : 0.0;
+}
+
+void print_class_figures() {
+  std::printf("\n== Several classes (issue 26): cohen8, grass 0.7 / flowers 0.25 / boulders 0.05 of N per tile ==\n");
+  std::printf(
+      "per class over 64x64 scanline tilings, mean of 4 fill seeds: points per tile over the target, rho,\n"
+      "edge / corner density (zones one own spacing wide, at most 0.3) over the interior's\n");
+  std::printf("%-24s %8s %8s %7s %7s %7s\n", "N / class", "fill s", "share", "rho", "edge", "corner");
+  for (const int n : {20, 40, 60}) {
+    const char* names[] = {"grass", "flowers", "boulders"};
+    std::array<std::array<double, 5>, 3> mean{};
+    constexpr int kSeeds = 4;
+    for (int s = 1; s <= kSeeds; ++s) {
+      const PoissonFillOptions options = meadow_options(n, static_cast<std::uint64_t>(s));
+      const auto start = std::chrono::steady_clock::now();
+      const FilledTileSet filled = fill_poisson_tiles(builtin_tileset("cohen8"), options);
+      const double secs = seconds_since(start);
+      for (std::size_t c = 0; c < 3; ++c) {
+        std::vector<float> x, y;
+        kept_points(
+            filled, 100 + static_cast<std::uint64_t>(s), [&](double, const TilePoint& p) { return p.species == c; }, x,
+            y);
+        PointMetricsOptions mo;
+        mo.area = {0, 0, 64, 64};
+        mo.packing_diameter = filled.classes[c].spacing;
+        mo.zone_width = std::min(filled.classes[c].spacing, 0.3);
+        mo.spectrum = false;
+        const PointMetrics m = measure_points(x, y, mo);
+        const double target = n * options.classes[c].share;
+        const std::array<double, 5> row = {secs, x.size() / 4096.0 / target, m.rho, m.edge_density_ratio,
+                                           m.corner_density_ratio};
+        for (std::size_t k = 0; k < 5; ++k) mean[c][k] += row[k] / kSeeds;
+        if (m.close_pairs)
+          std::printf("  (%s seed %d: %zu pairs closer than the class spacing)\n", names[c], s, m.close_pairs);
+      }
+    }
+    for (std::size_t c = 0; c < 3; ++c) {
+      const std::string label = std::to_string(n) + " / " + names[c];
+      std::printf("%-24s %8.3f %8.3f %7.3f %7.3f %7.3f\n", label.c_str(), mean[c][0], mean[c][1], mean[c][2],
+                  mean[c][3], mean[c][4]);
+    }
+  }
+}
+
+void print_rank_figures() {
+  std::printf("\n== Progressive rank (issue 26): cohen8, 60 points per tile, 64x64 scanline tiling, seed 1 ==\n");
+  std::printf(
+      "the points of rank < d against a random subset of the same share; low-f power: mean radial power\n"
+      "below half the peak frequency (white noise 1); anisotropy off the tile grid (noise floor in ())\n");
+  std::printf("%-8s %-7s %8s %7s %7s %8s %7s %7s %16s\n", "d", "subset", "share", "rho", "meanNN", "low-f", "edge",
+              "corner", "aniso dB");
+  PoissonFillOptions options;
+  options.points_per_tile = 60;
+  const FilledTileSet filled = fill_poisson_tiles(builtin_tileset("cohen8"), options);
+  std::vector<float> x, y;
+  kept_points(
+      filled, 5, [](double, const TilePoint&) { return true; }, x, y);
+  const double all = double(x.size());
+  auto random_rank = [](const TilePoint& p) { return float(((p.id * 2654435761u) >> 8) & 0xffffu) / 65536.0f; };
+  for (const double d : {1.0, 0.5, 0.25, 0.125})
+    for (const bool random : {false, true}) {
+      if (d == 1.0 && random) continue;
+      kept_points(
+          filled, 5, [&](double, const TilePoint& p) { return (random ? random_rank(p) : p.rank) < d; }, x, y);
+      PointMetricsOptions mo;
+      mo.area = {0, 0, 64, 64};
+      mo.zone_width = 0.12;
+      const PointMetrics m = measure_points(x, y, mo);
+      std::printf("%-8.3f %-7s %8.3f %7.3f %7.3f %8.3f %7.3f %7.3f %8.2f (%5.1f)\n", d, random ? "random" : "rank",
+                  x.size() / all, m.rho, m.mean_nn, low_frequency_power(m.spectrum), m.edge_density_ratio,
+                  m.corner_density_ratio, m.spectrum.mean_anisotropy_off_grid_db, m.spectrum.noise_floor_db);
+    }
+  // A ramp: d rises from 0.1 at x = 0 to 1 at x = 64; figures per band of 8 tiles.
+  auto ramp = [](double at) { return 0.1 + 0.9 * at / 64.0; };
+  kept_points(
+      filled, 5, [&](double wx, const TilePoint& p) { return p.rank < ramp(wx); }, x, y);
+  std::printf("ramp d = 0.1 .. 1 over x = 0 .. 64 tiles, per band of 8 tiles: kept / expected, rho, meanNN\n");
+  for (int band = 0; band < 8; ++band) {
+    std::vector<float> bx, by;
+    double expected = 0;
+    for (int i = band * 8; i < band * 8 + 8; ++i) expected += ramp(i + 0.5) * all / 64.0;
+    for (std::size_t k = 0; k < x.size(); ++k)
+      if (x[k] >= band * 8 && x[k] < band * 8 + 8) bx.push_back(x[k]), by.push_back(y[k]);
+    PointMetricsOptions mo;
+    mo.area = {double(band * 8), 0, double(band * 8 + 8), 64};
+    mo.spectrum = false;
+    const PointMetrics m = measure_points(bx, by, mo);
+    std::printf("  x %2d..%2d  d %.2f..%.2f  %6.3f %7.3f %7.3f\n", band * 8, band * 8 + 8, ramp(band * 8),
+                ramp(band * 8 + 8), bx.size() / expected, m.rho, m.mean_nn);
+  }
+}
+
 void print_figures(int scipy_points) {
   std::printf("\n== Poisson-disk tiles (issue 3): cohen8, 20 points per tile ==\n");
   std::printf(
@@ -193,14 +327,16 @@ void print_figures(int scipy_points) {
     std::fflush(stdout);
     if (std::system(command.c_str()) != 0) std::printf("(scipy peer failed)\n");
   }
+  print_class_figures();
+  print_rank_figures();
   std::printf("\n");
   std::fflush(stdout);
 }
 
 // Scattering from tiles over a plane in memory: the sink only counts.
 void BM_ScatterPlane(benchmark::State& state) {
-  PoissonFillOptions fill;
-  const bool hashed = state.range(0) == 1;
+  const bool hashed = state.range(0) == 1, meadow = state.range(0) == 2;
+  const PoissonFillOptions fill = meadow ? meadow_options(20) : PoissonFillOptions{};
   const FilledTileSet filled = fill_poisson_tiles(builtin_tileset(hashed ? "complete-edge-2" : "cohen8"), fill);
   PlacementOptions options;
   options.tile_size = 4.0;
@@ -214,9 +350,19 @@ void BM_ScatterPlane(benchmark::State& state) {
     points += n;
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(points));
-  state.SetLabel(hashed ? "hash, complete-edge-2" : "scanline, cohen8");
+  state.SetLabel(hashed ? "hash, complete-edge-2" : meadow ? "scanline, cohen8, 3 classes" : "scanline, cohen8");
 }
-BENCHMARK(BM_ScatterPlane)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ScatterPlane)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Filling cohen8 at N points per tile: one class (arg 1 = 0) or the meadow's three (arg 1 = 1).
+void BM_FillClassesCohen8(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  PoissonFillOptions options = state.range(1) ? meadow_options(n) : PoissonFillOptions{};
+  options.points_per_tile = n;
+  for (auto _ : state) benchmark::DoNotOptimize(fill_poisson_tiles(builtin_tileset("cohen8"), options));
+  state.SetLabel(state.range(1) ? "3 classes" : "1 class");
+}
+BENCHMARK(BM_FillClassesCohen8)->ArgsProduct({{20, 40, 60}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 // Filling and relaxing the 8-tile set (goal: under 10 s).
 void BM_FillRelaxCohen8(benchmark::State& state) {

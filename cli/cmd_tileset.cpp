@@ -8,6 +8,7 @@
 
 #include "cli/command.h"
 #include "cli/progress.h"
+#include "core/number_text.h"
 #include "exporters/image_io.h"
 #include "exporters/reports.h"
 #include "generator/tiling_preview.h"
@@ -23,11 +24,12 @@ struct TilesetOptions {
   bool json = false;
   std::string sheet;  // PNG (or any OIIO format) of the set's tiles
   int tile_pixels = 48;
-  std::uint64_t seed = 1;  // for filling tiles with content (see below)
-  int per_tile = 0;        // Poisson points per tile; 0 = colors only
-  int relax = 0;           // relaxation rounds after dart throwing
-  std::string out;         // the filled set as JSON (docs/filled-tileset-format.md)
-  bool quiet = false;      // --quiet: no stage message
+  std::uint64_t seed = 1;             // for filling tiles with content (see below)
+  int per_tile = 0;                   // Poisson points per tile; 0 = colors only
+  int relax = 0;                      // relaxation rounds after dart throwing
+  std::string out;                    // the filled set as JSON (docs/filled-tileset-format.md)
+  std::vector<PoissonClass> classes;  // --class, repeated: several classes in one fill
+  bool quiet = false;                 // --quiet: no stage message
   std::optional<WriteReport> report;
 };
 
@@ -39,12 +41,60 @@ void say_written(const TilesetOptions& options, const std::string& details) {
   if (!written.empty()) options.report->wrote(written, details);
 }
 
+// --class SHARE[:PACKING[:TIGHT]][:edge]: a class of a multi-class fill (radii in tile sides).
+PoissonClass parse_class(const std::string& text) {
+  std::string numbers = text;
+  PoissonClass c;
+  if (const std::string edge = ":edge"; numbers.size() > edge.size() && numbers.ends_with(edge)) {
+    c.edge_objects = true;
+    numbers.resize(numbers.size() - edge.size());
+  }
+  const auto values = parse_number_list(numbers, ':', 1, 3);
+  if (!values || (*values)[0] <= 0 || (values->size() > 1 && (*values)[1] < 0) ||
+      (values->size() > 2 && (*values)[2] < 0))
+    throw std::runtime_error("tileset: --class '" + text +
+                             "'; expected SHARE[:PACKING[:TIGHT]][:edge], share > 0, radii >= 0 in tile sides "
+                             "(e.g. 0.7, 0.25:0.03, 0.05:0.08:0.06:edge)");
+  c.share = (*values)[0];
+  if (values->size() > 1) c.packing_radius = (*values)[1];
+  if (values->size() > 2) c.tight_radius = (*values)[2];
+  return c;
+}
+
+// Per class: points per tile against the target, radii, and the least distance to every class
+// over every configuration of the set.
+std::string class_fill_text(const FilledTileSet& filled, const PoissonFillOptions& options) {
+  const std::size_t n = filled.classes.size();
+  std::vector<std::size_t> count(n, 0);
+  for (const auto& tile : filled.tiles)
+    for (const TilePoint& p : tile) ++count[p.species];
+  double total_share = 0;
+  for (const PoissonClass& c : options.classes) total_share += c.share;
+  const std::vector<double> least = class_min_distances(filled);
+  std::string text = "class  per tile (target)  packing   tight  spacing  least distance to class 0, 1, ..\n";
+  for (std::size_t c = 0; c < n; ++c) {
+    text += fmt::format("{:5}  {:>8} ({:>6})  {:>7}  {:>6}  {:>7} ", c,
+                        fixed_text(double(count[c]) / double(filled.tiles.size()), 2),
+                        fixed_text(options.points_per_tile * options.classes[c].share / total_share, 2),
+                        fixed_text(filled.classes[c].packing, 4), fixed_text(filled.classes[c].tight, 4),
+                        fixed_text(filled.classes[c].spacing, 4));
+    for (std::size_t k = 0; k < n; ++k) text += fmt::format(" {}", fixed_text(least[c * n + k], 4));
+    text += filled.classes[c].edge_objects ? "  (edge objects)\n" : "\n";
+  }
+  return text;
+}
+
 // --per-tile N: fill the set with Poisson-disk points, write --out, draw --sheet with discs.
 void fill(const TileSet& set, const TilesetOptions& options) {
   PoissonFillOptions fill_options;
   fill_options.points_per_tile = options.per_tile;
   fill_options.relax_rounds = options.relax;
   fill_options.seed = options.seed;
+  fill_options.classes = options.classes;
+  if (!options.classes.empty() && !options.out.empty())
+    throw std::runtime_error(
+        "tileset: --class with --out: the filled tile-set file (docs/filled-tileset-format.md) does not hold classes "
+        "yet; draw them with --sheet");
   if (const auto estimate = estimate_poisson_fill(set, fill_options);
       !options.quiet && estimate.seconds > 5 && estimate.seconds <= kMaxFillSeconds)
     fmt::print(stderr, "wangscape: filling {:.0f} points, about {:.0f} s\n", estimate.points, estimate.seconds);
@@ -54,6 +104,7 @@ void fill(const TileSet& set, const TilesetOptions& options) {
   if (!options.sheet.empty())
     write_image(options.sheet, draw_filled_tileset_sheet(filled, std::max(options.tile_pixels, 96)));
   fmt::print("{}", poisson_fill_text(filled, report, options.per_tile));
+  if (!options.classes.empty()) fmt::print("{}", class_fill_text(filled, fill_options));
   std::size_t points = 0;
   for (const auto& tile : filled.tiles) points += tile.size();
   say_written(options, fmt::format("{} tiles filled with {} points", filled.tiles.size(), points));
@@ -93,12 +144,23 @@ void register_tileset_command(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
   sub->add_option("--out", options->out, "With --per-tile: write the filled set as JSON");
+  sub->add_option_function<std::vector<std::string>>(
+         "--class",
+         [options](const std::vector<std::string>& values) {
+           options->classes.clear();
+           for (const std::string& v : values) options->classes.push_back(parse_class(v));
+         },
+         "With --per-tile: one class of several sharing the tiles, repeated: SHARE[:PACKING[:TIGHT]][:edge] "
+         "(relative share of the points; radii in tile sides, 0 = from the density; edge = objects across edges)")
+      ->type_name("SHARE[:PACKING[:TIGHT]][:edge]");
   set_help_footer(
       sub,
       "the set's summary on stdout (--json: the set as JSON); --sheet: a PNG; --per-tile N --out FILE: "
       "the filled set as JSON, for scatter and scene files",
       {"wangscape tileset --set cohen8 --json > cohen8.json", "wangscape tileset --set cohen8 --sheet sheet.png",
-       "wangscape tileset --set cohen8 --per-tile 20 --relax 20 --seed 1 --out tiles.json --sheet discs.png"});
+       "wangscape tileset --set cohen8 --per-tile 20 --relax 20 --seed 1 --out tiles.json --sheet discs.png",
+       "wangscape tileset --set cohen8 --per-tile 40 --class 0.7 --class 0.25 --class 0.05:0.08:0.06:edge --sheet "
+       "meadow.png"});
   sub->callback([options, &global] {
     options->quiet = global.quiet;
     options->report.emplace(global.quiet);
