@@ -188,6 +188,9 @@ BlenderWriter::BlenderWriter(const Scene& scene, const std::filesystem::path& fo
     char prefix[32];
     std::snprintf(prefix, sizeof prefix, "model_%04zu", i);
     impl.models.push_back(write_mesh(scene.models[i], prefix, table.model_slots[i], folder, impl.bytes));
+    // [[species]]: the model's species (the add-on gives every instance a species attribute).
+    if (const auto species = scene.field ? scene.field->species_of_model(i) : std::nullopt)
+      impl.models.back()["species"] = *species;
     impl.list_files(impl.models.back());
   }
   impl.arrays = std::make_unique<InstanceArrays>(folder);
@@ -222,6 +225,7 @@ void BlenderWriter::finish(const StreamTotals& totals) {
   manifest["terrain"] = impl.terrain;
   manifest["ground_texture"] = impl.ground_texture;
   manifest["models"] = impl.models;
+  if (scene.field && !scene.field->species_names.empty()) manifest["species"] = scene.field->species_names;
   manifest["instances"] = instances;
   manifest["camera"] = Json{
       {"position", scene.camera.position}, {"target", scene.camera.target}, {"fov_degrees", scene.camera.fov_degrees}};

@@ -108,6 +108,7 @@ std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGro
   if (!config.species.empty()) {
     fill.classes = species_classes(config, species_radii);
     field->species = std::make_shared<const SpeciesRules>(config, ground);
+    for (const SpeciesConfig& species : config.species) field->species_names.push_back(species.name);
   }
   TileSet set;
   try {
@@ -271,6 +272,16 @@ Sun make_sun(const SceneConfig& config, const SceneGround& ground) {
 }
 
 }  // namespace
+
+std::optional<std::size_t> SceneField::species_of_model(std::size_t model) const {
+  if (species_names.empty()) return std::nullopt;
+  if (proxy_offset && model >= proxy_offset) model -= proxy_offset;
+  for (std::size_t s = 0; s < species_names.size(); ++s) {
+    const auto [first, count] = class_variant_range(filled, int(s));
+    if (model >= std::size_t(first) && model < std::size_t(first + count)) return s;
+  }
+  return std::nullopt;
+}
 
 float SceneField::yaw_of(float point_yaw) const {
   if (!facing_yaw) return point_yaw;

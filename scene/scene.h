@@ -72,6 +72,11 @@ struct SceneField {
   std::size_t proxy_offset = 0;  // 0: no proxies (the full models go on to far)
   // [[species]]: each point is kept only where its species' rules and density let it grow.
   std::shared_ptr<const SpeciesRules> species;
+  std::vector<std::string> species_names;  // in class order; empty without [[species]]
+
+  // The species (class) of model `model` of Scene::models, a proxy counting as its full model's;
+  // nothing without species or past the models.
+  std::optional<std::size_t> species_of_model(std::size_t model) const;
 
   // Places every instance (thread-safe, deterministic).
   FieldReport place(const InstanceSink& sink) const;

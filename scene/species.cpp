@@ -40,6 +40,8 @@ std::vector<Mesh> make_species_models(const SceneConfig& config, std::size_t bud
                                              species.scale)) {
         radius = std::max<double>(radius, model.extent.radius);
         model.mesh.name = species.name + "_" + model.mesh.name;
+        // Named by species: two kinds' "petal"s are different materials in every exporter.
+        for (Material& material : model.mesh.materials) material.name = species.name + " " + material.name;
         models.push_back(std::move(model.mesh));
       }
     }

@@ -93,6 +93,25 @@ if seen:
     low, high = got[:, :3].min(axis=0), got[:, :3].max(axis=0)
     check(close(low, spec["bounds"]["min"], 1e-3) and close(high, spec["bounds"]["max"], 1e-3), "instance bounds")
 
+# --- [[species]]: every flower's species attribute is its model's species, every species shows --
+if "species" in manifest:
+    names = manifest["species"]
+    attribute = field.data.attributes.get("species")
+    check(attribute is not None, "the field carries a species attribute")
+    if attribute is not None and spec["count"]:
+        species = np.empty(len(attribute.data), dtype=np.int32)
+        attribute.data.foreach_get("value", species)
+        model_species = np.array([m["species"] for m in manifest["models"]])
+        check(
+            np.array_equal(species, model_species[array(spec["variant"]).astype(np.int64)]),
+            "each flower's species is its model's",
+        )
+        per_species = Counter(names[s] for s in species)
+        check(all(per_species[name] > 0 for name in names), "every species has flowers: %s" % dict(per_species))
+    for obj in bpy.data.collections["Wangscape models"].objects:
+        expected = names[manifest["models"][obj["wangscape_variant"]]["species"]]
+        check(obj.get("wangscape_species") == expected, "%s belongs to species %s" % (obj.name, expected))
+
 # Instances stay instances: nothing realizes them.
 group = field.modifiers["Wangscape instancing"].node_group
 check(
@@ -175,4 +194,7 @@ check(scene.cycles.samples == manifest["render"]["samples"], "render samples")
 
 if failures:
     raise SystemExit("wangscape-check: %d check(s) failed" % len(failures))
-print("wangscape-check: OK: %d instances, %d variants" % (len(seen), len(manifest["models"])))
+print(
+    "wangscape-check: OK: %d instances, %d variants%s"
+    % (len(seen), len(manifest["models"]), ", %d species" % len(manifest["species"]) if "species" in manifest else "")
+)

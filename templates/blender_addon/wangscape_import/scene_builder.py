@@ -200,6 +200,8 @@ def build_models_collection(context, folder, manifest, materials):
         mesh = build_mesh("%s %04d %s" % ("variant", index, spec.get("name", "")), folder, spec, materials)
         obj = bpy.data.objects.new("variant %04d" % index, mesh)
         obj["wangscape_variant"] = index
+        if "species" in spec:  # [[species]]: the species this model belongs to
+            obj["wangscape_species"] = manifest["species"][spec["species"]]
         collection.objects.link(obj)
     # Hidden: excluded from the view layer, still instanced by Collection Info.
     layer_collection = context.view_layer.layer_collection.children.get(collection.name)
@@ -261,6 +263,10 @@ def build_field(context, folder, manifest, collection):
         if variant.size and int(variant.max()) >= len(manifest["models"]):
             raise ManifestError("instance variant %d but only %d models" % (int(variant.max()), len(manifest["models"])))
         mesh.attributes.new("variant", "INT", "POINT").data.foreach_set("value", variant)
+        if "species" in manifest:
+            # [[species]]: each flower's species (an index into manifest["species"]) from its model.
+            model_species = np.array([m.get("species", -1) for m in manifest["models"]], dtype=np.int32)
+            mesh.attributes.new("species", "INT", "POINT").data.foreach_set("value", model_species[variant])
         del variant
         rotation = np.zeros((count, 3), dtype=np.float32)
         rotation[:, 2] = read_array(folder, spec["yaw"])  # yaw: counter-clockwise about +z
