@@ -111,12 +111,8 @@ struct Content {
 class ContentModel {
  public:
   // corner_width: half-side of the vertex squares of sets with corner colors (else = shared_width).
-  ContentModel(const TileSet& set, const TileAdjacency& adjacency, double shared_width, double corner_width,
-               double tight_radius)
-      : w_(shared_width),
-        wc_(set.has_corners ? corner_width : shared_width),
-        tight_(tight_radius),
-        tile_count_(set.tiles.size()) {
+  ContentModel(const TileSet& set, const TileAdjacency& adjacency, double shared_width, double corner_width)
+      : w_(shared_width), wc_(set.has_corners ? corner_width : shared_width), tile_count_(set.tiles.size()) {
     std::map<std::array<int, 4>, int> class_by_key;
     auto class_for = [&](std::array<int, 4> key, ClassKind kind, Rect region, std::vector<Vec2> avoid) {
       auto [it, inserted] = class_by_key.emplace(key, static_cast<int>(classes_.size()));
@@ -245,25 +241,25 @@ class ContentModel {
   }
 
   // Nearest allowed class-local position to p.
-  Vec2 clamp(int cls, Vec2 p) const {
+  Vec2 clamp(int cls, Vec2 p, double tight) const {
     const ContentClass& c = classes_[static_cast<std::size_t>(cls)];
     p.x = std::clamp(p.x, c.region.x0 + kEdgeEpsilon, c.region.x1 - kEdgeEpsilon);
     p.y = std::clamp(p.y, c.region.y0 + kEdgeEpsilon, c.region.y1 - kEdgeEpsilon);
     for (const Vec2& v : c.avoid) {
       const Vec2 r = p - v;
       const double len = std::sqrt(norm2(r));
-      if (len < tight_) {
+      if (len < tight) {
         // Out of the quarter disc, along the ray from the corner (or the diagonal if at it).
         const Vec2 dir = len > 1e-12 ? (1.0 / len) * r
                                      : (1.0 / std::sqrt(2.0)) * Vec2{v.x < 0.5 ? 1.0 : -1.0, v.y < 0.5 ? 1.0 : -1.0};
-        p = v + (tight_ * (1.0 + 1e-9) + kEdgeEpsilon) * dir;
+        p = v + (tight * (1.0 + 1e-9) + kEdgeEpsilon) * dir;
       }
     }
     return p;
   }
 
  private:
-  double w_, wc_, tight_;
+  double w_, wc_;
   std::size_t tile_count_;
   std::vector<ContentClass> classes_;
   std::vector<Group> groups_;
@@ -309,6 +305,10 @@ struct SpeciesTable {
   std::vector<int> variants;
   std::vector<std::size_t> order;  // order within a tile visit: the widest own spacing first
   double widest_spacing = 0;       // the widest own spacing of a class that is not edge objects
+  // [a * count + b]: the distance over the dart distance of the whole density (1 for one class):
+  // relaxation raises every distance by one factor.
+  std::vector<double> weight;
+  std::vector<double> row_weight;  // per species: its largest weight
   double distance(std::size_t a, std::size_t b) const { return std::sqrt(distance2[a * count + b]); }
 };
 
@@ -318,6 +318,8 @@ SpeciesTable make_species_table(const PoissonFillOptions& options, double dart_d
   SpeciesTable table;
   if (options.classes.empty()) {
     table.distance2 = {dart_d * dart_d};
+    table.weight = {dart_d / dart_d};
+    table.row_weight = table.weight;
     table.reach = {dart_d};
     table.per_tile = {static_cast<double>(options.points_per_tile)};
     table.packing = {0.5 * dart_d};
@@ -358,6 +360,9 @@ SpeciesTable make_species_table(const PoissonFillOptions& options, double dart_d
       const double d = std::max(a == b ? own[a] : table.packing[a] + table.packing[b],
                                 table.packing[a] + table.packing[b] + std::max(exclusion(a, b), exclusion(b, a)));
       table.distance2[a * n + b] = d * d;
+      table.weight.push_back(d / dart_d);
+      if (b == 0) table.row_weight.push_back(0.0);
+      table.row_weight[a] = std::max(table.row_weight[a], d / dart_d);
       table.reach[a] = std::max(table.reach[a], d);
     }
   for (std::size_t s = 0; s < n; ++s)
@@ -396,12 +401,12 @@ struct Pair {
 };
 
 // Visits every (point a in group holders, point b of a tile that can be there) meeting within
-// `reach`, once per group: f(a, b, shift) with b's tile-local position + shift relative to a's.
-template <class F>
-void for_each_meeting(const ContentModel& model, const Content& content, std::size_t g, double reach, F&& f) {
+// reach_of(a), once per group: f(a, b, shift) with b's tile-local position + shift relative to a's.
+template <class Reach, class F>
+void for_each_meeting(const ContentModel& model, const Content& content, std::size_t g, Reach reach_of, F&& f) {
   const Group& group = model.group(static_cast<int>(g));
-  const double r2 = reach * reach;
   for (const Held& a : content.groups[g]) {
+    const double reach = reach_of(a), r2 = reach * reach;
     for (std::uint16_t t : group.holders)
       for (const Held& b : content.tiles[t])
         if (b.point != a.point && norm2(b.q - a.q) < r2) f(a, b, Vec2{});
@@ -415,26 +420,32 @@ void for_each_meeting(const ContentModel& model, const Content& content, std::si
   }
 }
 
-// The smallest distance between two points meeting in any tiling, or `limit` if none is closer.
-double min_meeting_distance(const ContentModel& model, const Content& content, double limit) {
+// The smallest distance between two points meeting in any tiling, over their classes' weight
+// (the distance itself for one class), or `limit` if none is smaller.
+double min_meeting_distance(const ContentModel& model, const Content& content, const SpeciesTable& species,
+                            double limit) {
   return tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, model.group_count()), limit,
       [&](const tbb::blocked_range<std::size_t>& range, double best) {
         for (std::size_t g = range.begin(); g != range.end(); ++g)
-          for_each_meeting(model, content, g, limit, [&](const Held& a, const Held& b, Vec2 shift) {
-            if (a.point == b.point && shift.x == 0 && shift.y == 0) return;
-            best = std::min(best, std::sqrt(norm2(b.q + shift - a.q)));
-          });
+          for_each_meeting(
+              model, content, g, [&](const Held& a) { return limit * species.row_weight[a.species]; },
+              [&](const Held& a, const Held& b, Vec2 shift) {
+                if (a.point == b.point && shift.x == 0 && shift.y == 0) return;
+                best = std::min(
+                    best, std::sqrt(norm2(b.q + shift - a.q)) / species.weight[a.species * species.count + b.species]);
+              });
         return best;
       },
       [](double a, double b) { return std::min(a, b); });
 }
 
-// Every pair that can meet within `reach`, both orders, sorted, without duplicates.
-std::vector<Pair> meeting_pairs(const ContentModel& model, const Content& content, double reach) {
+// Every pair that can meet within reach_of(one of them), both orders, sorted, without duplicates.
+template <class Reach>
+std::vector<Pair> meeting_pairs(const ContentModel& model, const Content& content, Reach reach_of) {
   std::vector<std::vector<Pair>> per_group(model.group_count());
   tbb::parallel_for(std::size_t{0}, model.group_count(), [&](std::size_t g) {
-    for_each_meeting(model, content, g, reach, [&](const Held& a, const Held& b, Vec2 shift) {
+    for_each_meeting(model, content, g, reach_of, [&](const Held& a, const Held& b, Vec2 shift) {
       if (a.point == b.point) return;  // a point and its own replica are a tile side apart
       // a.q - (b.q + shift) = local_a - local_b + (o_a - o_b - shift)
       per_group[g].push_back({a.point, b.point, static_cast<std::int8_t>(a.ox - b.ox - static_cast<int>(shift.x)),
@@ -645,6 +656,12 @@ struct RelaxContext {
   const ContentModel& model;
   const TileAdjacency& adjacency;
   const PoissonFillOptions& options;
+  const SpeciesTable& species;
+  // Where relaxation may move point p: edge objects stay (their place across the edge is chosen).
+  Vec2 moved(const PointSet& points, std::size_t p, Vec2 to) const {
+    const std::size_t s = points.species[p];
+    return species.edge_objects[s] ? points.local[p] : model.clamp(points.cls[p], to, species.tight[s]);
+  }
 };
 
 // One Lloyd step: each point moves to the mean of its Voronoi centroids over a few random valid
@@ -677,19 +694,22 @@ void lloyd_step(const RelaxContext& ctx, const Content& content, int round, doub
         }
       sum = sum + (voronoi_centroid(q, others, 1.5 * d) - q);
     }
-    moved[p] = ctx.model.clamp(points.cls[p], points.local[p] + (1.0 / kContexts) * sum);
+    moved[p] = ctx.moved(points, p, points.local[p] + (1.0 / kContexts) * sum);
   });
   points.local.swap(moved);
 }
 
-// Pushes apart every pair that can meet closer than d (Jacobi steps over all neighbour
-// configurations), keeping each point in its class region. True when no pair is left closer.
+// Pushes apart every pair that can meet closer than d x their classes' weight (Jacobi steps over
+// all neighbour configurations), keeping each point in its class region. True when no pair is
+// left closer.
 bool enforce_distance(const RelaxContext& ctx, double d, PointSet& points, Content& content) {
   constexpr int kPasses = 3, kSteps = 60;
+  const SpeciesTable& species = ctx.species;
   for (int pass = 0; pass < kPasses; ++pass) {
     build_content(ctx.model, points, content);
-    if (min_meeting_distance(ctx.model, content, d) >= d) return true;
-    const std::vector<Pair> pairs = meeting_pairs(ctx.model, content, 1.5 * d);
+    if (min_meeting_distance(ctx.model, content, species, d) >= d) return true;
+    const std::vector<Pair> pairs =
+        meeting_pairs(ctx.model, content, [&](const Held& a) { return 1.5 * d * species.row_weight[a.species]; });
     std::vector<std::size_t> first(points.local.size() + 1, 0);
     for (const Pair& pr : pairs) ++first[pr.i + 1];
     for (std::size_t k = 1; k < first.size(); ++k) first[k] += first[k - 1];
@@ -704,13 +724,14 @@ bool enforce_distance(const RelaxContext& ctx, double d, PointSet& points, Conte
                 const Pair& pr = pairs[k];
                 const Vec2 r = points.local[i] - points.local[pr.j] + Vec2{double(pr.kx), double(pr.ky)};
                 const double len2 = norm2(r);
-                if (len2 >= d * d) continue;
+                const double need = d * species.weight[points.species[i] * species.count + points.species[pr.j]];
+                if (len2 >= need * need) continue;
                 found = true;
                 const double len = std::sqrt(len2);
                 const Vec2 dir = len > 1e-12 ? (1.0 / len) * r : Vec2{i < pr.j ? 1.0 : -1.0, 0.0};
-                push = push + (0.5 * (d * 1.002 - len)) * dir;
+                push = push + (0.5 * (need * 1.002 - len)) * dir;
               }
-              next[i] = ctx.model.clamp(points.cls[i], points.local[i] + push);
+              next[i] = ctx.moved(points, i, points.local[i] + push);
             }
             return found;
           },
@@ -720,7 +741,7 @@ bool enforce_distance(const RelaxContext& ctx, double d, PointSet& points, Conte
     }
   }
   build_content(ctx.model, points, content);
-  return min_meeting_distance(ctx.model, content, d) >= d;
+  return min_meeting_distance(ctx.model, content, species, d) >= d;
 }
 
 // A fixed sample tiling for the nearest-neighbour spread (the lattice guard).
@@ -790,7 +811,7 @@ std::vector<float> progressive_ranks(const ContentModel& model, const Content& c
   for (std::size_t s = 0; s < species.count; ++s) reach = std::max(reach, rung_radius(s, 0));
   // Same-species neighbours within the largest rung, with their least distance over configurations.
   std::vector<std::vector<std::pair<std::uint32_t, double>>> near(n);
-  for (const Pair& p : meeting_pairs(model, content, reach)) {
+  for (const Pair& p : meeting_pairs(model, content, [reach](const Held&) { return reach; })) {
     if (points.species[p.i] != points.species[p.j]) continue;
     const double d = std::sqrt(norm2(points.local[p.i] - points.local[p.j] + Vec2{double(p.kx), double(p.ky)}));
     near[p.i].push_back({p.j, d});
@@ -1092,7 +1113,7 @@ FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& o
   // more of the tile). Measured (bench/poisson_bench): corner-2 corner density within 2 % of the
   // interior after darts and after relaxation; 0.80 -> 0.99 after darts for cohen8-corners.
   const double corner_w = std::min(w + 0.75 * cap_d / std::sqrt(2.0), 0.45);
-  const ContentModel model(set, adjacency, w, corner_w, tight);
+  const ContentModel model(set, adjacency, w, corner_w);
   PointSet points;
   Content content;
   build_content(model, points, content);
@@ -1113,16 +1134,15 @@ FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& o
   PoissonFillReport rep;
   rep.class_points = points.local.size();
   build_content(model, points, content);
-  rep.dart_min_distance = min_meeting_distance(model, content, 2.0 * cap_d);
+  rep.dart_min_distance = min_meeting_distance(model, content, species, 2.0 * cap_d);
 
-  const RelaxContext ctx{model, adjacency, options};
+  const RelaxContext ctx{model, adjacency, options, species};
   const SampleTiling sample = sample_tiling(set, options.seed);
   double d_current = std::min(dart_d, rep.dart_min_distance);
   // The raised bound: +1 % per round, growing to +2 % while rounds succeed, halved on failure.
   double growth = 0.01;
-  // Relaxation keeps one distance: with several classes it is skipped (the darts' spacing stays).
-  const int relax_rounds = species.count == 1 ? options.relax_rounds : 0;
-  for (int round = 0; round < relax_rounds && d_current < cap_d; ++round) {
+  // Several classes: every distance is raised by one factor (d_current over the dart distance).
+  for (int round = 0; round < options.relax_rounds && d_current < cap_d; ++round) {
     const PointSet before = points;
     lloyd_step(ctx, content, round, d_current, points);
     const double target = std::min(cap_d, d_current * (1.0 + growth));
@@ -1149,7 +1169,7 @@ FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& o
       rep.stopped_before_lattice = true;
       break;
     }
-    d_current = std::max(reached, std::min(cap_d, min_meeting_distance(model, content, cap_d)));
+    d_current = std::max(reached, std::min(cap_d, min_meeting_distance(model, content, species, cap_d)));
     ++rep.relax_rounds_run;
     rep.round_min_distance.push_back(d_current);
     rep.round_nn_spread.push_back(spread);
@@ -1165,9 +1185,20 @@ FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& o
   if (species.count == 1) {
     filled.classes = {{filled.radius_packing, filled.radius_tight, false, 2.0 * filled.radius_packing}};
   } else {
+    // Relaxation raised every distance by one factor: the radii say what the points keep (below 1
+    // only by the rounding of positions to floats).
+    const std::vector<double> least = class_min_distances(filled);
+    double factor = std::numeric_limits<double>::infinity();
+    const auto present = static_cast<std::size_t>(std::lround(std::sqrt(double(least.size()))));  // classes with points
+    for (std::size_t a = 0; a < present; ++a)
+      for (std::size_t b = 0; b < present; ++b)
+        if (std::isfinite(least[a * present + b]))
+          factor = std::min(factor, least[a * present + b] / species.distance(a, b));
+    if (!std::isfinite(factor)) factor = 1.0;
+    factor *= 1.0 - 1e-6;
     for (std::size_t c = 0; c < species.count; ++c)
-      filled.classes.push_back(
-          {species.packing[c], species.tight[c], species.edge_objects[c] != 0, species.distance(c, c)});
+      filled.classes.push_back({factor * species.packing[c], species.tight[c], species.edge_objects[c] != 0,
+                                factor * species.distance(c, c)});
   }
   if (report) *report = rep;
   return filled;
