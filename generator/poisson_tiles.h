@@ -28,10 +28,13 @@ namespace wangscape {
 
 // One class (species) of a multi-class fill (Shade 2002, section 3, generalised to classes).
 // Two points of classes a and b keep at least packing_a + packing_b apart (plus the larger of
-// exclusion[a][b] and exclusion[b][a]) in every valid tiling, across every edge and corner.
+// exclusion[a][b] and exclusion[b][a]), two points of one class its own spacing (0.85 x dart_rho
+// x the hexagonal spacing of its own density, or twice its packing radius if larger), in every
+// valid tiling, across every edge and corner (docs/filled-tileset-format.md). Classes are thrown
+// one after the other, the widest-spaced first; relaxation raises every distance by one factor.
 struct PoissonClass {
   double share = 1;               // relative density: this class's share of points_per_tile (shares are normalised)
-  double packing_radius = 0;      // tile sides; 0 = from the class's own density like the single class (dart_rho)
+  double packing_radius = 0;      // tile sides; 0 = half the dart distance of points_per_tile (one class's)
   double tight_radius = 0;        // tile sides; 0 = tight_fraction x packing radius. Never crosses a tile corner
   int variants = 1;               // model variants; TilePoint::variant counts across classes (c's follow c-1's)
   bool edge_objects = false;      // the class's points sit across edges (in the shared strips), never across a corner
