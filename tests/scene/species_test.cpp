@@ -5,8 +5,10 @@
 #include "scene/species.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <numbers>
 #include <string>
@@ -135,6 +137,56 @@ TEST(SpeciesRules, AspectRangesGoClockwiseAndWrapPastNorth) {
   EXPECT_NEAR(aspect_degrees({s, 0, c}), 90, 1e-9);
   EXPECT_NEAR(aspect_degrees({0, -s, c}), 180, 1e-9);
   EXPECT_NEAR(aspect_degrees({-s, s, c}), 315, 1e-9);
+}
+
+// A species may be a user mesh: one variant, its species' name on the model, rules as any other.
+TEST(Species, AUserMeshIsASpeciesOfOneModel) {
+  const auto dir = std::filesystem::temp_directory_path() / ("wangscape_species_test_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "rock.obj") << "v 0 0 0\nv 0.3 0 0\nv 0 0.3 0\nv 0 0 0.5\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+  const SceneConfig c = parse_scene_config(
+      "[terrain]\nflat_size = 40.0\n[tiles]\npoints_per_tile = 12\nrelaxation_rounds = 0\narea = [-8.0, -8.0, 8.0, "
+      "8.0]\n[[species]]\nname = \"grass\"\nvariants = 2\ntriangle_budget = 100\nshare = 3\n[[species]]\nname = "
+      "\"rock\"\nmodel = \"rock.obj\"\nexclusion = { grass = 0.2 }\n",
+      "test.toml", dir);
+  const Scene scene = make_scene(c);
+  ASSERT_EQ(scene.models.size(), 3u);
+  EXPECT_EQ(scene.models[2].triangle_count(), 3u);
+  EXPECT_EQ(scene.field->species_of_model(2), 1u);
+  EXPECT_EQ(scene.field->species_of_model(1), 0u);
+  EXPECT_EQ(scene.models[0].materials[0].name, "grass grass");  // named by species
+  std::size_t rocks = 0, total = 0;
+  scene.instances([&](const InstanceBatch& batch) {
+    for (std::size_t k = 0; k < batch.size(); ++k) rocks += batch.variant[k] == 2;
+    total += batch.size();
+  });
+  EXPECT_GT(rocks, 0u);
+  EXPECT_GT(total, rocks);
+  std::filesystem::remove_all(dir);
+}
+
+// Camera-aware export: each species' proxies follow the full models in the same order, so a
+// proxy's species is its full model's, and the stream holds proxies of every species.
+TEST(Species, CameraAwareProxiesKeepTheirSpecies) {
+  SceneConfig c = load_scene_config(data_root() / "templates/scenes/meadow.toml");
+  c.camera_aware.enabled = true;
+  c.camera_aware.near = 10;
+  c.camera_aware.far = 60;
+  const Scene scene = make_scene(c);
+  const std::size_t full = scene.field->proxy_offset;
+  ASSERT_EQ(full, 16u);
+  ASSERT_EQ(scene.models.size(), 2 * full);
+  for (std::size_t m = 0; m < full; ++m) {
+    EXPECT_EQ(scene.field->species_of_model(m + full), scene.field->species_of_model(m));
+    EXPECT_EQ(scene.models[m + full].name, scene.models[m].name + " proxy");
+    EXPECT_LE(scene.models[m + full].triangle_count(), scene.models[m].triangle_count());
+  }
+  std::map<std::size_t, std::size_t> proxies;
+  scene.instances([&](const InstanceBatch& batch) {
+    for (std::size_t k = 0; k < batch.size(); ++k)
+      if (batch.variant[k] >= full) ++proxies[*scene.field->species_of_model(batch.variant[k])];
+  });
+  EXPECT_EQ(proxies.size(), 3u);
 }
 
 // ---- the meadow ----
