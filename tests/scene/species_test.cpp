@@ -165,6 +165,39 @@ TEST(Species, AUserMeshIsASpeciesOfOneModel) {
   std::filesystem::remove_all(dir);
 }
 
+// A species' painted mask: grass only where the image is white. The mask (a PGM, white west of
+// column 691 of 1000) stretched over the DEM's 9660 m puts its edge at about 1838-1848 m east,
+// inside the meadow; the dandelions, without a mask, stand on both sides.
+TEST(Species, APaintedMaskKeepsItsSpeciesOnTheWhite) {
+  const auto dir = std::filesystem::temp_directory_path() / ("wangscape_species_mask_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream pgm(dir / "west.pgm", std::ios::binary);
+    pgm << "P5\n1000 10\n255\n";
+    for (int row = 0; row < 10; ++row)
+      for (int col = 0; col < 1000; ++col) pgm.put(char(col < 691 ? 255 : 0));
+  }
+  SceneConfig c = load_scene_config(data_root() / "templates/scenes/meadow.toml");
+  c.species[0].mask = dir / "west.pgm";
+  const Scene scene = make_scene(c);
+  double grass_east = -1e9, dandelion_east = -1e9;
+  std::size_t grass = 0;
+  scene.instances([&](const InstanceBatch& batch) {
+    for (std::size_t k = 0; k < batch.size(); ++k) {
+      const auto species = scene.field->species_of_model(batch.variant[k]);
+      if (species == 0u) {
+        grass_east = std::max<double>(grass_east, batch.x[k]);
+        ++grass;
+      }
+      if (species == 1u) dandelion_east = std::max<double>(dandelion_east, batch.x[k]);
+    }
+  });
+  EXPECT_GT(grass, 1000u);
+  EXPECT_LT(grass_east, 1849.0);
+  EXPECT_GT(dandelion_east, 1880.0);
+  std::filesystem::remove_all(dir);
+}
+
 // Camera-aware export: each species' proxies follow the full models in the same order, so a
 // proxy's species is its full model's, and the stream holds proxies of every species.
 TEST(Species, CameraAwareProxiesKeepTheirSpecies) {
