@@ -91,10 +91,6 @@ void fill(const TileSet& set, const TilesetOptions& options) {
   fill_options.relax_rounds = options.relax;
   fill_options.seed = options.seed;
   fill_options.classes = options.classes;
-  if (!options.classes.empty() && !options.out.empty())
-    throw std::runtime_error(
-        "tileset: --class with --out: the filled tile-set file (docs/filled-tileset-format.md) does not hold classes "
-        "yet; draw them with --sheet");
   if (const auto estimate = estimate_poisson_fill(set, fill_options);
       !options.quiet && estimate.seconds > 5 && estimate.seconds <= kMaxFillSeconds)
     fmt::print(stderr, "wangscape: filling {:.0f} points, about {:.0f} s\n", estimate.points, estimate.seconds);

@@ -1,5 +1,5 @@
 # wangscape tileset --class (issue 26), run for real: several classes fill one set and are
-# reported per class; a malformed class and --out with classes are refused with one clear line.
+# reported per class, written and scattered; a malformed class is refused with one clear line.
 add_test(NAME tileset_classes
   COMMAND ${cli_expect} 0 "2 +[0-9.]+ \\( +2\\.00\\).*\\(edge objects\\)"
     ${WANGSCAPE_BIN} --quiet tileset --set cohen8 --per-tile 40 --class 0.7 --class 0.25
@@ -7,7 +7,11 @@ add_test(NAME tileset_classes
 add_test(NAME tileset_class_malformed
   COMMAND ${cli_expect} 1 "--class '0.7:x'; expected SHARE"
     ${WANGSCAPE_BIN} tileset --set cohen8 --per-tile 40 --class 0.7:x)
-add_test(NAME tileset_class_out_refused
-  COMMAND ${cli_expect} 1 "--class with --out: the filled tile-set file"
-    ${WANGSCAPE_BIN} tileset --set cohen8 --per-tile 40 --class 0.7 --out ${CLI_SCRATCH}/classes.json)
-set_tests_properties(tileset_classes tileset_class_malformed tileset_class_out_refused PROPERTIES LABELS cli)
+# The file keeps the classes (scene/filled_tileset_file) and scatter lays them: no pair closer
+# than the union's packing diameter.
+add_test(NAME tileset_classes_out_scatter
+  COMMAND ${cli_expect} 0 "pairs < [0-9.]+ m: +0$"
+    sh -c "'${WANGSCAPE_BIN}' --quiet tileset --set cohen8 --per-tile 40 --class 0.7 --class 0.3:0.07 --relax 4 \
+      --out '${CLI_SCRATCH}/classes.json' && '${WANGSCAPE_BIN}' scatter --tileset '${CLI_SCRATCH}/classes.json' \
+      --plane 64x64 --tile-size 4 --metrics")
+set_tests_properties(tileset_classes tileset_class_malformed tileset_classes_out_scatter PROPERTIES LABELS cli)
