@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/number_text.h"
 #include "templates/mesh_io.h"
 #include "templates/plants.h"
 #include "terrain/terrain.h"
@@ -63,11 +64,22 @@ std::vector<PoissonClass> species_classes(const SceneConfig& config, const std::
     c.edge_objects = species.edge_objects;
     c.tight_radius = species.tight_radius.value_or(tight_radii[s] * grown) / tile;
     c.packing_radius = species.packing_radius.value_or(0) / tile;
+    // The fill's limits in meters, named by the species' key (the fill knows only class numbers).
+    const std::string key = "species." + species.name + ".";
+    const auto limit = [&](double radius, const std::string& what, double most) {
+      if (radius >= most)
+        throw config.error_at(key + what, "is " + significant_text(radius * tile, 4) + " m; a tile of " +
+                                              significant_text(tile, 4) + " m (tiles.tile_size) takes less than " +
+                                              significant_text(most * tile, 4) + " m");
+    };
+    limit(c.tight_radius, species.tight_radius ? "tight_radius" : "model", 0.5);
+    limit(c.packing_radius, "packing_radius", 0.5);
     if (!species.exclusion.empty()) {
       c.exclusion.assign(config.species.size(), 0.0);
       for (const auto& [other, meters] : species.exclusion)
         for (std::size_t k = 0; k < config.species.size(); ++k)
           if (config.species[k].name == other) c.exclusion[k] = meters / tile;
+      for (const double e : c.exclusion) limit(e, "exclusion", 1.0);
     }
     classes.push_back(std::move(c));
   }

@@ -222,6 +222,29 @@ TEST(Species, CameraAwareProxiesKeepTheirSpecies) {
   EXPECT_EQ(proxies.size(), 3u);
 }
 
+// Radii the tile cannot hold are refused naming the species' key and meters, not the fill's class.
+TEST(Species, RadiiTooLargeForTheTileNameTheSpeciesKey) {
+  const auto base = [](const char* tile) {
+    return std::string("[terrain]\nflat_size = 40.0\n[tiles]\ntile_size = ") + tile + "\n[[species]]\nname = \"g\"\n";
+  };
+  const std::pair<std::string, std::string> cases[] = {
+      {base("2.0") + "tight_radius = 1.5",
+       "test.toml:7: 'species.g.tight_radius' is 1.5 m; a tile of 2 m (tiles.tile_size) takes less than 1 m"},
+      {base("2.0") + "packing_radius = 1.0", "test.toml:7: 'species.g.packing_radius' is 1 m"},
+      // A sunflower reaches out about half a meter: its extent does not fit a 0.8 m tile.
+      {base("0.8") + "model = \"sunflower\"\ntriangle_budget = 400", "test.toml:7: 'species.g.model' is 0."},
+  };
+  for (const auto& [text, expected] : cases) {
+    std::string message = "(no error)";
+    try {
+      make_scene(parse(text + "\n"));
+    } catch (const Error& e) {
+      message = e.what();
+    }
+    EXPECT_NE(message.find(expected), std::string::npos) << text << "\n  gave: " << message;
+  }
+}
+
 // ---- the meadow ----
 
 struct Placed {
