@@ -12,24 +12,41 @@
 
 namespace wangscape {
 
-// A depth pixel: 7 bytes, byte-aligned (no padding, read in place from a mapped pack). depth is
+// A depth pixel: 8 bytes, byte-aligned (no padding, read in place from a mapped pack). depth is
 // 16-bit fixed point over the LDI's depth range; normal is octahedral (8 + 8 bits), unit, turned
-// towards the viewer. Both are stored little endian.
+// towards the viewer. Both are stored little endian. plant says which plant the sample shows, so a
+// view can thin the LDI as the scene's species rules and density thin the field (issue 26):
+// species (0..6) in the top 3 bits, the plant's progressive rank in 32 steps below; kAnyPlant for
+// the ground, a species beyond the seventh and anything else no rule removes.
+inline constexpr std::uint8_t kAnyPlant = 0xff;
+inline constexpr int kPlantRankSteps = 32;
+inline constexpr int kPlantSpecies = 7;  // species that fit the byte beside kAnyPlant
+
 struct DepthPixel {
   std::uint8_t r = 0, g = 0, b = 0;  // sRGB, pre-shaded
   std::uint8_t depth_bytes[2] = {0, 0};
   std::uint8_t normal_bytes[2] = {0, 0};
+  std::uint8_t plant = kAnyPlant;
 
   // Distance along the ray from the image plane: depth() / 65535 * depth_range meters.
   std::uint16_t depth() const { return std::uint16_t(depth_bytes[0] | depth_bytes[1] << 8); }
   std::uint16_t normal() const { return std::uint16_t(normal_bytes[0] | normal_bytes[1] << 8); }
-  static DepthPixel make(std::uint8_t r, std::uint8_t g, std::uint8_t b, std::uint16_t depth, std::uint16_t normal) {
+  static DepthPixel make(std::uint8_t r, std::uint8_t g, std::uint8_t b, std::uint16_t depth, std::uint16_t normal,
+                         std::uint8_t plant = kAnyPlant) {
     return {
-        r, g, b, {std::uint8_t(depth), std::uint8_t(depth >> 8)}, {std::uint8_t(normal), std::uint8_t(normal >> 8)}};
+        r,    g, b, {std::uint8_t(depth), std::uint8_t(depth >> 8)}, {std::uint8_t(normal), std::uint8_t(normal >> 8)},
+        plant};
   }
   bool operator==(const DepthPixel&) const = default;
 };
-static_assert(sizeof(DepthPixel) == 7 && alignof(DepthPixel) == 1);
+static_assert(sizeof(DepthPixel) == 8 && alignof(DepthPixel) == 1);
+
+// The plant byte of a plant of `species` with progressive rank `rank` in [0, 1).
+inline std::uint8_t plant_byte(int species, float rank) {
+  if (species < 0 || species >= kPlantSpecies) return kAnyPlant;
+  const int step = rank >= 0 ? int(rank * float(kPlantRankSteps)) : 0;
+  return std::uint8_t(species << 5 | (step < kPlantRankSteps ? step : kPlantRankSteps - 1));
+}
 
 // A run of pixels [x, x + length) of one row; it starts and ends with a non-empty pixel, and may
 // hold short runs of empty ones (count 0) where that is smaller than starting a new span.

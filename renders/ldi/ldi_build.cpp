@@ -91,6 +91,7 @@ RTCGeometry triangle_geometry(RTCDevice device, std::span<const std::array<float
 // instance id, or the geometry id when the context is flattened).
 struct Instances {
   std::vector<std::uint16_t> variant;
+  std::vector<std::uint8_t> plant;  // the depth pixels' plant byte (species and rank)
   std::vector<float> cos_yaw, sin_yaw, scale, x, y;
   unsigned ground_id = 0;  // Hit::inst of the ground quad
 };
@@ -428,7 +429,8 @@ class LdiSampler {
       const auto rgb = to_srgb8(color);
       const float d = std::clamp(h.t * depth_scale, 0.0f, 65535.0f);
       out.depth_pixels.push_back(
-          DepthPixel::make(rgb[0], rgb[1], rgb[2], std::uint16_t(std::lround(d)), encode_octahedral(s.normal)));
+          DepthPixel::make(rgb[0], rgb[1], rgb[2], std::uint16_t(std::lround(d)), encode_octahedral(s.normal),
+                           h.inst == c_.instances.ground_id ? kAnyPlant : c_.instances.plant[h.inst]));
     }
     k.depth_pixels += std::uint64_t(kept);
   }
@@ -550,6 +552,7 @@ Scene context_scene(Device& device, const FilledTileSet& filled, std::span<const
       }
       ++id;
       out.variant.push_back(p.variant);
+      out.plant.push_back(plant_byte(p.species, p.rank));
       out.cos_yaw.push_back(c);
       out.sin_yaw.push_back(s);
       out.scale.push_back(p.scale);

@@ -22,7 +22,7 @@ namespace wangscape {
 class AtomicFile;
 
 inline constexpr char kLdiPackMagic[8] = {'W', 'S', 'C', 'L', 'D', 'I', '\r', '\n'};
-inline constexpr std::uint32_t kLdiPackVersion = 1;
+inline constexpr std::uint32_t kLdiPackVersion = 2;  // 2: depth pixels carry the plant byte
 
 // What the pack says about its set (the header and the per-level / per-direction arrays).
 struct LdiPackInfo {

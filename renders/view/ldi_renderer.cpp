@@ -280,7 +280,9 @@ struct Warp {
   float h00 = 0, h10 = 0, h01 = 0, h11 = 0, inverse_tile = 1;
   float depth_scale = 0, splat = 0;  // meters per depth step; splat side times depth (pixels x meters)
   std::uint16_t owned = 0xffff;      // the dither thresholds this LDI owns (owned_thresholds)
-  float ground_below = 0;            // meters: a last layer lower than this is the ground plane
+  // [[species]]: per species, the rank steps of its plants that grow on this tile (null: all).
+  const std::uint8_t* plant_steps = nullptr;
+  float ground_below = 0;  // meters: a last layer lower than this is the ground plane
   bool reverse_layers = false;
   int epipole_x = 0, epipole_y = 0;
 };
@@ -292,6 +294,8 @@ void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, 
     float lx, ly, lz, cx, cy, cz;
   };
   auto splat_pixel = [&](const PixelBase& b, const DepthPixel& p, bool last) {
+    if (w.plant_steps && p.plant != kAnyPlant && (p.plant & (kPlantRankSteps - 1)) >= w.plant_steps[p.plant >> 5])
+      return;  // a plant the field's rules or density leave out here
     const float d = float(p.depth()) * w.depth_scale;
     const float lz = b.lz + d * w.local_d[2];
     if (last && lz < w.ground_below) return;  // the ground plane: the terrain draws it
@@ -603,6 +607,7 @@ void LdiRenderer::warp_tiles() {
             w.ground_below = far ? -std::numeric_limits<float>::infinity() : kGroundEpsilon + 0.75f * f.pixel_size;
             w.splat = float(p) * m.focal * (far ? kFarSplatScale : kSplatScale);
             w.owned = owned_thresholds(part.from, part.to);
+            if (!tiles.plant_steps.empty()) w.plant_steps = tiles.plant_steps[t].data();
             // The eye in the LDI's frame (unsheared: the shear moves samples, not the order).
             const V3 eye_local{m.eye[0] - tiles.x0[t] - f.origin[0], m.eye[1] - tiles.y0[t] - f.origin[1],
                                m.eye[2] - double(w.h00 + w.h10 + w.h01 + w.h11) / 4 - f.origin[2]};

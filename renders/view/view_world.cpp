@@ -47,21 +47,35 @@ LdiImage one_layer_ldi(const LdiView& v, int factor) {
   out.frame.height = (f.height + std::uint32_t(factor) - 1) / std::uint32_t(factor);
   out.frame.pixel_size = f.pixel_size * float(factor);
   const std::uint32_t w = out.frame.width, h = out.frame.height;
+  // A block shows one species, the one most of its front samples show (all of them in a field
+  // of one species), so that a view can still leave it out where that species does not grow.
   struct Block {
     double r = 0, g = 0, b = 0, depth = 0;
-    std::uint32_t flowers = 0;
+    std::uint32_t flowers = 0, shown = 0;
     std::uint16_t normal = 0;
+    std::uint8_t plant = kAnyPlant;
+    std::array<std::uint32_t, kPlantSpecies + 1> per_species{};  // the last: kAnyPlant
   };
   std::vector<Block> blocks(std::size_t(w) * h);
+  const auto species_of = [](std::uint8_t plant) { return plant == kAnyPlant ? kPlantSpecies : plant >> 5; };
+  for_each_front_sample(v, [&](int x, int y, const DepthPixel& front, bool is_ground) {
+    if (is_ground) return;
+    Block& b = blocks[std::size_t(y / factor) * w + std::uint32_t(x / factor)];
+    ++b.flowers;
+    ++b.per_species[std::size_t(species_of(front.plant))];
+  });
   const Luts& lut = luts();
   for_each_front_sample(v, [&](int x, int y, const DepthPixel& front, bool is_ground) {
     if (is_ground) return;
     Block& b = blocks[std::size_t(y / factor) * w + std::uint32_t(x / factor)];
+    const auto most = std::max_element(b.per_species.begin(), b.per_species.end()) - b.per_species.begin();
+    if (species_of(front.plant) != most) return;
+    if (b.shown++ == 0) b.plant = front.plant;
     b.r += lut.to_linear[front.r];
     b.g += lut.to_linear[front.g];
     b.b += lut.to_linear[front.b];
     b.depth += front.depth();
-    if (b.flowers++ == 0) b.normal = front.normal();
+    if (b.shown == 1) b.normal = front.normal();
   });
   const double area = double(factor) * double(factor);
   out.row_spans.push_back(0);
@@ -81,10 +95,10 @@ LdiImage one_layer_ldi(const LdiView& v, int factor) {
         const bool kept = b.flowers > 0 && double(b.flowers) / area > block_threshold(x, y, salt);
         out.counts.push_back(kept ? 1 : 0);
         if (!kept) continue;
-        const double n = double(b.flowers);
+        const double n = double(b.shown);
         out.depth_pixels.push_back(DepthPixel::make(lut.encode(float(b.r / n)), lut.encode(float(b.g / n)),
                                                     lut.encode(float(b.b / n)), std::uint16_t(std::lround(b.depth / n)),
-                                                    b.normal));
+                                                    b.normal, b.plant));
       }
     }
     out.row_spans.push_back(std::uint32_t(out.spans.size()));
@@ -93,6 +107,20 @@ LdiImage one_layer_ldi(const LdiView& v, int factor) {
   out.frame.pixel_count = std::uint32_t(out.counts.size());
   out.frame.depth_pixel_count = std::uint32_t(out.depth_pixels.size());
   return out;
+}
+
+// How many rank steps of each species' plants grow at (x, y, z): none where its rules forbid it,
+// else its density there in steps (the stream keeps a plant where its rank < the density).
+std::array<std::uint8_t, kPlantSpecies> plant_steps(const SpeciesRules& rules, double x, double y, double z,
+                                                    std::size_t species) {
+  std::array<std::uint8_t, kPlantSpecies> steps{};
+  for (std::size_t s = 0; s < std::min<std::size_t>(species, kPlantSpecies); ++s) {
+    const auto k = std::uint8_t(s);
+    if (rules.rules_hold(k, x, y, z))
+      steps[s] =
+          std::uint8_t(std::clamp(std::lround(rules.density(k, x, y, z) * kPlantRankSteps), 0L, long(kPlantRankSteps)));
+  }
+  return steps;
 }
 
 bool files_resolve(const SceneConfig& c) {
@@ -285,6 +313,9 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
       }
       tiles_.z_min.push_back(lo);
       tiles_.z_max.push_back(hi);
+      if (field.species)
+        tiles_.plant_steps.push_back(
+            plant_steps(*field.species, x0 + tile_size_ / 2, y0 + tile_size_ / 2, centre, field.species_names.size()));
     }
   }
 

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <numbers>
@@ -33,15 +34,8 @@ fs::path scratch(const std::string& name) {
 // A flat field over `area` (ENU m), its pack built with 3 levels x 4 directions at a coarse
 // resolution, and the view's world over both.
 // With `full_pack`, the pack has the scene file's defaults (7 levels x 8 directions, 512 pixels).
-std::shared_ptr<const ViewWorld> tiny_world(const std::string& area, const std::string& name,
-                                            const std::string& flat_size = "60.0", bool full_pack = false,
-                                            const std::string& points_per_tile = "10") {
-  const std::string text =
-      "name = \"view test\"\n[terrain]\nflat_size = " + flat_size +
-      "\n[tiles]\nset = \"cohen8\"\n"
-      "tile_size = 4.0\npoints_per_tile = " +
-      points_per_tile + "\nseed = 5\narea = " + area +
-      "\n[models]\nvariants = 2\ntriangle_budget = 400\n[sun]\nazimuth = 200.0\nelevation = 40.0\n";
+// The view's world of the scene file `text`, with its pack (see tiny_world).
+std::shared_ptr<const ViewWorld> world_of(const std::string& text, const std::string& name, bool full_pack = false) {
   const SceneConfig config = parse_scene_config(text, name + ".toml", fs::temp_directory_path());
   Scene scene = make_scene(config);
   LdiBuildOptions options;
@@ -54,6 +48,17 @@ std::shared_ptr<const ViewWorld> tiny_world(const std::string& area, const std::
   const fs::path pack = scratch(name + ".ldi");
   build_scene_ldi_pack(scene, pack, options);
   return std::make_shared<const ViewWorld>(std::move(scene), pack);
+}
+
+std::shared_ptr<const ViewWorld> tiny_world(const std::string& area, const std::string& name,
+                                            const std::string& flat_size = "60.0", bool full_pack = false,
+                                            const std::string& points_per_tile = "10") {
+  return world_of("name = \"view test\"\n[terrain]\nflat_size = " + flat_size +
+                      "\n[tiles]\nset = \"cohen8\"\n"
+                      "tile_size = 4.0\npoints_per_tile = " +
+                      points_per_tile + "\nseed = 5\narea = " + area +
+                      "\n[models]\nvariants = 2\ntriangle_budget = 400\n[sun]\nazimuth = 200.0\nelevation = 40.0\n",
+                  name, full_pack);
 }
 
 const std::shared_ptr<const ViewWorld>& field() {
@@ -438,6 +443,51 @@ TEST(ldi_view_above, FarStepsOfTwoTilesKeepIndependentBlocks) {
   ASSERT_GT(pairs, 10);
   // Measured: 0.46 with the ordered dither, 0.12 hashed.
   EXPECT_LT(sum / pairs, 0.2) << "mean phi of the kept masks of neighbouring tiles";
+}
+
+}  // namespace
+}  // namespace wangscape
+
+namespace wangscape {
+namespace {
+
+// The pixels of a frame that show sunflower petals (saturated yellow).
+int yellow_pixels(const ImageRgb8& image) {
+  int n = 0;
+  for (std::size_t i = 0; i + 2 < image.pixels.size(); i += 3) {
+    const int r = image.pixels[i], g = image.pixels[i + 1], b = image.pixels[i + 2];
+    n += r >= g && g > 100 && b * 2 < g;  // (grass, even straw, is greener)
+  }
+  return n;
+}
+
+// [[species]]: the LDIs hold every plant of a tile, and the view leaves out, per placed tile, the
+// plants its species' rules and density leave out of the field (the depth pixels' plant byte).
+TEST(ldi_view_species, PlantsTheRulesLeaveOutAreNotDrawn) {
+  const auto world = [](const std::string& sunflower_rule, const std::string& name) {
+    return world_of(
+        "name = \"species view test\"\n[terrain]\nflat_size = 60.0\n[tiles]\nset = \"cohen8\"\n"
+        "tile_size = 4.0\npoints_per_tile = 12\nseed = 5\narea = [-12.0, -12.0, 12.0, 12.0]\n"
+        "[sun]\nazimuth = 200.0\nelevation = 40.0\n"
+        "[[species]]\nname = \"grass\"\nmodel = \"grass\"\nvariants = 2\ntriangle_budget = 200\nshare = 2.0\n"
+        "[[species]]\nname = \"sunflower\"\nmodel = \"sunflower\"\nvariants = 2\ntriangle_budget = 400\n" +
+            sunflower_rule,
+        name);
+  };
+  const ViewCamera camera = looking(0, -15, 1.7, 0, 0, 0.8, 60);
+  LdiRenderer everywhere(world("", "species_everywhere"), 160, 120);
+  LdiRenderer nowhere(world("max_height = -1.0\n", "species_nowhere"), 160, 120);
+  LdiRenderer half(world("density_by_height = [[0.0, 0.5], [1.0, 0.5]]\n", "species_half"), 160, 120);
+  everywhere.render(camera);
+  nowhere.render(camera);
+  half.render(camera);
+  const int all = yellow_pixels(everywhere.image()), none = yellow_pixels(nowhere.image()),
+            some = yellow_pixels(half.image());
+  EXPECT_GT(all, 100);
+  EXPECT_EQ(none, 0) << "of " << all;
+  std::printf("sunflower pixels: everywhere %d, nowhere %d, at half density %d\n", all, none, some);
+  EXPECT_GT(some, all / 5) << "of " << all;
+  EXPECT_LT(some, all * 4 / 5) << "of " << all;
 }
 
 }  // namespace
