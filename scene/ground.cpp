@@ -194,9 +194,19 @@ Mesh SceneGround::mesh(std::size_t max_vertices) const {
   return mesh;
 }
 
-void SceneGround::refine_mesh(Mesh& mesh, const Extent& over, int k) const {
+void SceneGround::refine_mesh(Mesh& mesh, const Extent& over, int k, std::size_t max_new_triangles) const {
   if (!impl_->terrain || k < 2) return;
   const std::size_t triangle_count = mesh.triangles.size();
+  const auto meets = [&](const std::array<std::uint32_t, 3>& triangle) {
+    const auto &pa = mesh.positions[triangle[0]], &pb = mesh.positions[triangle[1]], &pc = mesh.positions[triangle[2]];
+    const Extent box{std::min({pa[0], pb[0], pc[0]}), std::min({pa[1], pb[1], pc[1]}), std::max({pa[0], pb[0], pc[0]}),
+                     std::max({pa[1], pb[1], pc[1]})};
+    return !box.intersected(over).empty();
+  };
+  // A field over a whole DEM would multiply its mesh by k^2: k shrinks to the budget.
+  const auto refined = std::size_t(std::count_if(mesh.triangles.begin(), mesh.triangles.end(), meets));
+  while (k >= 2 && refined * std::size_t(k * k) > max_new_triangles) --k;
+  if (k < 2) return;
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<std::uint16_t> materials;
   triangles.reserve(triangle_count);
@@ -233,9 +243,7 @@ void SceneGround::refine_mesh(Mesh& mesh, const Extent& over, int k) const {
   for (std::size_t t = 0; t < triangle_count; ++t) {
     const auto [a, b, c] = mesh.triangles[t];
     const auto pa = mesh.positions[a], pb = mesh.positions[b], pc = mesh.positions[c];
-    const Extent box{std::min({pa[0], pb[0], pc[0]}), std::min({pa[1], pb[1], pc[1]}), std::max({pa[0], pb[0], pc[0]}),
-                     std::max({pa[1], pb[1], pc[1]})};
-    if (box.intersected(over).empty()) {
+    if (!meets(mesh.triangles[t])) {
       triangles.push_back(mesh.triangles[t]);
       materials.push_back(mesh.triangle_material[t]);
       continue;

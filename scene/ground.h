@@ -59,8 +59,9 @@ class SceneGround {
   // placement sets flowers on: a plant a few centimetres tall sinks into a DEM cell's two flat
   // triangles otherwise (they stray from the bilinear surface by up to a quarter of the cell's
   // twist). Vertices on a shared edge are shared; a cell edge is straight on both surfaces, so
-  // no crack opens against the triangles left as they were. Nothing happens on flat ground.
-  void refine_mesh(Mesh& mesh, const Extent& over, int k) const;
+  // no crack opens against the triangles left as they were. k shrinks until the new triangles
+  // stay within `max_new_triangles` (below 2: nothing is cut). Nothing happens on flat ground.
+  void refine_mesh(Mesh& mesh, const Extent& over, int k, std::size_t max_new_triangles = 4'000'000) const;
 
   // Lays the filled tiles over the ground (placement.h) and streams the instances that pass
   // the masks: with fair edges, every tile that may pass is laid and each flower is kept only

@@ -245,6 +245,70 @@ TEST(Species, RadiiTooLargeForTheTileNameTheSpeciesKey) {
   }
 }
 
+// The ground mesh cut onto the bilinear surface: k^2 triangles for each one meeting the area, the
+// rest kept; the new vertices on the old edges lie on those straight edges (a DEM cell's edge is
+// straight on the bilinear surface too), so no crack opens; a budget too small cuts nothing.
+TEST(Species, TheGroundMeshIsCutOntoTheSurfaceWithoutCracks) {
+  TerrainConfig terrain;
+  terrain.dem = data_root() / "data/SainteHelens.dem";
+  terrain.crop = std::array<double, 4>{1700, -5200, 2000, -4900};
+  const SceneGround ground = SceneGround::load(terrain);
+  const Mesh coarse = ground.mesh();
+  const Extent over{1800, -5100, 1860, -5040};
+  const auto meets = [&](const std::array<std::uint32_t, 3>& t) {
+    double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
+    for (std::uint32_t v : t) {
+      x0 = std::min<double>(x0, coarse.positions[v][0]);
+      x1 = std::max<double>(x1, coarse.positions[v][0]);
+      y0 = std::min<double>(y0, coarse.positions[v][1]);
+      y1 = std::max<double>(y1, coarse.positions[v][1]);
+    }
+    return !Extent{x0, y0, x1, y1}.intersected(over).empty();
+  };
+  std::size_t cut = 0;
+  for (const auto& t : coarse.triangles) cut += meets(t);
+  ASSERT_GT(cut, 4u);
+  Mesh fine = coarse;
+  ground.refine_mesh(fine, over, 4);
+  EXPECT_EQ(fine.triangles.size(), coarse.triangles.size() + cut * 15);
+  EXPECT_EQ(fine.normals.size(), fine.positions.size());
+  EXPECT_EQ(fine.triangle_material.size(), fine.triangles.size());
+  std::map<std::pair<long, long>, float> height_at;  // new vertices by millimetre position
+  for (std::size_t v = coarse.positions.size(); v < fine.positions.size(); ++v)
+    height_at[{std::lround(fine.positions[v][0] * 1000), std::lround(fine.positions[v][1] * 1000)}] =
+        fine.positions[v][2];
+  double worst = 0;
+  std::size_t found = 0;
+  for (const auto& t : coarse.triangles) {
+    if (!meets(t)) continue;
+    // The two cell edges (the diagonal, the longest edge, is bent on the bilinear surface, and
+    // shared only by the two triangles of its cell, both cut: it opens no crack).
+    const auto span = [&](int e) {
+      const auto &a = coarse.positions[t[e]], &b = coarse.positions[t[(e + 1) % 3]];
+      return std::hypot(b[0] - a[0], b[1] - a[1]);
+    };
+    const int diagonal = span(0) >= span(1) && span(0) >= span(2) ? 0 : span(1) >= span(2) ? 1 : 2;
+    for (int e = 0; e < 3; ++e) {
+      if (e == diagonal) continue;
+      const auto& a = coarse.positions[t[e]];
+      const auto& b = coarse.positions[t[(e + 1) % 3]];
+      for (int step = 1; step < 4; ++step) {
+        const double u = step / 4.0;
+        const auto it = height_at.find(
+            {std::lround((a[0] + (b[0] - a[0]) * u) * 1000), std::lround((a[1] + (b[1] - a[1]) * u) * 1000)});
+        if (it == height_at.end()) continue;
+        ++found;
+        worst = std::max(worst, std::abs(it->second - (a[2] + (b[2] - a[2]) * u)));
+      }
+    }
+  }
+  EXPECT_GT(found, cut * 4);  // most edge points found (a millimetre grid can miss a rounding)
+  EXPECT_LT(worst, 0.01);     // meters: on the straight edge (the interior strays by decimeters)
+  Mesh unchanged = coarse;
+  ground.refine_mesh(unchanged, over, 8, 10);
+  EXPECT_EQ(unchanged.triangles, coarse.triangles);
+}
+
 // ---- the meadow ----
 
 struct Placed {
