@@ -132,6 +132,13 @@ add_test(NAME povray_demo_meadow
           sh -c "rm -rf \"$1\" && \"$0\" --quiet demo --scene meadow --out \"$1\" && test -s \"$1/tiles.json\" && \"$2\" \"$3\" \"$1/render.png\" 0.3 0.5 0.0005"
           "${WANGSCAPE_BIN}" "${povray_dir}/demo_meadow" "${system_python3}" "${CMAKE_CURRENT_SOURCE_DIR}/meadow_colors.py")
 set_tests_properties(povray_demo_meadow PROPERTIES TIMEOUT 120)
+# --scene names a shipped scene or is refused naming the flag; --print-scene prints the shipped
+# scene with its DEM's path made absolute (a copy saved anywhere still builds).
+add_test(NAME demo_unknown_scene
+  COMMAND ${cli_expect} 1 "--scene 'prairie': expected default, meadow, small or whole-dem"
+          "${WANGSCAPE_BIN}" demo --scene prairie --out "${povray_dir}/prairie")
+add_test(NAME demo_print_meadow
+  COMMAND ${cli_expect} 0 "dem = \"/.*/data/SainteHelens.dem\"" "${WANGSCAPE_BIN}" demo --scene meadow --print-scene)
 
 # The ground look ([ground]): the ground of the still is not one color. Flowers shrunk to 1 cm
 # leave the ground in view; the luminance over the lower rows (all ground) must vary, and the
