@@ -14,4 +14,11 @@ add_test(NAME tileset_classes_out_scatter
     sh -c "'${WANGSCAPE_BIN}' --quiet tileset --set cohen8 --per-tile 40 --class 0.7 --class 0.3:0.07 --relax 4 \
       --out '${CLI_SCRATCH}/classes.json' && '${WANGSCAPE_BIN}' scatter --tileset '${CLI_SCRATCH}/classes.json' \
       --plane 64x64 --tile-size 4 --metrics")
-set_tests_properties(tileset_classes tileset_class_malformed tileset_classes_out_scatter PROPERTIES LABELS cli)
+# scatter --metrics per class: each class's row, no pair closer than its own spacing.
+add_test(NAME scatter_metrics_per_class
+  COMMAND ${cli_expect} 0 "^ +1 +[0-9]+ +[0-9.]+ +[0-9.]+ +0 < [0-9.]+ "
+    sh -c "'${WANGSCAPE_BIN}' --quiet tileset --set cohen8 --per-tile 40 --class 0.7 --class 0.3:0.07 \
+      --out '${CLI_SCRATCH}/classes_metrics.json' && '${WANGSCAPE_BIN}' scatter \
+      --tileset '${CLI_SCRATCH}/classes_metrics.json' --plane 64x64 --tile-size 4 --metrics")
+set_tests_properties(tileset_classes tileset_class_malformed tileset_classes_out_scatter scatter_metrics_per_class
+  PROPERTIES LABELS cli)
