@@ -153,7 +153,7 @@ void register_tileset_command(CLI::App& app, const GlobalOptions& global) {
       sub,
       "the set's summary on stdout (--json: the set as JSON); --sheet: a PNG; --per-tile N --out FILE: "
       "the filled set as JSON, for scatter and scene files",
-      {"wangscape tileset --set cohen8 --json > cohen8.json", "wangscape tileset --set cohen8 --sheet sheet.png",
+      {"wangscape tileset --set cohen8 --json > cohen8.json",
        "wangscape tileset --set cohen8 --per-tile 20 --relax 20 --seed 1 --out tiles.json --sheet discs.png",
        "wangscape tileset --set cohen8 --per-tile 40 --class 0.7 --class 0.25 --class 0.05:0.08:0.06:edge --sheet "
        "meadow.png"});
