@@ -315,43 +315,53 @@ FieldTexture::FieldTexture(const SceneField& field, const std::vector<Mesh>& mod
   const double tile = field.placement.tile_size;
   const double texel_area = (tile / texels) * (tile / texels);
   const std::size_t tiles = field.filled.tiles.size();
-  auto& base = levels_.emplace_back(tiles, std::vector<float>(static_cast<std::size_t>(texels * texels)));
-  for (std::size_t t = 0; t < tiles; ++t) {
-    auto& image = base[t];
-    for (const TilePoint& p : field.filled.tiles[t]) {
-      if (views.empty()) break;
-      const TopView& view = views[std::min<std::size_t>(p.variant, views.size() - 1)];
-      const double yaw = field.yaw_of(p.yaw), cs = std::cos(yaw) * p.scale, sn = std::sin(yaw) * p.scale;
-      const double step = 2 * view.half / view.cells, cell_area = step * step * p.scale * p.scale;
-      for (int cy = 0; cy < view.cells; ++cy)
-        for (int cx = 0; cx < view.cells; ++cx) {
-          if (!view.cell[static_cast<std::size_t>(cy * view.cells + cx)]) continue;
-          const double mx = -view.half + (cx + 0.5) * step, my = -view.half + (cy + 0.5) * step;
-          // Wrapped around the tile: what spills over an edge stands for what the neighbours spill in.
-          const double u = p.x + (cs * mx - sn * my) / tile, v = p.y + (sn * mx + cs * my) / tile;
-          const auto wrap = [&](double w) {
-            const int k = static_cast<int>(std::floor(w * texels)) % texels;
-            return k < 0 ? k + texels : k;
-          };
-          image[static_cast<std::size_t>(wrap(v) * texels + wrap(u))] += static_cast<float>(cell_area / texel_area);
-        }
+  // The top-down coverage of each tile's points that `counts`, with its mip chain down to one
+  // texel per tile.
+  const auto coverage_levels = [&](const auto& counts) {
+    std::vector<std::vector<std::vector<float>>> levels;
+    auto& base = levels.emplace_back(tiles, std::vector<float>(static_cast<std::size_t>(texels * texels)));
+    for (std::size_t t = 0; t < tiles; ++t) {
+      auto& image = base[t];
+      for (const TilePoint& p : field.filled.tiles[t]) {
+        if (views.empty()) break;
+        if (!counts(p)) continue;
+        const TopView& view = views[std::min<std::size_t>(p.variant, views.size() - 1)];
+        const double yaw = field.yaw_of(p.yaw), cs = std::cos(yaw) * p.scale, sn = std::sin(yaw) * p.scale;
+        const double step = 2 * view.half / view.cells, cell_area = step * step * p.scale * p.scale;
+        for (int cy = 0; cy < view.cells; ++cy)
+          for (int cx = 0; cx < view.cells; ++cx) {
+            if (!view.cell[static_cast<std::size_t>(cy * view.cells + cx)]) continue;
+            const double mx = -view.half + (cx + 0.5) * step, my = -view.half + (cy + 0.5) * step;
+            // Wrapped around the tile: what spills over an edge stands for what the neighbours spill in.
+            const double u = p.x + (cs * mx - sn * my) / tile, v = p.y + (sn * mx + cs * my) / tile;
+            const auto wrap = [&](double w) {
+              const int k = static_cast<int>(std::floor(w * texels)) % texels;
+              return k < 0 ? k + texels : k;
+            };
+            image[static_cast<std::size_t>(wrap(v) * texels + wrap(u))] += static_cast<float>(cell_area / texel_area);
+          }
+      }
+      for (auto& c : image) c = std::min(c, 1.f);
     }
-    for (auto& c : image) c = std::min(c, 1.f);
-  }
-  // Mip chain of the coverage, down to one texel per tile.
-  for (int size = texels / 2; size >= 1; size /= 2) {
-    const auto& finer = levels_.back();
-    std::vector<std::vector<float>> level(tiles, std::vector<float>(static_cast<std::size_t>(size * size)));
-    for (std::size_t t = 0; t < tiles; ++t)
-      for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x) {
-          float sum = 0;
-          for (int k = 0; k < 4; ++k)
-            sum += finer[t][static_cast<std::size_t>((2 * y + k / 2) * 2 * size + 2 * x + k % 2)];
-          level[t][static_cast<std::size_t>(y * size + x)] = sum / 4;
-        }
-    levels_.push_back(std::move(level));
-  }
+    for (int size = texels / 2; size >= 1; size /= 2) {
+      const auto& finer = levels.back();
+      std::vector<std::vector<float>> level(tiles, std::vector<float>(static_cast<std::size_t>(size * size)));
+      for (std::size_t t = 0; t < tiles; ++t)
+        for (int y = 0; y < size; ++y)
+          for (int x = 0; x < size; ++x) {
+            float sum = 0;
+            for (int k = 0; k < 4; ++k)
+              sum += finer[t][static_cast<std::size_t>((2 * y + k / 2) * 2 * size + 2 * x + k % 2)];
+            level[t][static_cast<std::size_t>(y * size + x)] = sum / 4;
+          }
+      levels.push_back(std::move(level));
+    }
+    return levels;
+  };
+  levels_ = coverage_levels([](const TilePoint&) { return true; });
+  // [[species]]: each species' own coverage, so that painting counts a species only where it grows.
+  for (std::size_t s = 0; s < field.species_names.size(); ++s)
+    species_levels_.push_back(coverage_levels([s](const TilePoint& p) { return p.species == s; }));
   for (const auto& tile_cover : levels_.back()) mean_coverage_ += tile_cover[0];
   mean_coverage_ /= static_cast<float>(std::max<std::size_t>(1, tiles));
 
@@ -375,6 +385,16 @@ FieldTexture::FieldTexture(const SceneField& field, const std::vector<Mesh>& mod
 }
 
 float FieldTexture::coverage(std::uint32_t tile, double u, double v, double footprint) const {
+  return coverage_in(levels_, tile, u, v, footprint);
+}
+
+float FieldTexture::species_coverage(std::size_t species, std::uint32_t tile, double u, double v,
+                                     double footprint) const {
+  return coverage_in(species_levels_[species], tile, u, v, footprint);
+}
+
+float FieldTexture::coverage_in(const std::vector<std::vector<std::vector<float>>>& levels, std::uint32_t tile,
+                                double u, double v, double footprint) const {
   std::size_t level = 0;
   int size = texels_;
   while (size > 1 && footprint * size > 1.0) {
@@ -383,7 +403,7 @@ float FieldTexture::coverage(std::uint32_t tile, double u, double v, double foot
   }
   const int x = std::clamp(static_cast<int>(u * size), 0, size - 1),
             y = std::clamp(static_cast<int>(v * size), 0, size - 1);
-  return levels_[level][tile][static_cast<std::size_t>(y * size + x)];
+  return levels[level][tile][static_cast<std::size_t>(y * size + x)];
 }
 
 CanopyLook FieldTexture::look(double sine) const {
@@ -440,7 +460,17 @@ void paint_far_field(GroundBake& bake, const SceneField& field, const FieldTextu
         if (!sz || !field.ground.flowers_grow_at(sx, sy, *sz, {fi * s, fj * s, (fi + 1) * s, (fj + 1) * s})) continue;
         std::uint16_t t = 0;
         rows.row(static_cast<int>(j - whole.j0), {&t, 1}, static_cast<int>(i - whole.i0));
-        cover += texture.coverage(t, sx / s - fi, sy / s - fj, footprint);
+        if (!field.species) {
+          cover += texture.coverage(t, sx / s - fi, sy / s - fj, footprint);
+          continue;
+        }
+        // [[species]]: each species where its rules let it grow, thinned by its density there.
+        for (std::size_t c = 0; c < field.species_names.size(); ++c) {
+          const auto species = static_cast<std::uint8_t>(c);
+          if (!field.species->rules_hold(species, sx, sy, *sz)) continue;
+          cover += static_cast<float>(field.species->density(species, sx, sy, *sz)) *
+                   texture.species_coverage(c, t, sx / s - fi, sy / s - fj, footprint);
+        }
       }
       if (cover == 0) continue;
       // The ray's sine against the ground picks the canopy's look: at a grazing angle the

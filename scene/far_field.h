@@ -50,6 +50,8 @@ class FieldTexture {
   // The top-down coverage of tile `tile` at tile-local (u, v) in [0, 1), averaged over about
   // `footprint` tile sides.
   float coverage(std::uint32_t tile, double u, double v, double footprint) const;
+  // The same for the points of species `species` only ([[species]]: SceneField::species_names).
+  float species_coverage(std::size_t species, std::uint32_t tile, double u, double v, double footprint) const;
   // The mean top-down coverage over every tile.
   float mean_coverage() const { return mean_coverage_; }
   // What the field shows along a view ray `sine` above the ground (0.05 .. 0.8; clamped): the
@@ -63,6 +65,9 @@ class FieldTexture {
   int texels_ = 16;
   // levels_[l][tile] holds (texels >> l)^2 coverages, row-major, v = 0 first.
   std::vector<std::vector<std::vector<float>>> levels_;
+  std::vector<std::vector<std::vector<std::vector<float>>>> species_levels_;  // per species, as levels_
+  float coverage_in(const std::vector<std::vector<std::vector<float>>>& levels, std::uint32_t tile, double u, double v,
+                    double footprint) const;
   float mean_coverage_ = 0;
   std::array<CanopyLook, kLookSines.size()> looks_{};
 };

@@ -309,6 +309,27 @@ TEST(Species, TheGroundMeshIsCutOntoTheSurfaceWithoutCracks) {
   EXPECT_EQ(unchanged.triangles, coarse.triangles);
 }
 
+// The far field painted into the ground bake follows the species' rules: where no species grows
+// (every one limited below the meadow's lowest ground) nothing is painted, the bake is the bare
+// ground's; with the meadow's own rules the far field shows.
+TEST(Species, TheFarFieldFollowsTheSpeciesRules) {
+  SceneConfig c = load_scene_config(data_root() / "templates/scenes/meadow.toml");
+  c.tiles.points_per_tile = 15;  // a quick fill: the test is about painting
+  c.tiles.relaxation_rounds = 0;
+  c.camera_aware.enabled = true;
+  c.camera_aware.near = 5;
+  c.camera_aware.far = 20;
+  c.ground.emplace().bake_pixels = 1024;  // 9.4 m pixels over the DEM: the meadow spans 13
+  const auto bake_of = [](const SceneConfig& config) { return make_scene(config).ground_texture->image.pixels; };
+  SceneConfig bare = c;
+  bare.camera_aware.far_texture = false;
+  SceneConfig nowhere = c;
+  for (auto& species : nowhere.species) species.max_height = 900.0;
+  const auto ground = bake_of(bare);
+  EXPECT_EQ(bake_of(nowhere), ground) << "a far field painted where no species grows";
+  EXPECT_NE(bake_of(c), ground) << "the meadow's far field is not painted";
+}
+
 // ---- the meadow ----
 
 struct Placed {
