@@ -303,7 +303,7 @@ struct SpeciesTable {
   std::vector<double> packing, tight;
   std::vector<char> edge_objects;
   std::vector<int> variants;
-  std::vector<std::size_t> order;  // order within a tile visit: the widest own spacing first
+  std::vector<std::size_t> order;  // the order they are thrown in: the widest own spacing first
   double widest_spacing = 0;       // the widest own spacing of a class that is not edge objects
   // [a * count + b]: the distance over the dart distance of the whole density (1 for one class):
   // relaxation raises every distance by one factor.
@@ -470,7 +470,8 @@ std::vector<Pair> meeting_pairs(const ContentModel& model, const Content& conten
 // interiors fill and the interiors next to them starve. Strips take 0.9 of their share, as the
 // interiors do not quite reach the target density (measured over 64 seeds, cohen8: edge density
 // 1.02 after darts and 1.01 after relaxation, against 1.09 / 1.04 with 0.95 of it).
-// Quotas are per (class, species): [c * species + s]; edge objects live in strips only, uncapped.
+// With species, quotas are per (content class, species): [c * species.count + s]; edge objects
+// live in the strips only, uncapped.
 std::vector<double> class_quotas(const ContentModel& model, const PoissonFillOptions& options,
                                  const SpeciesTable& species) {
   constexpr double kStripShare = 0.9, kCornerShare = 1.0;
