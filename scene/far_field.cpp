@@ -84,12 +84,10 @@ constexpr double kCell = 0.02;
 // The side (meters, whole tiles) of the square to render of `field`.
 double square_side(const SceneField& field, const std::vector<Mesh>& models) {
   const double tile = field.placement.tile_size;
-  double triangles = 0, points = 0;  // per tile, over the filled set
+  double triangles = 0;  // per tile, over the filled set
   for (const auto& points_of_tile : field.filled.tiles)
-    for (const TilePoint& p : points_of_tile) {
+    for (const TilePoint& p : points_of_tile)
       triangles += double(models[std::min<std::size_t>(p.variant, models.size() - 1)].triangles.size());
-      points += 1;
-    }
   const double per_tile = triangles / double(std::max<std::size_t>(1, field.filled.tiles.size()));
   const double tiles = std::sqrt(kMaxSquareTriangles / std::max(per_tile, 1.0));
   return tile * std::max(1.0, std::min(std::floor(tiles), std::floor(kMaxSquare / tile)));

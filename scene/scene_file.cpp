@@ -432,7 +432,8 @@ void read_species(Section& top, SceneConfig& config, const std::string& source) 
     config.species.push_back(read_one_species(*array->get(i), i, source, config, exclusion_nodes));
   // Names in exclusions are checked once every species is known (a later one may be named).
   for (const auto& species : config.species)
-    for (const auto& [other, meters] : species.exclusion) {
+    for (const auto& entry : species.exclusion) {
+      const std::string& other = entry.first;  // (not a structured binding: clang cannot capture one)
       const bool known = std::any_of(config.species.begin(), config.species.end(),
                                      [&](const SpeciesConfig& s) { return s.name == other; });
       if (!known || other == species.name)
