@@ -21,7 +21,7 @@ void register_demo_command(CLI::App& app, const GlobalOptions& global) {
   auto options = std::make_shared<Options>();
   sub->add_option("--out,-o", options->out, "Output folder")->capture_default_str();
   sub->add_option("--scene", options->scene,
-                  "The scene: default (embedded), or a shipped scene of templates/scenes: meadow (seed 003's meadow: "
+                  "The scene: default (embedded), or a shipped scene of templates/scenes: meadow (Shade 2002's meadow: "
                   "grass, dandelions and sunflowers following the terrain), small, whole-dem")
       ->capture_default_str();
   sub->add_flag("--print-scene", options->print_scene, "Print the scene file (data paths made absolute) and exit");

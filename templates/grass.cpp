@@ -86,10 +86,7 @@ std::vector<Material> grass_materials() {
 }
 
 PlantModel make_grass_clump(std::uint64_t seed, int variant, std::size_t triangle_budget) {
-  if (triangle_budget < kGrassMinimumTriangleBudget || triangle_budget > kGrassMaximumTriangleBudget) {
-    throw Error("grass triangle budget " + std::to_string(triangle_budget) + " is out of range: expected " +
-                std::to_string(kGrassMinimumTriangleBudget) + " to " + std::to_string(kGrassMaximumTriangleBudget));
-  }
+  check_triangle_budget("grass", triangle_budget, kGrassMinimumTriangleBudget, kGrassMaximumTriangleBudget);
   const ClumpShape clump = draw_clump(seed, variant);
   // Rows first (the clump's own blade count at as many rows as fit), then as many blades of
   // those rows as the budget holds: within one blade of the budget.

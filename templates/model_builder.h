@@ -8,8 +8,10 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "core/hash.h"
 #include "templates/mesh.h"
 
@@ -39,6 +41,13 @@ inline Vec3 perpendicular(Vec3 a) {
 }
 
 inline double degrees(double d) { return d * kPi / 180.0; }
+
+// Throws Error unless a `kind` model's triangle budget lies in [low, high].
+inline void check_triangle_budget(const char* kind, std::size_t budget, std::size_t low, std::size_t high) {
+  if (budget < low || budget > high)
+    throw Error(std::string(kind) + " triangle budget " + std::to_string(budget) + " is out of range: expected " +
+                std::to_string(low) + " to " + std::to_string(high));
+}
 inline double lerp(double a, double b, double t) { return a + (b - a) * t; }
 
 // Deterministic random numbers (SplitMix64), identical on every platform.

@@ -338,11 +338,7 @@ std::vector<Material> sunflower_materials() {
 }
 
 SunflowerModel make_sunflower(std::uint64_t seed, int variant, std::size_t triangle_budget) {
-  if (triangle_budget < kSunflowerMinimumTriangleBudget || triangle_budget > kSunflowerMaximumTriangleBudget) {
-    throw Error("sunflower triangle budget " + std::to_string(triangle_budget) + " is out of range: expected " +
-                std::to_string(kSunflowerMinimumTriangleBudget) + " to " +
-                std::to_string(kSunflowerMaximumTriangleBudget));
-  }
+  check_triangle_budget("sunflower", triangle_budget, kSunflowerMinimumTriangleBudget, kSunflowerMaximumTriangleBudget);
   const SunflowerShape shape = draw_shape(seed, variant);
   const Tessellation tess = plan_tessellation(shape, triangle_budget);
 

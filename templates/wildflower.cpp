@@ -205,11 +205,8 @@ std::vector<Material> wildflower_materials() {
 }
 
 PlantModel make_wildflower(std::uint64_t seed, int variant, std::size_t triangle_budget) {
-  if (triangle_budget < kWildflowerMinimumTriangleBudget || triangle_budget > kWildflowerMaximumTriangleBudget) {
-    throw Error("wildflower triangle budget " + std::to_string(triangle_budget) + " is out of range: expected " +
-                std::to_string(kWildflowerMinimumTriangleBudget) + " to " +
-                std::to_string(kWildflowerMaximumTriangleBudget));
-  }
+  check_triangle_budget("wildflower", triangle_budget, kWildflowerMinimumTriangleBudget,
+                        kWildflowerMaximumTriangleBudget);
   const WildflowerShape shape = draw_shape(seed, variant);
   const Tessellation tess = plan_tessellation(shape, triangle_budget);
   PlantModel model;

@@ -10,20 +10,13 @@
 #include <string>
 
 #include "scene/scene.h"
+#include "tests/scene/scene_file_support.h"
 
 namespace wangscape {
 namespace {
 
-SceneConfig parse(const std::string& text) { return parse_scene_config(text, "test.toml", "/base"); }
-
-std::string error_of(const std::string& text) {
-  try {
-    parse(text);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using scene_file_test::error_of;
+using scene_file_test::parse;
 
 TEST(SceneFile, EmptyFileGivesTheDocumentedDefaults) {
   const SceneConfig c = parse("");
