@@ -178,6 +178,30 @@ struct PetalShape {
   double twist;   // relative, tilts one edge forward and the other back
 };
 
+// The ranges a ring of bracts (the green sepals folded back under a flower head) is drawn from.
+struct BractRanges {
+  int count_low, count_high;       // how many
+  double length_low, length_high;  // times the reference length (the disk's or the head's radius)
+  double width_low, width_high;    // times the length
+  double lift_low, lift_high;      // degrees
+  double curl_low, curl_high;      // degrees
+};
+inline std::vector<PetalShape> draw_bracts(Random& random, double reference_length, const BractRanges& r) {
+  const int count = random.integer(r.count_low, r.count_high);
+  std::vector<PetalShape> bracts;
+  for (int i = 0; i < count; ++i) {
+    PetalShape bract;
+    bract.angle = 2 * kPi * (i + random.uniform(-0.3, 0.3)) / count;
+    bract.length = reference_length * random.uniform(r.length_low, r.length_high);
+    bract.width = bract.length * random.uniform(r.width_low, r.width_high);
+    bract.lift = degrees(random.uniform(r.lift_low, r.lift_high));
+    bract.curl = degrees(random.uniform(r.curl_low, r.curl_high));
+    bract.twist = random.uniform(-0.2, 0.2);
+    bracts.push_back(bract);
+  }
+  return bracts;
+}
+
 // Head frame: `right` x `up_in_disk` = facing.
 struct HeadFrame {
   Vec3 center, facing, right, up_in_disk;

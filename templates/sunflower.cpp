@@ -106,17 +106,7 @@ SunflowerShape draw_shape(std::uint64_t seed, int variant) {
       shape.petals.push_back(petal);
     }
   }
-  const int bract_count = random.integer(16, 24);
-  for (int i = 0; i < bract_count; ++i) {
-    PetalShape bract;
-    bract.angle = 2 * kPi * (i + random.uniform(-0.3, 0.3)) / bract_count;
-    bract.length = shape.disk_radius * random.uniform(0.45, 0.7);
-    bract.width = bract.length * random.uniform(0.35, 0.5);
-    bract.lift = degrees(random.uniform(-40.0, -20.0));
-    bract.curl = degrees(random.uniform(-50.0, -20.0));
-    bract.twist = random.uniform(-0.2, 0.2);
-    shape.bracts.push_back(bract);
-  }
+  shape.bracts = draw_bracts(random, shape.disk_radius, {16, 24, 0.45, 0.7, 0.35, 0.5, -40.0, -20.0, -50.0, -20.0});
   return shape;
 }
 

@@ -76,17 +76,7 @@ WildflowerShape draw_shape(std::uint64_t seed, int variant) {
       shape.ligules.push_back(ligule);
     }
   }
-  const int bract_count = random.integer(8, 12);
-  for (int i = 0; i < bract_count; ++i) {
-    PetalShape bract;
-    bract.angle = 2 * kPi * (i + random.uniform(-0.3, 0.3)) / bract_count;
-    bract.length = head_radius * random.uniform(0.5, 0.7);
-    bract.width = bract.length * random.uniform(0.2, 0.3);
-    bract.lift = degrees(random.uniform(-80.0, -50.0));
-    bract.curl = degrees(random.uniform(-30.0, -10.0));
-    bract.twist = random.uniform(-0.2, 0.2);
-    shape.bracts.push_back(bract);
-  }
+  shape.bracts = draw_bracts(random, head_radius, {8, 12, 0.5, 0.7, 0.2, 0.3, -80.0, -50.0, -30.0, -10.0});
   return shape;
 }
 
