@@ -14,10 +14,7 @@
 #include "exporters/image_io.h"
 #include "exporters/reports.h"
 #include "exporters/scatter_run.h"
-#include "generator/placement.h"
 #include "generator/point_metrics.h"
-#include "scene/filled_tileset_file.h"
-#include "scene/ground.h"
 
 namespace wangscape::cli {
 
@@ -40,35 +37,17 @@ struct ScatterOptions {
   std::optional<std::uint64_t> max_instances;
 };
 
-// --metrics of a set of several classes over a plane: each class on its own (the union's figures
-// come first), its pairs counted against the class's own spacing.
-std::string class_metrics_text(const ScatterRequest& request) {
-  const FilledTileSet filled = read_filled_tileset_json(request.tileset);
-  if (filled.classes.size() < 2) return {};
-  const double s = request.placement.tile_size;
+// --metrics of a set of several classes: a row per class after the union's figures.
+std::string class_metrics_text(const std::vector<ClassMetrics>& classes) {
+  if (classes.empty()) return {};
   std::string text = "class  points    rho  meanNN  pairs < spacing (m)    edge  corner\n";
-  for (std::size_t c = 0; c < filled.classes.size(); ++c) {
-    std::vector<float> x, y;
-    place_instances(
-        filled, FlatGround{request.plane, 0.0}, request.placement,
-        [&](const InstanceBatch& b) {
-          x.insert(x.end(), b.x.begin(), b.x.end());
-          y.insert(y.end(), b.y.begin(), b.y.end());
-        },
-        KeepAllTiles{}, [c](double, double, double, std::uint8_t species, float) { return species == c; });
-    PointMetricsOptions metric_options;
-    metric_options.area = request.plane;
-    metric_options.tile_size = s;
-    metric_options.packing_diameter = filled.classes[c].spacing * s;
-    metric_options.zone_width = std::min(filled.classes[c].spacing, 0.3) * s;  // an interior left at any spacing
-    metric_options.spectrum = false;
-    const PointMetrics m = measure_points(x, y, metric_options);
-    // Edge objects all lie at the edges: no interior to compare with.
-    const std::string zones = filled.classes[c].edge_objects
+  for (std::size_t c = 0; c < classes.size(); ++c) {
+    const PointMetrics& m = classes[c].metrics;
+    const std::string zones = classes[c].edge_objects
                                   ? "    -       -  (edge objects)"
                                   : fmt::format("{:.3f}   {:.3f}", m.edge_density_ratio, m.corner_density_ratio);
     text += fmt::format("{:5}  {:6}  {:.3f}   {:.3f}  {:6} < {:<10.4f} {}\n", c, m.count, m.rho, m.mean_nn,
-                        m.close_pairs, metric_options.packing_diameter, zones);
+                        m.close_pairs, classes[c].spacing, zones);
   }
   return text;
 }
@@ -112,11 +91,24 @@ void run(const ScatterOptions& options, const GlobalOptions& global) {
     fmt::print(stderr, "wangscape: empty result: {}\n", result.empty_reason);
   if (result.metrics) {
     if (!options.spectrum_png.empty()) write_image(options.spectrum_png, draw_spectrum_plot(result.metrics->spectrum));
-    if (options.json)
-      fmt::print("{}\n", point_metrics_json(*result.metrics, result.seconds).dump(2));
-    else
+    if (options.json) {
+      Json json = point_metrics_json(*result.metrics, result.seconds);
+      if (!result.classes.empty()) {
+        Json classes = Json::array();
+        for (const ClassMetrics& c : result.classes) {
+          Json one = point_metrics_json(c.metrics, result.seconds);
+          one.erase("spectrum");  // not measured per class
+          one["class_spacing_m"] = c.spacing;
+          one["edge_objects"] = c.edge_objects;
+          classes.push_back(std::move(one));
+        }
+        json["classes"] = std::move(classes);
+      }
+      fmt::print("{}\n", json.dump(2));
+    } else {
       fmt::print("{}{}", point_metrics_text(*result.metrics, result.packing_diameter),
-                 options.dem.empty() ? class_metrics_text(request) : std::string());
+                 class_metrics_text(result.classes));
+    }
   }
   if (!options.out.empty())
     report.wrote(options.out, fmt::format("{} instances from {} tiles", result.stats.points, result.stats.tiles_kept));
@@ -143,8 +135,8 @@ void register_scatter_command(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::IsMember(tiling_algorithm_names()))
       ->capture_default_str();
   sub->add_flag("--metrics", options->metrics,
-                "Print quality figures (rho, NN distances, densities, spectrum); a set of several classes over a "
-                "plane: also per class");
+                "Print quality figures (rho, NN distances, densities, spectrum); a set of several classes: also per "
+                "class");
   sub->add_flag("--json", options->json, "With --metrics: print them as JSON");
   sub->add_option("--spectrum-png", options->spectrum_png, "With --metrics: plot the power spectrum into this PNG");
   auto* dem = sub->add_option("--dem", options->dem, "Scatter over this DEM (USGS DEM, GeoTIFF, SRTM .hgt, ESRI .asc)")

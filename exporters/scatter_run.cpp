@@ -59,9 +59,18 @@ ScatterResult run_scatter(const ScatterRequest& request) {
         "--max-instances)");
   }
   std::vector<float> xs, ys;
+  // Several classes: each class's points also on their own, found by their variant's class.
+  const std::size_t class_count = request.metrics && filled.classes.size() > 1 ? filled.classes.size() : 0;
+  std::vector<std::uint8_t> class_of_variant;
+  for (std::size_t c = 0; c < class_count; ++c) {
+    const auto [first, count] = class_variant_range(filled, int(c));
+    if (class_of_variant.size() < std::size_t(first + count)) class_of_variant.resize(std::size_t(first + count));
+    std::fill_n(class_of_variant.begin() + first, count, std::uint8_t(c));
+  }
+  std::vector<std::vector<float>> class_xs(class_count), class_ys(class_count);
   if (request.metrics) {
     check_memory_estimate(request.tileset, fmt::format("scatter --metrics over about {:.3g} instances", estimate),
-                          kMetricsBytesPerPoint * estimate);
+                          kMetricsBytesPerPoint * estimate * (class_count ? 2 : 1));
     xs.reserve(std::size_t(estimate * 1.05));  // no doubling past the estimate
     ys.reserve(std::size_t(estimate * 1.05));
   }
@@ -76,6 +85,11 @@ ScatterResult run_scatter(const ScatterRequest& request) {
       xs.insert(xs.end(), b.x.begin(), b.x.end());
       ys.insert(ys.end(), b.y.begin(), b.y.end());
     }
+    for (std::size_t i = 0; class_count && i < b.size(); ++i)
+      if (b.variant[i] < class_of_variant.size()) {
+        class_xs[class_of_variant[b.variant[i]]].push_back(b.x[i]);
+        class_ys[class_of_variant[b.variant[i]]].push_back(b.y[i]);
+      }
     placed += b.size();
     if (request.max_instances && placed > *request.max_instances)
       throw Error(
@@ -98,6 +112,16 @@ ScatterResult run_scatter(const ScatterRequest& request) {
     metric_options.tile_size = tile_size;
     metric_options.packing_diameter = result.packing_diameter;
     result.metrics = measure_points(xs, ys, metric_options);
+    for (std::size_t c = 0; c < class_count; ++c) {
+      ClassMetrics& m = result.classes.emplace_back();
+      m.spacing = filled.classes[c].spacing * tile_size;
+      m.edge_objects = filled.classes[c].edge_objects;
+      PointMetricsOptions class_options = metric_options;
+      class_options.packing_diameter = m.spacing;
+      class_options.zone_width = std::min(filled.classes[c].spacing, 0.3) * tile_size;  // leaves an interior
+      class_options.spectrum = false;
+      m.metrics = measure_points(class_xs[c], class_ys[c], class_options);
+    }
   }
   return result;
 }

@@ -11,6 +11,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "exporters/point_writer.h"
 #include "generator/placement.h"
@@ -31,10 +32,18 @@ struct ScatterRequest {
   std::function<void(std::uint64_t placed, std::uint64_t expected)> progress;  // from this thread
 };
 
+// With request.metrics and a set of several classes (species): one class's points on their own.
+struct ClassMetrics {
+  PointMetrics metrics;       // its pairs counted against the class's own spacing
+  double spacing = 0;         // meters: the least distance the fill keeps between two of its points
+  bool edge_objects = false;  // all at the tile edges: no interior to compare their density with
+};
+
 struct ScatterResult {
   PlacementStats stats;
   double seconds = 0;                   // of the placement (and writing)
-  std::optional<PointMetrics> metrics;  // with request.metrics
+  std::optional<PointMetrics> metrics;  // with request.metrics: every point (the union of the classes)
+  std::vector<ClassMetrics> classes;    // with request.metrics and several classes: per class
   double packing_diameter = 0;          // meters: twice the set's packing radius, scaled
   std::string empty_reason;             // over a DEM with no instance: why (which mask)
   double estimate = 0;                  // instances expected before placing (after the masks)
