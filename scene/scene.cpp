@@ -23,8 +23,9 @@ void say(const StageObserver& stage, const std::string& message) {
   if (stage) stage(message);
 }
 
-// DEM cells under a field of species are cut into this many triangles a side (30 m cells: 4 m).
-constexpr int kSpeciesGroundSubdivisions = 8;
+// DEM cells under a field sown by area or of species are cut into this many squares a side (30 m
+// cells: 3.75 m), each of two triangles on the bilinear surface.
+constexpr int kFieldGroundSubdivisions = 8;
 
 // ---- models ---------------------------------------------------------------------------------
 
@@ -402,8 +403,13 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage, const Sc
       make_field(config, ground, scene.models.size(), species_radii, stage, prebuilt ? &prebuilt->filled : nullptr);
   scene.field = field;
   scene.field_area = *field->placement.area;
-  // Plants a few centimetres tall must stand on the mesh the renderers draw, not under it.
-  if (!config.species.empty()) ground.refine_mesh(scene.terrain, scene.field_area, kSpeciesGroundSubdivisions);
+  // Plants stand on the DEM's bilinear surface; the mesh the renderers draw must follow it under
+  // the field, not the cells' two flat triangles: in the default field those strayed from it by
+  // up to 2.5 m (3.7 % of the sunflowers more than 0.2 m under the drawn ground, some hidden
+  // whole), and plants a few centimetres tall were buried. A field sown over the whole DEM
+  // (camera-aware, no area) is not cut unless it has species: its mesh would grow many times.
+  if (!config.species.empty() || config.tiles.area)
+    ground.refine_mesh(scene.terrain, scene.field_area, kFieldGroundSubdivisions);
   scene.camera = make_camera(config, ground, scene.field_area);
   scene.sun = make_sun(config, ground);
   if (camera_aware(config)) {
