@@ -59,14 +59,12 @@ ScatterResult run_scatter(const ScatterRequest& request) {
         "--max-instances)");
   }
   std::vector<float> xs, ys;
-  // Several classes: each class's points also on their own, found by their variant's class.
+  // Several classes: each class's points also on their own, found by their variant's class
+  // (looked up once per variant, not per point).
   const std::size_t class_count = request.metrics && filled.classes.size() > 1 ? filled.classes.size() : 0;
-  std::vector<std::uint8_t> class_of_variant;
-  for (std::size_t c = 0; c < class_count; ++c) {
-    const auto [first, count] = class_variant_range(filled, int(c));
-    if (class_of_variant.size() < std::size_t(first + count)) class_of_variant.resize(std::size_t(first + count));
-    std::fill_n(class_of_variant.begin() + first, count, std::uint8_t(c));
-  }
+  std::vector<int> variant_class(class_count ? std::size_t(filled.variants) : 0);
+  for (std::size_t v = 0; v < variant_class.size(); ++v)
+    variant_class[v] = class_of_variant(filled, int(v)).value_or(-1);
   std::vector<std::vector<float>> class_xs(class_count), class_ys(class_count);
   if (request.metrics) {
     check_memory_estimate(request.tileset, fmt::format("scatter --metrics over about {:.3g} instances", estimate),
@@ -86,9 +84,9 @@ ScatterResult run_scatter(const ScatterRequest& request) {
       ys.insert(ys.end(), b.y.begin(), b.y.end());
     }
     for (std::size_t i = 0; class_count && i < b.size(); ++i)
-      if (b.variant[i] < class_of_variant.size()) {
-        class_xs[class_of_variant[b.variant[i]]].push_back(b.x[i]);
-        class_ys[class_of_variant[b.variant[i]]].push_back(b.y[i]);
+      if (b.variant[i] < variant_class.size() && variant_class[b.variant[i]] >= 0) {
+        class_xs[std::size_t(variant_class[b.variant[i]])].push_back(b.x[i]);
+        class_ys[std::size_t(variant_class[b.variant[i]])].push_back(b.y[i]);
       }
     placed += b.size();
     if (request.max_instances && placed > *request.max_instances)

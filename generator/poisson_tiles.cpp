@@ -968,6 +968,15 @@ std::pair<int, int> class_variant_range(const FilledTileSet& filled, int species
   return {0, filled.variants};
 }
 
+std::optional<int> class_of_variant(const FilledTileSet& filled, int variant) {
+  const int classes = std::max<int>(1, static_cast<int>(filled.class_variants.size()));
+  for (int c = 0; c < classes; ++c) {
+    const auto [first, count] = class_variant_range(filled, c);
+    if (variant >= first && variant < first + count) return c;
+  }
+  return std::nullopt;
+}
+
 double hexagonal_spacing(double area, double count) { return std::sqrt(2.0 * area / (std::sqrt(3.0) * count)); }
 
 PointAttributes point_attributes(std::uint64_t seed, std::uint32_t id, int variants, double min_scale,

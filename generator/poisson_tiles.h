@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -102,6 +103,8 @@ struct FilledTileSet {
 
 // Class `species`'s first variant and its number of variants (a single-class set: 0, variants).
 std::pair<int, int> class_variant_range(const FilledTileSet& filled, int species);
+// The class whose variant range holds `variant` (none past the last class's).
+std::optional<int> class_of_variant(const FilledTileSet& filled, int variant);
 
 // What the fill did, for benchmarks and the CLI.
 struct PoissonFillReport {

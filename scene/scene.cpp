@@ -277,11 +277,8 @@ Sun make_sun(const SceneConfig& config, const SceneGround& ground) {
 std::optional<std::size_t> SceneField::species_of_model(std::size_t model) const {
   if (species_names.empty()) return std::nullopt;
   if (proxy_offset && model >= proxy_offset) model -= proxy_offset;
-  for (std::size_t s = 0; s < species_names.size(); ++s) {
-    const auto [first, count] = class_variant_range(filled, int(s));
-    if (model >= std::size_t(first) && model < std::size_t(first + count)) return s;
-  }
-  return std::nullopt;
+  const auto cls = class_of_variant(filled, int(model));
+  return cls ? std::optional<std::size_t>(std::size_t(*cls)) : std::nullopt;
 }
 
 float SceneField::yaw_of(float point_yaw) const {

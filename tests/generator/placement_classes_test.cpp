@@ -18,14 +18,8 @@ FilledTileSet meadow() {
   return fill_poisson_tiles(builtin_tileset("cohen8"), options);
 }
 
-// The class of each instance, from its variant (classes hold consecutive variant ranges).
-int class_of_variant(const FilledTileSet& filled, int variant) {
-  for (int c = 0; c < static_cast<int>(filled.classes.size()); ++c) {
-    const auto [first, count] = class_variant_range(filled, c);
-    if (variant >= first && variant < first + count) return c;
-  }
-  return -1;
-}
+// The class of each instance, from its variant (-1: none).
+int class_of(const FilledTileSet& filled, int variant) { return class_of_variant(filled, variant).value_or(-1); }
 
 TEST(PlacementClasses, ThePointFilterSeesClassAndRank) {
   const FilledTileSet filled = meadow();
@@ -34,13 +28,13 @@ TEST(PlacementClasses, ThePointFilterSeesClassAndRank) {
   options.tile_size = 4;
   std::map<int, std::size_t> all, kept;
   place_instances(filled, ground, options, [&](const InstanceBatch& b) {
-    for (std::size_t k = 0; k < b.size(); ++k) ++all[class_of_variant(filled, b.variant[k])];
+    for (std::size_t k = 0; k < b.size(); ++k) ++all[class_of(filled, b.variant[k])];
   });
   // Class 0 thinned to a quarter by rank, class 1 kept whole.
   place_instances(
       filled, ground, options,
       [&](const InstanceBatch& b) {
-        for (std::size_t k = 0; k < b.size(); ++k) ++kept[class_of_variant(filled, b.variant[k])];
+        for (std::size_t k = 0; k < b.size(); ++k) ++kept[class_of(filled, b.variant[k])];
       },
       KeepAllTiles{},
       [](double, double, double, std::uint8_t species, float rank) { return species == 1 || rank < 0.25f; });
@@ -68,12 +62,12 @@ TEST(PlacementClasses, InteriorVariationDrawsInsideTheClass) {
   EXPECT_LT(by_variant.rbegin()->first, 7);
   // Each point keeps its class under interior variation: the class counts match the plain placement's.
   std::map<int, std::size_t> placed_classes;
-  for (const auto& [variant, n] : by_variant) placed_classes[class_of_variant(filled, variant)] += n;
+  for (const auto& [variant, n] : by_variant) placed_classes[class_of(filled, variant)] += n;
   std::size_t without = 0;
   std::map<int, std::size_t> plain_classes;
   options.world_attributes.reset();
   place_instances(filled, ground, options, [&](const InstanceBatch& b) {
-    for (std::size_t k = 0; k < b.size(); ++k) ++plain_classes[class_of_variant(filled, b.variant[k])], ++without;
+    for (std::size_t k = 0; k < b.size(); ++k) ++plain_classes[class_of(filled, b.variant[k])], ++without;
   });
   EXPECT_EQ(without, placed);
   EXPECT_EQ(placed_classes, plain_classes);
