@@ -23,6 +23,7 @@
 #include "renders/trace/shading.h"
 
 #include "renders/trace/scene_tracer.h"
+#include "renders/view/ldi_warp.h"
 #include "renders/view/view_samples.h"
 
 namespace wangscape {
@@ -31,7 +32,6 @@ using namespace view_detail;
 
 namespace {
 
-constexpr float kNear = 0.05f;  // meters: the near plane
 // The terrain is drawn this much (relative) farther than it is, so that where the near field's
 // rays met the same ground (shaded with the flowers' shadows and sky share) the rasterized ground
 // does not win by rounding: without it, a speckle of the two over the near field's ground.
@@ -50,16 +50,12 @@ constexpr float kLevelBlendStart = 0.75f;  // of a level's range: where ditherin
 constexpr float kDirectionBand = 0.08f;    // of the angle between two directions: dithered either side of the bisector
 // ViewEngine::automatic samples the near field with a grid of this many rays across and down.
 constexpr int kShareGridX = 32, kShareGridY = 18;
-constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
 // The near field: how far a flower reaches from its stem (meters), and how much further out the
 // flowers are kept as sun occluders (a low sun's shadows fall into the near field from there).
 constexpr double kNearFlowerRadius = 0.5;
 constexpr double kNearShadowMargin = 4.0;
 constexpr int kOcclusionBlock = 8;  // pixels: the side of a block of the occlusion test
 
-std::uint64_t pack_entry(float depth, std::uint8_t r, std::uint8_t g, std::uint8_t b) {
-  return std::uint64_t(std::bit_cast<std::uint32_t>(depth)) << 32 | std::uint64_t(r) << 16 | std::uint64_t(g) << 8 | b;
-}
 // Keeps the nearest entry (ties: the smaller color), so the result does not depend on the order.
 void depth_write(std::uint64_t& slot, std::uint64_t value) {
   std::atomic_ref<std::uint64_t> a(slot);
@@ -73,49 +69,6 @@ using V3 = Vector3d;
 }  // namespace
 
 // ---- the renderer --------------------------------------------------------------------------
-
-namespace {
-
-// Bit k set: the thresholds (k + 0.5) / 16 in [from, to), the Bayer cells a dithered LDI owns.
-std::uint16_t owned_thresholds(float from, float to) {
-  std::uint16_t mask = 0;
-  for (int k = 0; k < 16; ++k) {
-    const float th = (float(k) + 0.5f) / 16;
-    if (th >= from && th < to) mask = std::uint16_t(mask | 1u << k);
-  }
-  return mask;
-}
-
-// Splats are written straight into a z-buffer of the warping thread's own (no atomic write, no
-// cache line shared between cores); the frame's z-buffer is then the per-pixel smallest entry
-// of the threads' buffers, which is what any order of writes into one buffer leaves.
-// Whether a dithered LDI owning the Bayer cells `owned` (owned_thresholds) draws pixel (x, y).
-bool owns(std::uint16_t owned, int x, int y) { return owned == 0xffff || (owned >> bayer_index(x, y) & 1); }
-
-struct ThreadDepths {
-  int width = 0;
-  bool written = false;                // this frame: merged (and reset) only then
-  std::vector<std::uint64_t> entries;  // kEmpty where nothing was written (the merge resets them)
-  void reset(int frame_width, int frame_height) {
-    width = frame_width;
-    entries.assign(std::size_t(frame_width) * std::size_t(frame_height), kEmpty);
-  }
-  // One pixel (most splats), inside the frame.
-  void write_pixel(int x, int y, std::uint64_t entry) {
-    std::uint64_t& slot = entries[std::size_t(y) * std::size_t(width) + std::size_t(x)];
-    if (entry < slot) slot = entry;
-  }
-  // The pixels [xa, xb) x [ya, yb) that `owned` holds, not empty and inside the frame.
-  void write(int xa, int xb, int ya, int yb, std::uint64_t entry, std::uint16_t owned) {
-    for (int y = ya; y < yb; ++y) {
-      std::uint64_t* row = entries.data() + std::size_t(y) * std::size_t(width);
-      for (int x = xa; x < xb; ++x)
-        if (owns(owned, x, y) && entry < row[x]) row[x] = entry;
-    }
-  }
-};
-
-}  // namespace
 
 struct LdiRenderer::Impl {
   int width = 0, height = 0;
@@ -269,114 +222,6 @@ void LdiRenderer::set_near_field(double meters) {
                 std::to_string(int(kMaxNearField)) + " m (0: LDIs only)");
   near_field_ = meters;
 }
-
-namespace {
-
-// One LDI of one tile warped into the z-buffer: what stays fixed over its depth pixels.
-struct Warp {
-  std::array<float, 3> base{}, step_x{}, step_y{}, step_d{},
-      lift{};  // camera space: pixel (0, 0), per x, per y, per meter of depth, per meter of shear
-  std::array<float, 3> local_base{}, local_x{}, local_y{}, local_d{};  // tile-local position, likewise
-  float h00 = 0, h10 = 0, h01 = 0, h11 = 0, inverse_tile = 1;
-  float depth_scale = 0, splat = 0;  // meters per depth step; splat side times depth (pixels x meters)
-  std::uint16_t owned = 0xffff;      // the dither thresholds this LDI owns (owned_thresholds)
-  // [[species]]: per species, the rank steps of its plants that grow on this tile (null: all).
-  const std::uint8_t* plant_steps = nullptr;
-  float ground_below = 0;  // meters: a last layer lower than this is the ground plane
-  bool reverse_layers = false;
-  int epipole_x = 0, epipole_y = 0;
-};
-
-void warp_ldi(const LdiView& v, const Warp& w, float focal, float cx, float cy, int width, int height,
-              ThreadDepths& out, std::uint64_t& depth_pixels) {
-  // What one pixel of the LDI contributes before its layers' depths: tile-local and camera space.
-  struct PixelBase {
-    float lx, ly, lz, cx, cy, cz;
-  };
-  auto splat_pixel = [&](const PixelBase& b, const DepthPixel& p, bool last) {
-    if (w.plant_steps && p.plant != kAnyPlant && (p.plant & (kPlantRankSteps - 1)) >= w.plant_steps[p.plant >> 5])
-      return;  // a plant the field's rules or density leave out here
-    const float d = float(p.depth()) * w.depth_scale;
-    const float lz = b.lz + d * w.local_d[2];
-    if (last && lz < w.ground_below) return;  // the ground plane: the terrain draws it
-    const float lx = b.lx + d * w.local_d[0], ly = b.ly + d * w.local_d[1];
-    // The shear onto the tile's two terrain triangles (split along the SW-NE diagonal).
-    const float u = std::clamp(lx * w.inverse_tile, 0.0f, 1.0f), t = std::clamp(ly * w.inverse_tile, 0.0f, 1.0f);
-    const float h =
-        u >= t ? w.h00 + u * (w.h10 - w.h00) + t * (w.h11 - w.h10) : w.h00 + t * (w.h01 - w.h00) + u * (w.h11 - w.h01);
-    const float camera_z = b.cz + d * w.step_d[2] + h * w.lift[2];
-    if (camera_z < kNear) return;
-    const float camera_x = b.cx + d * w.step_d[0] + h * w.lift[0];
-    const float camera_y = b.cy + d * w.step_d[1] + h * w.lift[1];
-    const float inv = 1.0f / camera_z;
-    const float sx = cx + focal * camera_x * inv, sy = cy - focal * camera_y * inv;
-    const std::uint64_t entry = pack_entry(camera_z, p.r, p.g, p.b);
-    const float size = w.splat * inv;
-    if (size <= 1.0f) {  // most splats: one pixel (truncation is the floor of a coordinate >= 0)
-      if (!(sx >= 0 && sy >= 0 && sx < float(width) && sy < float(height))) return;
-      const int px = std::min(int(sx), width - 1), py = std::min(int(sy), height - 1);
-      if (!owns(w.owned, px, py)) return;  // another LDI's pixel
-      out.write_pixel(px, py, entry);
-      return;
-    }
-    // The pixels whose centres the splat's square covers: about size^2 of them, not ceil(size)^2.
-    const float half = 0.5f * std::min(size, float(kMaxSplat));
-    const int xa = std::max(int(std::ceil(sx - half - 0.5f)), 0),
-              xb = std::min(int(std::ceil(sx + half - 0.5f)), width);
-    const int ya = std::max(int(std::ceil(sy - half - 0.5f)), 0),
-              yb = std::min(int(std::ceil(sy + half - 0.5f)), height);
-    if (xa < xb && ya < yb) out.write(xa, xb, ya, yb, entry, w.owned);
-  };
-  auto visit = [&](int x, int y, std::uint32_t first, std::uint32_t count) {
-    depth_pixels += count;
-    const float fx = float(x), fy = float(y);
-    const PixelBase b{w.local_base[0] + fx * w.local_x[0] + fy * w.local_y[0],
-                      w.local_base[1] + fx * w.local_x[1] + fy * w.local_y[1],
-                      w.local_base[2] + fx * w.local_x[2] + fy * w.local_y[2],
-                      w.base[0] + fx * w.step_x[0] + fy * w.step_y[0],
-                      w.base[1] + fx * w.step_x[1] + fy * w.step_y[1],
-                      w.base[2] + fx * w.step_x[2] + fy * w.step_y[2]};
-    if (w.reverse_layers)
-      for (std::uint32_t k = count; k-- > 0;) splat_pixel(b, v.depth_pixels[first + k], k + 1 == count);
-    else
-      for (std::uint32_t k = 0; k < count; ++k) splat_pixel(b, v.depth_pixels[first + k], k + 1 == count);
-  };
-  // McMillan's occlusion-compatible order: rows and columns from the image's edges towards the
-  // eye's epipole, so that a sample is drawn before every sample that can hide it.
-  const int rows = int(v.frame->height);
-  const std::uint32_t span_total = v.frame->span_count, depth_total = v.frame->depth_pixel_count;
-  auto do_row = [&](int y) {
-    const std::uint32_t s0 = v.row_spans[std::size_t(y)], s1 = v.row_spans[std::size_t(y) + 1];
-    for (std::uint32_t s = s0; s < s1; ++s) {  // left of the epipole, left to right
-      const LdiSpan& span = v.spans[s];
-      if (int(span.x) > w.epipole_x) break;
-      std::uint32_t depth = span.first_depth;
-      const int last = std::min(int(span.x) + int(span.length) - 1, w.epipole_x);
-      for (int x = span.x; x <= last; ++x) {
-        const std::uint8_t count = v.counts[span.first_pixel + std::uint32_t(x - span.x)];
-        if (count) visit(x, y, depth, count);
-        depth += count;
-      }
-    }
-    for (std::uint32_t s = s1; s-- > s0;) {  // right of it, right to left
-      const LdiSpan& span = v.spans[s];
-      const int last = int(span.x) + int(span.length) - 1;
-      if (last <= w.epipole_x) break;
-      std::uint32_t depth = s + 1 < span_total ? v.spans[s + 1].first_depth : depth_total;
-      const int first = std::max(int(span.x), w.epipole_x + 1);
-      for (int x = last; x >= first; --x) {
-        const std::uint8_t count = v.counts[span.first_pixel + std::uint32_t(x - span.x)];
-        depth -= count;
-        if (count) visit(x, y, depth, count);
-      }
-    }
-  };
-  const int split = std::clamp(w.epipole_y, -1, rows - 1);
-  for (int y = 0; y <= split; ++y) do_row(y);
-  for (int y = rows - 1; y > split; --y) do_row(y);
-}
-
-}  // namespace
 
 // The frame's camera (its basis, focal length, centre) and empty buffers and counters.
 void LdiRenderer::begin_frame(const ViewCamera& camera) {
@@ -608,16 +453,13 @@ void LdiRenderer::warp_tiles() {
             w.splat = float(p) * m.focal * (far ? kFarSplatScale : kSplatScale);
             w.owned = owned_thresholds(part.from, part.to);
             if (!tiles.plant_steps.empty()) w.plant_steps = tiles.plant_steps[t].data();
-            // The eye in the LDI's frame (unsheared: the shear moves samples, not the order).
-            const V3 eye_local{m.eye[0] - tiles.x0[t] - f.origin[0], m.eye[1] - tiles.y0[t] - f.origin[1],
-                               m.eye[2] - double(w.h00 + w.h10 + w.h01 + w.h11) / 4 - f.origin[2]};
-            const double ex = dot(eye_local, {f.right[0], f.right[1], f.right[2]}) / p - 0.5;
-            const double ey = -dot(eye_local, {f.up[0], f.up[1], f.up[2]}) / p - 0.5;
-            w.epipole_x = int(std::floor(std::clamp(ex, -2.0, double(f.width) + 1)));
-            w.epipole_y = int(std::floor(std::clamp(ey, -2.0, double(f.height) + 1)));
-            // The eye before the image plane: deeper layers are farther, so they go first.
-            w.reverse_layers = dot(eye_local, {f.forward[0], f.forward[1], f.forward[2]}) < f.depth_range * 0.5;
-            warp_ldi(v, w, m.focal, m.cx, m.cy, m.width, m.height, depths, counted);
+            w.focal = m.focal;
+            w.cx = m.cx;
+            w.cy = m.cy;
+            w.width = m.width;
+            w.height = m.height;
+            w.max_splat = kMaxSplat;
+            counted += warp_ldi(v, w, depths);
           }
         }
         m.depth_pixels += counted;
