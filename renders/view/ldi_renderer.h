@@ -6,8 +6,7 @@
 //    against the pack's) and a direction by the dot product of the view ray with each
 //    direction; across a level's last half and near the bisector of two directions the two
 //    LDIs are screen-door dithered (an ordered 4 x 4 threshold), so nothing pops;
-//  - each LDI warped in McMillan's occlusion-compatible order (pixels far from the eye's
-//    epipole first, layers back to front), sheared onto the tile's two terrain triangles,
+//  - each LDI warped (renders/view/ldi_warp.h), sheared onto the tile's two terrain triangles,
 //    each depth pixel splatted as a square as large as its projected footprint;
 //  - the terrain mesh rasterized (perspective-correct), shaded with the sun and sky of
 //    renders/trace/shading.h and colored by Scene::ground_texture;
