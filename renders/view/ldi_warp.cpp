@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "renders/view/vector_clones.h"
+
 namespace wangscape::view_detail {
 
 std::uint16_t owned_thresholds(float from, float to) {
@@ -16,14 +18,7 @@ std::uint16_t owned_thresholds(float from, float to) {
 namespace {
 
 // The projection runs in the widest vector lanes the CPU has (AVX-512 here: 16 depth pixels at a
-// time), chosen when the program starts. The file is compiled without contracting a * b + c into
-// one rounding (CMakeLists.txt), so every variant makes the same frame, byte for byte.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define WANGSCAPE_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define WANGSCAPE_VECTOR_CLONES
-#endif
-
+// time); every variant makes the same frame (renders/view/vector_clones.h).
 constexpr int kBatch = 256;
 constexpr float kFarOff = 1e6f;  // pixels: farther off the screen than any splat reaches back
 
