@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <map>
 #include <numeric>
 #include <set>
 #include <string>
@@ -154,6 +155,44 @@ std::vector<Link> present_links(const TileSet& set, const std::vector<Link>& lin
   return kept;
 }
 
+// Classes of tiles that a row (rows true) or a column never leaves, as masks of tile indices (sets
+// of at most 64 tiles): a tile's east side (E, NE, SE) is the west side (W, NW, SW) of the tile
+// after it, so linking each tile's two sides joins the west sides a row can pass through; a
+// tile's class is its west side's. Columns: south sides (S, SW, SE) through north sides (N, NW,
+// NE). One class for most sets; cohen8-corners has two each way (W xor NW xor SW is the same on
+// both sides of each of its tiles, and S xor SW xor SE).
+std::vector<std::uint64_t> side_classes(const TileSet& set, bool rows) {
+  std::map<std::array<int, 3>, std::size_t> node_of_side;
+  std::vector<std::size_t> parent;
+  const auto node = [&](const std::array<int, 3>& side) {
+    const auto [it, added] = node_of_side.emplace(side, parent.size());
+    if (added) parent.push_back(parent.size());
+    return it->second;
+  };
+  const auto root = [&](std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  const auto near_side = [&](const Tile& t) {
+    return rows ? std::array<int, 3>{t.w(), t.nw(), t.sw()} : std::array<int, 3>{t.s(), t.sw(), t.se()};
+  };
+  const auto far_side = [&](const Tile& t) {
+    return rows ? std::array<int, 3>{t.e(), t.ne(), t.se()} : std::array<int, 3>{t.n(), t.nw(), t.ne()};
+  };
+  for (const Tile& t : set.tiles) {
+    const std::size_t a = node(near_side(t)), b = node(far_side(t));
+    parent[root(a)] = root(b);
+  }
+  std::map<std::size_t, std::size_t> class_of_root;
+  std::vector<std::uint64_t> classes;
+  for (std::size_t t = 0; t < set.size(); ++t) {
+    const auto [it, added] = class_of_root.emplace(root(node(near_side(set.tiles[t]))), classes.size());
+    if (added) classes.push_back(0);
+    classes[it->second] |= std::uint64_t{1} << t;
+  }
+  return classes;
+}
+
 std::vector<int> targets_of(const std::vector<Link>& a, const std::vector<Link>& b = {}) {
   std::vector<int> slots;
   for (const Link& link : a) slots.push_back(link.target);
@@ -298,6 +337,8 @@ class SweepTiler {
   static TileMask bit(std::size_t t) { return TileMask{1} << t; }
 
   void prepare_row_lookahead() {
+    row_classes_ = side_classes(set_, true);
+    column_classes_ = side_classes(set_, false);
     vertical_mask_.assign(set_.size(), 0);
     east_mask_.assign(set_.size(), 0);
     for (std::size_t t = 0; t < set_.size(); ++t) {
@@ -308,15 +349,33 @@ class SweepTiler {
     }
   }
 
+  // One of `classes` that meets `mask`, uniformly (the class a row or column keeps, side_classes).
+  TileMask draw_class(TileMask mask, const std::vector<TileMask>& classes) {
+    std::uint32_t open = 0;
+    for (const TileMask c : classes) open += (c & mask) != 0 ? 1 : 0;
+    std::uint32_t k = scale(next_bits(), open);
+    for (const TileMask c : classes)
+      if ((c & mask) != 0 && k-- == 0) return c;
+    return mask;
+  }
+
   void next_row_with_lookahead(std::span<const std::uint16_t> previous, std::span<std::uint16_t> row) {
     const std::size_t width = row.size(), tiles = set_.size();
     const TileMask all = tiles == 64 ? ~TileMask{0} : bit(tiles) - 1;
+    // A set whose rows keep a class (side_classes; cohen8-corners): drawn uniformly, a row took the
+    // class the previous one did not have (a row of the same class has far fewer ways to differ
+    // from it), so no tile equalled any tile of the rows above and below (periodicity -0.016 at
+    // (i, 1) and +0.014 at (i, 2) for every i; 0.0505 against 0.0237 at 128 x 128, the peaks at
+    // offsets far along). So each row draws its class first, uniformly among those it can take, as
+    // the tiling without the option does; the first row draws each column's class likewise (its
+    // neighbours otherwise differ in class more often than not), unless that leaves no row.
+    std::vector<TileMask> column_class;
+    if (previous.empty() && column_classes_.size() > 1)
+      for (std::size_t i = 0; i < width; ++i) column_class.push_back(draw_class(all, column_classes_));
     const auto allowed_at = [&](std::size_t i) {
-      return previous.empty() ? all : vertical_mask_[previous[i]] & ~bit(previous[i]);
+      if (!previous.empty()) return vertical_mask_[previous[i]] & ~bit(previous[i]);
+      return column_class.empty() ? all : column_class[i];
     };
-    // completions_[i * tiles + t]: the ways to complete the row from tile t at position i, scaled
-    // per position (only ratios at one position matter), 0 where t cannot stand.
-    completions_.assign(width * tiles, 0.0);
     // A row drawn uniformly among those that may follow the previous one repeats the tiles two
     // rows back more often than chance (cohen8 at 128 x 128: periodicity 0.035 at offset (0, 2),
     // against 0.015 without the option); lowering those tiles' weight moved the peak to (1, 2),
@@ -335,25 +394,37 @@ class SweepTiler {
       if (i + 2 < width && previous[i + 2] == t) w *= kTiltPreviousRowTwoAside;
       return w;
     };
+    // completions_[i * tiles + t]: the ways to complete the row from tile t at position i, scaled
+    // per position (only ratios at one position matter), 0 where t cannot stand; possible[i]: the
+    // tiles with some.
     std::vector<TileMask> possible(width);
-    possible[width - 1] = allowed_at(width - 1);
-    for (TileMask rest = possible[width - 1]; rest != 0; rest &= rest - 1)
-      completions_[(width - 1) * tiles + static_cast<std::size_t>(std::countr_zero(rest))] =
-          weight(width - 1, static_cast<std::size_t>(std::countr_zero(rest)));
-    for (std::size_t i = width - 1; i-- > 0;) {
-      double largest = 0;
-      for (TileMask rest = allowed_at(i); rest != 0; rest &= rest - 1) {
-        const auto t = static_cast<std::size_t>(std::countr_zero(rest));
-        double ways = 0;
-        for (TileMask next = east_mask_[t] & possible[i + 1] & ~bit(t); next != 0; next &= next - 1)
-          ways += completions_[(i + 1) * tiles + static_cast<std::size_t>(std::countr_zero(next))];
-        if (ways == 0) continue;
-        ways *= weight(i, t);
-        completions_[i * tiles + t] = ways;
-        possible[i] |= bit(t);
-        largest = std::max(largest, ways);
+    const auto count_completions = [&] {
+      completions_.assign(width * tiles, 0.0);
+      std::fill(possible.begin(), possible.end(), TileMask{0});
+      possible[width - 1] = allowed_at(width - 1);
+      for (TileMask rest = possible[width - 1]; rest != 0; rest &= rest - 1)
+        completions_[(width - 1) * tiles + static_cast<std::size_t>(std::countr_zero(rest))] =
+            weight(width - 1, static_cast<std::size_t>(std::countr_zero(rest)));
+      for (std::size_t i = width - 1; i-- > 0;) {
+        double largest = 0;
+        for (TileMask rest = allowed_at(i); rest != 0; rest &= rest - 1) {
+          const auto t = static_cast<std::size_t>(std::countr_zero(rest));
+          double ways = 0;
+          for (TileMask next = east_mask_[t] & possible[i + 1] & ~bit(t); next != 0; next &= next - 1)
+            ways += completions_[(i + 1) * tiles + static_cast<std::size_t>(std::countr_zero(next))];
+          if (ways == 0) continue;
+          ways *= weight(i, t);
+          completions_[i * tiles + t] = ways;
+          possible[i] |= bit(t);
+          largest = std::max(largest, ways);
+        }
+        for (std::size_t t = 0; t < tiles; ++t) completions_[i * tiles + t] /= std::max(largest, 1e-300);
       }
-      for (std::size_t t = 0; t < tiles; ++t) completions_[i * tiles + t] /= std::max(largest, 1e-300);
+    };
+    count_completions();
+    if (possible[0] == 0 && !column_class.empty()) {
+      column_class.clear();
+      count_completions();
     }
     if (possible[0] == 0)
       throw Error(
@@ -363,6 +434,7 @@ class SweepTiler {
     for (std::size_t i = 0; i < width; ++i) {
       TileMask choices = possible[i];
       if (i > 0) choices &= east_mask_[row[i - 1]] & ~bit(row[i - 1]);
+      if (i == 0 && row_classes_.size() > 1) choices &= draw_class(choices, row_classes_);
       row[i] = pick_weighted(choices, std::span(completions_).subspan(i * tiles, tiles));
     }
     two_back_.assign(previous.begin(), previous.end());
@@ -465,10 +537,11 @@ class SweepTiler {
   std::uint32_t spare_bits_ = 0;
   std::uint64_t bit_word_ = 0;
   int bits_left_ = 0;
-  std::vector<std::uint64_t> pairs_;                 // two-choice fast path (see prepare_pairs)
-  std::vector<TileMask> vertical_mask_, east_mask_;  // row lookahead (forbid, <= 64 tiles)
-  std::vector<double> completions_;                  // its counts, width x tiles
-  std::vector<std::uint16_t> two_back_;              // the row before the previous one
+  std::vector<std::uint64_t> pairs_;                    // two-choice fast path (see prepare_pairs)
+  std::vector<TileMask> vertical_mask_, east_mask_;     // row lookahead (forbid, <= 64 tiles)
+  std::vector<double> completions_;                     // its counts, width x tiles
+  std::vector<std::uint16_t> two_back_;                 // the row before the previous one
+  std::vector<TileMask> row_classes_, column_classes_;  // side_classes (row lookahead)
   bool tilt_ = set_.horizontal_colors == 2 && set_.vertical_colors == 2;
   int rows_done_ = 0;
   bool spare_bits_left_ = false;
@@ -646,19 +719,23 @@ constexpr std::uint64_t kRepairSalt = 0x6A09E667F3BCC909ull;
 
 // forbid_identical_neighbours on hashed tilings (HashedTiling::fill_window): the plain hashed colors,
 // repaired where neighbours come out identical. Rounds: every pair of identical neighbours redraws
-// one color they share (a new color, hashed from seed, round and place), all pairs at once; the
-// first rounds also redraw, with a chance, a color of tiles alike at kTiltOffsets (a tile that
-// differs from both its neighbours is more often alike to the tile two steps on: about +0.012 in
-// the periodicity at (2, 0) and (0, 2) for complete-edge-2, +0.014 at (1, 1) for corner-2; the
-// tilt cancels it). What the rounds leave (about 1 pair in 5 * 10^4 for corner-2) an exact repair of
-// the 4 x 4 block around it clears.
-constexpr int kRepairRounds = 6;
+// one color (a new color, hashed from seed, round and place), all pairs at once: with edge colors,
+// an edge of one of the two along their direction (N or S for neighbours east and west, see
+// ColorPatch::edges_along), otherwise a corner they share. The first rounds also redraw, with a
+// chance, a color of tiles alike at kTiltOffsets (a tile that differs from both its neighbours is
+// more often alike to the tile two steps on: about +0.007 in the periodicity at (2, 0) and (0, 2)
+// for complete-edge-2, +0.014 at (1, 1) for corner-2; the tilt cancels it). What the rounds leave
+// (about 1 pair in 10^5 for complete-edge-2, fewer for corner-2) an exact repair of the 4 x 4 block
+// around it clears.
+constexpr int kRepairRounds = 8;
 constexpr int kTiltRounds = 2;
-constexpr std::uint32_t kTiltChance = 1288490189u;  // 0.3 of 2^32
+constexpr std::uint32_t kEdgeTiltChance = 429496730u;     // 0.1 of 2^32
+constexpr std::uint32_t kCornerTiltChance = 1288490189u;  // 0.3 of 2^32
 constexpr int kRepairBlock = 4;
 // How far (tiles) a color's final value may depend on the plain colors: 3 per tilt round (a
-// color of a tile alike to one two tiles on), 1 per other round (a color two identical tiles
-// share), then the block its tile lies in, the pairs around that block and their colors.
+// color of a tile alike to one two tiles on), 1 per other round (a color of a tile next to two
+// identical ones, or of one of them), then the block its tile lies in, the pairs around that block
+// and their colors.
 constexpr int kRepairMargin = 3 * kTiltRounds + (kRepairRounds - kTiltRounds) + kRepairBlock + 2;
 
 struct Offset {
@@ -730,6 +807,19 @@ struct ColorPatch {
                               Element{kCorner, i + 1, j + 1}})
         out[static_cast<std::size_t>(n++)] = e;
     return n;
+  }
+  // The edges of tile (i, j) along the direction to its eastern (east: S and N) or northern (W and
+  // E) neighbour. Only a tile alike across that axis (E = W for east) can equal that neighbour;
+  // redrawing the edge the two share (as corner sets must) makes both unlike across it, so such
+  // tiles grew rare (complete-edge-2: 0.036 of the tiles with N = S and E = W, 0.105 with neither,
+  // against 1/16 each without the option), which raised the chance level and the noise of every
+  // offset's autocorrelation, and the periodicity score with them (0.0105 against 0.0094 at
+  // 128 x 128). An edge along keeps both tiles as alike across the axis as they were (frequencies
+  // 0.061-0.066).
+  int edges_along(int i, int j, bool east, std::array<Element, 8>& out) const {
+    out[0] = east ? Element{kHorizontal, i, j} : Element{kVertical, i, j};
+    out[1] = east ? Element{kHorizontal, i, j + 1} : Element{kVertical, i + 1, j};
+    return 2;
   }
   // What tile (i, j) shares with its eastern (east) or northern neighbour.
   int shared_with(int i, int j, bool east, std::array<Element, 8>& out) const {
@@ -906,6 +996,9 @@ void HashedTiling::fill_window(std::int64_t first_i, std::int64_t first_j, int w
   const auto key = [&](int i, int j) { return keys[static_cast<std::size_t>(j) * pw + static_cast<std::size_t>(i)]; };
   const std::span<const Offset> tilt_offsets =
       has_corners_ ? std::span<const Offset>(kCornerTiltOffsets) : std::span<const Offset>(kEdgeTiltOffsets);
+  // Tuned with the pair rule (edges_along or shared corners): with edges 0.3 overshot, (2, 0) and
+  // (0, 2) at -0.02; 0.1 puts them at -0.002 (0 leaves +0.007).
+  const std::uint32_t tilt_chance = has_edges_ ? kEdgeTiltChance : kCornerTiltChance;
   std::vector<Element> redraw;
   std::array<Element, 8> choices{};
   for (int round = 0; round < kRepairRounds; ++round) {
@@ -917,15 +1010,18 @@ void HashedTiling::fill_window(std::int64_t first_i, std::int64_t first_j, int w
         for (const bool east : {true, false}) {
           const int i2 = east ? i + 1 : i, j2 = east ? j : j + 1;
           if (!inside(i2, j2) || key(i, j) != key(i2, j2)) continue;
-          const int n = patch.shared_with(i, j, east, choices);
-          redraw.push_back(choices[repair_hash(seed_, round, east ? 1 : 2, gi, gj) % static_cast<std::uint64_t>(n)]);
+          const std::uint64_t h = repair_hash(seed_, round, east ? 1 : 2, gi, gj);
+          const bool second = ((h >> 32) & 1) != 0;
+          const int n = has_edges_ ? patch.edges_along(second ? i2 : i, second ? j2 : j, east, choices)
+                                   : patch.shared_with(i, j, east, choices);
+          redraw.push_back(choices[h % static_cast<std::uint64_t>(n)]);
         }
         if (round >= kTiltRounds) continue;
         for (std::size_t o = 0; o < tilt_offsets.size(); ++o) {
           const int i2 = i + tilt_offsets[o].di, j2 = j + tilt_offsets[o].dj;
           if (!inside(i2, j2) || key(i, j) != key(i2, j2)) continue;
           const std::uint64_t h = repair_hash(seed_, round, 3 + static_cast<int>(o), gi, gj);
-          if (static_cast<std::uint32_t>(h) >= kTiltChance) continue;
+          if (static_cast<std::uint32_t>(h) >= tilt_chance) continue;
           const bool second = ((h >> 32) & 1) != 0;
           const int n = patch.elements_of(second ? i2 : i, second ? j2 : j, choices);
           redraw.push_back(choices[(h >> 33) % static_cast<std::uint64_t>(n)]);
