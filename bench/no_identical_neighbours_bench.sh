@@ -6,12 +6,15 @@
 # Stops on any failure (a set the algorithm cannot tile, a binary being relinked: run it under
 # the build lock). Figures at load 2.3-2.8 (10 seeds, plain against forbidden, 128 x 128):
 # scanline cohen8 0.0154 / 0.0346 (0.0179 with issue 23's weighted rows, load 3.2), cohen12
-# 0.0454 / 0.0348, owen12 0.0690 / 0.0519. Hashed
-# tilings, repaired around identical neighbours since issue 23 (20 seeds, load 1.3-4.0, 128 x 128):
-# complete-edge-2 0.0091 / 0.0103, corner-2 0.0125 / 0.0132, corner-3 0.0046 / 0.0048 (the old
-# lattice rule: 0.0616, 0.0864, 0.0106); 32 and 64 in docs/tileset-format.md.
+# 0.0454 / 0.0348, owen12 0.0690 / 0.0519; cohen8-corners 0.0237 / 0.0246 since each row draws
+# its class (0.0505 before; load 4.2-5.0). Hashed tilings, repaired around identical neighbours
+# since issue 23 (20 seeds, load 4.2-5.0, 128 x 128): complete-edge-2 0.0091 / 0.0096 (0.0103
+# when the shared edge was redrawn), corner-2 0.0125 / 0.0132, corner-3 0.0046 / 0.0048 (the old
+# lattice rule: 0.0616, 0.0864, 0.0106); 32 and 64, and the seed noise, in docs/tileset-format.md.
+# The binary may be a copy (argument 1), so that a rebuild does not stop a long run.
 #   sh bench/no_identical_neighbours_bench.sh
 #   SETS="complete-edge-2 corner-2" ALGORITHMS=hash sh bench/no_identical_neighbours_bench.sh
+#   SETS=cohen8-corners SEEDS=10 sh bench/no_identical_neighbours_bench.sh /tmp/wangscape
 set -eu
 bin=${1:-build/release/cli/wangscape}
 sets=${SETS:-cohen8 cohen12 cohen18 owen12 complete-edge-2 corner-2}

@@ -725,8 +725,8 @@ constexpr std::uint64_t kRepairSalt = 0x6A09E667F3BCC909ull;
 // chance, a color of tiles alike at kTiltOffsets (a tile that differs from both its neighbours is
 // more often alike to the tile two steps on: about +0.007 in the periodicity at (2, 0) and (0, 2)
 // for complete-edge-2, +0.014 at (1, 1) for corner-2; the tilt cancels it). What the rounds leave
-// (about 1 pair in 10^5 for complete-edge-2, fewer for corner-2) an exact repair of the 4 x 4 block
-// around it clears.
+// (under 10^-4 of the pairs for complete-edge-2, fewer for corner-2) an exact repair of the 4 x 4
+// block around it clears.
 constexpr int kRepairRounds = 8;
 constexpr int kTiltRounds = 2;
 constexpr std::uint32_t kEdgeTiltChance = 429496730u;     // 0.1 of 2^32

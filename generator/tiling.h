@@ -94,9 +94,9 @@ class HashedTiling {
   // Throws Error "tile set '<name>': hash tiling needs a complete set; missing
   // (N,E,S,W)=(1,0,0,1)" (or (NE,SE,SW,NW)=...) when the set is not complete.
   // forbid_identical_neighbours: the hashed colors are repaired where neighbours come out
-  // identical (rounds of redrawing a color they share, then an exact repair of the 4 x 4 block
+  // identical (rounds of redrawing a color of theirs, then an exact repair of the 4 x 4 block
   // around what is left; see fill_window), so no two neighbouring tiles are identical. Still O(1)
-  // per tile and deterministic, but each call computes a margin of 16 tiles around its window: ask
+  // per tile and deterministic, but each call computes a margin of 18 tiles around its window: ask
   // for windows (fill_window, make_tiling), not single tiles. Needs at least two colors per alphabet.
   HashedTiling(const TileSet& set, std::uint64_t seed, bool forbid_identical_neighbours = false);
 
