@@ -36,6 +36,7 @@ struct Batch {
   // where nothing is drawn (behind the near plane, the ground plane, off the screen).
   alignas(64) float z[kBatch];
   alignas(64) std::int32_t x0[kBatch], x1[kBatch], y0[kBatch], y1[kBatch], keep[kBatch];
+  alignas(64) std::int32_t cell[kBatch];  // of the tile's grid of plant rules, where the sample stands
 };
 
 // The least integer not below v, for |v| < 2^31: written with a truncation, which vectorizes
@@ -68,6 +69,8 @@ WANGSCAPE_VECTOR_CLONES void project(const Warp& w, Batch& b) {
   const float ground_below = w.ground_below, splat = w.splat, focal = w.focal, cx = w.cx, cy = w.cy;
   const int width = w.width, height = w.height;
   const float max_splat = float(w.max_splat);
+  const std::int32_t plant_cells = w.plant_cells, last_cell = plant_cells - 1;
+  const float cells = float(plant_cells);
   const int n = b.size;
   for (int i = 0; i < n; ++i) {
     const float fx = b.x[i], fy = b.y[i], d = b.depth[i];
@@ -79,6 +82,8 @@ WANGSCAPE_VECTOR_CLONES void project(const Warp& w, Batch& b) {
     const float t = std::min(std::max(ly * inverse_tile, 0.0f), 1.0f);
     const float h_east = h00 + u * (h10 - h00) + t * (h11 - h10), h_north = h00 + t * (h01 - h00) + u * (h11 - h01);
     const float h = u >= t ? h_east : h_north;
+    b.cell[i] =
+        std::min(std::int32_t(u * cells), last_cell) + std::min(std::int32_t(t * cells), last_cell) * plant_cells;
     const float camera_z = cb2 + fx * cx2 + fy * cy2 + d * cd2 + h * lift2;
     const float camera_x = cb0 + fx * cx0 + fy * cy0 + d * cd0 + h * lift0;
     const float camera_y = cb1 + fx * cx1 + fy * cy1 + d * cd1 + h * lift1;
@@ -116,6 +121,9 @@ void splat(const LdiView& v, const Warp& w, const Batch& b, ThreadDepths& out) {
   for (int i = 0; i < b.size; ++i) {
     if (!b.keep[i]) continue;
     const DepthPixel& p = v.depth_pixels[b.index[i]];
+    if (w.plant_steps && p.plant != kAnyPlant &&
+        (p.plant & (kPlantRankSteps - 1)) >= w.plant_steps[b.cell[i] * kPlantSpecies + (p.plant >> 5)])
+      continue;  // a plant the field's rules or density leave out where it stands
     const std::uint64_t entry = pack_entry(b.z[i], p.r, p.g, p.b);
     if (b.x1[i] - b.x0[i] == 1 && b.y1[i] - b.y0[i] == 1) {
       if (owns(w.owned, b.x0[i], b.y0[i])) out.write_pixel(b.x0[i], b.y0[i], entry);  // else another LDI's pixel
@@ -143,8 +151,6 @@ std::uint64_t warp_ldi(const LdiView& v, const Warp& w, ThreadDepths& out) {
         const std::uint32_t count = v.counts[span.first_pixel + k];
         for (std::uint32_t layer = 0; layer < count; ++layer, ++index) {
           const DepthPixel& p = v.depth_pixels[index];
-          if (w.plant_steps && p.plant != kAnyPlant && (p.plant & (kPlantRankSteps - 1)) >= w.plant_steps[p.plant >> 5])
-            continue;  // a plant the field's rules or density leave out here
           const int i = batch.size++;
           batch.x[i] = float(span.x + k);
           batch.y[i] = float(y);

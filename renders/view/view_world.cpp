@@ -313,9 +313,17 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
       }
       tiles_.z_min.push_back(lo);
       tiles_.z_max.push_back(hi);
-      if (field.species)
-        tiles_.plant_steps.push_back(
-            plant_steps(*field.species, x0 + tile_size_ / 2, y0 + tile_size_ / 2, centre, field.species_names.size()));
+      if (field.species) {
+        constexpr int n = Tiles::kPlantCells;
+        auto& steps = tiles_.plant_steps.emplace_back();
+        for (int j = 0; j < n; ++j)
+          for (int i = 0; i < n; ++i) {
+            const double x = x0 + (i + 0.5) * tile_size_ / n, y = y0 + (j + 0.5) * tile_size_ / n;
+            const auto cell_steps = plant_steps(*field.species, x, y, field.ground.height(x, y).value_or(centre),
+                                                field.species_names.size());
+            std::copy(cell_steps.begin(), cell_steps.end(), steps.begin() + (j * n + i) * kPlantSpecies);
+          }
+      }
     }
   }
 

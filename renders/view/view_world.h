@@ -42,9 +42,11 @@ class ViewWorld {
     std::vector<std::int32_t> cell;       // index into the tile grid
     std::array<std::vector<float>, 4> h;  // ground height at the corners: SW, SE, NW, NE
     std::vector<float> z_min, z_max;      // of the corners
-    // [[species]]: per tile and species, how many of the kPlantRankSteps rank steps of the
-    // species' plants grow there (its rules and density at the tile's centre); empty without.
-    std::vector<std::array<std::uint8_t, kPlantSpecies>> plant_steps;
+    // [[species]]: per tile, per cell of a kPlantCells x kPlantCells grid over it (rows from the
+    // south, cells from the west) and per species, how many of the kPlantRankSteps rank steps of
+    // the species' plants grow there (its rules and density at the cell's centre); empty without.
+    static constexpr int kPlantCells = 4;
+    std::vector<std::array<std::uint8_t, kPlantCells * kPlantCells * kPlantSpecies>> plant_steps;
     std::size_t size() const { return tile.size(); }
   };
   // The terrain mesh in square chunks of about kTerrainChunkTriangles triangles, each with its
