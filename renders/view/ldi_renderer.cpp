@@ -393,6 +393,7 @@ void LdiRenderer::warp_tiles() {
   const double s = world.tile_size();
   const LdiPackInfo& info = world.pack().info();
   const std::uint32_t levels = info.levels, drawn_levels = levels + world.far_steps();
+  const WarpScreen screen{m.focal, m.cx, m.cy, m.width, m.height, kMaxSplat};
   // ---- the LDIs: tiles in parallel into the one z-buffer ----
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, order_.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -457,12 +458,7 @@ void LdiRenderer::warp_tiles() {
               w.plant_steps = tiles.plant_steps[t].data();
               w.plant_cells = ViewWorld::Tiles::kPlantCells;
             }
-            w.focal = m.focal;
-            w.cx = m.cx;
-            w.cy = m.cy;
-            w.width = m.width;
-            w.height = m.height;
-            w.max_splat = kMaxSplat;
+            w.screen = screen;
             counted += warp_ldi(v, w, depths);
           }
         }

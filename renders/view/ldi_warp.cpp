@@ -66,9 +66,10 @@ WANGSCAPE_VECTOR_CLONES void project(const Warp& w, Batch& b) {
   const float cd0 = w.step_d[0], cd1 = w.step_d[1], cd2 = w.step_d[2];
   const float lift0 = w.lift[0], lift1 = w.lift[1], lift2 = w.lift[2];
   const float h00 = w.h00, h10 = w.h10, h01 = w.h01, h11 = w.h11, inverse_tile = w.inverse_tile;
-  const float ground_below = w.ground_below, splat = w.splat, focal = w.focal, cx = w.cx, cy = w.cy;
-  const int width = w.width, height = w.height;
-  const float max_splat = float(w.max_splat);
+  const float ground_below = w.ground_below, splat = w.splat;
+  const float focal = w.screen.focal, cx = w.screen.cx, cy = w.screen.cy;
+  const int width = w.screen.width, height = w.screen.height;
+  const float max_splat = float(w.screen.max_splat);
   const std::int32_t plant_cells = w.plant_cells, last_cell = plant_cells - 1;
   const float cells = float(plant_cells);
   const int n = b.size;

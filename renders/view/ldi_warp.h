@@ -56,6 +56,13 @@ struct ThreadDepths {
   }
 };
 
+// The frame the LDIs are warped into: pixels per unit of tan, centre, size; the largest splat
+// side (pixels).
+struct WarpScreen {
+  float focal = 1, cx = 0, cy = 0;
+  int width = 0, height = 0, max_splat = 1;
+};
+
 // One LDI of one tile warped into the z-buffer: what stays fixed over its depth pixels.
 struct Warp {
   std::array<float, 3> base{}, step_x{}, step_y{}, step_d{},
@@ -69,9 +76,7 @@ struct Warp {
   const std::uint8_t* plant_steps = nullptr;
   int plant_cells = 1;
   float ground_below = 0;  // meters: a last layer lower than this is the ground plane
-  // The screen: pixels per unit of tan, centre, size; the largest splat side (pixels).
-  float focal = 1, cx = 0, cy = 0;
-  int width = 0, height = 0, max_splat = 1;
+  WarpScreen screen;
 };
 
 // Every depth pixel of `v` splatted into `out`; returns how many depth pixels were visited.
