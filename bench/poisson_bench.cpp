@@ -12,6 +12,7 @@
 // Options besides Google Benchmark's: --scipy-points N (0 skips the scipy peer), --figures-only.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -247,6 +248,32 @@ void print_rank_figures() {
                   x.size() / all, m.rho, m.mean_nn, low_frequency_power(m.spectrum), m.edge_density_ratio,
                   m.corner_density_ratio, m.spectrum.mean_anisotropy_off_grid_db, m.spectrum.noise_floor_db);
     }
+  // No tile grid: the density of the kept points across a tile, in 20 bands of 0.05 tile sides
+  // (x and y pooled, each tile counted once), summed over 64 fills, least and most band over the
+  // mean band.
+  std::printf("density across a tile, bands of 0.05 tile sides, 64 fills, 60 per tile: least / most band\n");
+  for (const char* set_name : {"cohen8", "corner-2"}) {
+    std::array<std::array<double, 20>, 3> bands{};
+    constexpr std::array<double, 3> densities = {0.5, 0.25, 0.125};
+    for (std::uint64_t seed = 1; seed <= 64; ++seed) {
+      PoissonFillOptions fill;
+      fill.points_per_tile = 60;
+      fill.seed = seed;
+      for (const auto& tile : fill_poisson_tiles(builtin_tileset(set_name), fill).tiles)
+        for (const TilePoint& p : tile)
+          for (std::size_t k = 0; k < densities.size(); ++k)
+            if (p.rank < densities[k])
+              for (const float v : {p.x, p.y}) bands[k][std::min<std::size_t>(19, std::size_t(v * 20))] += 1;
+    }
+    std::printf("  %-9s", set_name);
+    for (std::size_t k = 0; k < densities.size(); ++k) {
+      const auto [least, most] = std::minmax_element(bands[k].begin(), bands[k].end());
+      double sum = 0;
+      for (const double b : bands[k]) sum += b;
+      std::printf("  d %.3f: %.2f / %.2f", densities[k], *least * 20 / sum, *most * 20 / sum);
+    }
+    std::printf("\n");
+  }
   // A ramp: d rises from 0.1 at x = 0 to 1 at x = 64; figures per band of 8 tiles.
   auto ramp = [](double at) { return 0.1 + 0.9 * at / 64.0; };
   kept_points(

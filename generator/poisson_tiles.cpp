@@ -798,24 +798,27 @@ double nn_spread(const SampleTiling& sample, const Content& content) {
 //  - the shared points climb the ladder kSharedLead rungs ahead of the interiors: they take their
 //    places before the interiors around them, and an interior point keeps from a shared point of
 //    a later rung that rung's distance (every pair keeps the distance of the later of its rungs);
-//  - every rung fills rings of kRankRing by distance to the nearest edge evenly: the ring least
+//  - every rung fills rings of kRankRing by distance to the nearest edge (out to kRankRingsReach,
+//    then the rest of the tile as one) evenly: the ring least
 //    filled for its area offers the next point, and no ring takes more than d of its area's
 //    share (the fill itself is thinner at the edges and corners);
 //  - rings short of d take points at 0.95 and 0.9 of the rung's distance.
 // Measured (points of rank < d, density across a tile in bands of 0.05 tile sides over the mean
 // band, 60-300 fills; rho over 64 x 64 tilings, seeds 1-4), d = 0.5 / 0.25 / 0.125, before ->
-// now: cohen8 60 per tile: least band 0.73 / 0.58 / 0.51 -> 0.82 / 0.75 / 0.74, most 1.14 /
-// 1.20 / 1.42 -> 1.11 / 1.10 / 1.12, rho 0.57-0.60 / 0.58-0.59 / 0.64-0.67 -> 0.58 / 0.54-0.58
-// / 0.57-0.65; relaxed (30 rounds) least 0.76 / 0.73 / 0.36 -> 0.86 / 0.74 / 0.78; corner-2 and
-// complete-edge-2 alike. A random subset: rho 0.61 / 0.43 / 0.34. At 20 per tile the least band
-// rises (0.35-0.73 -> 0.49-0.80) but bands of 1.2-1.4 stay: the fill itself is layered there
-// (0.62-1.33 at d = 1), and rho at d = 0.125 falls by up to 0.07 (0.47-0.62 against 0.54-0.67).
-// The outermost band stays lowest (0.74-0.86): the fill holds 0.8 of the mean there.
+// now: cohen8 60 per tile: least band 0.73 / 0.58 / 0.51 -> 0.80 / 0.73 / 0.72, most 1.14 /
+// 1.20 / 1.42 -> 1.11 / 1.15 / 1.17, rho 0.57-0.60 / 0.58-0.59 / 0.64-0.67 -> 0.56-0.58 /
+// 0.56-0.58 / 0.57-0.61; relaxed (30 rounds) least 0.76 / 0.73 / 0.36 -> 0.85 / 0.74 / 0.78;
+// corner-2 and complete-edge-2 alike (least 0.46-0.79 -> 0.60-0.79). A random subset: rho 0.61 /
+// 0.43 / 0.34. At 20 per tile the least band rises (0.35-0.73 -> 0.47-0.81) but bands of
+// 1.2-1.5 stay (the fill itself is layered there: 0.62-1.33 at d = 1), and rho at d = 0.125
+// falls by up to 0.05-0.1 (0.50-0.63 against 0.54-0.67). The outermost band stays lowest, and
+// the corners: the fill itself holds 0.8 of the mean density within 0.05 of an edge, 0.6 in the
+// corners.
 // Edge objects (only in the strips) fill their rings by their own counts, not by area.
 constexpr double kLowestDensity = 1.0 / 16;
 constexpr int kDensityRungs = 32;
 constexpr int kSharedLead = 3;
-constexpr double kRankRing = 0.025;
+constexpr double kRankRing = 0.025, kRankRingsReach = 0.25;
 constexpr std::array<double, 2> kCatchUpScales = {0.95, 0.9};
 
 std::vector<float> progressive_ranks(const ContentModel& model, const Content& content, const PointSet& points,
@@ -823,7 +826,9 @@ std::vector<float> progressive_ranks(const ContentModel& model, const Content& c
   const std::size_t n = points.local.size();
   std::vector<float> rank(n, 0.0f);
   constexpr double rank_rho = 0.7;
-  constexpr int rings = static_cast<int>(0.5 / kRankRing);
+  // Rings of kRankRing out to kRankRingsReach from the edges, then one ring for the rest (rings
+  // of a few points a tile would starve: each point counts whole against its ring's share).
+  constexpr int rings = static_cast<int>(kRankRingsReach / kRankRing) + 1;
   auto rung_density = [](int k) { return std::pow(kLowestDensity, 1.0 - double(k) / (kDensityRungs - 1)); };
   auto rung_radius = [&](std::size_t s, int k) {
     return std::min(rank_rho * hexagonal_spacing(1.0, rung_density(k) * species.per_tile[s]), 0.45);
@@ -848,7 +853,7 @@ std::vector<float> progressive_ranks(const ContentModel& model, const Content& c
     holders[p] = double(model.group(g).holders.size());
     const Vec2 q = points.local[p] + model.group(g).offset;
     const double to_edge = std::min(std::min(q.x, 1.0 - q.x), std::min(q.y, 1.0 - q.y));
-    ring[p] = std::clamp(static_cast<int>(to_edge / kRankRing), 0, rings - 1);
+    ring[p] = std::min(static_cast<int>(to_edge / kRankRing), rings - 1);
   }
   for (std::size_t s = 0; s < species.count; ++s) {
     std::vector<std::uint32_t> members;
@@ -866,7 +871,7 @@ std::vector<float> progressive_ranks(const ContentModel& model, const Content& c
     }
     if (!species.edge_objects[s])
       for (int b = 0; b < rings; ++b) {
-        const double outer = 1.0 - 2.0 * b * kRankRing, inner = std::max(0.0, 1.0 - 2.0 * (b + 1) * kRankRing);
+        const double outer = 1.0 - 2.0 * b * kRankRing, inner = b + 1 < rings ? 1.0 - 2.0 * (b + 1) * kRankRing : 0.0;
         ring_share[static_cast<std::size_t>(b)] = total * (outer * outer - inner * inner);
       }
     std::vector<double> radius(kDensityRungs);

@@ -103,7 +103,7 @@ std::vector<std::vector<double>> density_profiles(const std::string& set, int se
 // that can sit across; before the shared points climbed the ladder ahead and the rings by
 // distance to the edge were filled evenly, the band inside the strips fell to 0.48 of the mean at
 // d = 0.125 (cohen8, 128 fills) with 1.40 next to it, and to 0.61 at d = 0.25; corner-2 0.64
-// and 1.40 at d = 0.125. Now 0.73-1.14 for both at every d.
+// and 1.40 at d = 0.125. Now 0.71-1.19 for both at every d.
 TEST(ProgressiveRank, ThinnedDensityIsFlatAcrossTheTile) {
   for (const auto& [set, seeds] : {std::pair<std::string, int>{"cohen8", 128}, {"corner-2", 64}}) {
     const std::vector<std::vector<double>> profiles = density_profiles(set, seeds);
