@@ -5,8 +5,9 @@
 //    as peers: points/s, rho, mean NN distance;
 //  - several classes (issue 26): a meadow-like set of grass, flowers and a few boulders per class
 //    (fill share, rho, edge / corner density), the progressive rank's thinning at d = 1, 0.5,
-//    0.25, 0.125 against a random subset (rho, mean NN, low-frequency power, anisotropy) and
-//    across a density ramp;
+//    0.25, 0.125 against a random subset (rho, mean NN, low-frequency power, anisotropy), the
+//    density of the thinned points across a tile (least / most band of 0.05 tile sides, cohen8
+//    and corner-2, 64 fills) and across a density ramp;
 //  - Google Benchmark timings: scattering tiles over a plane in memory (points/s; one class and
 //    the three-class meadow), filling and relaxing the 8-tile set, filling the meadow set.
 // Options besides Google Benchmark's: --scipy-points N (0 skips the scipy peer), --figures-only,
