@@ -24,7 +24,6 @@
 
 #include "renders/trace/scene_tracer.h"
 #include "renders/view/ldi_warp.h"
-#include "renders/view/terrain_row.h"
 #include "renders/view/view_samples.h"
 
 namespace wangscape {
@@ -536,20 +535,6 @@ void LdiRenderer::draw_terrain() {
     if (m.screen_box_hidden(x0, y0, x1, y1, nearest)) return;
     const float inv_area = 1.0f / area;
     const float iza = 1 / a.z, izb = 1 / b.z, izc = 1 / c.z;
-    const ScreenTriangle screen{ax,
-                                ay,
-                                bx,
-                                by,
-                                cx,
-                                cy,
-                                inv_area,
-                                iza,
-                                izb,
-                                izc,
-                                {a.wx, a.wy, a.lr, a.lg, a.lb},
-                                {b.wx, b.wy, b.lr, b.lg, b.lb},
-                                {c.wx, c.wy, c.lr, c.lg, c.lb}};
-    TerrainRow row;
     // Per row, the span where the three weights are >= 0 (each is linear in x), widened by a
     // pixel: the exact test below decides, the span only skips what surely fails (thin far
     // triangles have bounding boxes many times their area).
@@ -578,20 +563,27 @@ void LdiRenderer::draw_terrain() {
       if (empty || !(lo <= hi + 2)) continue;
       const int span_x0 = std::max(x0, int(std::ceil(lo - 0.5f)) - 1),
                 span_x1 = std::min(x1, int(std::floor(hi - 0.5f)) + 1);
-      for (int first = span_x0; first <= span_x1; first += kTerrainRowPixels) {
-        const int count = std::min(kTerrainRowPixels, span_x1 - first + 1);
-        rasterize_row(screen, py, first, count, 1 + kTerrainDepthBias, row);
-        for (int i = 0; i < count; ++i) {
-          if (!row.covered[i]) continue;
-          const int px = first + i;
-          // Early depth test: most ground under the field is hidden by flowers drawn before it.
-          const std::uint64_t drawn =
-              std::atomic_ref<std::uint64_t>(m.zbuffer[std::size_t(py) * std::size_t(m.width) + std::size_t(px)])
-                  .load(std::memory_order_relaxed);
-          if (pack_entry(row.depth[i], 0, 0, 0) > drawn) continue;
-          shade_pixel(px, py, row.depth[i], row.attribute[0][i], row.attribute[1][i], row.attribute[2][i],
-                      row.attribute[3][i], row.attribute[4][i]);
-        }
+      for (int px = span_x0; px <= span_x1; ++px) {
+        const float fx = float(px) + 0.5f;
+        // Barycentric weights (either winding), a pixel on a shared edge goes to one side only.
+        float wa = ((bx - fx) * (cy - fy) - (by - fy) * (cx - fx)) * inv_area;
+        float wb = ((cx - fx) * (ay - fy) - (cy - fy) * (ax - fx)) * inv_area;
+        float wc = 1 - wa - wb;
+        if (wa < 0 || wb < 0 || wc < 0) continue;
+        const float iz = wa * iza + wb * izb + wc * izc;
+        const float z = 1 / iz;
+        const float drawn_depth = z * (1 + kTerrainDepthBias);
+        // Early depth test: most ground under the field is hidden by flowers drawn before it.
+        const std::uint64_t drawn =
+            std::atomic_ref<std::uint64_t>(m.zbuffer[std::size_t(py) * std::size_t(m.width) + std::size_t(px)])
+                .load(std::memory_order_relaxed);
+        if (pack_entry(drawn_depth, 0, 0, 0) > drawn) continue;
+        wa *= iza * z;
+        wb *= izb * z;
+        wc *= izc * z;
+        shade_pixel(px, py, drawn_depth, wa * a.wx + wb * b.wx + wc * c.wx, wa * a.wy + wb * b.wy + wc * c.wy,
+                    wa * a.lr + wb * b.lr + wc * c.lr, wa * a.lg + wb * b.lg + wc * c.lg,
+                    wa * a.lb + wb * b.lb + wc * c.lb);
       }
     }
   };
