@@ -453,10 +453,7 @@ void LdiRenderer::warp_tiles() {
             w.ground_below = far ? -std::numeric_limits<float>::infinity() : kGroundEpsilon + 0.75f * f.pixel_size;
             w.splat = float(p) * m.focal * (far ? kFarSplatScale : kSplatScale);
             w.owned = owned_thresholds(part.from, part.to);
-            if (!tiles.plant_steps.empty()) {
-              w.plant_steps = tiles.plant_steps[t].data();
-              w.plant_cells = ViewWorld::Tiles::kPlantCells;
-            }
+            if (!tiles.plant_steps.empty()) w.plant_steps = tiles.plant_steps[t].data();
             w.screen = screen;
             counted += warp_ldi(v, w, depths);
           }

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "renders/view/vector_clones.h"
+#include "renders/view/view_world.h"
 
 namespace wangscape::view_detail {
 
@@ -70,8 +71,8 @@ WANGSCAPE_VECTOR_CLONES void project(const Warp& w, Batch& b) {
   const float focal = w.screen.focal, cx = w.screen.cx, cy = w.screen.cy;
   const int width = w.screen.width, height = w.screen.height;
   const float max_splat = float(w.screen.max_splat);
-  const std::int32_t plant_cells = w.plant_cells, last_cell = plant_cells - 1;
-  const float cells = float(plant_cells);
+  constexpr std::int32_t plant_cells = ViewWorld::Tiles::kPlantCells, last_cell = plant_cells - 1;
+  constexpr float cells = float(plant_cells);
   const int n = b.size;
   for (int i = 0; i < n; ++i) {
     const float fx = b.x[i], fy = b.y[i], d = b.depth[i];

@@ -71,10 +71,9 @@ struct Warp {
   float h00 = 0, h10 = 0, h01 = 0, h11 = 0, inverse_tile = 1;
   float depth_scale = 0, splat = 0;  // meters per depth step; splat side times depth (pixels x meters)
   std::uint16_t owned = 0xffff;      // the dither thresholds this LDI owns (owned_thresholds)
-  // [[species]]: per cell of a plant_cells x plant_cells grid over the tile (rows from the south)
-  // and per species, the rank steps of its plants that grow there (null: all).
+  // [[species]]: the tile's ViewWorld::Tiles::plant_steps, the rank steps of each species that grow
+  // in each cell of the tile (null: all).
   const std::uint8_t* plant_steps = nullptr;
-  int plant_cells = 1;
   float ground_below = 0;  // meters: a last layer lower than this is the ground plane
   WarpScreen screen;
 };

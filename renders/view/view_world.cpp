@@ -55,6 +55,7 @@ LdiImage one_layer_ldi(const LdiView& v, int factor) {
     std::uint16_t normal = 0;
     std::uint8_t plant = kAnyPlant;
     std::array<std::uint32_t, kPlantSpecies + 1> per_species{};  // the last: kAnyPlant
+    int most = 0;                                                // the species most samples show
   };
   std::vector<Block> blocks(std::size_t(w) * h);
   const auto species_of = [](std::uint8_t plant) { return plant == kAnyPlant ? kPlantSpecies : plant >> 5; };
@@ -64,12 +65,13 @@ LdiImage one_layer_ldi(const LdiView& v, int factor) {
     ++b.flowers;
     ++b.per_species[std::size_t(species_of(front.plant))];
   });
+  for (Block& b : blocks)
+    b.most = int(std::max_element(b.per_species.begin(), b.per_species.end()) - b.per_species.begin());
   const Luts& lut = luts();
   for_each_front_sample(v, [&](int x, int y, const DepthPixel& front, bool is_ground) {
     if (is_ground) return;
     Block& b = blocks[std::size_t(y / factor) * w + std::uint32_t(x / factor)];
-    const auto most = std::max_element(b.per_species.begin(), b.per_species.end()) - b.per_species.begin();
-    if (species_of(front.plant) != most) return;
+    if (species_of(front.plant) != b.most) return;
     if (b.shown++ == 0) b.plant = front.plant;
     b.r += lut.to_linear[front.r];
     b.g += lut.to_linear[front.g];

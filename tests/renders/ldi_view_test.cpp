@@ -446,19 +446,17 @@ TEST(ldi_view_above, FarStepsOfTwoTilesKeepIndependentBlocks) {
   EXPECT_LT(sum / pairs, 0.2) << "mean phi of the kept masks of neighbouring tiles";
 }
 
-}  // namespace
-}  // namespace wangscape
+// Whether pixel i (0-based) of a frame shows a sunflower petal (saturated yellow; grass, even
+// straw, is greener).
+bool shows_petal(const ImageRgb8& image, std::size_t i) {
+  const int r = image.pixels[3 * i], g = image.pixels[3 * i + 1], b = image.pixels[3 * i + 2];
+  return r >= g && g > 100 && b * 2 < g;
+}
 
-namespace wangscape {
-namespace {
-
-// The pixels of a frame that show sunflower petals (saturated yellow).
+// The pixels of a frame that show sunflower petals.
 int yellow_pixels(const ImageRgb8& image) {
   int n = 0;
-  for (std::size_t i = 0; i + 2 < image.pixels.size(); i += 3) {
-    const int r = image.pixels[i], g = image.pixels[i + 1], b = image.pixels[i + 2];
-    n += r >= g && g > 100 && b * 2 < g;  // (grass, even straw, is greener)
-  }
+  for (std::size_t i = 0; i < image.pixels.size() / 3; ++i) n += shows_petal(image, i);
   return n;
 }
 
@@ -490,12 +488,6 @@ TEST(ldi_view_species, PlantsTheRulesLeaveOutAreNotDrawn) {
   EXPECT_GT(some, all / 5) << "of " << all;
   EXPECT_LT(some, all * 4 / 5) << "of " << all;
 }
-
-}  // namespace
-}  // namespace wangscape
-
-namespace wangscape {
-namespace {
 
 // A species' rules followed within a tile, not at its centre: on a slope (about 0.55) a height
 // rule's boundary crosses tiles. Each sunflower head pixel the view draws is taken back to the
@@ -534,9 +526,7 @@ TEST(ldi_view_species, RulesFollowTheGroundWithinATile) {
     double seed_worst = -1e9;
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) {
-        const std::size_t i = (std::size_t(y) * width + std::size_t(x)) * 3;
-        const int r = image.pixels[i], g = image.pixels[i + 1], b = image.pixels[i + 2];
-        if (!(r >= g && g > 100 && b * 2 < g) || renderer.sky_at(x, y)) continue;
+        if (!shows_petal(image, std::size_t(y) * width + std::size_t(x)) || renderer.sky_at(x, y)) continue;
         // The pixel centre's ray, as far as the depth drawn there.
         const double depth = renderer.depth_at(x, y), right = (x + 0.5 - width / 2.0) / focal,
                      up = -(y + 0.5 - height / 2.0) / focal;
