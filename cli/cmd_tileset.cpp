@@ -1,6 +1,7 @@
 // wangscape tileset --set NAME|FILE [--json] [--sheet sheet.png]: print or draw a tile set.
 #include <fmt/core.h>
 
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -63,14 +64,16 @@ PoissonClass parse_class(const std::string& text) {
 
 // Per class: points per tile against the target, radii, and the least distance to every class
 // over every configuration of the set.
-std::string class_fill_text(const FilledTileSet& filled, const PoissonFillOptions& options) {
+std::string class_fill_text(const FilledTileSet& filled, const PoissonFillOptions& options,
+                            const PoissonFillReport& report) {
   const std::size_t n = filled.classes.size();
   std::vector<std::size_t> count(n, 0);
   for (const auto& tile : filled.tiles)
     for (const TilePoint& p : tile) ++count[p.species];
   double total_share = 0;
   for (const PoissonClass& c : options.classes) total_share += c.share;
-  const std::vector<double> least = class_min_distances(filled);
+  const std::vector<double>& least = report.class_min_distance;
+  const std::size_t stride = std::size_t(std::lround(std::sqrt(double(least.size()))));  // classes with points
   std::string text = "class  per tile (target)  packing   tight  spacing  least distance to class 0, 1, ..\n";
   for (std::size_t c = 0; c < n; ++c) {
     text += fmt::format("{:5}  {:>8} ({:>6})  {:>7}  {:>6}  {:>7} ", c,
@@ -78,7 +81,8 @@ std::string class_fill_text(const FilledTileSet& filled, const PoissonFillOption
                         fixed_text(options.points_per_tile * options.classes[c].share / total_share, 2),
                         fixed_text(filled.classes[c].packing, 4), fixed_text(filled.classes[c].tight, 4),
                         fixed_text(filled.classes[c].spacing, 4));
-    for (std::size_t k = 0; k < n; ++k) text += fmt::format(" {}", fixed_text(least[c * n + k], 4));
+    for (std::size_t k = 0; k < n; ++k)
+      text += fmt::format(" {}", c < stride && k < stride ? fixed_text(least[c * stride + k], 4) : "-");
     text += filled.classes[c].edge_objects ? "  (edge objects)\n" : "\n";
   }
   return text;
@@ -100,7 +104,7 @@ void fill(const TileSet& set, const TilesetOptions& options) {
   if (!options.sheet.empty())
     write_image(options.sheet, draw_filled_tileset_sheet(filled, std::max(options.tile_pixels, 96)));
   fmt::print("{}", poisson_fill_text(filled, report, options.per_tile));
-  if (!options.classes.empty()) fmt::print("{}", class_fill_text(filled, fill_options));
+  if (!options.classes.empty()) fmt::print("{}", class_fill_text(filled, fill_options, report));
   std::size_t points = 0;
   for (const auto& tile : filled.tiles) points += tile.size();
   say_written(options, fmt::format("{} tiles filled with {} points", filled.tiles.size(), points));

@@ -671,6 +671,10 @@ void lloyd_step(const RelaxContext& ctx, const Content& content, int round, doub
   constexpr int kContexts = 4;
   std::vector<Vec2> moved(points.local.size());
   tbb::parallel_for(std::size_t{0}, points.local.size(), [&](std::size_t p) {
+    if (ctx.species.edge_objects[points.species[p]]) {  // they stay (RelaxContext::moved): no centroids
+      moved[p] = points.local[p];
+      return;
+    }
     const int g = ctx.model.group_holding(points.cls[p], points.local[p]);
     const Group& group = ctx.model.group(g);
     const Vec2 q = points.local[p] + group.offset;
@@ -1266,7 +1270,9 @@ FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& o
 
   FilledTileSet filled =
       export_points(set, options, species, progressive_ranks(model, content, points, species, options), content);
-  rep.final_min_distance = min_distance_over_configurations(filled);
+  rep.class_min_distance = class_min_distances(filled);
+  const std::vector<double>& least = rep.class_min_distance;
+  rep.final_min_distance = *std::min_element(least.begin(), least.end());
   rep.nn_spread = nn_spread(sample, content);
   filled.radius_packing = 0.5 * rep.final_min_distance * (1.0 - 1e-6);
   filled.radius_tight = tight;
@@ -1276,7 +1282,6 @@ FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& o
   } else {
     // Relaxation raised every distance by one factor: the radii say what the points keep (below 1
     // only by the rounding of positions to floats).
-    const std::vector<double> least = class_min_distances(filled);
     double factor = std::numeric_limits<double>::infinity();
     const auto present = static_cast<std::size_t>(std::lround(std::sqrt(double(least.size()))));  // classes with points
     for (std::size_t a = 0; a < present; ++a)

@@ -108,9 +108,11 @@ std::optional<int> class_of_variant(const FilledTileSet& filled, int variant);
 
 // What the fill did, for benchmarks and the CLI.
 struct PoissonFillReport {
-  std::size_t class_points = 0;         // distinct points (replicas counted once)
-  double dart_min_distance = 0;         // minimum distance after darts, over all configurations
-  double final_min_distance = 0;        // after relaxation
+  std::size_t class_points = 0;   // distinct points (replicas counted once)
+  double dart_min_distance = 0;   // minimum distance after darts, over all configurations
+  double final_min_distance = 0;  // after relaxation
+  // The same per pair of classes, class_min_distances of the result.
+  std::vector<double> class_min_distance;
   int relax_rounds_run = 0;             // rounds that moved points and kept the bound
   int relax_rounds_rejected = 0;        // rounds undone because the bound could not be kept
   double nn_spread = 0;                 // std/mean of NN distances in the sample tiling at the end
