@@ -465,9 +465,9 @@ void paint_far_field(GroundBake& bake, const SceneField& field, const FieldTextu
         // [[species]]: each species where its rules let it grow, thinned by its density there.
         for (std::size_t c = 0; c < field.species_names.size(); ++c) {
           const auto species = static_cast<std::uint8_t>(c);
-          if (!field.species->rules_hold(species, sx, sy, *sz)) continue;
-          cover += static_cast<float>(field.species->density(species, sx, sy, *sz)) *
-                   texture.species_coverage(c, t, sx / s - fi, sy / s - fj, footprint);
+          const double density = field.species->density_where_grows(species, sx, sy, *sz);
+          if (density > 0)
+            cover += static_cast<float>(density) * texture.species_coverage(c, t, sx / s - fi, sy / s - fj, footprint);
         }
       }
       if (cover == 0) continue;

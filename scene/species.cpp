@@ -127,36 +127,32 @@ SpeciesRules::SpeciesRules(const SceneConfig& config, const SceneGround& ground)
   }
 }
 
-bool SpeciesRules::rules_hold(std::uint8_t species, double x, double y, double z) const {
+double SpeciesRules::density_where_grows(std::uint8_t species, double x, double y, double z) const {
   const Rule& rule = rules_[species];
   const SpeciesConfig& c = rule.config;
-  if ((c.min_height && z < *c.min_height) || (c.max_height && z > *c.max_height)) return false;
-  if (rule.mask && !rule.mask->allows(x, y)) return false;
-  if (c.min_slope || c.max_slope) {
-    const auto slope = ground_.slope_degrees(x, y);
-    if (!slope || (c.min_slope && *slope < *c.min_slope) || (c.max_slope && *slope > *c.max_slope)) return false;
-  }
+  if ((c.min_height && z < *c.min_height) || (c.max_height && z > *c.max_height)) return 0;
+  if (rule.mask && !rule.mask->allows(x, y)) return 0;
+  // The slope once, for the rules and the density both.
+  std::optional<double> slope;
+  if (rule.needs_slope) slope = ground_.slope_degrees(x, y);
+  if ((c.min_slope || c.max_slope) &&
+      (!slope || (c.min_slope && *slope < *c.min_slope) || (c.max_slope && *slope > *c.max_slope)))
+    return 0;
   if (c.aspect) {
     // Ground flatter than a degree faces nowhere in particular: every aspect range holds there.
     const auto n = ground_.normal(x, y);
-    if (!n) return false;
+    if (!n) return 0;
     const bool flat = (*n)[2] > std::cos(std::numbers::pi / 180);
-    if (!flat && !aspect_in_range(aspect_degrees(*n), (*c.aspect)[0], (*c.aspect)[1])) return false;
+    if (!flat && !aspect_in_range(aspect_degrees(*n), (*c.aspect)[0], (*c.aspect)[1])) return 0;
   }
-  return true;
-}
-
-double SpeciesRules::density(std::uint8_t species, double x, double y, double z) const {
-  const Rule& rule = rules_[species];
-  double d = density_curve_at(rule.config.density_by_height, z);
-  if (!rule.config.density_by_slope.empty())
-    d *= density_curve_at(rule.config.density_by_slope, ground_.slope_degrees(x, y).value_or(0));
+  double d = density_curve_at(c.density_by_height, z);
+  if (!c.density_by_slope.empty()) d *= density_curve_at(c.density_by_slope, slope.value_or(0));
   return d;
 }
 
 bool SpeciesRules::keeps(double x, double y, double z, std::uint8_t species, float rank) const {
   if (species >= rules_.size()) return false;
-  return rules_hold(species, x, y, z) && double(rank) < density(species, x, y, z);
+  return double(rank) < density_where_grows(species, x, y, z);
 }
 
 }  // namespace wangscape

@@ -47,10 +47,9 @@ class SpeciesRules {
   // Whether a point of `species` with progressive `rank` stands at (x, y) on ground z (meters):
   // every rule holds and rank < the density there.
   bool keeps(double x, double y, double z, std::uint8_t species, float rank) const;
-  // The species' density (0..1) at (x, y, z), before its rules.
-  double density(std::uint8_t species, double x, double y, double z) const;
-  // Whether the species' rules (not its density) let it grow at (x, y, z).
-  bool rules_hold(std::uint8_t species, double x, double y, double z) const;
+  // The species' density (0..1) at (x, y, z) where its rules (height, slope, aspect, mask) let it
+  // grow, else 0.
+  double density_where_grows(std::uint8_t species, double x, double y, double z) const;
 
  private:
   struct Rule {

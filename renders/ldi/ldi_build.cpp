@@ -91,7 +91,7 @@ RTCGeometry triangle_geometry(RTCDevice device, std::span<const std::array<float
 // instance id, or the geometry id when the context is flattened).
 struct Instances {
   std::vector<std::uint16_t> variant;
-  std::vector<std::uint8_t> plant;  // the depth pixels' plant byte (species and rank)
+  std::vector<std::uint8_t> plant;  // the depth pixels' plant byte (species and rank; the ground's last)
   std::vector<float> cos_yaw, sin_yaw, scale, x, y;
   unsigned ground_id = 0;  // Hit::inst of the ground quad
 };
@@ -428,9 +428,8 @@ class LdiSampler {
       k.secondary += std::uint64_t(rays);
       const auto rgb = to_srgb8(color);
       const float d = std::clamp(h.t * depth_scale, 0.0f, 65535.0f);
-      out.depth_pixels.push_back(
-          DepthPixel::make(rgb[0], rgb[1], rgb[2], std::uint16_t(std::lround(d)), encode_octahedral(s.normal),
-                           h.inst == c_.instances.ground_id ? kAnyPlant : c_.instances.plant[h.inst]));
+      out.depth_pixels.push_back(DepthPixel::make(rgb[0], rgb[1], rgb[2], std::uint16_t(std::lround(d)),
+                                                  encode_octahedral(s.normal), c_.instances.plant[h.inst]));
     }
     k.depth_pixels += std::uint64_t(kept);
   }
@@ -566,6 +565,7 @@ Scene context_scene(Device& device, const FilledTileSet& filled, std::span<const
   const std::array<std::array<std::uint32_t, 3>, 2> triangles{{{0, 1, 2}, {0, 2, 3}}};
   RTCGeometry g = triangle_geometry(device.get(), corners, triangles);
   out.ground_id = id;
+  out.plant.push_back(kAnyPlant);  // (indexed by Hit::inst like the flowers')
   rtcAttachGeometryByID(scene.get(), g, id);
   rtcReleaseGeometry(g);
   rtcCommitScene(scene.get());

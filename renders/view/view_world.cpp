@@ -118,9 +118,8 @@ std::array<std::uint8_t, kPlantSpecies> plant_steps(const SpeciesRules& rules, d
   std::array<std::uint8_t, kPlantSpecies> steps{};
   for (std::size_t s = 0; s < std::min<std::size_t>(species, kPlantSpecies); ++s) {
     const auto k = std::uint8_t(s);
-    if (rules.rules_hold(k, x, y, z))
-      steps[s] =
-          std::uint8_t(std::clamp(std::lround(rules.density(k, x, y, z) * kPlantRankSteps), 0L, long(kPlantRankSteps)));
+    steps[s] = std::uint8_t(
+        std::clamp(std::lround(rules.density_where_grows(k, x, y, z) * kPlantRankSteps), 0L, long(kPlantRankSteps)));
   }
   return steps;
 }
