@@ -40,14 +40,16 @@ struct ScatterOptions {
 // --metrics of a set of several classes: a row per class after the union's figures.
 std::string class_metrics_text(const std::vector<ClassMetrics>& classes) {
   if (classes.empty()) return {};
-  std::string text = "class  points    rho  meanNN  pairs < spacing (m)    edge  corner\n";
+  std::string text =
+      "class  points    rho  meanNN  pairs < spacing (m)    edge  corner  anisotropy off the grid (dB)\n";
   for (std::size_t c = 0; c < classes.size(); ++c) {
     const PointMetrics& m = classes[c].metrics;
     const std::string zones = classes[c].edge_objects
-                                  ? "    -       -  (edge objects)"
+                                  ? "    -       -"
                                   : fmt::format("{:.3f}   {:.3f}", m.edge_density_ratio, m.corner_density_ratio);
-    text += fmt::format("{:5}  {:6}  {:.3f}   {:.3f}  {:6} < {:<10.4f} {}\n", c, m.count, m.rho, m.mean_nn,
-                        m.close_pairs, classes[c].spacing, zones);
+    text += fmt::format("{:5}  {:6}  {:.3f}   {:.3f}  {:6} < {:<10.4f} {}  {:6.2f}{}\n", c, m.count, m.rho, m.mean_nn,
+                        m.close_pairs, classes[c].spacing, zones, m.spectrum.mean_anisotropy_off_grid_db,
+                        classes[c].edge_objects ? "  (edge objects)" : "");
   }
   return text;
 }
@@ -97,7 +99,6 @@ void run(const ScatterOptions& options, const GlobalOptions& global) {
         Json classes = Json::array();
         for (const ClassMetrics& c : result.classes) {
           Json one = point_metrics_json(c.metrics, result.seconds);
-          one.erase("spectrum");  // not measured per class
           one["class_spacing_m"] = c.spacing;
           one["edge_objects"] = c.edge_objects;
           classes.push_back(std::move(one));

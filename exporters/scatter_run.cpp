@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 
 #include "core/disk_space.h"
 #include "core/error.h"
@@ -59,18 +60,22 @@ ScatterResult run_scatter(const ScatterRequest& request) {
         "--max-instances)");
   }
   std::vector<float> xs, ys;
-  // Several classes: each class's points also on their own, found by their variant's class
-  // (looked up once per variant, not per point).
+  // Several classes: each point's class beside its coordinates (its variant's class, looked up
+  // once per variant), so that each class can be measured on its own after the union without a
+  // second copy of every point held through the placement.
   const std::size_t class_count = request.metrics && filled.classes.size() > 1 ? filled.classes.size() : 0;
-  std::vector<int> variant_class(class_count ? std::size_t(filled.variants) : 0);
+  constexpr std::uint8_t kNoClass = 0xff;  // the fill takes at most 255 classes
+  std::vector<std::uint8_t> variant_class(class_count ? std::size_t(filled.variants) : 0);
   for (std::size_t v = 0; v < variant_class.size(); ++v)
-    variant_class[v] = class_of_variant(filled, int(v)).value_or(-1);
-  std::vector<std::vector<float>> class_xs(class_count), class_ys(class_count);
+    variant_class[v] = std::uint8_t(class_of_variant(filled, int(v)).value_or(kNoClass));
+  std::vector<std::uint8_t> point_class;
   if (request.metrics) {
+    // The union's coordinates and classes stay while one class at a time is copied and measured.
     check_memory_estimate(request.tileset, fmt::format("scatter --metrics over about {:.3g} instances", estimate),
-                          kMetricsBytesPerPoint * estimate * (class_count ? 2 : 1));
+                          (kMetricsBytesPerPoint + (class_count ? 9.0 : 0.0)) * estimate);
     xs.reserve(std::size_t(estimate * 1.05));  // no doubling past the estimate
     ys.reserve(std::size_t(estimate * 1.05));
+    if (class_count) point_class.reserve(std::size_t(estimate * 1.05));
   }
 
   std::optional<PointWriter> writer;
@@ -84,10 +89,7 @@ ScatterResult run_scatter(const ScatterRequest& request) {
       ys.insert(ys.end(), b.y.begin(), b.y.end());
     }
     for (std::size_t i = 0; class_count && i < b.size(); ++i)
-      if (b.variant[i] < variant_class.size() && variant_class[b.variant[i]] >= 0) {
-        class_xs[std::size_t(variant_class[b.variant[i]])].push_back(b.x[i]);
-        class_ys[std::size_t(variant_class[b.variant[i]])].push_back(b.y[i]);
-      }
+      point_class.push_back(b.variant[i] < variant_class.size() ? variant_class[b.variant[i]] : kNoClass);
     placed += b.size();
     if (request.max_instances && placed > *request.max_instances)
       throw Error(
@@ -110,15 +112,27 @@ ScatterResult run_scatter(const ScatterRequest& request) {
     metric_options.tile_size = tile_size;
     metric_options.packing_diameter = result.packing_diameter;
     result.metrics = measure_points(xs, ys, metric_options);
+    std::vector<std::size_t> class_sizes(class_count);
+    for (const std::uint8_t c : point_class)
+      if (c < class_count) ++class_sizes[c];
+    std::vector<float> class_xs, class_ys;
     for (std::size_t c = 0; c < class_count; ++c) {
+      class_xs.clear();
+      class_ys.clear();
+      class_xs.reserve(class_sizes[c]);
+      class_ys.reserve(class_sizes[c]);
+      for (std::size_t i = 0; i < point_class.size(); ++i)
+        if (point_class[i] == c) {
+          class_xs.push_back(xs[i]);
+          class_ys.push_back(ys[i]);
+        }
       ClassMetrics& m = result.classes.emplace_back();
       m.spacing = filled.classes[c].spacing * tile_size;
       m.edge_objects = filled.classes[c].edge_objects;
       PointMetricsOptions class_options = metric_options;
       class_options.packing_diameter = m.spacing;
       class_options.zone_width = std::min(filled.classes[c].spacing, 0.3) * tile_size;  // leaves an interior
-      class_options.spectrum = false;
-      m.metrics = measure_points(class_xs[c], class_ys[c], class_options);
+      m.metrics = measure_points(class_xs, class_ys, class_options);
     }
   }
   return result;

@@ -34,7 +34,7 @@ struct ScatterRequest {
 
 // With request.metrics and a set of several classes (species): one class's points on their own.
 struct ClassMetrics {
-  PointMetrics metrics;       // its pairs counted against the class's own spacing
+  PointMetrics metrics;       // its pairs counted against the class's own spacing; its own spectrum
   double spacing = 0;         // meters: the least distance the fill keeps between two of its points
   bool edge_objects = false;  // all at the tile edges: no interior to compare their density with
 };

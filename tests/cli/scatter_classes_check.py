@@ -1,5 +1,7 @@
 """scatter_classes_check.py METRICS.json N: `scatter --metrics --json` of a set of N classes holds
-a "classes" array of N entries, each with points and no pair closer than its own spacing."""
+a "classes" array of N entries, each with points, no pair closer than its own spacing, and its own
+spectrum, measured like the union's (windows averaged, so a noise floor below 0 dB, and power in
+every annulus)."""
 import json
 import sys
 
@@ -11,4 +13,9 @@ for k, c in enumerate(classes):
     if c["count"] <= 0 or c["close_pairs"] != 0 or not c["class_spacing_m"] > 0:
         sys.exit(f"scatter_classes_check: class {k}: {c['count']} points, {c['close_pairs']} pairs closer than "
                  f"{c['class_spacing_m']} m")
+    spectrum = c.get("spectrum")
+    if not spectrum or spectrum["windows"] < 2 or not spectrum["power"] or \
+            len(spectrum["power"]) != len(spectrum["frequency_per_m"]) or not c["anisotropy_noise_floor_db"] < 0:
+        sys.exit(f"scatter_classes_check: class {k}: no spectrum of its own (spectrum {spectrum is not None}, "
+                 f"noise floor {c['anisotropy_noise_floor_db']} dB)")
 print("classes", " ".join(f"{c['count']}:{c['rho']:.3f}" for c in classes), "union", metrics["count"])
