@@ -313,37 +313,44 @@ FieldTexture::FieldTexture(const SceneField& field, const std::vector<Mesh>& mod
   const double tile = field.placement.tile_size;
   const double texel_area = (tile / texels) * (tile / texels);
   const std::size_t tiles = field.filled.tiles.size();
-  // The top-down coverage of each tile's points that `counts`, with its mip chain down to one
-  // texel per tile.
-  const auto coverage_levels = [&](const auto& counts) {
-    std::vector<std::vector<std::vector<float>>> levels;
-    auto& base = levels.emplace_back(tiles, std::vector<float>(static_cast<std::size_t>(texels * texels)));
-    for (std::size_t t = 0; t < tiles; ++t) {
-      auto& image = base[t];
-      for (const TilePoint& p : field.filled.tiles[t]) {
-        if (views.empty()) break;
-        if (!counts(p)) continue;
-        const TopView& view = views[std::min<std::size_t>(p.variant, views.size() - 1)];
-        const double yaw = field.yaw_of(p.yaw), cs = std::cos(yaw) * p.scale, sn = std::sin(yaw) * p.scale;
-        const double step = 2 * view.half / view.cells, cell_area = step * step * p.scale * p.scale;
-        for (int cy = 0; cy < view.cells; ++cy)
-          for (int cx = 0; cx < view.cells; ++cx) {
-            if (!view.cell[static_cast<std::size_t>(cy * view.cells + cx)]) continue;
-            const double mx = -view.half + (cx + 0.5) * step, my = -view.half + (cy + 0.5) * step;
-            // Wrapped around the tile: what spills over an edge stands for what the neighbours spill in.
-            const double u = p.x + (cs * mx - sn * my) / tile, v = p.y + (sn * mx + cs * my) / tile;
-            const auto wrap = [&](double w) {
-              const int k = static_cast<int>(std::floor(w * texels)) % texels;
-              return k < 0 ? k + texels : k;
-            };
-            image[static_cast<std::size_t>(wrap(v) * texels + wrap(u))] += static_cast<float>(cell_area / texel_area);
-          }
-      }
-      for (auto& c : image) c = std::min(c, 1.f);
+  // The top-down coverage of each tile's points, texels x texels per tile: of them all and, with
+  // [[species]], of each species' own (painting counts a species only where it grows). Each
+  // point is splatted once, into both.
+  using TileImages = std::vector<std::vector<float>>;
+  const std::size_t species_count = field.species_names.size();
+  TileImages all(tiles, std::vector<float>(static_cast<std::size_t>(texels * texels)));
+  std::vector<TileImages> of_species(species_count, all);
+  const auto wrap = [texels](double w) {
+    const int k = static_cast<int>(std::floor(w * texels)) % texels;
+    return k < 0 ? k + texels : k;
+  };
+  for (std::size_t t = 0; t < tiles && !views.empty(); ++t)
+    for (const TilePoint& p : field.filled.tiles[t]) {
+      std::vector<float>* own = p.species < species_count ? &of_species[p.species][t] : nullptr;
+      const TopView& view = views[std::min<std::size_t>(p.variant, views.size() - 1)];
+      const double yaw = field.yaw_of(p.yaw), cs = std::cos(yaw) * p.scale, sn = std::sin(yaw) * p.scale;
+      const double step = 2 * view.half / view.cells, cell_area = step * step * p.scale * p.scale;
+      for (int cy = 0; cy < view.cells; ++cy)
+        for (int cx = 0; cx < view.cells; ++cx) {
+          if (!view.cell[static_cast<std::size_t>(cy * view.cells + cx)]) continue;
+          const double mx = -view.half + (cx + 0.5) * step, my = -view.half + (cy + 0.5) * step;
+          // Wrapped around the tile: what spills over an edge stands for what the neighbours spill in.
+          const double u = p.x + (cs * mx - sn * my) / tile, v = p.y + (sn * mx + cs * my) / tile;
+          const auto texel = static_cast<std::size_t>(wrap(v) * texels + wrap(u));
+          const auto cover = static_cast<float>(cell_area / texel_area);
+          all[t][texel] += cover;
+          if (own) (*own)[texel] += cover;
+        }
     }
+  // Each image clamped to full cover, with its mip chain down to one texel per tile.
+  const auto coverage_levels = [&](TileImages base) {
+    std::vector<TileImages> levels;
+    for (auto& image : base)
+      for (auto& c : image) c = std::min(c, 1.f);
+    levels.push_back(std::move(base));
     for (int size = texels / 2; size >= 1; size /= 2) {
       const auto& finer = levels.back();
-      std::vector<std::vector<float>> level(tiles, std::vector<float>(static_cast<std::size_t>(size * size)));
+      TileImages level(tiles, std::vector<float>(static_cast<std::size_t>(size * size)));
       for (std::size_t t = 0; t < tiles; ++t)
         for (int y = 0; y < size; ++y)
           for (int x = 0; x < size; ++x) {
@@ -356,10 +363,8 @@ FieldTexture::FieldTexture(const SceneField& field, const std::vector<Mesh>& mod
     }
     return levels;
   };
-  levels_ = coverage_levels([](const TilePoint&) { return true; });
-  // [[species]]: each species' own coverage, so that painting counts a species only where it grows.
-  for (std::size_t s = 0; s < field.species_names.size(); ++s)
-    species_levels_.push_back(coverage_levels([s](const TilePoint& p) { return p.species == s; }));
+  levels_ = coverage_levels(std::move(all));
+  for (TileImages& images : of_species) species_levels_.push_back(coverage_levels(std::move(images)));
   for (const auto& tile_cover : levels_.back()) mean_coverage_ += tile_cover[0];
   mean_coverage_ /= static_cast<float>(std::max<std::size_t>(1, tiles));
 
