@@ -722,15 +722,13 @@ constexpr std::uint64_t kRepairSalt = 0x6A09E667F3BCC909ull;
 // one color (a new color, hashed from seed, round and place), all pairs at once: with edge colors,
 // an edge of one of the two along their direction (N or S for neighbours east and west, see
 // ColorPatch::edges_along), otherwise a corner they share. The first rounds also redraw, with a
-// chance, a color of tiles alike at kTiltOffsets (a tile that differs from both its neighbours is
+// chance, a color of tiles alike at a RepairTilt's offsets (a tile that differs from both its neighbours is
 // more often alike to the tile two steps on: about +0.007 in the periodicity at (2, 0) and (0, 2)
 // for complete-edge-2, +0.014 at (1, 1) for corner-2; the tilt cancels it). What the rounds leave
 // (under 10^-4 of the pairs for complete-edge-2, fewer for corner-2) an exact repair of the 4 x 4
 // block around it clears.
 constexpr int kRepairRounds = 8;
 constexpr int kTiltRounds = 2;
-constexpr std::uint32_t kEdgeTiltChance = 429496730u;     // 0.1 of 2^32
-constexpr std::uint32_t kCornerTiltChance = 1288490189u;  // 0.3 of 2^32
 constexpr int kRepairBlock = 4;
 // How far (tiles) a color's final value may depend on the plain colors: 3 per tilt round (a
 // color of a tile alike to one two tiles on), 1 per other round (a color of a tile next to two
@@ -741,8 +739,18 @@ constexpr int kRepairMargin = 3 * kTiltRounds + (kRepairRounds - kTiltRounds) + 
 struct Offset {
   int di, dj;
 };
+// The tilt goes with the pair rule, which it was tuned with: sets with edges redraw an edge along
+// the pair (ColorPatch::edges_along), and with that rule a chance of 0.3 overshot, (2, 0) and
+// (0, 2) at -0.02, where 0.1 puts them at -0.002 (0 leaves +0.007); sets with corners only redraw
+// a corner the pair shares, and tiles sharing one corner, (1, 1) apart, are alike too.
+struct RepairTilt {
+  std::span<const Offset> offsets;
+  std::uint32_t chance;  // of 2^32
+};
 constexpr std::array<Offset, 2> kEdgeTiltOffsets{{{2, 0}, {0, 2}}};
 constexpr std::array<Offset, 4> kCornerTiltOffsets{{{2, 0}, {0, 2}, {1, 1}, {-1, 1}}};
+constexpr RepairTilt kEdgeTilt{kEdgeTiltOffsets, 429496730u};       // 0.1
+constexpr RepairTilt kCornerTilt{kCornerTiltOffsets, 1288490189u};  // 0.3
 
 std::int64_t floor_div(std::int64_t a, std::int64_t b) { return a / b - ((a % b != 0 && (a < 0) != (b < 0)) ? 1 : 0); }
 
@@ -821,16 +829,11 @@ struct ColorPatch {
     out[1] = east ? Element{kHorizontal, i, j + 1} : Element{kVertical, i + 1, j};
     return 2;
   }
-  // What tile (i, j) shares with its eastern (east) or northern neighbour.
-  int shared_with(int i, int j, bool east, std::array<Element, 8>& out) const {
-    int n = 0;
-    if (edges)
-      out[static_cast<std::size_t>(n++)] = east ? Element{kVertical, i + 1, j} : Element{kHorizontal, i, j + 1};
-    if (corners) {
-      out[static_cast<std::size_t>(n++)] = Element{kCorner, i + 1, j + 1};
-      out[static_cast<std::size_t>(n++)] = east ? Element{kCorner, i + 1, j} : Element{kCorner, i, j + 1};
-    }
-    return n;
+  // The two corners tile (i, j) shares with its eastern (east) or northern neighbour.
+  int corners_shared_with(int i, int j, bool east, std::array<Element, 8>& out) const {
+    out[0] = Element{kCorner, i + 1, j + 1};
+    out[1] = east ? Element{kCorner, i + 1, j} : Element{kCorner, i, j + 1};
+    return 2;
   }
   std::int64_t global_x(const Element& e) const { return i0 + e.x; }
   std::int64_t global_y(const Element& e) const { return j0 + e.y; }
@@ -994,11 +997,7 @@ void HashedTiling::fill_window(std::int64_t first_i, std::int64_t first_j, int w
     return i >= skip && j >= skip && i < patch.width - skip && j < patch.height - skip;
   };
   const auto key = [&](int i, int j) { return keys[static_cast<std::size_t>(j) * pw + static_cast<std::size_t>(i)]; };
-  const std::span<const Offset> tilt_offsets =
-      has_corners_ ? std::span<const Offset>(kCornerTiltOffsets) : std::span<const Offset>(kEdgeTiltOffsets);
-  // Tuned with the pair rule (edges_along or shared corners): with edges 0.3 overshot, (2, 0) and
-  // (0, 2) at -0.02; 0.1 puts them at -0.002 (0 leaves +0.007).
-  const std::uint32_t tilt_chance = has_edges_ ? kEdgeTiltChance : kCornerTiltChance;
+  const RepairTilt& tilt = has_edges_ ? kEdgeTilt : kCornerTilt;
   std::vector<Element> redraw;
   std::array<Element, 8> choices{};
   for (int round = 0; round < kRepairRounds; ++round) {
@@ -1013,15 +1012,15 @@ void HashedTiling::fill_window(std::int64_t first_i, std::int64_t first_j, int w
           const std::uint64_t h = repair_hash(seed_, round, east ? 1 : 2, gi, gj);
           const bool second = ((h >> 32) & 1) != 0;
           const int n = has_edges_ ? patch.edges_along(second ? i2 : i, second ? j2 : j, east, choices)
-                                   : patch.shared_with(i, j, east, choices);
+                                   : patch.corners_shared_with(i, j, east, choices);
           redraw.push_back(choices[h % static_cast<std::uint64_t>(n)]);
         }
         if (round >= kTiltRounds) continue;
-        for (std::size_t o = 0; o < tilt_offsets.size(); ++o) {
-          const int i2 = i + tilt_offsets[o].di, j2 = j + tilt_offsets[o].dj;
+        for (std::size_t o = 0; o < tilt.offsets.size(); ++o) {
+          const int i2 = i + tilt.offsets[o].di, j2 = j + tilt.offsets[o].dj;
           if (!inside(i2, j2) || key(i, j) != key(i2, j2)) continue;
           const std::uint64_t h = repair_hash(seed_, round, 3 + static_cast<int>(o), gi, gj);
-          if (static_cast<std::uint32_t>(h) >= tilt_chance) continue;
+          if (static_cast<std::uint32_t>(h) >= tilt.chance) continue;
           const bool second = ((h >> 32) & 1) != 0;
           const int n = patch.elements_of(second ? i2 : i, second ? j2 : j, choices);
           redraw.push_back(choices[(h >> 33) % static_cast<std::uint64_t>(n)]);

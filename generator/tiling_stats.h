@@ -31,6 +31,11 @@ struct PeriodicityPeak {
 // most the central 256 x 256 tiles. A single-tile tiling scores 1.
 PeriodicityPeak periodicity_score(const Tiling& tiling, int max_offset = 32);
 
+// The normalised autocorrelation that periodicity_score maximises, at one offset (di east, dj
+// north, either sign), over the whole tiling: 0 for tiles no more alike than chance, 1 where every
+// tile equals the one at +d, 0 when no pair of tiles is that far apart.
+double autocorrelation_at(const Tiling& tiling, int di, int dj);
+
 TilingStats compute_tiling_stats(const TileSet& set, const Tiling& tiling);
 
 }  // namespace wangscape

@@ -59,25 +59,6 @@ TEST(NoIdenticalNeighbours, AddLittleStructureToCohen8) {
   }
 }
 
-// The normalised autocorrelation of the tile indices at offset (di, dj), di >= 0, as
-// periodicity_score measures it at each offset: 0 for tiles no more alike than chance.
-double autocorrelation(const Tiling& tiling, int di, int dj) {
-  std::vector<double> frequency;
-  for (const std::uint16_t t : tiling.tiles) {
-    if (t >= frequency.size()) frequency.resize(t + 1u, 0.0);
-    frequency[t] += 1.0 / static_cast<double>(tiling.tiles.size());
-  }
-  double chance = 0;
-  for (const double f : frequency) chance += f * f;
-  double equal = 0, pairs = 0;
-  for (int j = 0; j + dj < tiling.height; ++j)
-    for (int i = 0; i + di < tiling.width; ++i) {
-      equal += tiling.at(i, j) == tiling.at(i + di, j + dj) ? 1 : 0;
-      pairs += 1;
-    }
-  return (equal / pairs - chance) / (1 - chance);
-}
-
 TEST(NoIdenticalNeighbours, AddLittleStructureToCohen8Corners) {
   // Each row of cohen8-corners keeps a class (W xor NW xor SW is the same on both sides of each
   // tile). Rows drawn uniformly among those that may follow took the class the previous row did
@@ -103,7 +84,7 @@ TEST(NoIdenticalNeighbours, AddLittleStructureToCohen8Corners) {
       options.seed = static_cast<std::uint64_t>(seed);
       options.forbid_identical_neighbours = true;
       const Tiling tiling = make_tiling(set, 128, 128, options);
-      for (int di = 2; di <= 16; ++di, ++count) sum += autocorrelation(tiling, di, 1);
+      for (int di = 2; di <= 16; ++di, ++count) sum += autocorrelation_at(tiling, di, 1);
     }
     EXPECT_GT(sum / count, -0.004) << to_string(algorithm);
   }
