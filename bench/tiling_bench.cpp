@@ -1,6 +1,7 @@
 // Tiles per second for 10,000 x 10,000-tile tilings (Shade 2002 made tilings "ten thousand tiles
 // on a side"). Streamed row by row, so memory stays O(row): the sink only folds each row into a
-// checksum so the work cannot be optimised away.
+// checksum so the work cannot be optimised away. Then the time of one hashed tile_at without
+// identical neighbours.
 #include <benchmark/benchmark.h>
 
 #include <cstdint>
@@ -46,6 +47,22 @@ void BM_MakeTilingHashCompleteEdge2(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * std::int64_t{kSide} * kSide);
 }
 
+// Random access with forbid_identical_neighbours: one HashedTiling::tile_at repairs the colors of a
+// patch around its tile (the margin in generator/tiling.cpp), so this is the cost of that patch.
+void tile_at_without_identical_neighbours(benchmark::State& state, const char* set_name) {
+  const wangscape::HashedTiling hashed(wangscape::builtin_tileset(set_name), 1, true);
+  std::int64_t i = -1'000'003;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(hashed.tile_at(i, 7 * i));
+    i += 7919;  // a fresh place each call
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+void BM_TileAtForbidCompleteEdge2(benchmark::State& state) {
+  tile_at_without_identical_neighbours(state, "complete-edge-2");
+}
+void BM_TileAtForbidCorner2(benchmark::State& state) { tile_at_without_identical_neighbours(state, "corner-2"); }
+
 BENCHMARK(BM_ScanlineCohen8)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ScanlineCohen18)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_BottomLeftCohen8)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -53,6 +70,8 @@ BENCHMARK(BM_HashCompleteEdge2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_HashCorner2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_AperiodicCulik13)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_MakeTilingHashCompleteEdge2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_TileAtForbidCompleteEdge2)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_TileAtForbidCorner2)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
