@@ -256,24 +256,14 @@ void print_rank_figures() {
   // mean band.
   std::printf("density across a tile, bands of 0.05 tile sides, 64 fills, 60 per tile: least / most band\n");
   for (const char* set_name : {"cohen8", "corner-2"}) {
-    std::array<std::array<double, 20>, 3> bands{};
     constexpr std::array<double, 3> densities = {0.5, 0.25, 0.125};
-    for (std::uint64_t seed = 1; seed <= 64; ++seed) {
-      PoissonFillOptions fill;
-      fill.points_per_tile = 60;
-      fill.seed = seed;
-      for (const auto& tile : fill_poisson_tiles(builtin_tileset(set_name), fill).tiles)
-        for (const TilePoint& p : tile)
-          for (std::size_t k = 0; k < densities.size(); ++k)
-            if (p.rank < densities[k])
-              for (const float v : {p.x, p.y}) bands[k][std::min<std::size_t>(19, std::size_t(v * 20))] += 1;
-    }
+    PoissonFillOptions fill;
+    fill.points_per_tile = 60;
+    const auto profiles = rank_density_across_tile(builtin_tileset(set_name), fill, densities, 64);
     std::printf("  %-9s", set_name);
     for (std::size_t k = 0; k < densities.size(); ++k) {
-      const auto [least, most] = std::minmax_element(bands[k].begin(), bands[k].end());
-      double sum = 0;
-      for (const double b : bands[k]) sum += b;
-      std::printf("  d %.3f: %.2f / %.2f", densities[k], *least * 20 / sum, *most * 20 / sum);
+      const auto [least, most] = std::minmax_element(profiles[k].begin(), profiles[k].end());
+      std::printf("  d %.3f: %.2f / %.2f", densities[k], *least, *most);
     }
     std::printf("\n");
   }

@@ -971,6 +971,14 @@ FilledTileSet export_points(const TileSet& set, const PoissonFillOptions& option
   return filled;
 }
 
+// The packing diameter (tile sides) of the dart phase, and the tight radius of a class that sets none.
+double dart_distance(const PoissonFillOptions& options) {
+  return options.dart_rho * hexagonal_spacing(1.0, options.points_per_tile);
+}
+double default_tight_radius(const PoissonFillOptions& options) {
+  return options.tight_fraction * 0.5 * dart_distance(options);
+}
+
 void check_options(const PoissonFillOptions& o) {
   auto fail = [](const std::string& what) { throw Error("Poisson fill: " + what); };
   if (o.classes.size() > 255) fail(std::to_string(o.classes.size()) + " classes; expected at most 255");
@@ -979,16 +987,17 @@ void check_options(const PoissonFillOptions& o) {
     const PoissonClass& k = o.classes[c];
     const std::string name = "class " + std::to_string(c) + ": ";
     if (!(k.share > 0 && std::isfinite(k.share))) fail(name + "share " + std::to_string(k.share) + "; expected > 0");
-    if (!(k.packing_radius >= 0 && k.packing_radius < 0.5))
+    if (!(k.packing_radius >= 0 && k.packing_radius < kMaxClassRadius))
       fail(name + "packing radius " + std::to_string(k.packing_radius) + "; expected 0..0.5 tile sides");
-    if (!(k.tight_radius >= 0 && k.tight_radius < 0.5))
+    if (!(k.tight_radius >= 0 && k.tight_radius < kMaxClassRadius))
       fail(name + "tight radius " + std::to_string(k.tight_radius) + "; expected 0..0.5 tile sides");
     if (k.variants < 1) fail(name + "variants " + std::to_string(k.variants) + "; expected >= 1");
     total_variants += k.variants;
     if (k.exclusion.size() > o.classes.size())
       fail(name + std::to_string(k.exclusion.size()) + " exclusion distances; expected at most one per class");
     for (const double e : k.exclusion)
-      if (!(e >= 0 && e < 1.0)) fail(name + "exclusion " + std::to_string(e) + "; expected 0..1 tile sides");
+      if (!(e >= 0 && e < kMaxClassDistance))
+        fail(name + "exclusion " + std::to_string(e) + "; expected 0..1 tile sides");
   }
   if (total_variants > 65535) fail(std::to_string(total_variants) + " variants over the classes; expected <= 65535");
   if (o.points_per_tile < 1 || o.points_per_tile > kMaxPointsPerTile)
@@ -1011,7 +1020,7 @@ void check_options(const PoissonFillOptions& o) {
 void check_species(const SpeciesTable& species) {
   for (std::size_t a = 0; a < species.count; ++a)
     for (std::size_t b = 0; b < species.count; ++b)
-      if (species.distance(a, b) >= 1.0)
+      if (species.distance(a, b) >= kMaxClassDistance)
         throw Error("Poisson fill: classes " + std::to_string(a) + " and " + std::to_string(b) + " keep " +
                     std::to_string(species.distance(a, b)) +
                     " tile sides apart (packing radii plus exclusion, or the class's own spacing); expected < 1: "
@@ -1046,6 +1055,37 @@ std::pair<int, int> class_variant_range(const FilledTileSet& filled, int species
   if (species >= 0 && static_cast<std::size_t>(species) < filled.class_variants.size())
     return filled.class_variants[static_cast<std::size_t>(species)];
   return {0, filled.variants};
+}
+
+std::vector<double> class_fill_distances(const PoissonFillOptions& options) {
+  const SpeciesTable table = make_species_table(options, dart_distance(options), default_tight_radius(options));
+  std::vector<double> distances(table.distance2.size());
+  for (std::size_t k = 0; k < distances.size(); ++k) distances[k] = std::sqrt(table.distance2[k]);
+  return distances;
+}
+
+std::vector<std::vector<double>> rank_density_across_tile(const TileSet& set, PoissonFillOptions options,
+                                                          std::span<const double> densities, int fills, int bands) {
+  std::vector<std::vector<double>> count(densities.size(), std::vector<double>(std::size_t(bands), 0.0));
+  const auto band = [bands](float v) {
+    return static_cast<std::size_t>(std::min(bands - 1, static_cast<int>(v * bands)));
+  };
+  for (int seed = 1; seed <= fills; ++seed) {
+    options.seed = static_cast<std::uint64_t>(seed);
+    for (const auto& tile : fill_poisson_tiles(set, options).tiles)
+      for (const TilePoint& p : tile)
+        for (std::size_t k = 0; k < densities.size(); ++k)
+          if (p.rank < densities[k]) {
+            count[k][band(p.x)] += 1;
+            count[k][band(p.y)] += 1;
+          }
+  }
+  for (std::vector<double>& profile : count) {
+    double mean = 0;
+    for (const double c : profile) mean += c / bands;
+    for (double& c : profile) c /= mean;
+  }
+  return count;
 }
 
 std::optional<int> class_of_variant(const FilledTileSet& filled, int variant) {
@@ -1173,7 +1213,7 @@ FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& o
   if (set.tiles.size() > std::numeric_limits<std::uint16_t>::max())
     throw Error(set.describe() + ": " + std::to_string(set.tiles.size()) + " tiles; expected at most 65535");
   const double spacing = hexagonal_spacing(1.0, options.points_per_tile);
-  const double dart_d = options.dart_rho * spacing;
+  const double dart_d = dart_distance(options);
   const double cap_d = options.max_rho * spacing;
   // The shared strips are at least as wide as the largest packing radius relaxation may reach,
   // so two tile-owned interior points never meet across an edge closer than the bound. Plain
@@ -1185,7 +1225,7 @@ FilledTileSet fill_poisson_tiles(const TileSet& set, const PoissonFillOptions& o
   // density over the interior's, after darts ; after relaxation 100): 1.02 / 1.04 ; 1.01 / 0.99
   // at 0.82 cap_d, 0.99 / 0.99 ; 1.04 / 1.01 at 0.84, 0.97 / 0.93 ; 1.08 / 1.02 at 0.86 (0.95
   // of the strip share there), and at 0.5 without the quotas 1.01 / 0.92 ; 0.95 / 0.93.
-  const double tight = options.tight_fraction * 0.5 * dart_d;
+  const double tight = default_tight_radius(options);
   const SpeciesTable species = make_species_table(options, dart_d, tight);
   check_species(species);
   // Sets with corner colors and several classes: the strips are as wide for the widest-spaced

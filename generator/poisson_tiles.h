@@ -160,6 +160,24 @@ double min_distance_over_configurations(const FilledTileSet& filled);
 // infinity where no two such points meet within a tile side.
 std::vector<double> class_min_distances(const FilledTileSet& filled);
 
+// The fill's limits (tile sides): packing and tight radii below kMaxClassRadius; exclusions, and
+// the least distance between any two classes, below kMaxClassDistance (a point and its own copy in
+// the tile beside, which can sit next to it, are a tile side apart).
+inline constexpr double kMaxClassRadius = 0.5;
+inline constexpr double kMaxClassDistance = 1.0;
+// The least distance (tile sides) the fill keeps between a point of class a and one of class b,
+// [a * classes + b]: the two packing radii plus the larger exclusion between them, or a class's
+// own spacing at its share of options.points_per_tile (one class: the dart distance). The fill
+// refuses options where one reaches kMaxClassDistance.
+std::vector<double> class_fill_distances(const PoissonFillOptions& options);
+
+// The progressive rank's evenness: per d of `densities`, the density of the points of rank < d
+// across a tile, in `bands` bands of 1 / bands tile sides (x and y pooled, every tile of `set`
+// counted once, so a point counts in each tile that holds it), over the mean band, summed over
+// the fills of seeds 1..fills (options.seed is replaced). 1 everywhere: no tile grid shows.
+std::vector<std::vector<double>> rank_density_across_tile(const TileSet& set, PoissonFillOptions options,
+                                                          std::span<const double> densities, int fills, int bands = 20);
+
 // The attributes of point `id` (a function of the identity only).
 struct PointAttributes {
   std::uint16_t variant = 0;

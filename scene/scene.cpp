@@ -107,7 +107,7 @@ std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGro
   fill.min_scale = 1.0 - config.models.scale_jitter;
   fill.max_scale = 1.0 + config.models.scale_jitter;
   if (!config.species.empty()) {
-    fill.classes = species_classes(config, species_radii);
+    fill.classes = species_classes(config, species_radii, fill);
     field->species = std::make_shared<const SpeciesRules>(config, ground);
     for (const SpeciesConfig& species : config.species) field->species_names.push_back(species.name);
   }

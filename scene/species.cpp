@@ -51,8 +51,15 @@ std::vector<Mesh> make_species_models(const SceneConfig& config, std::size_t bud
   return models;
 }
 
-std::vector<PoissonClass> species_classes(const SceneConfig& config, const std::vector<double>& tight_radii) {
+std::vector<PoissonClass> species_classes(const SceneConfig& config, const std::vector<double>& tight_radii,
+                                          PoissonFillOptions fill) {
   const double tile = config.tiles.tile_size;
+  const auto in_meters = [tile](double tile_sides) { return significant_text(tile_sides * tile, 4) + " m"; };
+  // The fill's limits in meters, named by the species' key (the fill knows only class numbers).
+  const auto too_far = [&](const std::string& key, const std::string& what, double most, const std::string& hint = "") {
+    return config.error_at(
+        key, what + "; a tile of " + in_meters(1) + " (tiles.tile_size) takes less than " + in_meters(most) + hint);
+  };
   // The largest a flower grows with the scale jitter.
   const double grown = 1 + config.models.scale_jitter;
   std::vector<PoissonClass> classes;
@@ -64,25 +71,51 @@ std::vector<PoissonClass> species_classes(const SceneConfig& config, const std::
     c.edge_objects = species.edge_objects;
     c.tight_radius = species.tight_radius.value_or(tight_radii[s] * grown) / tile;
     c.packing_radius = species.packing_radius.value_or(0) / tile;
-    // The fill's limits in meters, named by the species' key (the fill knows only class numbers).
     const std::string key = "species." + species.name + ".";
     const auto limit = [&](double radius, const std::string& what, double most) {
-      if (radius >= most)
-        throw config.error_at(key + what, "is " + significant_text(radius * tile, 4) + " m; a tile of " +
-                                              significant_text(tile, 4) + " m (tiles.tile_size) takes less than " +
-                                              significant_text(most * tile, 4) + " m");
+      if (radius >= most) throw too_far(key + what, "is " + in_meters(radius), most);
     };
-    limit(c.tight_radius, species.tight_radius ? "tight_radius" : "model", 0.5);
-    limit(c.packing_radius, "packing_radius", 0.5);
+    limit(c.tight_radius, species.tight_radius ? "tight_radius" : "model", kMaxClassRadius);
+    limit(c.packing_radius, "packing_radius", kMaxClassRadius);
     if (!species.exclusion.empty()) {
       c.exclusion.assign(config.species.size(), 0.0);
       for (const auto& [other, meters] : species.exclusion)
         for (std::size_t k = 0; k < config.species.size(); ++k)
           if (config.species[k].name == other) c.exclusion[k] = meters / tile;
-      for (const double e : c.exclusion) limit(e, "exclusion", 1.0);
+      for (const double e : c.exclusion) limit(e, "exclusion", kMaxClassDistance);
     }
     classes.push_back(std::move(c));
   }
+  // Each radius fits, but the distances the fill keeps between two species (packing radii plus
+  // exclusion) or within one (its own spacing at its share) must fit a tile too: refused here,
+  // named by the species' key, not by the fill with class numbers.
+  fill.classes = classes;
+  const std::vector<double> distances = class_fill_distances(fill);
+  const std::size_t n = classes.size();
+  const auto exclusion = [&](std::size_t a, std::size_t b) {
+    return b < classes[a].exclusion.size() ? classes[a].exclusion[b] : 0.0;
+  };
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a; b < n; ++b) {
+      const double d = distances[a * n + b];
+      if (d < kMaxClassDistance) continue;
+      const std::string &name_a = config.species[a].name, &name_b = config.species[b].name;
+      if (a == b) {
+        double total_share = 0;
+        for (const PoissonClass& c : classes) total_share += c.share;
+        const std::string share_key = "species." + name_a + ".share";
+        throw too_far(config.key_lines.contains(share_key) ? share_key : "tiles.points_per_tile",
+                      "leaves about " + significant_text(fill.points_per_tile * classes[a].share / total_share, 3) +
+                          " points of '" + name_a + "' a tile (its share of tiles.points_per_tile " +
+                          std::to_string(fill.points_per_tile) + "), " + in_meters(d) + " apart",
+                      kMaxClassDistance, ": a larger share or more points per tile");
+      }
+      const std::size_t by = exclusion(a, b) >= exclusion(b, a) ? a : b, to = by == a ? b : a;
+      throw too_far("species." + config.species[by].name + ".exclusion",
+                    "keeps '" + name_a + "' and '" + name_b + "' " + in_meters(d) + " apart (their packing radii " +
+                        in_meters(d - exclusion(by, to)) + " together, plus " + in_meters(exclusion(by, to)) + ")",
+                    kMaxClassDistance);
+    }
   return classes;
 }
 

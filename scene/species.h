@@ -27,8 +27,12 @@ std::vector<Mesh> make_species_models(const SceneConfig& config,
                                       std::vector<double>* tight_radii = nullptr);
 
 // The fill's classes: share, radii (meters / tile size; the tight radius defaults to the
-// models' extent `tight_radii`), variants, edge objects, exclusions by index.
-std::vector<PoissonClass> species_classes(const SceneConfig& config, const std::vector<double>& tight_radii);
+// models' extent `tight_radii`), variants, edge objects, exclusions by index. `fill`: the fill
+// they join (points per tile, dart rho). Throws Error naming the species' key (file:line) where
+// the fill would refuse them: a radius, an exclusion or a distance the fill keeps (packing radii
+// plus exclusion, a species' own spacing at its share) not below the fill's limits.
+std::vector<PoissonClass> species_classes(const SceneConfig& config, const std::vector<double>& tight_radii,
+                                          PoissonFillOptions fill);
 
 // Piecewise-linear y of x over `curve` (x increasing), held flat beyond its ends; 1 when empty.
 double density_curve_at(const std::vector<std::array<double, 2>>& curve, double x);

@@ -71,34 +71,6 @@ TEST(ProgressiveRank, ThinnedPointsKeepTheirSpacingWhereARandomSubsetLosesIt) {
 
 constexpr std::array<double, 3> kProfileDensities = {0.5, 0.25, 0.125};
 
-// Per d of kProfileDensities, the density of the points of rank < d across a tile in bands of
-// 0.05 tile sides (x and y pooled, every tile counted once, so a point counts in each tile that
-// holds it) over the mean band, summed over the fills of seeds 1..seeds.
-std::vector<std::vector<double>> density_profiles(const std::string& set, int seeds) {
-  constexpr int kBands = 20;
-  std::vector<std::vector<double>> count(kProfileDensities.size(), std::vector<double>(kBands, 0.0));
-  auto band = [](float v) { return static_cast<std::size_t>(std::min(kBands - 1, static_cast<int>(v * kBands))); };
-  for (int seed = 1; seed <= seeds; ++seed) {
-    PoissonFillOptions options;
-    options.points_per_tile = 60;
-    options.seed = static_cast<std::uint64_t>(seed);
-    const FilledTileSet filled = fill_poisson_tiles(builtin_tileset(set), options);
-    for (const auto& tile : filled.tiles)
-      for (const TilePoint& p : tile)
-        for (std::size_t k = 0; k < kProfileDensities.size(); ++k)
-          if (p.rank < kProfileDensities[k]) {
-            count[k][band(p.x)] += 1;
-            count[k][band(p.y)] += 1;
-          }
-  }
-  for (std::vector<double>& profile : count) {
-    double mean = 0;
-    for (const double c : profile) mean += c / kBands;
-    for (double& c : profile) c /= mean;
-  }
-  return count;
-}
-
 // No tile grid where the density drops. Points near an edge keep their distance from every tile
 // that can sit across; before the shared points climbed the ladder ahead and the rings by
 // distance to the edge were filled evenly, the band inside the strips fell to 0.48 of the mean at
@@ -106,7 +78,10 @@ std::vector<std::vector<double>> density_profiles(const std::string& set, int se
 // and 1.40 at d = 0.125. Now 0.71-1.19 for both at every d.
 TEST(ProgressiveRank, ThinnedDensityIsFlatAcrossTheTile) {
   for (const auto& [set, seeds] : {std::pair<std::string, int>{"cohen8", 128}, {"corner-2", 64}}) {
-    const std::vector<std::vector<double>> profiles = density_profiles(set, seeds);
+    PoissonFillOptions options;
+    options.points_per_tile = 60;
+    const std::vector<std::vector<double>> profiles =
+        rank_density_across_tile(builtin_tileset(set), options, kProfileDensities, seeds);
     for (std::size_t k = 0; k < kProfileDensities.size(); ++k) {
       SCOPED_TRACE(set + " d " + std::to_string(kProfileDensities[k]));
       std::printf("%s d %.3f:", set.c_str(), kProfileDensities[k]);

@@ -229,6 +229,18 @@ TEST(Species, RadiiTooLargeForTheTileNameTheSpeciesKey) {
       {base("2.0") + "packing_radius = 1.0", "test.toml:7: 'species.g.packing_radius' is 1 m"},
       // A sunflower reaches out about half a meter: its extent does not fit a 0.8 m tile.
       {base("0.8") + "model = \"sunflower\"\ntriangle_budget = 400", "test.toml:7: 'species.g.model' is 0."},
+      // Each radius fits, but the two packing radii plus the exclusion do not: the fill's own
+      // check, told by the species' key in meters (the fill said 'tiles.points_per_tile' and
+      // 'classes 0 and 1 ... tile sides').
+      {base("2.0") + "packing_radius = 0.45\nexclusion = { h = 1.5 }\n[[species]]\nname = \"h\"\npacking_radius = 0.45",
+       "test.toml:8: 'species.g.exclusion' keeps 'g' and 'h' 2.4 m apart (their packing radii 0.9 m together, plus "
+       "1.5 m); a tile of 2 m (tiles.tile_size) takes less than 2 m"},
+      {base("2.0") + "share = 1\n[[species]]\nname = \"h\"\nexclusion = { g = 1.9 }",
+       "test.toml:10: 'species.h.exclusion' keeps 'g' and 'h' "},
+      // A species too sparse for the tile: its own spacing reaches across it.
+      {base("2.0") + "share = 100\n[[species]]\nname = \"h\"\nshare = 0.5",
+       "test.toml:10: 'species.h.share' leaves about 0.0995 points of 'h' a tile (its share of "
+       "tiles.points_per_tile 20), "},
   };
   for (const auto& [text, expected] : cases) {
     std::string message = "(no error)";
