@@ -225,7 +225,7 @@ void BlenderWriter::finish(const StreamTotals& totals) {
   manifest["terrain"] = impl.terrain;
   manifest["ground_texture"] = impl.ground_texture;
   manifest["models"] = impl.models;
-  if (scene.field && !scene.field->species_names.empty()) manifest["species"] = scene.field->species_names;
+  if (scene.field && scene.field->species) manifest["species"] = scene.field->species->names();
   manifest["instances"] = instances;
   manifest["camera"] = Json{
       {"position", scene.camera.position}, {"target", scene.camera.target}, {"fov_degrees", scene.camera.fov_degrees}};

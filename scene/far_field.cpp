@@ -317,7 +317,7 @@ FieldTexture::FieldTexture(const SceneField& field, const std::vector<Mesh>& mod
   // [[species]], of each species' own (painting counts a species only where it grows). Each
   // point is splatted once, into both.
   using TileImages = std::vector<std::vector<float>>;
-  const std::size_t species_count = field.species_names.size();
+  const std::size_t species_count = field.species ? field.species->size() : 0;
   TileImages all(tiles, std::vector<float>(static_cast<std::size_t>(texels * texels)));
   std::vector<TileImages> of_species(species_count, all);
   const auto wrap = [texels](double w) {
@@ -468,7 +468,7 @@ void paint_far_field(GroundBake& bake, const SceneField& field, const FieldTextu
           continue;
         }
         // [[species]]: each species where its rules let it grow, thinned by its density there.
-        for (std::size_t c = 0; c < field.species_names.size(); ++c) {
+        for (std::size_t c = 0; c < field.species->size(); ++c) {
           const auto species = static_cast<std::uint8_t>(c);
           const double density = field.species->density_where_grows(species, sx, sy, *sz);
           if (density > 0)

@@ -50,7 +50,7 @@ class FieldTexture {
   // The top-down coverage of tile `tile` at tile-local (u, v) in [0, 1), averaged over about
   // `footprint` tile sides.
   float coverage(std::uint32_t tile, double u, double v, double footprint) const;
-  // The same for the points of species `species` only ([[species]]: SceneField::species_names).
+  // The same for the points of species `species` only ([[species]]: SceneField::species).
   float species_coverage(std::size_t species, std::uint32_t tile, double u, double v, double footprint) const;
   // The mean top-down coverage over every tile.
   float mean_coverage() const { return mean_coverage_; }

@@ -109,7 +109,6 @@ std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGro
   if (!config.species.empty()) {
     fill.classes = species_classes(config, species_radii, fill);
     field->species = std::make_shared<const SpeciesRules>(config, ground);
-    for (const SpeciesConfig& species : config.species) field->species_names.push_back(species.name);
   }
   TileSet set;
   try {
@@ -275,7 +274,7 @@ Sun make_sun(const SceneConfig& config, const SceneGround& ground) {
 }  // namespace
 
 std::optional<std::size_t> SceneField::species_of_model(std::size_t model) const {
-  if (species_names.empty()) return std::nullopt;
+  if (!species) return std::nullopt;
   if (proxy_offset && model >= proxy_offset) model -= proxy_offset;
   const auto cls = class_of_variant(filled, int(model));
   return cls ? std::optional<std::size_t>(std::size_t(*cls)) : std::nullopt;

@@ -70,9 +70,9 @@ struct SceneField {
   // flowers between near and far become variant + proxy_offset, beyond far none. Empty: all.
   std::shared_ptr<const CameraView> view;
   std::size_t proxy_offset = 0;  // 0: no proxies (the full models go on to far)
-  // [[species]]: each point is kept only where its species' rules and density let it grow.
+  // [[species]]: each point is kept only where its species' rules and density let it grow; their
+  // count and names in class order. Empty without [[species]].
   std::shared_ptr<const SpeciesRules> species;
-  std::vector<std::string> species_names;  // in class order; empty without [[species]]
 
   // The species (class) of model `model` of Scene::models, a proxy counting as its full model's;
   // nothing without species or past the models.

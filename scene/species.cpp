@@ -160,6 +160,12 @@ SpeciesRules::SpeciesRules(const SceneConfig& config, const SceneGround& ground)
   }
 }
 
+std::vector<std::string> SpeciesRules::names() const {
+  std::vector<std::string> names;
+  for (const Rule& rule : rules_) names.push_back(rule.config.name);
+  return names;
+}
+
 double SpeciesRules::density_where_grows(std::uint8_t species, double x, double y, double z) const {
   const Rule& rule = rules_[species];
   const SpeciesConfig& c = rule.config;

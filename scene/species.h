@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "generator/poisson_tiles.h"
@@ -54,6 +55,9 @@ class SpeciesRules {
   // The species' density (0..1) at (x, y, z) where its rules (height, slope, aspect, mask) let it
   // grow, else 0.
   double density_where_grows(std::uint8_t species, double x, double y, double z) const;
+  // How many species there are, and their names, in file order (the fill's class order).
+  std::size_t size() const { return rules_.size(); }
+  std::vector<std::string> names() const;
 
  private:
   struct Rule {
