@@ -13,6 +13,7 @@
 
 #include "scene/scene.h"
 #include "scene/scene_file.h"
+#include "tests/scene/scene_file_support.h"
 
 namespace wangscape {
 namespace {
@@ -252,14 +253,7 @@ set = "complete-edge-2"
 }
 
 TEST(CameraAware, KeysAreCheckedWithTheirLines) {
-  const auto error_of = [](const std::string& text) -> std::string {
-    try {
-      parse_scene_config(text, "test.toml", ".");
-    } catch (const Error& e) {
-      return e.what();
-    }
-    return "(no error)";
-  };
+  using scene_file_test::error_of;
   EXPECT_EQ(error_of("[camera_aware]\nfar = 0.0\n"), "test.toml:2: 'camera_aware.far' must be between 0.1 and 1e+06");
   EXPECT_EQ(error_of("[camera_aware]\nnear = -1.0\n"), "test.toml:2: 'camera_aware.near' must be between 0 and 1e+06");
   EXPECT_EQ(error_of("[camera_aware]\nnear = 50.0\nfar = 10.0\n"),
