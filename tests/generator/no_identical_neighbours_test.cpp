@@ -90,6 +90,23 @@ TEST(NoIdenticalNeighbours, AddLittleStructureToCohen8Corners) {
   }
 }
 
+// The largest relative departure of a tile's frequency from 1 / tiles over seeds 1-4 of hashed
+// 128 x 128 tilings without identical neighbours.
+double worst_frequency_departure(const TileSet& set) {
+  std::vector<double> frequency(set.size(), 0.0);
+  for (int seed = 1; seed <= 4; ++seed) {
+    TilingOptions options;
+    options.algorithm = TilingAlgorithm::hash;
+    options.seed = static_cast<std::uint64_t>(seed);
+    options.forbid_identical_neighbours = true;
+    for (const std::uint16_t t : make_tiling(set, 128, 128, options).tiles) frequency[t] += 1.0 / (4 * 128 * 128);
+  }
+  const double uniform = 1.0 / static_cast<double>(set.size());
+  double worst = 0;
+  for (const double f : frequency) worst = std::max(worst, std::abs(f - uniform) / uniform);
+  return worst;
+}
+
 TEST(NoIdenticalNeighbours, HashedEdgeTilingsKeepTheTileFrequencies) {
   // Only a tile alike across an axis (E = W, or N = S) can equal its neighbour across it. The
   // repair redrew the edge two identical neighbours share, which made both unlike: complete-edge-2
@@ -99,17 +116,7 @@ TEST(NoIdenticalNeighbours, HashedEdgeTilingsKeepTheTileFrequencies) {
   // tile within 6 % of 1/16 (complete-edge-3: 7 % of 1/81, was 20 %), the score 0.0093.
   for (const char* name : {"complete-edge-2", "complete-edge-3"}) {
     const TileSet set = builtin_tileset(name);
-    std::vector<double> frequency(set.size(), 0.0);
-    for (int seed = 1; seed <= 4; ++seed) {
-      TilingOptions options;
-      options.algorithm = TilingAlgorithm::hash;
-      options.seed = static_cast<std::uint64_t>(seed);
-      options.forbid_identical_neighbours = true;
-      for (const std::uint16_t t : make_tiling(set, 128, 128, options).tiles) frequency[t] += 1.0 / (4 * 128 * 128);
-    }
-    const double uniform = 1.0 / static_cast<double>(set.size());
-    double worst = 0;  // the largest relative departure from 1 / tiles
-    for (const double f : frequency) worst = std::max(worst, std::abs(f - uniform) / uniform);
+    const double worst = worst_frequency_departure(set);
     std::printf("%s 128 x 128: tile frequencies within %.1f %% of 1/%zu\n", name, 100 * worst, set.size());
     EXPECT_LT(worst, 0.12) << name;
   }
@@ -119,21 +126,32 @@ TEST(NoIdenticalNeighbours, HashedEdgeTilingsKeepTheTileFrequencies) {
   EXPECT_LT(forbidden, 1.05 * plain);
 }
 
+TEST(NoIdenticalNeighbours, HashedCornerTilingsLiftTheMirrorTiles) {
+  // Two tiles side by side that are both their own mirror across the vertical axis are identical,
+  // so the repair takes mirror tiles away: corner-2 held 0.018 of 0000 and of 1111 (72 % below
+  // 1/16), 0.105 of each checkerboard. The balance rounds' weights lift them (0000 at 0.037).
+  const double worst = worst_frequency_departure(builtin_tileset("corner-2"));
+  std::printf("corner-2 128 x 128: tile frequencies within %.1f %% of 1/16\n", 100 * worst);
+  EXPECT_LT(worst, 0.5);
+}
+
 TEST(NoIdenticalNeighbours, HashedTilingsAddLittleStructure) {
   // Until issue 23 a hashed tiling forbade identical neighbours by making colors differ from their
   // neighbour on a fixed lattice, which showed at 128 x 128: complete-edge-2 0.062 against 0.009
   // without the option, corner-2 0.086 (0.148 before pairing only even lines) against 0.013,
   // corner-3 0.011 against 0.005. Now the colors are repaired only around identical pairs (rounds
-  // of redrawing a color, with a tilt against tiles alike two steps apart): within 25 % of the
-  // plain tiling's score over seeds 1-12 (corner-2 still 9-13 % above at 64 and 128: each corner
-  // redrawn changes four tiles, and the tiles alike across an axis grow rare, as they did for
-  // complete-edge-2 before HashedEdgeTilingsKeepTheTileFrequencies; complete-edge-2 now 0-9 %).
+  // of redrawing a color, with a tilt against tiles alike two steps apart), then, for corner-2,
+  // balanced (HashedCornerTilingsLiftTheMirrorTiles): within 10 % of the plain tiling's score over
+  // seeds 1-12 (corner-2 at 64 x 64: 8.8 %, 13.2 % before the balance rounds). Over seeds 1-200
+  // corner-2 stays 7-8 % above, corner-3 3 %, complete-edge-2 2 % (docs/tileset-format.md: the
+  // neighbours' joint distribution alone puts any tiling without identical neighbours of corner-2
+  // about 2.6 % above).
   for (const char* set : {"complete-edge-2", "corner-2", "corner-3"})
     for (const int size : {64, 128}) {
       const double plain = mean_periodicity(set, TilingAlgorithm::hash, size, false);
       const double forbidden = mean_periodicity(set, TilingAlgorithm::hash, size, true);
       std::printf("%s %d x %d: %.4f without, %.4f with the option\n", set, size, size, plain, forbidden);
-      EXPECT_LT(forbidden, 1.25 * plain) << set << " " << size << " x " << size;
+      EXPECT_LT(forbidden, 1.10 * plain) << set << " " << size << " x " << size;
     }
   for (const char* name : {"complete-edge-2", "corner-2", "corner-3"}) {
     TilingOptions options;
