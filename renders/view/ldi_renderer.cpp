@@ -264,10 +264,19 @@ void LdiRenderer::choose_tiles() {
   const double far_start = double(info.level_distances[levels - 1]) + s;
   // The pack's levels, then the far steps: where (in the pack view's distances) level a starts.
   const std::uint32_t drawn_levels = levels + world.far_steps();
-  const auto level_start = [&](std::uint32_t a) {
+  // Far step k averages blocks of 2^(k+1) of the coarsest level's depth pixels and starts at
+  // far_start 2^k, where its block is about two pixels of the pack's view. Seen from above the
+  // lowest steep set, where a block shows the tops of a few flowers, a far step starts where its
+  // block is one pixel: two pixels averaged a head into the leaves around it (25 m up, 640 x 360:
+  // SSIM 0.418 against the exact image's 0.454, now 0.444, depth pixels 0.31 -> 0.83 M). Seen
+  // lower, at grazing angles, the same start gained nothing: from every tile seen above the
+  // pack's elevation 0.451 from above, and the close-up 0.8765 at 28 % more depth pixels; from
+  // head height (the scene's camera) 0.7735 -> 0.7732 at 37 % more.
+  const double steep_far_start = std::max(far_start, pack_focal * s * 2 / double(info.resolutions[levels - 1]));
+  const auto level_start_from = [&](std::uint32_t a, double far_begin) {
     if (a == 0) return 0.0;
     if (a < levels) return double(info.level_distances[a]);
-    return far_start * double(1u << (a - levels));
+    return far_begin * double(1u << (a - levels));
   };
   const float top = info.prism_top;
   if (m.direction_east.size() != directions)
@@ -288,16 +297,19 @@ void LdiRenderer::choose_tiles() {
 
     // Level: the finest whose near distance the tile has passed; the last half of its range
     // dithers into the next (or into the far field after the last).
-    std::uint32_t a = 0;
-    while (a < drawn_levels && e >= level_start(a + 1)) ++a;
+    const auto level_at = [&](double far_begin, float& wb) {
+      std::uint32_t a = 0;
+      while (a < drawn_levels && e >= level_start_from(a + 1, far_begin)) ++a;
+      wb = 0;
+      if (a < drawn_levels) {
+        const double lo = level_start_from(a, far_begin), hi = level_start_from(a + 1, far_begin);
+        const double f = (e - lo) / (hi - lo);
+        wb = float(std::clamp((f - kLevelBlendStart) / (1 - kLevelBlendStart), 0.0, 1.0));
+      }
+      return a;
+    };
     float wb = 0;
-    if (a < drawn_levels) {
-      const double lo = level_start(a), hi = level_start(a + 1);
-      const double f = (e - lo) / (hi - lo);
-      wb = float(std::clamp((f - kLevelBlendStart) / (1 - kLevelBlendStart), 0.0, 1.0));
-    }
-    m.level_a[t] = std::uint8_t(a);
-    m.level_b[t] = std::uint8_t(std::min(a + 1, drawn_levels));
+    std::uint32_t a = level_at(far_start, wb);
     // Seen from above, for the coarsest levels and the far steps: the LDIs (the pack's or a steep
     // set's) of the lowest elevation not below the view's to the tile, dithered with the next
     // lower steep set just above that set's elevation (a hard switch showed as a seam). Sampled from higher than the
@@ -313,6 +325,7 @@ void LdiRenderer::choose_tiles() {
     const double pack_elevation = double(info.elevations[std::min(a, levels - 1)]);
     if (a + kSteepLevels >= levels && view_elevation > pack_elevation) {
       const auto& sets = ViewWorld::steep_elevations();  // ascending
+      if (view_elevation > double(sets[0])) a = level_at(steep_far_start, wb);
       std::size_t k = 0;
       while (k + 1 < sets.size() && view_elevation > double(sets[k])) ++k;
       m.steep[t] = std::uint8_t(k + 1);
@@ -324,6 +337,8 @@ void LdiRenderer::choose_tiles() {
         m.steep_low_weight[t] = float(std::clamp(1 - into, 0.0, 1.0));
       }
     }
+    m.level_a[t] = std::uint8_t(a);
+    m.level_b[t] = std::uint8_t(std::min(a + 1, drawn_levels));
     m.level_b_weight[t] = wb;
     m.far_from[t] = a >= drawn_levels ? 0.0f : (a + 1 == drawn_levels ? 1.0f - wb : 2.0f);
 
