@@ -724,11 +724,11 @@ constexpr std::uint64_t kRepairSalt = 0x6A09E667F3BCC909ull;
 // one color (a new color, hashed from seed, round and place), all pairs at once: with edge colors,
 // an edge of one of the two along their direction (N or S for neighbours east and west, see
 // ColorPatch::edges_along), otherwise a corner they share. The first rounds also redraw, with a
-// chance, a color of tiles alike at a RepairTilt's offsets (a tile that differs from both its neighbours is
-// more often alike to the tile two steps on: about +0.007 in the periodicity at (2, 0) and (0, 2)
-// for complete-edge-2, +0.014 at (1, 1) for corner-2; the tilt cancels it). What the rounds leave
-// (under 10^-4 of the pairs for complete-edge-2, fewer for corner-2) an exact repair of the 4 x 4
-// block around it clears.
+// chance, a color of tiles alike at a RepairTilt's offsets (a tile that differs from both its
+// neighbours is more often alike to the tile two steps on: about +0.007 in the periodicity at
+// (2, 0) and (0, 2) for complete-edge-2, +0.014 at (1, 1) for corner-2; the tilt cancels it). What
+// the rounds leave (under 10^-4 of the pairs for complete-edge-2, fewer for corner-2) an exact
+// repair of the 4 x 4 block around it clears. Corner sets with two colors then run balance rounds.
 constexpr int kRepairRounds = 8;
 constexpr int kTiltRounds = 2;
 constexpr int kRepairBlock = 4;
@@ -744,7 +744,9 @@ constexpr int kRepairMargin = 3 * kTiltRounds + (kRepairRounds - kTiltRounds) + 
 // equal its neighbour across it, and two such tiles side by side always do, so the tiles with a
 // mirror lose most to the repair. Uneven frequencies raise the chance level (0.072 against 0.0625)
 // and with it every offset's noise, so the periodicity score (tiles drawn independently with these
-// frequencies score 7 % above uniform ones), which was 10-15 % above the plain tiling's. Balance
+// frequencies score 7 % above uniform ones), which was 13 % above the plain tiling's (seeds 1-200,
+// 64 and 128; now 7.5-8 %; no tiling without identical neighbours gets within about 2.6 %: the
+// neighbours' joint distribution alone raises the noise that much, docs/tileset-format.md). Balance
 // rounds follow the repair: Metropolis moves towards tilings without identical neighbours weighted
 // by the product of their tiles' kBalanceWeights, which lift the tiles with a mirror. In each round
 // a corner moves with chance kBalanceMoveChance if no corner its move reads (within two, see
