@@ -209,6 +209,8 @@ float LdiRenderer::depth_at(int x, int y) const {
 
 double LdiRenderer::tile_distance(std::uint32_t t) const { return impl_->distance[t]; }
 
+LdiRenderer::TileChoice LdiRenderer::tile_choice(std::uint32_t t) const { return {impl_->level_a[t], impl_->steep[t]}; }
+
 void LdiRenderer::set_detail(double detail) {
   if (!(detail >= kMinViewDetail && detail <= kMaxViewDetail))
     throw Error("view: detail " + std::to_string(detail) + "; expected " + std::to_string(kMinViewDetail) + " .. " +

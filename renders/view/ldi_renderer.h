@@ -132,6 +132,13 @@ class LdiRenderer {
   const std::vector<std::uint32_t>& draw_order() const { return order_; }
   // Distance (meters) from the last frame's eye to placed tile `t`'s nearest ground point.
   double tile_distance(std::uint32_t t) const;
+  // What the last frame drew placed tile `t` from: its level (the nearer when two are dithered;
+  // from the pack's levels on, the far steps) and its LDIs' elevation set (0: the pack's; k: the
+  // world's steep set k - 1, ViewWorld::steep_elevations).
+  struct TileChoice {
+    std::uint32_t level = 0, steep_set = 0;
+  };
+  TileChoice tile_choice(std::uint32_t t) const;
   int width() const { return image_.width; }
   int height() const { return image_.height; }
 
