@@ -1,8 +1,11 @@
 #include "renders/view/ldi_warp.h"
 
 #include <algorithm>
+#include <atomic>
+#include <string>
 
-#include "renders/view/vector_clones.h"
+#include "core/error.h"
+#include "renders/view/vector_path.h"
 #include "renders/view/view_world.h"
 
 namespace wangscape::view_detail {
@@ -19,7 +22,7 @@ std::uint16_t owned_thresholds(float from, float to) {
 namespace {
 
 // The projection runs in the widest vector lanes the CPU has (AVX-512 here: 16 depth pixels at a
-// time); every variant makes the same frame (renders/view/vector_clones.h).
+// time); every path makes the same frame (renders/view/vector_path.h).
 constexpr int kBatch = 256;
 constexpr float kFarOff = 1e6f;  // pixels: farther off the screen than any splat reaches back
 
@@ -55,8 +58,8 @@ inline std::int32_t floor_to_int(float v) {
 
 // Each depth pixel of the batch moved onto the tile's terrain and projected. Branch-free, so the
 // compiler runs it in vector lanes; the Warp's fields are copied to locals so that no store into
-// the batch can alias them.
-WANGSCAPE_VECTOR_CLONES void project(const Warp& w, Batch& b) {
+// the batch can alias them. Inlined into one function per vector path (below).
+[[gnu::always_inline]] inline void project_batch(const Warp& w, Batch& b) {
   const float lb0 = w.local_base[0], lb1 = w.local_base[1], lb2 = w.local_base[2];
   const float lx0 = w.local_x[0], lx1 = w.local_x[1], lx2 = w.local_x[2];
   const float ly0 = w.local_y[0], ly1 = w.local_y[1], ly2 = w.local_y[2];
@@ -118,6 +121,42 @@ WANGSCAPE_VECTOR_CLONES void project(const Warp& w, Batch& b) {
   }
 }
 
+using Projection = void (*)(const Warp&, Batch&);
+
+void project_baseline(const Warp& w, Batch& b) { project_batch(w, b); }
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+[[gnu::target("arch=x86-64-v3")]] void project_avx2(const Warp& w, Batch& b) { project_batch(w, b); }
+[[gnu::target("arch=x86-64-v4")]] void project_avx512(const Warp& w, Batch& b) { project_batch(w, b); }
+constexpr bool kVectorPaths = true;
+#else
+constexpr bool kVectorPaths = false;
+#endif
+
+VectorPath detect_widest_path() {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+  __builtin_cpu_init();  // (this may run in a static initializer, before libgcc's own)
+  if (__builtin_cpu_supports("x86-64-v4")) return VectorPath::avx512;
+  if (__builtin_cpu_supports("x86-64-v3")) return VectorPath::avx2;
+#endif
+  return VectorPath::baseline;
+}
+
+std::atomic<VectorPath> chosen_path{widest_vector_path()};
+
+Projection projection() {
+  if constexpr (kVectorPaths) {
+    switch (chosen_path.load(std::memory_order_relaxed)) {
+      case VectorPath::avx512:
+        return project_avx512;
+      case VectorPath::avx2:
+        return project_avx2;
+      case VectorPath::baseline:
+        break;
+    }
+  }
+  return project_baseline;
+}
+
 // The batch's kept depth pixels written into the z-buffer.
 void splat(const LdiView& v, const Warp& w, const Batch& b, ThreadDepths& out) {
   for (int i = 0; i < b.size; ++i) {
@@ -139,6 +178,7 @@ void splat(const LdiView& v, const Warp& w, const Batch& b, ThreadDepths& out) {
 
 std::uint64_t warp_ldi(const LdiView& v, const Warp& w, ThreadDepths& out) {
   Batch batch;
+  const Projection project = projection();
   auto flush = [&] {
     project(w, batch);
     splat(v, w, batch, out);
@@ -168,3 +208,33 @@ std::uint64_t warp_ldi(const LdiView& v, const Warp& w, ThreadDepths& out) {
 }
 
 }  // namespace wangscape::view_detail
+
+namespace wangscape {
+
+std::string_view to_string(VectorPath path) {
+  switch (path) {
+    case VectorPath::avx512:
+      return "avx512";
+    case VectorPath::avx2:
+      return "avx2";
+    case VectorPath::baseline:
+      break;
+  }
+  return "baseline";
+}
+
+VectorPath widest_vector_path() {
+  static const VectorPath widest = view_detail::detect_widest_path();
+  return widest;
+}
+
+VectorPath vector_path() { return view_detail::chosen_path.load(); }
+
+void set_vector_path(VectorPath path) {
+  if (int(path) > int(widest_vector_path()))
+    throw Error("vector path " + std::string(to_string(path)) + ": this CPU runs at most " +
+                std::string(to_string(widest_vector_path())));
+  view_detail::chosen_path.store(path);
+}
+
+}  // namespace wangscape

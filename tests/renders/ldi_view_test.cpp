@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "core/vecmath.h"
 #include "renders/ldi/ldi_scene.h"
+#include "renders/view/vector_path.h"
 #include "renders/view/view_frames.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
@@ -139,6 +140,33 @@ TEST(ldi_view, SameBytesOnOneAndTwoThreadsAndTwice) {
     EXPECT_EQ(renderer.image().pixels, two);
   }
   EXPECT_EQ(one, two);
+}
+
+// The warp's projection runs in the widest vector lanes the CPU has; every narrower path makes
+// the same bytes (issue 22), with level, direction and elevation dithers and the far steps in
+// the frame (the second camera, from above).
+TEST(ldi_view, SameBytesOnEveryVectorPath) {
+  static const auto above = tiny_world("[-40.0, -8.0, 40.0, 120.0]", "above", "300.0");
+  const std::pair<std::shared_ptr<const ViewWorld>, ViewCamera> views[] = {
+      {field(), looking(-2, -9, 1.7, 4, 6, 0.8)}, {above, looking(0, -10, 20, 0, 40, 1.0, 60)}};
+  const VectorPath widest = widest_vector_path();
+  std::printf("this CPU's widest vector path: %s\n", std::string(to_string(widest)).c_str());
+  for (const auto& [world, camera] : views) {
+    std::vector<std::uint8_t> reference;
+    for (int p = int(widest); p >= int(VectorPath::baseline); --p) {
+      set_vector_path(VectorPath(p));
+      LdiRenderer renderer(world, 160, 90);
+      renderer.set_engine(ViewEngine::ldi);
+      EXPECT_GT(renderer.render(camera).depth_pixels, 10000u);
+      if (reference.empty())
+        reference = renderer.image().pixels;
+      else
+        EXPECT_EQ(renderer.image().pixels, reference) << to_string(VectorPath(p)) << " against " << to_string(widest);
+    }
+  }
+  set_vector_path(widest);
+  EXPECT_EQ(vector_path(), widest);
+  if (widest != VectorPath::avx512) EXPECT_THROW(set_vector_path(VectorPath::avx512), Error);
 }
 
 TEST(ldi_view, NoHolesInACloseView) {
