@@ -41,8 +41,7 @@ constexpr float kSplatScale = 1.5f;  // splat side over the projected depth-pixe
 // A far step's samples are blocks kept with their cover's probability: a larger splat than the
 // block would add its excess to the cover (1.5^2 = 2.25 times: a sparse field drawn dense).
 constexpr float kFarSplatScale = 1.0f;
-constexpr int kMaxSplat = 24;              // pixels
-constexpr std::uint32_t kSteepLevels = 3;  // the pack's coarsest levels the steep sets stand in for
+constexpr int kMaxSplat = 24;  // pixels
 // Of the span between two steep sets' elevations, the lower part over which the lower set fades
 // out (a dithered blend warps both sets' LDIs: in all the span it cost 58 -> 92 ms a frame from
 // 25 m up at 1280 x 720).
@@ -267,15 +266,15 @@ void LdiRenderer::choose_tiles() {
   const double far_start = double(info.level_distances[levels - 1]) + s;
   // The pack's levels, then the far steps: where (in the pack view's distances) level a starts.
   const std::uint32_t drawn_levels = levels + world.far_steps();
-  // Far step k averages blocks of 2^(k+1) of the coarsest level's depth pixels and starts at
-  // far_start 2^k, where its block is about two pixels of the pack's view. Seen from above the
-  // lowest steep set, where a block shows the tops of a few flowers, a far step starts where its
-  // block is one pixel: two pixels averaged a head into the leaves around it (25 m up, 640 x 360:
-  // SSIM 0.418 against the exact image's 0.454, now 0.444, depth pixels 0.31 -> 0.83 M). Seen
-  // lower, at grazing angles, the same start gained nothing: from every tile seen above the
-  // pack's elevation 0.451 from above, and the close-up 0.8765 at 28 % more depth pixels; from
-  // head height (the scene's camera) 0.7735 -> 0.7732 at 37 % more.
-  const double steep_far_start = std::max(far_start, pack_focal * s * 2 / double(info.resolutions[levels - 1]));
+  // Far step k averages blocks of 2^(k+1) of its LDI's depth pixels and starts at far_start 2^k,
+  // where a block of the coarsest level's is about two pixels of the pack's view. Seen from above
+  // the lowest steep set, where a block shows the tops of a few flowers, a far step starts no
+  // sooner than where its block is one pixel: two pixels averaged a head into the leaves around
+  // it (25 m up, 640 x 360, steep sets at the coarsest level's resolution: SSIM 0.418 against the
+  // exact image's 0.454, 0.444 with this start). Seen lower, at grazing angles, the same start
+  // gained nothing: the close-up 0.8765 either way at 28 % more depth pixels; from head height (the
+  // scene's camera) 0.7735 -> 0.7732 at 37 % more.
+  const double steep_far_start = std::max(far_start, pack_focal * s * 2 / double(world.steep_resolution()));
   const auto level_start_from = [&](std::uint32_t a, double far_begin) {
     if (a == 0) return 0.0;
     if (a < levels) return double(info.level_distances[a]);
@@ -326,7 +325,7 @@ void LdiRenderer::choose_tiles() {
     m.steep_low_weight[t] = 0;
     // (The pack's own elevation for the level drawn: from head height, never steeper.)
     const double pack_elevation = double(info.elevations[std::min(a, levels - 1)]);
-    if (a + kSteepLevels >= levels && view_elevation > pack_elevation) {
+    if (a + ViewWorld::kSteepLevels >= levels && view_elevation > pack_elevation) {
       const auto& sets = ViewWorld::steep_elevations();  // ascending
       if (view_elevation > double(sets[0])) a = level_at(steep_far_start, wb);
       std::size_t k = 0;

@@ -394,10 +394,10 @@ void ViewWorld::prepare_steep() const {
     options.shading = shading_;
     options.view.head_height = info.head_height;
     options.view.directions = int(info.directions);
-    LdiLevels steep;  // one level per steep set, each at the coarsest level's resolution
+    LdiLevels steep;  // one level per steep set, each at steep_resolution()
     steep.prism_top = info.prism_top;
     for (const float elevation : steep_elevations()) {
-      steep.resolutions.push_back(info.resolutions.back());
+      steep.resolutions.push_back(steep_resolution());
       steep.distances.push_back(info.level_distances.back());
       steep.elevations.push_back(elevation);
     }
@@ -414,6 +414,17 @@ void ViewWorld::prepare_steep() const {
     }
     steep_ldis_ = std::move(built);
   });
+}
+
+// From above, where a pixel holds the tops of a few flowers, the coarsest level's resolution
+// stood in for finer levels and broke the heads into blocks (25 m up, SSIM against the truth at
+// 1280 x 720: 0.498 at the coarsest level's 64 pixels per tile, 0.519 at the finest stood-in
+// level's 89, where the exact one-sample image scores 0.585; finer still, 0.531 at 111 and 0.550
+// at 148; at 640 x 360 0.444 and 0.470, exact 0.454). The steep sets' first frame: 4.1 -> 5.0 s
+// wall.
+std::uint32_t ViewWorld::steep_resolution() const {
+  const LdiPackInfo& info = pack_->info();
+  return info.resolutions[info.levels - std::min(info.levels, kSteepLevels)];
 }
 
 LdiView ViewWorld::steep_ldi(std::uint32_t set, std::uint32_t tile, std::uint32_t direction, std::uint32_t step) const {

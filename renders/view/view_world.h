@@ -87,10 +87,13 @@ class ViewWorld {
   // column's front sample, on the tile's near side, so from higher up every tile shows a band of
   // flowers and a gap behind it, rows along the tile grid converging on the vanishing point. The
   // steep sets: per elevation of steep_elevations() (degrees below the horizon), per (set tile,
-  // direction), one LDI sampled at that elevation at the coarsest level's resolution (step 0)
-  // and its one-layer far steps (step k + 1 as far step k). Sampled on first use
-  // (prepare_steep(); about a second for the default scene), then immutable; thread-safe.
+  // direction), one LDI sampled at that elevation (step 0) and its one-layer far steps (step k + 1
+  // as far step k). They stand in for the pack's kSteepLevels coarsest levels, at the resolution
+  // of the finest of those (steep_resolution()). Sampled on first use (prepare_steep(); 5 s wall
+  // for the default scene), then immutable; thread-safe.
   static constexpr std::array<float, 5> steep_elevations() { return {6.5f, 9.0f, 13.0f, 19.0f, 30.0f}; }
+  static constexpr std::uint32_t kSteepLevels = 3;
+  std::uint32_t steep_resolution() const;
   void prepare_steep() const;
   LdiView steep_ldi(std::uint32_t set, std::uint32_t tile, std::uint32_t direction, std::uint32_t step) const;
   // The ground's height (meters) at (x, y), or `fallback` off the ground.

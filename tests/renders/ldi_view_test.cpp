@@ -445,7 +445,7 @@ TEST(ldi_view_above, TwentyMetersUpDrawsTheSteepSetsTheSameOnAnyThreadCount) {
 }
 
 // Seen from above the lowest steep set, a far step's block (the average of 2^(k+1) x 2^(k+1) of
-// the coarsest level's depth pixels) is drawn no larger than a pixel: two pixels averaged the
+// its steep set's depth pixels) is drawn no larger than a pixel: two pixels averaged the
 // heads into the leaves (the default scene's 25 m camera, SSIM 0.418 against the exact image's
 // 0.454; issue 22). Blocks of up to 1.7 pixels before.
 TEST(ldi_view_above, FarStepBlocksFromAboveAreNoLargerThanAPixel) {
@@ -456,14 +456,14 @@ TEST(ldi_view_above, FarStepBlocksFromAboveAreNoLargerThanAPixel) {
   const double fov = 60;
   renderer.render(looking(0, -10, 20, 0, 40, 1.0, fov));
   const double focal = 80 / std::tan(fov / 2 * std::numbers::pi / 180);
-  const double coarsest = world->tile_size() / double(info.resolutions.back());  // meters per depth pixel
+  const double steep_pixel = world->tile_size() / double(world->steep_resolution());  // meters per depth pixel
   int far_steps = 0;
   double largest = 0;
   for (const std::uint32_t t : renderer.draw_order()) {
     const auto [level, steep_set] = renderer.tile_choice(t);
     if (level < info.levels || steep_set < 2) continue;  // a level, or seen lower than the lowest steep set
     ++far_steps;
-    const double block = coarsest * double(2u << (level - info.levels));
+    const double block = steep_pixel * double(2u << (level - info.levels));
     largest = std::max(largest, block * focal / renderer.tile_distance(t));
   }
   EXPECT_GT(far_steps, 100);
