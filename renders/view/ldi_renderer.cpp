@@ -12,7 +12,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <tuple>
 
 #include "core/color.h"
 #include "core/error.h"
@@ -553,7 +552,8 @@ void LdiRenderer::draw_terrain() {
     // pixel: the exact test below decides, the span only skips what surely fails (thin far
     // triangles have bounding boxes many times their area).
     const float slope_a = (by - cy) * inv_area, slope_b = (cy - ay) * inv_area, slope_c = -slope_a - slope_b;
-    // (Divided once here, not per row: the span is widened by a pixel anyway.)
+    // Their inverses (0 for 0, the sign kept), divided once here, not per row: the span is widened
+    // by a pixel anyway.
     const auto inverse = [](float slope) { return slope != 0 ? 1 / slope : 0.0f; };
     const float inverse_a = inverse(slope_a), inverse_b = inverse(slope_b), inverse_c = inverse(slope_c);
     for (int py = y0; py <= y1; ++py) {
@@ -568,12 +568,11 @@ void LdiRenderer::draw_terrain() {
                   wb0 = (cx * (ay - fy) - (cy - fy) * ax) * inv_area;
       float lo = float(x0) + 0.5f, hi = float(x1) + 0.5f;
       bool empty = false;
-      for (const auto& [w0, slope, inverse_slope] :
-           {std::tuple{wa0, slope_a, inverse_a}, std::tuple{wb0, slope_b, inverse_b},
-            std::tuple{1 - wa0 - wb0, slope_c, inverse_c}}) {
-        if (slope > 0)
+      for (const auto& [w0, inverse_slope] :
+           {std::pair{wa0, inverse_a}, std::pair{wb0, inverse_b}, std::pair{1 - wa0 - wb0, inverse_c}}) {
+        if (inverse_slope > 0)
           lo = std::max(lo, -w0 * inverse_slope);
-        else if (slope < 0)
+        else if (inverse_slope < 0)
           hi = std::min(hi, -w0 * inverse_slope);
         else
           empty |= w0 < 0;

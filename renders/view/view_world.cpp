@@ -321,7 +321,7 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
           for (int i = 0; i < n; ++i) {
             const double x = x0 + (i + 0.5) * tile_size_ / n, y = y0 + (j + 0.5) * tile_size_ / n;
             const auto cell_steps =
-                plant_steps(*field.species, x, y, field.ground.height(x, y).value_or(centre), field.species->size());
+                plant_steps(*field.species, x, y, ground_height(x, y, centre), field.species->size());
             std::copy(cell_steps.begin(), cell_steps.end(), steps.begin() + (j * n + i) * kPlantSpecies);
           }
       }

@@ -438,8 +438,11 @@ TEST(ldi_view_above, TwentyMetersUpDrawsTheSteepSetsTheSameOnAnyThreadCount) {
   EXPECT_EQ(renderer.image().pixels, one);
   const ViewComparison v = compare_with_reference(*world, renderer, camera, 16);
   EXPECT_GT(v.comparison.psnr_db, v.exact.psnr_db - 1.0) << v.comparison.psnr_db << " against " << v.exact.psnr_db;
-  // Issue 22's goal, on this small flat field (0.288 against 0.298 measured; 0.292 with three
-  // steep sets instead of five: on the default scene's 25 m camera five gained 0.012).
+  // Issue 22's goal, on this small flat field: 0.283 against 0.298 measured (0.288 with the steep
+  // sets at the coarsest level's resolution, which lost 0.026 on the default scene's 25 m camera;
+  // 0.292 with three steep sets instead of five: there five gained 0.012).
+  std::printf("20 m up: SSIM %.4f (exact %.4f), PSNR %.2f dB (exact %.2f)\n", v.comparison.ssim, v.exact.ssim,
+              v.comparison.psnr_db, v.exact.psnr_db);
   EXPECT_GT(v.comparison.ssim, v.exact.ssim - 0.03) << v.comparison.ssim << " against " << v.exact.ssim;
   EXPECT_EQ(v.comparison.holes.holes, 0u);
 }
