@@ -618,6 +618,10 @@ std::vector<std::string> tiling_algorithm_names() {
 // ---------------------------------------------------------------------------------------------
 // Hashed tiling.
 
+namespace {
+int repair_margin(bool balances);  // (after the repair's constants, below)
+}  // namespace
+
 HashedTiling::HashedTiling(const TileSet& set, std::uint64_t seed, bool forbid_identical_neighbours)
     : seed_(seed), forbid_(forbid_identical_neighbours) {
   for (int slot = 0; slot < kSlotCount; ++slot) radix_[static_cast<std::size_t>(slot)] = slot_radix(set, slot);
@@ -660,6 +664,7 @@ HashedTiling::HashedTiling(const TileSet& set, std::uint64_t seed, bool forbid_i
         throw Error(set.describe() + ": hash tiling cannot forbid identical neighbours with a single " +
                     kSlotNames[static_cast<std::size_t>(slot)] + " color");
   balances_ = forbid_ && has_corners_ && !has_edges_ && radix_[kNE] == 2;
+  margin_ = repair_margin(balances_);
 }
 
 std::uint32_t HashedTiling::code(const std::array<std::uint32_t, kSlotCount>& colors) const {
@@ -763,6 +768,9 @@ struct BalanceWeights {
 // times 5: whole numbers, so that the acceptance test is exact on every platform.
 constexpr BalanceWeights kBalanceWeights{25, 10, 3, 5};
 constexpr std::uint64_t kBalanceSalt = 0xBB67AE8584CAA73Bull;
+
+// Tiles computed around a window: what the repair reads, and the balance rounds' reach.
+int repair_margin(bool balances) { return kRepairMargin + (balances ? 2 * kBalanceRounds : 0); }
 
 struct Offset {
   int di, dj;
@@ -978,7 +986,7 @@ bool has_identical_neighbour(const ColorPatch& patch, int i, int j) {
 // `right` corners in from every side; they are right from right + 2 * kBalanceRounds after. A move
 // of corner (x, y) changes the four tiles around it and reads them and their neighbours: the corners
 // within two of it, less the four at (+-2, +-2), the corners whose priority it must beat.
-void balance_corner_frequencies(ColorPatch& patch, int right, std::uint64_t seed, std::uint32_t colors) {
+void balance_corner_frequencies(ColorPatch& patch, int right, std::uint64_t seed) {
   const auto stride = static_cast<std::size_t>(patch.width) + 1;
   std::vector<std::uint32_t> priority(stride * (static_cast<std::size_t>(patch.height) + 1), 0);
   const auto priority_at = [&](int x, int y) {
@@ -992,11 +1000,11 @@ void balance_corner_frequencies(ColorPatch& patch, int right, std::uint64_t seed
   };
   for (int round = 0; round < kBalanceRounds; ++round, right += 2) {
     const int last_x = patch.width - right, last_y = patch.height - right;
+    const std::uint64_t round_key = mix64(seed ^ kBalanceSalt ^ static_cast<std::uint64_t>(round));
     // Priorities of the corners the moves below read; 0: the corner does not move this round.
     for (int y = right; y <= last_y; ++y) {
-      const auto row_key =
-          static_cast<std::uint32_t>(mix64(mix64(seed ^ kBalanceSalt ^ static_cast<std::uint64_t>(round)) ^
-                                           static_cast<std::uint64_t>(patch.j0 + y) * 0xD6E8FEB86659FD93ull));
+      const auto row_key = static_cast<std::uint32_t>(
+          mix64(round_key ^ static_cast<std::uint64_t>(patch.j0 + y) * 0xD6E8FEB86659FD93ull));
       for (int x = right; x <= last_x; ++x) {
         const std::uint32_t h = point_hash(row_key, patch.i0 + x);
         priority[static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x)] =
@@ -1018,13 +1026,14 @@ void balance_corner_frequencies(ColorPatch& patch, int right, std::uint64_t seed
         const std::uint64_t h =
             repair_hash(seed, kRepairRounds + 1 + round, ColorPatch::kCorner, patch.i0 + x, patch.j0 + y);
         const std::uint64_t before = around(x, y, [&](int i, int j) { return balance_weight(patch, i, j); });
-        color = static_cast<std::uint8_t>(color_other_than(static_cast<std::uint32_t>(h), old_color, colors));
+        color = old_color ^ 1u;  // (two colors: the other one)
         const std::uint64_t after = around(x, y, [&](int i, int j) { return balance_weight(patch, i, j); });
-        const bool identical = around(x, y, [&](int i, int j) {
-                                 return has_identical_neighbour(patch, i, j) ? std::uint64_t{0} : std::uint64_t{1};
-                               }) == 0;
-        // Metropolis: accepted with chance min(1, after / before); products below 25^4, exact.
-        if (identical || (h >> 32) * before >= (std::uint64_t{1} << 32) * after) color = old_color;
+        // Metropolis: accepted with chance min(1, after / before); products below 25^4, exact. Then
+        // only if none of the four tiles it changed equals a neighbour.
+        bool accepted = (h >> 32) * before < (std::uint64_t{1} << 32) * after;
+        for (int j = y - 1; j <= y && accepted; ++j)
+          for (int i = x - 1; i <= x && accepted; ++i) accepted = !has_identical_neighbour(patch, i, j);
+        if (!accepted) color = old_color;
       }
   }
 }
@@ -1052,7 +1061,7 @@ void HashedTiling::fill_window(std::int64_t first_i, std::int64_t first_j, int w
     for (int r = 0; r < height; ++r) fill_row(first_i, first_j + r, out.subspan(static_cast<std::size_t>(r) * w, w));
     return;
   }
-  const int m = kRepairMargin + (balances_ ? 2 * kBalanceRounds : 0);
+  const int m = margin_;
   ColorPatch patch;
   patch.i0 = first_i - m;
   patch.j0 = first_j - m;
@@ -1174,7 +1183,7 @@ void HashedTiling::fill_window(std::int64_t first_i, std::int64_t first_j, int w
       if (!inside(bi - 1, bj - 1) || !inside(bi + kRepairBlock, bj + kRepairBlock)) continue;
       repair_block(patch, bi, bj, seed_, radix_);
     }
-  if (balances_) balance_corner_frequencies(patch, kRepairMargin, seed_, radix_[kNE]);
+  if (balances_) balance_corner_frequencies(patch, kRepairMargin, seed_);
   for (int r = 0; r < height; ++r)
     for (int k = 0; k < width; ++k)
       out[static_cast<std::size_t>(r) * w + static_cast<std::size_t>(k)] = lookup_[code(patch.colors(k + m, r + m))];

@@ -97,8 +97,8 @@ class HashedTiling {
   // identical (rounds of redrawing a color of theirs, then an exact repair of the 4 x 4 block
   // around what is left; see fill_window; corner sets with two colors then move corners towards
   // even tile frequencies), so no two neighbouring tiles are identical. Still O(1) per tile and
-  // deterministic, but each call computes a margin of 18 tiles around its window (34 for corner
-  // sets with two colors): ask for windows (fill_window, make_tiling), not single tiles. Needs at
+  // deterministic, but each call computes a margin of tiles around its window (margin_: 18, 34 for
+  // corner sets with two colors): ask for windows (fill_window, make_tiling), not single tiles. Needs at
   // least two colors per alphabet.
   HashedTiling(const TileSet& set, std::uint64_t seed, bool forbid_identical_neighbours = false);
 
@@ -127,6 +127,7 @@ class HashedTiling {
   std::uint64_t seed_ = 0;
   bool forbid_ = false;
   bool balances_ = false;  // balance rounds after the repair (corner sets with two colors)
+  int margin_ = 0;         // tiles computed around a window when forbidding identical neighbours
   bool has_edges_ = true, has_corners_ = false;
   std::array<std::uint32_t, kSlotCount> radix_{};  // colors per slot, 1 where the set has none
   // Maps the mixed-radix color code (slots N, E, S, W, NE, SE, SW, NW) to the tile index.

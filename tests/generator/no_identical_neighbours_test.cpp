@@ -120,10 +120,7 @@ TEST(NoIdenticalNeighbours, HashedEdgeTilingsKeepTheTileFrequencies) {
     std::printf("%s 128 x 128: tile frequencies within %.1f %% of 1/%zu\n", name, 100 * worst, set.size());
     EXPECT_LT(worst, 0.12) << name;
   }
-  const double plain = mean_periodicity("complete-edge-2", TilingAlgorithm::hash, 128, false);
-  const double forbidden = mean_periodicity("complete-edge-2", TilingAlgorithm::hash, 128, true);
-  std::printf("complete-edge-2 128 x 128: %.4f without, %.4f with the option\n", plain, forbidden);
-  EXPECT_LT(forbidden, 1.05 * plain);
+  // (Its score: HashedTilingsAddLittleStructure, within 5 % of the plain tiling's at 128 x 128.)
 }
 
 TEST(NoIdenticalNeighbours, HashedCornerTilingsLiftTheMirrorTiles) {
@@ -151,7 +148,8 @@ TEST(NoIdenticalNeighbours, HashedTilingsAddLittleStructure) {
       const double plain = mean_periodicity(set, TilingAlgorithm::hash, size, false);
       const double forbidden = mean_periodicity(set, TilingAlgorithm::hash, size, true);
       std::printf("%s %d x %d: %.4f without, %.4f with the option\n", set, size, size, plain, forbidden);
-      EXPECT_LT(forbidden, 1.10 * plain) << set << " " << size << " x " << size;
+      const bool edges_at_128 = std::string(set) == "complete-edge-2" && size == 128;  // 0.0103 before the edge rule
+      EXPECT_LT(forbidden, (edges_at_128 ? 1.05 : 1.10) * plain) << set << " " << size << " x " << size;
     }
   for (const char* name : {"complete-edge-2", "corner-2", "corner-3"}) {
     TilingOptions options;
