@@ -56,10 +56,11 @@ int main(int argc, char** argv) {
       options.seed = static_cast<std::uint64_t>(seed);
       const double without = periodicity_score(make_tiling(set, size, size, options)).score;
       options.forbid_identical_neighbours = true;
-      const Tiling tiling = make_tiling(set, size, size, options);
-      const double with = periodicity_score(tiling).score;
-      for (const std::uint16_t t : tiling.tiles)
-        frequency[t] += 1.0 / (static_cast<double>(tiling.tiles.size()) * seeds);
+      const TilingStats stats = compute_tiling_stats(set, make_tiling(set, size, size, options));
+      if (!stats.valid) throw Error("no_identical_neighbours_seeds_bench: " + stats.invalid_reason);
+      const double with = stats.periodicity;
+      for (std::size_t t = 0; t < set.size(); ++t)
+        frequency[t] += static_cast<double>(stats.frequencies[t]) / (static_cast<double>(size) * size * seeds);
       plain.add(without);
       forbidden.add(with);
       difference.add(with - without);
