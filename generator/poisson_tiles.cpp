@@ -909,7 +909,7 @@ std::vector<float> progressive_ranks(const ContentModel& model, const Content& c
         double best_fill = std::numeric_limits<double>::infinity();
         for (int b = 0; b < rings; ++b) {
           const auto i = static_cast<std::size_t>(b);
-          if (next[i] == queue[i].size() || ring_share[i] <= 0) continue;
+          if (next[i] == queue[i].size()) continue;
           const double fill = ring_taken[i] / ring_share[i];
           if (fill < d && fill < best_fill) best_fill = fill, best = b;
         }

@@ -351,13 +351,12 @@ class SweepTiler {
   }
 
   // One of `classes` that meets `mask`, uniformly (the class a row or column keeps, side_classes).
+  // Some class always does: the classes hold every tile and `mask` is never empty.
   TileMask draw_class(TileMask mask, const std::vector<TileMask>& classes) {
-    std::uint32_t open = 0;
-    for (const TileMask c : classes) open += (c & mask) != 0 ? 1 : 0;
-    std::uint32_t k = scale(next_bits(), open);
+    std::vector<TileMask> open;
     for (const TileMask c : classes)
-      if ((c & mask) != 0 && k-- == 0) return c;
-    return mask;
+      if ((c & mask) != 0) open.push_back(c);
+    return open[scale(next_bits(), static_cast<std::uint32_t>(open.size()))];
   }
 
   void next_row_with_lookahead(std::span<const std::uint16_t> previous, std::span<std::uint16_t> row) {
