@@ -13,6 +13,7 @@
 #include <optional>
 #include <string>
 
+#include "core/number_text.h"
 #include "generator/point_metrics.h"
 #include "generator/tiling.h"
 #include "generator/tiling_preview.h"
@@ -988,16 +989,19 @@ void check_options(const PoissonFillOptions& o) {
     const std::string name = "class " + std::to_string(c) + ": ";
     if (!(k.share > 0 && std::isfinite(k.share))) fail(name + "share " + std::to_string(k.share) + "; expected > 0");
     if (!(k.packing_radius >= 0 && k.packing_radius < kMaxClassRadius))
-      fail(name + "packing radius " + std::to_string(k.packing_radius) + "; expected 0..0.5 tile sides");
+      fail(name + "packing radius " + std::to_string(k.packing_radius) + "; expected 0.." +
+           number_text(kMaxClassRadius) + " tile sides");
     if (!(k.tight_radius >= 0 && k.tight_radius < kMaxClassRadius))
-      fail(name + "tight radius " + std::to_string(k.tight_radius) + "; expected 0..0.5 tile sides");
+      fail(name + "tight radius " + std::to_string(k.tight_radius) + "; expected 0.." + number_text(kMaxClassRadius) +
+           " tile sides");
     if (k.variants < 1) fail(name + "variants " + std::to_string(k.variants) + "; expected >= 1");
     total_variants += k.variants;
     if (k.exclusion.size() > o.classes.size())
       fail(name + std::to_string(k.exclusion.size()) + " exclusion distances; expected at most one per class");
     for (const double e : k.exclusion)
       if (!(e >= 0 && e < kMaxClassDistance))
-        fail(name + "exclusion " + std::to_string(e) + "; expected 0..1 tile sides");
+        fail(name + "exclusion " + std::to_string(e) + "; expected 0.." + number_text(kMaxClassDistance) +
+             " tile sides");
   }
   if (total_variants > 65535) fail(std::to_string(total_variants) + " variants over the classes; expected <= 65535");
   if (o.points_per_tile < 1 || o.points_per_tile > kMaxPointsPerTile)
@@ -1023,8 +1027,8 @@ void check_species(const SpeciesTable& species) {
       if (species.distance(a, b) >= kMaxClassDistance)
         throw Error("Poisson fill: classes " + std::to_string(a) + " and " + std::to_string(b) + " keep " +
                     std::to_string(species.distance(a, b)) +
-                    " tile sides apart (packing radii plus exclusion, or the class's own spacing); expected < 1: "
-                    "raise the points per tile or shrink the radii");
+                    " tile sides apart (packing radii plus exclusion, or the class's own spacing); expected < " +
+                    number_text(kMaxClassDistance) + ": raise the points per tile or shrink the radii");
 }
 
 }  // namespace
