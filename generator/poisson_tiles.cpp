@@ -659,10 +659,12 @@ struct RelaxContext {
   const TileAdjacency& adjacency;
   const PoissonFillOptions& options;
   const SpeciesTable& species;
-  // Where relaxation may move point p: edge objects stay (their place across the edge is chosen).
+  // Whether relaxation leaves point p where it is: edge objects stay (their place across the edge
+  // is chosen).
+  bool stays(const PointSet& points, std::size_t p) const { return species.edge_objects[points.species[p]]; }
+  // Where relaxation may move point p.
   Vec2 moved(const PointSet& points, std::size_t p, Vec2 to) const {
-    const std::size_t s = points.species[p];
-    return species.edge_objects[s] ? points.local[p] : model.clamp(points.cls[p], to, species.tight[s]);
+    return stays(points, p) ? points.local[p] : model.clamp(points.cls[p], to, species.tight[points.species[p]]);
   }
 };
 
@@ -672,7 +674,7 @@ void lloyd_step(const RelaxContext& ctx, const Content& content, int round, doub
   constexpr int kContexts = 4;
   std::vector<Vec2> moved(points.local.size());
   tbb::parallel_for(std::size_t{0}, points.local.size(), [&](std::size_t p) {
-    if (ctx.species.edge_objects[points.species[p]]) {  // they stay (RelaxContext::moved): no centroids
+    if (ctx.stays(points, p)) {  // no centroids to gather
       moved[p] = points.local[p];
       return;
     }
