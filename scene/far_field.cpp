@@ -447,6 +447,7 @@ void paint_far_field(GroundBake& bake, const SceneField& field, const FieldTextu
   const float mean_cover = std::max(texture.mean_coverage(), 1e-6f);
   tbb::parallel_for(0, h, [&](int row) {
     const double y = e.max_y - (row + 0.5) * dy;
+    std::vector<double> densities(field.species ? field.species->size() : 0);
     for (int col = 0; col < w; ++col) {
       const double x = e.min_x + (col + 0.5) * dx;
       const auto z = field.ground.height(x, y);
@@ -468,12 +469,11 @@ void paint_far_field(GroundBake& bake, const SceneField& field, const FieldTextu
           continue;
         }
         // [[species]]: each species where its rules let it grow, thinned by its density there.
-        for (std::size_t c = 0; c < field.species->size(); ++c) {
-          const auto species = static_cast<std::uint8_t>(c);
-          const double density = field.species->density_where_grows(species, sx, sy, *sz);
-          if (density > 0)
-            cover += static_cast<float>(density) * texture.species_coverage(c, t, sx / s - fi, sy / s - fj, footprint);
-        }
+        field.species->densities_where_grow(sx, sy, *sz, densities);
+        for (std::size_t c = 0; c < densities.size(); ++c)
+          if (densities[c] > 0)
+            cover +=
+                static_cast<float>(densities[c]) * texture.species_coverage(c, t, sx / s - fi, sy / s - fj, footprint);
       }
       if (cover == 0) continue;
       // The ray's sine against the ground picks the canopy's look: at a grazing angle the

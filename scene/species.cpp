@@ -166,20 +166,39 @@ std::vector<std::string> SpeciesRules::names() const {
   return names;
 }
 
-double SpeciesRules::density_where_grows(std::uint8_t species, double x, double y, double z) const {
-  const Rule& rule = rules_[species];
+// The ground at one place as the rules read it: its slope and normal, each read at most once.
+class SpeciesRules::GroundAt {
+ public:
+  GroundAt(const SceneGround& ground, double x, double y) : ground_(ground), x_(x), y_(y) {}
+  std::optional<double> slope() {
+    if (!slope_) slope_ = ground_.slope_degrees(x_, y_);
+    return *slope_;
+  }
+  std::optional<std::array<double, 3>> normal() {
+    if (!normal_) normal_ = ground_.normal(x_, y_);
+    return *normal_;
+  }
+
+ private:
+  const SceneGround& ground_;
+  double x_, y_;
+  std::optional<std::optional<double>> slope_;
+  std::optional<std::optional<std::array<double, 3>>> normal_;
+};
+
+double SpeciesRules::density_of(const Rule& rule, double x, double y, double z, GroundAt& ground) {
   const SpeciesConfig& c = rule.config;
   if ((c.min_height && z < *c.min_height) || (c.max_height && z > *c.max_height)) return 0;
   if (rule.mask && !rule.mask->allows(x, y)) return 0;
   // The slope once, for the rules and the density both.
   std::optional<double> slope;
-  if (rule.needs_slope) slope = ground_.slope_degrees(x, y);
+  if (rule.needs_slope) slope = ground.slope();
   if ((c.min_slope || c.max_slope) &&
       (!slope || (c.min_slope && *slope < *c.min_slope) || (c.max_slope && *slope > *c.max_slope)))
     return 0;
   if (c.aspect) {
     // Ground flatter than a degree faces nowhere in particular: every aspect range holds there.
-    const auto n = ground_.normal(x, y);
+    const auto n = ground.normal();
     if (!n) return 0;
     const bool flat = (*n)[2] > std::cos(std::numbers::pi / 180);
     if (!flat && !aspect_in_range(aspect_degrees(*n), (*c.aspect)[0], (*c.aspect)[1])) return 0;
@@ -187,6 +206,16 @@ double SpeciesRules::density_where_grows(std::uint8_t species, double x, double 
   double d = density_curve_at(c.density_by_height, z);
   if (!c.density_by_slope.empty()) d *= density_curve_at(c.density_by_slope, slope.value_or(0));
   return d;
+}
+
+double SpeciesRules::density_where_grows(std::uint8_t species, double x, double y, double z) const {
+  GroundAt ground(ground_, x, y);
+  return density_of(rules_[species], x, y, z, ground);
+}
+
+void SpeciesRules::densities_where_grow(double x, double y, double z, std::span<double> densities) const {
+  GroundAt ground(ground_, x, y);
+  for (std::size_t s = 0; s < rules_.size(); ++s) densities[s] = density_of(rules_[s], x, y, z, ground);
 }
 
 bool SpeciesRules::keeps(double x, double y, double z, std::uint8_t species, float rank) const {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,9 @@ class SpeciesRules {
   // The species' density (0..1) at (x, y, z) where its rules (height, slope, aspect, mask) let it
   // grow, else 0.
   double density_where_grows(std::uint8_t species, double x, double y, double z) const;
+  // density_where_grows of every species at (x, y, z) into densities[species] (size() of them),
+  // the ground's slope and normal there read once for all.
+  void densities_where_grow(double x, double y, double z, std::span<double> densities) const;
   // How many species there are, and their names, in file order (the fill's class order).
   std::size_t size() const { return rules_.size(); }
   std::vector<std::string> names() const;
@@ -65,6 +69,8 @@ class SpeciesRules {
     std::optional<PaintedMask> mask;
     bool needs_slope = false;
   };
+  class GroundAt;  // the ground's slope and normal at one place, each read at most once
+  static double density_of(const Rule& rule, double x, double y, double z, GroundAt& ground);
   std::vector<Rule> rules_;
   SceneGround ground_;
 };
