@@ -1022,15 +1022,20 @@ void check_options(const PoissonFillOptions& o) {
 }
 
 // A point and its own copy in the tile beside (a tile can sit next to itself) are a tile side
-// apart: no distance may reach it.
-void check_species(const SpeciesTable& species) {
+// apart: no distance may reach it. The distances are symmetric: a <= b is enough.
+std::optional<ClassesTooFar> first_too_far(const SpeciesTable& species) {
   for (std::size_t a = 0; a < species.count; ++a)
-    for (std::size_t b = 0; b < species.count; ++b)
-      if (species.distance(a, b) >= kMaxClassDistance)
-        throw Error("Poisson fill: classes " + std::to_string(a) + " and " + std::to_string(b) + " keep " +
-                    std::to_string(species.distance(a, b)) +
-                    " tile sides apart (packing radii plus exclusion, or the class's own spacing); expected < " +
-                    number_text(kMaxClassDistance) + ": raise the points per tile or shrink the radii");
+    for (std::size_t b = a; b < species.count; ++b)
+      if (species.distance(a, b) >= kMaxClassDistance) return ClassesTooFar{a, b, species.distance(a, b)};
+  return std::nullopt;
+}
+
+void check_species(const SpeciesTable& species) {
+  if (const std::optional<ClassesTooFar> far = first_too_far(species))
+    throw Error("Poisson fill: classes " + std::to_string(far->a) + " and " + std::to_string(far->b) + " keep " +
+                std::to_string(far->distance) +
+                " tile sides apart (packing radii plus exclusion, or the class's own spacing); expected < " +
+                number_text(kMaxClassDistance) + ": raise the points per tile or shrink the radii");
 }
 
 }  // namespace
@@ -1068,6 +1073,10 @@ std::vector<double> class_fill_distances(const PoissonFillOptions& options) {
   std::vector<double> distances(table.distance2.size());
   for (std::size_t k = 0; k < distances.size(); ++k) distances[k] = std::sqrt(table.distance2[k]);
   return distances;
+}
+
+std::optional<ClassesTooFar> classes_too_far(const PoissonFillOptions& options) {
+  return first_too_far(make_species_table(options, dart_distance(options), default_tight_radius(options)));
 }
 
 std::vector<std::vector<double>> rank_density_across_tile(const TileSet& set, PoissonFillOptions options,

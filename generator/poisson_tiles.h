@@ -170,6 +170,13 @@ inline constexpr double kMaxClassDistance = 1.0;
 // own spacing at its share of options.points_per_tile (one class: the dart distance). The fill
 // refuses options where one reaches kMaxClassDistance.
 std::vector<double> class_fill_distances(const PoissonFillOptions& options);
+// A pair of classes the fill would keep kMaxClassDistance or more apart.
+struct ClassesTooFar {
+  std::size_t a = 0, b = 0;  // a <= b; a == b: a class's own spacing at its share
+  double distance = 0;       // tile sides (class_fill_distances)
+};
+// The first such pair (by a, then b), or nothing: the fill refuses options with one.
+std::optional<ClassesTooFar> classes_too_far(const PoissonFillOptions& options);
 
 // The progressive rank's evenness: per d of `densities`, the density of the points of rank < d
 // across a tile, in `bands` bands of 1 / bands tile sides (x and y pooled, every tile of `set`

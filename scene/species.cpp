@@ -90,32 +90,29 @@ std::vector<PoissonClass> species_classes(const SceneConfig& config, const std::
   // exclusion) or within one (its own spacing at its share) must fit a tile too: refused here,
   // named by the species' key, not by the fill with class numbers.
   fill.classes = classes;
-  const std::vector<double> distances = class_fill_distances(fill);
-  const std::size_t n = classes.size();
-  const auto exclusion = [&](std::size_t a, std::size_t b) {
-    return b < classes[a].exclusion.size() ? classes[a].exclusion[b] : 0.0;
-  };
-  for (std::size_t a = 0; a < n; ++a)
-    for (std::size_t b = a; b < n; ++b) {
-      const double d = distances[a * n + b];
-      if (d < kMaxClassDistance) continue;
-      const std::string &name_a = config.species[a].name, &name_b = config.species[b].name;
-      if (a == b) {
-        double total_share = 0;
-        for (const PoissonClass& c : classes) total_share += c.share;
-        const std::string share_key = "species." + name_a + ".share";
-        throw too_far(config.key_lines.contains(share_key) ? share_key : "tiles.points_per_tile",
-                      "leaves about " + significant_text(fill.points_per_tile * classes[a].share / total_share, 3) +
-                          " points of '" + name_a + "' a tile (its share of tiles.points_per_tile " +
-                          std::to_string(fill.points_per_tile) + "), " + in_meters(d) + " apart",
-                      kMaxClassDistance, ": a larger share or more points per tile");
-      }
-      const std::size_t by = exclusion(a, b) >= exclusion(b, a) ? a : b, to = by == a ? b : a;
-      throw too_far("species." + config.species[by].name + ".exclusion",
-                    "keeps '" + name_a + "' and '" + name_b + "' " + in_meters(d) + " apart (their packing radii " +
-                        in_meters(d - exclusion(by, to)) + " together, plus " + in_meters(exclusion(by, to)) + ")",
-                    kMaxClassDistance);
+  if (const std::optional<ClassesTooFar> far = classes_too_far(fill)) {
+    const std::size_t a = far->a, b = far->b;
+    const double d = far->distance;
+    const auto exclusion = [&](std::size_t from, std::size_t to) {
+      return to < classes[from].exclusion.size() ? classes[from].exclusion[to] : 0.0;
+    };
+    const std::string &name_a = config.species[a].name, &name_b = config.species[b].name;
+    if (a == b) {
+      double total_share = 0;
+      for (const PoissonClass& c : classes) total_share += c.share;
+      const std::string share_key = "species." + name_a + ".share";
+      throw too_far(config.key_lines.contains(share_key) ? share_key : "tiles.points_per_tile",
+                    "leaves about " + significant_text(fill.points_per_tile * classes[a].share / total_share, 3) +
+                        " points of '" + name_a + "' a tile (its share of tiles.points_per_tile " +
+                        std::to_string(fill.points_per_tile) + "), " + in_meters(d) + " apart",
+                    kMaxClassDistance, ": a larger share or more points per tile");
     }
+    const std::size_t by = exclusion(a, b) >= exclusion(b, a) ? a : b, to = by == a ? b : a;
+    throw too_far("species." + config.species[by].name + ".exclusion",
+                  "keeps '" + name_a + "' and '" + name_b + "' " + in_meters(d) + " apart (their packing radii " +
+                      in_meters(d - exclusion(by, to)) + " together, plus " + in_meters(exclusion(by, to)) + ")",
+                  kMaxClassDistance);
+  }
   return classes;
 }
 
