@@ -849,9 +849,10 @@ std::vector<float> progressive_ranks(const ContentModel& model, const Content& c
     const double d = std::sqrt(norm2(points.local[p.i] - points.local[p.j] + Vec2{double(p.kx), double(p.ky)}));
     near[p.i].push_back({p.j, d});
   }
-  auto shared = [&](std::uint32_t p) {
-    return model.classes()[static_cast<std::size_t>(points.cls[p])].kind != ClassKind::interior;
-  };
+  // The phase a point takes its rung in: 0 shared (climbing ahead), 1 interior.
+  std::vector<std::uint8_t> phase_of(n);
+  for (std::uint32_t p = 0; p < n; ++p)
+    phase_of[p] = model.classes()[static_cast<std::size_t>(points.cls[p])].kind != ClassKind::interior ? 0 : 1;
   auto shuffle_key = [&](std::uint32_t p) { return hash_combine(hash_combine(options.seed, 0x7a4c), p); };
   std::vector<double> holders(n);
   std::vector<int> ring(n);
@@ -873,7 +874,7 @@ std::vector<float> progressive_ranks(const ContentModel& model, const Content& c
     std::vector<double> ring_share(rings, 0.0), ring_taken(rings, 0.0);
     for (const std::uint32_t p : members) {
       total += holders[p];
-      phase_total[shared(p) ? 0 : 1] += holders[p];
+      phase_total[phase_of[p]] += holders[p];
       if (species.edge_objects[s]) ring_share[static_cast<std::size_t>(ring[p])] += holders[p];
     }
     if (!species.edge_objects[s])
@@ -902,7 +903,7 @@ std::vector<float> progressive_ranks(const ContentModel& model, const Content& c
     };
     auto fill_rung = [&](int k, int phase) {
       const double d = rung_density(k);
-      auto candidate = [&](std::uint32_t p) { return rung[p] == kDensityRungs && (shared(p) ? 0 : 1) == phase; };
+      auto candidate = [&](std::uint32_t p) { return rung[p] == kDensityRungs && phase_of[p] == phase; };
       std::vector<std::vector<std::uint32_t>> queue(rings);
       for (const std::uint32_t p : members)
         if (candidate(p)) queue[static_cast<std::size_t>(ring[p])].push_back(p);
