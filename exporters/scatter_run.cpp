@@ -69,6 +69,7 @@ ScatterResult run_scatter(const ScatterRequest& request) {
   for (std::size_t v = 0; v < variant_class.size(); ++v)
     variant_class[v] = std::uint8_t(class_of_variant(filled, int(v)).value_or(kNoClass));
   std::vector<std::uint8_t> point_class;
+  std::vector<std::size_t> class_sizes(class_count);  // counted as placed: sizes each class's copy
   if (request.metrics) {
     // The union's coordinates and classes stay while one class at a time is copied and measured.
     check_memory_estimate(request.tileset, fmt::format("scatter --metrics over about {:.3g} instances", estimate),
@@ -88,8 +89,11 @@ ScatterResult run_scatter(const ScatterRequest& request) {
       xs.insert(xs.end(), b.x.begin(), b.x.end());
       ys.insert(ys.end(), b.y.begin(), b.y.end());
     }
-    for (std::size_t i = 0; class_count && i < b.size(); ++i)
-      point_class.push_back(b.variant[i] < variant_class.size() ? variant_class[b.variant[i]] : kNoClass);
+    for (std::size_t i = 0; class_count && i < b.size(); ++i) {
+      const std::uint8_t c = b.variant[i] < variant_class.size() ? variant_class[b.variant[i]] : kNoClass;
+      point_class.push_back(c);
+      if (c < class_count) ++class_sizes[c];
+    }
     placed += b.size();
     if (request.max_instances && placed > *request.max_instances)
       throw Error(
@@ -112,9 +116,6 @@ ScatterResult run_scatter(const ScatterRequest& request) {
     metric_options.tile_size = tile_size;
     metric_options.packing_diameter = result.packing_diameter;
     result.metrics = measure_points(xs, ys, metric_options);
-    std::vector<std::size_t> class_sizes(class_count);
-    for (const std::uint8_t c : point_class)
-      if (c < class_count) ++class_sizes[c];
     std::vector<float> class_xs, class_ys;
     for (std::size_t c = 0; c < class_count; ++c) {
       class_xs.clear();
