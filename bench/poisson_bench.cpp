@@ -29,6 +29,7 @@
 #include "generator/point_metrics.h"
 #include "generator/poisson_tiles.h"
 #include "generator/tiling.h"
+#include "tests/generator/rank_density.h"
 
 namespace wangscape {
 namespace {
@@ -259,7 +260,7 @@ void print_rank_figures() {
     constexpr std::array<double, 3> densities = {0.5, 0.25, 0.125};
     PoissonFillOptions fill;
     fill.points_per_tile = 60;
-    const auto profiles = rank_density_across_tile(builtin_tileset(set_name), fill, densities, 64);
+    const auto profiles = testing::rank_density_across_tile(builtin_tileset(set_name), fill, densities, 64);
     std::printf("  %-9s", set_name);
     for (std::size_t k = 0; k < densities.size(); ++k) {
       const auto [least, most] = std::minmax_element(profiles[k].begin(), profiles[k].end());
@@ -398,20 +399,10 @@ BENCHMARK(BM_FillRelaxCohen8)->Arg(0)->Arg(100)->Unit(benchmark::kMillisecond);
 void write_rank_density_map(const std::string& path) {
   constexpr int kBins = 32, kScale = 7, kGap = 12, kFills = 800;
   constexpr std::array<double, 2> densities = {0.25, 0.125};
-  std::array<std::vector<double>, 2> count;
-  for (auto& c : count) c.assign(kBins * kBins, 0.0);
-  for (int seed = 1; seed <= kFills; ++seed) {
-    PoissonFillOptions fill;
-    fill.points_per_tile = 60;
-    fill.seed = static_cast<std::uint64_t>(seed);
-    for (const auto& tile : fill_poisson_tiles(builtin_tileset("cohen8"), fill).tiles)
-      for (const TilePoint& p : tile)
-        for (std::size_t k = 0; k < densities.size(); ++k)
-          if (p.rank < densities[k])
-            count[k]
-                 [std::size_t(std::min(kBins - 1, int(p.y * kBins)) * kBins + std::min(kBins - 1, int(p.x * kBins)))] +=
-                1;
-  }
+  PoissonFillOptions fill;
+  fill.points_per_tile = 60;
+  const std::vector<std::vector<double>> count =
+      testing::rank_counts_across_tile(builtin_tileset("cohen8"), fill, densities, kFills, kBins);
   const int side = kBins * kScale;
   ImageRgb8 image(2 * side + kGap, side, {255, 255, 255});
   for (std::size_t k = 0; k < densities.size(); ++k) {

@@ -1080,30 +1080,6 @@ std::optional<ClassesTooFar> classes_too_far(const PoissonFillOptions& options) 
   return first_too_far(make_species_table(options, dart_distance(options), default_tight_radius(options)));
 }
 
-std::vector<std::vector<double>> rank_density_across_tile(const TileSet& set, PoissonFillOptions options,
-                                                          std::span<const double> densities, int fills, int bands) {
-  std::vector<std::vector<double>> count(densities.size(), std::vector<double>(std::size_t(bands), 0.0));
-  const auto band = [bands](float v) {
-    return static_cast<std::size_t>(std::min(bands - 1, static_cast<int>(v * bands)));
-  };
-  for (int seed = 1; seed <= fills; ++seed) {
-    options.seed = static_cast<std::uint64_t>(seed);
-    for (const auto& tile : fill_poisson_tiles(set, options).tiles)
-      for (const TilePoint& p : tile)
-        for (std::size_t k = 0; k < densities.size(); ++k)
-          if (p.rank < densities[k]) {
-            count[k][band(p.x)] += 1;
-            count[k][band(p.y)] += 1;
-          }
-  }
-  for (std::vector<double>& profile : count) {
-    double mean = 0;
-    for (const double c : profile) mean += c / bands;
-    for (double& c : profile) c /= mean;
-  }
-  return count;
-}
-
 std::optional<int> class_of_variant(const FilledTileSet& filled, int variant) {
   const int classes = std::max<int>(1, static_cast<int>(filled.class_variants.size()));
   for (int c = 0; c < classes; ++c) {

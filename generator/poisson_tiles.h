@@ -178,13 +178,6 @@ struct ClassesTooFar {
 // The first such pair (by a, then b), or nothing: the fill refuses options with one.
 std::optional<ClassesTooFar> classes_too_far(const PoissonFillOptions& options);
 
-// The progressive rank's evenness: per d of `densities`, the density of the points of rank < d
-// across a tile, in `bands` bands of 1 / bands tile sides (x and y pooled, every tile of `set`
-// counted once, so a point counts in each tile that holds it), over the mean band, summed over
-// the fills of seeds 1..fills (options.seed is replaced). 1 everywhere: no tile grid shows.
-std::vector<std::vector<double>> rank_density_across_tile(const TileSet& set, PoissonFillOptions options,
-                                                          std::span<const double> densities, int fills, int bands = 20);
-
 // The attributes of point `id` (a function of the identity only).
 struct PointAttributes {
   std::uint16_t variant = 0;

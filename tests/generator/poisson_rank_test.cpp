@@ -13,6 +13,7 @@
 #include "generator/point_metrics.h"
 #include "generator/poisson_tiles.h"
 #include "generator/tiling.h"
+#include "tests/generator/rank_density.h"
 
 namespace wangscape {
 namespace {
@@ -81,7 +82,7 @@ TEST(ProgressiveRank, ThinnedDensityIsFlatAcrossTheTile) {
     PoissonFillOptions options;
     options.points_per_tile = 60;
     const std::vector<std::vector<double>> profiles =
-        rank_density_across_tile(builtin_tileset(set), options, kProfileDensities, seeds);
+        testing::rank_density_across_tile(builtin_tileset(set), options, kProfileDensities, seeds);
     for (std::size_t k = 0; k < kProfileDensities.size(); ++k) {
       SCOPED_TRACE(set + " d " + std::to_string(kProfileDensities[k]));
       std::printf("%s d %.3f:", set.c_str(), kProfileDensities[k]);
