@@ -156,6 +156,14 @@ std::vector<Link> present_links(const TileSet& set, const std::vector<Link>& lin
   return kept;
 }
 
+std::vector<int> targets_of(const std::vector<Link>& a, const std::vector<Link>& b = {}) {
+  std::vector<int> slots;
+  for (const Link& link : a) slots.push_back(link.target);
+  for (const Link& link : b) slots.push_back(link.target);
+  std::sort(slots.begin(), slots.end());
+  return slots;
+}
+
 // Classes of tiles that a row (rows true) or a column never leaves, as masks of tile indices (sets
 // of at most 64 tiles): a tile's east side (E, NE, SE) is the west side (W, NW, SW) of the tile
 // after it, so linking each tile's two sides joins the west sides a row can pass through; a
@@ -163,43 +171,25 @@ std::vector<Link> present_links(const TileSet& set, const std::vector<Link>& lin
 // NE). One class for most sets; cohen8-corners has two each way (W xor NW xor SW is the same on
 // both sides of each of its tiles, and S xor SW xor SE).
 std::vector<std::uint64_t> side_classes(const TileSet& set, bool rows) {
-  std::map<std::array<int, 3>, std::size_t> node_of_side;
-  std::vector<std::size_t> parent;
-  const auto node = [&](const std::array<int, 3>& side) {
-    const auto [it, added] = node_of_side.emplace(side, parent.size());
-    if (added) parent.push_back(parent.size());
-    return it->second;
-  };
-  const auto root = [&](std::size_t x) {
+  const std::vector<Link> passes = present_links(set, rows ? std::vector<Link>{{kW, kE}, {kNW, kNE}, {kSW, kSE}}
+                                                           : std::vector<Link>{{kS, kN}, {kSW, kNW}, {kSE, kNE}});
+  // Keys of west (south) sides; a tile's east (north) side is the key it hands the next tile.
+  const CandidateTable sides(set, targets_of(passes));
+  std::vector<std::uint32_t> parent(sides.key_count());
+  std::iota(parent.begin(), parent.end(), 0u);
+  const auto root = [&](std::uint32_t x) {
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
   };
-  const auto near_side = [&](const Tile& t) {
-    return rows ? std::array<int, 3>{t.w(), t.nw(), t.sw()} : std::array<int, 3>{t.s(), t.sw(), t.se()};
-  };
-  const auto far_side = [&](const Tile& t) {
-    return rows ? std::array<int, 3>{t.e(), t.ne(), t.se()} : std::array<int, 3>{t.n(), t.nw(), t.ne()};
-  };
-  for (const Tile& t : set.tiles) {
-    const std::size_t a = node(near_side(t)), b = node(far_side(t));
-    parent[root(a)] = root(b);
-  }
-  std::map<std::size_t, std::size_t> class_of_root;
+  for (const Tile& t : set.tiles) parent[root(sides.key_of_tile(t))] = root(sides.key_from(t, passes));
+  std::map<std::uint32_t, std::size_t> class_of_root;
   std::vector<std::uint64_t> classes;
   for (std::size_t t = 0; t < set.size(); ++t) {
-    const auto [it, added] = class_of_root.emplace(root(node(near_side(set.tiles[t]))), classes.size());
+    const auto [it, added] = class_of_root.emplace(root(sides.key_of_tile(set.tiles[t])), classes.size());
     if (added) classes.push_back(0);
     classes[it->second] |= std::uint64_t{1} << t;
   }
   return classes;
-}
-
-std::vector<int> targets_of(const std::vector<Link>& a, const std::vector<Link>& b = {}) {
-  std::vector<int> slots;
-  for (const Link& link : a) slots.push_back(link.target);
-  for (const Link& link : b) slots.push_back(link.target);
-  std::sort(slots.begin(), slots.end());
-  return slots;
 }
 
 class SweepTiler {
