@@ -126,10 +126,11 @@ TEST(NoIdenticalNeighbours, HashedEdgeTilingsKeepTheTileFrequencies) {
 TEST(NoIdenticalNeighbours, HashedCornerTilingsLiftTheMirrorTiles) {
   // Two tiles side by side that are both their own mirror across the vertical axis are identical,
   // so the repair takes mirror tiles away: corner-2 held 0.018 of 0000 and of 1111 (72 % below
-  // 1/16), 0.105 of each checkerboard. The balance rounds' weights lift them (0000 at 0.037).
+  // 1/16), 0.105 of each checkerboard. The balance rounds' weights lift them (0000 at 0.037): the
+  // worst departure is 41 % (deterministic), 73 % before the balance rounds.
   const double worst = worst_frequency_departure(builtin_tileset("corner-2"));
   std::printf("corner-2 128 x 128: tile frequencies within %.1f %% of 1/16\n", 100 * worst);
-  EXPECT_LT(worst, 0.5);
+  EXPECT_LT(worst, 0.45);
 }
 
 TEST(NoIdenticalNeighbours, HashedTilingsAddLittleStructure) {
