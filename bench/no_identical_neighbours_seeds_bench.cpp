@@ -11,32 +11,14 @@
 #include <string>
 #include <vector>
 
+#include "bench/mean_and_error.h"
 #include "core/error.h"
 #include "generator/tiling.h"
 #include "generator/tiling_stats.h"
 
-namespace {
-
-struct MeanAndError {
-  double sum = 0, squares = 0;
-  int count = 0;
-  void add(double x) {
-    sum += x;
-    squares += x * x;
-    ++count;
-  }
-  double mean() const { return sum / count; }
-  // The standard error of the mean (the sample standard deviation over sqrt(count)).
-  double error() const {
-    const double variance = (squares - sum * sum / count) / (count - 1);
-    return std::sqrt(std::max(variance, 0.0) / count);
-  }
-};
-
-}  // namespace
-
 int main(int argc, char** argv) {
   using namespace wangscape;
+  using bench::MeanAndError;
   if (argc != 5) {
     std::fprintf(stderr, "usage: %s SET ALGORITHM SIZE SEEDS (e.g. corner-2 hash 128 200)\n", argv[0]);
     return 2;

@@ -142,8 +142,8 @@ TEST(NoIdenticalNeighbours, HashedTilingsAddLittleStructure) {
   // balanced (HashedCornerTilingsLiftTheMirrorTiles): within 10 % of the plain tiling's score over
   // seeds 1-12 (corner-2 at 64 x 64: 8.8 %, 13.2 % before the balance rounds). Over seeds 1-200
   // corner-2 stays 7-8 % above, corner-3 3 %, complete-edge-2 2 % (docs/tileset-format.md: the
-  // neighbours' joint distribution alone puts any tiling without identical neighbours of corner-2
-  // about 2.6 % above).
+  // neighbours' joint distribution alone puts any random-access tiling without identical
+  // neighbours of corner-2 about 2.6 % above; bench/no_identical_neighbours_floor_bench).
   for (const char* set : {"complete-edge-2", "corner-2", "corner-3"})
     for (const int size : {64, 128}) {
       const double plain = mean_periodicity(set, TilingAlgorithm::hash, size, false);
