@@ -16,6 +16,9 @@
 // BM_ViewRayCast/CAMERA/W/H: the anchor, `view --engine embree`: the same frame ray cast whole
 //   (ViewEngine::embree: a primary and a sun-shadow ray per pixel in packets of 16, the
 //   near field's shading, both threads), with the counters of BM_ViewFrame.
+// BM_ViewRayCastUnshadowed/CAMERA/W/H: the same without the sun-shadow rays (the scene lit with
+//   shadows off): one primary ray per pixel and its shading, the floor of any frame whose near
+//   field covers the screen (in the field it does at any near field the quality goal allows).
 // BM_RayCastAgainstTruth/CAMERA/640/360: the ray-cast frame against the truth, as above.
 // BM_EmbreeOneSample/CAMERA/W/H: the reference renderer at one sample per pixel with the same
 //   shading (single rays, both threads): its trace seconds (the scene built once, not counted).
@@ -39,19 +42,30 @@ namespace {
 
 using namespace wangscape;
 
-std::shared_ptr<const ViewWorld> default_world() {
-  static const std::shared_ptr<const ViewWorld> world = [] {
+// The default scene's world, and the same world lit without sun-shadow rays (BM_ViewRayCastUnshadowed),
+// both from one pack built once per run.
+struct Worlds {
+  std::shared_ptr<const ViewWorld> lit, unshadowed;
+};
+
+const Worlds& default_worlds() {
+  static const Worlds worlds = [] {
     const SceneConfig config = default_scene_config();
-    Scene scene = make_scene(config);
     const std::filesystem::path pack =
         std::filesystem::temp_directory_path() / ("wangscape-view-bench-" + std::to_string(::getpid()) + ".ldi");
+    Scene scene = make_scene(config);
     build_scene_ldi_pack(scene, pack, ldi_options(config));
-    auto made = std::make_shared<const ViewWorld>(std::move(scene), pack, ldi_options(config).shading);
+    ShadingSettings unshadowed = ldi_options(config).shading;
+    unshadowed.shadows = false;
+    Worlds made{std::make_shared<const ViewWorld>(std::move(scene), pack, ldi_options(config).shading),
+                std::make_shared<const ViewWorld>(make_scene(config), pack, unshadowed)};
     std::filesystem::remove(pack);  // the pack stays mapped
     return made;
   }();
-  return world;
+  return worlds;
 }
+
+std::shared_ptr<const ViewWorld> default_world() { return default_worlds().lit; }
 
 ViewCamera bench_camera(const ViewWorld& world, int which) {
   const double head = std::numeric_limits<double>::quiet_NaN();  // head height above the ground
@@ -77,8 +91,8 @@ double process_cpu_seconds() {
 }
 
 // Frames of one camera (the LDI view, or the whole frame ray cast) and their counters.
-void measure_frames(benchmark::State& state, bool ray_cast) {
-  const auto world = default_world();
+void measure_frames(benchmark::State& state, bool ray_cast, bool shadows = true) {
+  const auto world = shadows ? default_world() : default_worlds().unshadowed;
   LdiRenderer renderer(world, int(state.range(1)), int(state.range(2)));
   renderer.set_near_field(ray_cast ? 0 : double(state.range(3)) / 100);
   renderer.set_engine(ray_cast ? ViewEngine::embree : ViewEngine::ldi);
@@ -111,6 +125,7 @@ void measure_frames(benchmark::State& state, bool ray_cast) {
 
 void BM_ViewFrame(benchmark::State& state) { measure_frames(state, false); }
 void BM_ViewRayCast(benchmark::State& state) { measure_frames(state, true); }
+void BM_ViewRayCastUnshadowed(benchmark::State& state) { measure_frames(state, true, false); }
 
 void against_truth(benchmark::State& state, bool ray_cast) {
   const auto world = default_world();
@@ -175,6 +190,7 @@ void small_anchor_views(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_ViewFrame)->Apply(views)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_ViewAgainstTruth)->Apply(views)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK(BM_ViewRayCast)->Apply(anchor_views)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK(BM_ViewRayCastUnshadowed)->Apply(anchor_views)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_RayCastAgainstTruth)
     ->Apply(small_anchor_views)
     ->Unit(benchmark::kMillisecond)
