@@ -19,6 +19,8 @@
 // BM_ViewRayCastUnshadowed/CAMERA/W/H: the same without the sun-shadow rays (the scene lit with
 //   shadows off): one primary ray per pixel and its shading, the floor of any frame whose near
 //   field covers the screen (in the field it does at any near field the quality goal allows).
+// BM_ViewFrameUnshadowed/CAMERA/W/H/800: BM_ViewFrame without the sun-shadow rays: its near_ms
+//   counter is the near field's primary rays and their shading alone.
 // BM_RayCastAgainstTruth/CAMERA/640/360: the ray-cast frame against the truth, as above.
 // BM_EmbreeOneSample/CAMERA/W/H: the reference renderer at one sample per pixel with the same
 //   shading (single rays, both threads): its trace seconds (the scene built once, not counted).
@@ -126,6 +128,7 @@ void measure_frames(benchmark::State& state, bool ray_cast, bool shadows = true)
 void BM_ViewFrame(benchmark::State& state) { measure_frames(state, false); }
 void BM_ViewRayCast(benchmark::State& state) { measure_frames(state, true); }
 void BM_ViewRayCastUnshadowed(benchmark::State& state) { measure_frames(state, true, false); }
+void BM_ViewFrameUnshadowed(benchmark::State& state) { measure_frames(state, false, false); }
 
 void against_truth(benchmark::State& state, bool ray_cast) {
   const auto world = default_world();
@@ -176,6 +179,13 @@ void views(benchmark::internal::Benchmark* b) {
   b->ArgNames({"camera", "width", "height", "near_cm"});
 }
 
+void near_field_views(benchmark::internal::Benchmark* b) {
+  for (int camera = 0; camera < 4; ++camera)
+    for (const auto& [w, h] : {std::pair{640, 360}, std::pair{1280, 720}})
+      b->Args({camera, w, h, std::lround(kDefaultNearField * 100)});
+  b->ArgNames({"camera", "width", "height", "near_cm"});
+}
+
 void anchor_views(benchmark::internal::Benchmark* b) {
   for (int camera = 0; camera < 4; ++camera)
     for (const auto& [w, h] : {std::pair{640, 360}, std::pair{1280, 720}}) b->Args({camera, w, h});
@@ -190,6 +200,7 @@ void small_anchor_views(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_ViewFrame)->Apply(views)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_ViewAgainstTruth)->Apply(views)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK(BM_ViewRayCast)->Apply(anchor_views)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK(BM_ViewFrameUnshadowed)->Apply(near_field_views)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_ViewRayCastUnshadowed)->Apply(anchor_views)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_RayCastAgainstTruth)
     ->Apply(small_anchor_views)
