@@ -54,6 +54,8 @@ constexpr int kShareGridX = 32, kShareGridY = 18;
 constexpr double kNearFlowerRadius = 0.5;
 constexpr double kNearShadowMargin = 4.0;
 constexpr int kOcclusionBlock = 8;  // pixels: the side of a block of the occlusion test
+// Meters a terrain skirt reaches below the errors it bridges (float rounding at the terrain's heights).
+constexpr float kSkirtMargin = 0.01f;
 
 // Keeps the nearest entry (ties: the smaller color), so the result does not depend on the order.
 void depth_write(std::uint64_t& slot, std::uint64_t value) {
@@ -84,10 +86,13 @@ struct LdiRenderer::Impl {
   std::vector<float> steep_low_weight;
   std::vector<float> level_b_weight, dir_b_weight;
   std::vector<double> direction_east, direction_north;  // the pack's ray directions, horizontal unit
-  // Terrain vertices in camera space; the chunks drawn, nearest first, and their distances.
+  // Terrain vertices in camera space; the chunks drawn, nearest first, their distances, their
+  // levels of detail (0 for those not drawn) and those levels' vertical errors (meters).
   std::vector<float> vx, vy, vz;
   std::vector<std::uint32_t> chunk_order;
   std::vector<float> chunk_distance;
+  std::vector<std::uint8_t> chunk_level;
+  std::vector<float> chunk_height_error;
   std::atomic<std::uint64_t> depth_pixels{0};
   tbb::enumerable_thread_specific<ThreadDepths> thread_depths;  // per thread, kept across frames
   // The near field: the real flowers of the tiles around the eye, ray traced (made on the first
@@ -192,6 +197,8 @@ LdiRenderer::LdiRenderer(std::shared_ptr<const ViewWorld> world, int width, int 
   m.vz.assign(vertices, 0);
   m.chunk_order.reserve(world_->terrain().chunks.size());
   m.chunk_distance.assign(world_->terrain().chunks.size(), 0);
+  m.chunk_level.assign(world_->terrain().chunks.size(), 0);
+  m.chunk_height_error.assign(world_->terrain().chunks.size(), 0);
   stats_.levels.assign(world_->pack().info().levels + 1, 0);
 }
 
@@ -215,6 +222,12 @@ void LdiRenderer::set_detail(double detail) {
     throw Error("view: detail " + std::to_string(detail) + "; expected " + std::to_string(kMinViewDetail) + " .. " +
                 std::to_string(kMaxViewDetail) + " (1: the pack's levels at their own distances)");
   detail_ = detail;
+}
+
+void LdiRenderer::set_terrain_error(double pixels) {
+  if (!(pixels >= 0 && pixels <= 64))
+    throw Error("view: terrain error " + std::to_string(pixels) + " pixels; expected 0 .. 64 (0: the fine mesh)");
+  terrain_error_ = pixels;
 }
 
 void LdiRenderer::set_near_field(double meters) {
@@ -245,6 +258,7 @@ void LdiRenderer::begin_frame(const ViewCamera& camera) {
   m.depth_pixels = 0;
   stats_.depth_pixels = 0;
   stats_.tiles_drawn = stats_.tiles_culled = stats_.steep_tiles = stats_.near_tiles = stats_.tiles_occluded = 0;
+  stats_.terrain_triangles = stats_.terrain_pixels = 0;
   std::fill(stats_.levels.begin(), stats_.levels.end(), 0);
   order_.clear();
 }
@@ -532,7 +546,8 @@ void LdiRenderer::draw_terrain() {
     depth_write(m.zbuffer[std::size_t(py) * std::size_t(m.width) + std::size_t(px)],
                 pack_entry(depth, lut.encode(r), lut.encode(g), lut.encode(b)));
   };
-  auto raster = [&](const Vertex& a, const Vertex& b, const Vertex& c) {
+  // Counts the pixels it tests into `tests`.
+  auto raster = [&](const Vertex& a, const Vertex& b, const Vertex& c, std::uint64_t& tests) {
     const float ax = m.cx + m.focal * a.x / a.z, ay = m.cy - m.focal * a.y / a.z;
     const float bx = m.cx + m.focal * b.x / b.z, by = m.cy - m.focal * b.y / b.z;
     const float cx = m.cx + m.focal * c.x / c.z, cy = m.cy - m.focal * c.y / c.z;
@@ -580,6 +595,7 @@ void LdiRenderer::draw_terrain() {
       if (empty || !(lo <= hi + 2)) continue;
       const int span_x0 = std::max(x0, int(std::ceil(lo - 0.5f)) - 1),
                 span_x1 = std::min(x1, int(std::floor(hi - 0.5f)) + 1);
+      tests += std::uint64_t(std::max(0, span_x1 - span_x0 + 1));
       for (int px = span_x0; px <= span_x1; ++px) {
         const float fx = float(px) + 0.5f;
         // Barycentric weights (either winding), a pixel on a shared edge goes to one side only.
@@ -604,7 +620,7 @@ void LdiRenderer::draw_terrain() {
       }
     }
   };
-  auto draw_triangle = [&](const std::array<std::uint32_t, 3>& ids) {
+  auto draw_triangle = [&](const std::array<std::uint32_t, 3>& ids, std::uint64_t& tests) {
     Vertex v[3];
     int behind = 0;
     for (int k = 0; k < 3; ++k) {
@@ -628,7 +644,7 @@ void LdiRenderer::draw_terrain() {
         out([&](const Vertex& q) { return q.y < -q.z * m.tan_y; }))
       return;
     if (behind == 0) {
-      raster(v[0], v[1], v[2]);
+      raster(v[0], v[1], v[2], tests);
       return;
     }
     // Clip against the near plane (Sutherland-Hodgman): 3 or 4 vertices, drawn as a fan.
@@ -646,11 +662,14 @@ void LdiRenderer::draw_terrain() {
                      lerp(p.lr, q.lr), lerp(p.lg, q.lg), lerp(p.lb, q.lb)};
       }
     }
-    for (int k = 1; k + 1 < n; ++k) raster(poly[0], poly[k], poly[k + 1]);
+    for (int k = 1; k + 1 < n; ++k) raster(poly[0], poly[k], poly[k + 1], tests);
   };
   // The chunks in the frustum, nearest first: the early depth test then skips the shading of
-  // ground that nearer ground hides.
+  // ground that nearer ground hides. Each at the coarsest level whose error projects to at most
+  // terrain_error_ pixels at its nearest point.
   m.chunk_order.clear();
+  std::fill(m.chunk_level.begin(), m.chunk_level.end(), 0);
+  std::fill(m.chunk_height_error.begin(), m.chunk_height_error.end(), 0.0f);
   for (std::uint32_t k = 0; k < terrain.chunks.size(); ++k) {
     const ViewWorld::Terrain::Chunk& chunk = terrain.chunks[k];
     const V3 low{chunk.low[0], chunk.low[1], chunk.low[2]}, high{chunk.high[0], chunk.high[1], chunk.high[2]};
@@ -662,23 +681,55 @@ void LdiRenderer::draw_terrain() {
     }
     m.chunk_distance[k] = float(squared);
     m.chunk_order.push_back(k);
+    if (terrain_error_ <= 0) continue;
+    const double allowed = terrain_error_ * std::sqrt(squared) / double(m.focal);  // meters at that distance
+    for (std::uint32_t level = chunk.level_count; level-- > 1;)
+      if (terrain.levels[chunk.first_level + level].error <= allowed) {
+        m.chunk_level[k] = std::uint8_t(level);
+        m.chunk_height_error[k] = terrain.levels[chunk.first_level + level].height_error;
+        break;
+      }
   }
   std::sort(m.chunk_order.begin(), m.chunk_order.end(), [&](std::uint32_t p, std::uint32_t q) {
     return m.chunk_distance[p] != m.chunk_distance[q] ? m.chunk_distance[p] < m.chunk_distance[q] : p < q;
   });
+  std::atomic<std::uint64_t> triangles{0}, tests{0};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.chunk_order.size(), 1), [&](const auto& r) {
+    std::uint64_t drawn = 0, tested = 0;
     for (std::size_t o = r.begin(); o != r.end(); ++o) {
-      const ViewWorld::Terrain::Chunk& chunk = terrain.chunks[m.chunk_order[o]];
-      for (std::uint32_t v = chunk.first_vertex; v < chunk.first_vertex + chunk.vertex_count; ++v) {
-        const auto c = m.to_camera(terrain.x[v], terrain.y[v], terrain.z[v]);
+      const std::uint32_t k = m.chunk_order[o];
+      const ViewWorld::Terrain::Chunk& chunk = terrain.chunks[k];
+      const ViewWorld::Terrain::Level& level = terrain.levels[chunk.first_level + m.chunk_level[k]];
+      // A skirt bridges this level's vertical error and its neighbours' (each within its error of
+      // the fine surface, so their sides are at most the sum apart).
+      float drop = level.height_error + kSkirtMargin;
+      float neighbours_error = 0;
+      for (const std::int32_t n : chunk.neighbours)
+        if (n >= 0) neighbours_error = std::max(neighbours_error, m.chunk_height_error[std::size_t(n)]);
+      drop += neighbours_error;
+      const std::uint32_t skirts = level.first_vertex + level.vertex_count - level.skirt_vertices;
+      for (std::uint32_t v = level.first_vertex; v < level.first_vertex + level.vertex_count; ++v) {
+        const auto c = m.to_camera(terrain.x[v], terrain.y[v], v < skirts ? terrain.z[v] : terrain.z[v] - drop);
         m.vx[v] = c[0];
         m.vy[v] = c[1];
         m.vz[v] = c[2];
       }
-      for (std::uint32_t t = chunk.first_triangle; t < chunk.first_triangle + chunk.triangle_count; ++t)
-        draw_triangle(terrain.triangles[t]);
+      for (std::uint32_t t = level.first_triangle; t < level.first_triangle + level.triangle_count; ++t)
+        draw_triangle(terrain.triangles[t], tested);
+      drawn += level.triangle_count;
+      // The fine mesh's triangles that its coarser neighbours' grids leave out.
+      if (m.chunk_level[k] == 0)
+        for (std::uint32_t b = chunk.first_borrowed; b < chunk.first_borrowed + chunk.borrowed_count; ++b)
+          if (m.chunk_level[terrain.borrowed[b].owner] != 0) {
+            draw_triangle(terrain.borrowed[b].ids, tested);
+            ++drawn;
+          }
     }
+    triangles += drawn;
+    tests += tested;
   });
+  stats_.terrain_triangles = triangles;
+  stats_.terrain_pixels = tests;
 }
 
 // Step 9: the z-buffer's colors into the image, the sky where nothing was drawn.

@@ -42,6 +42,9 @@ inline constexpr double kMinViewDetail = 0.1, kMaxViewDetail = 10;
 // `wangscape view` uses unless told (docs/viewer.md says how it was chosen).
 inline constexpr double kMaxNearField = 100;
 inline constexpr double kDefaultNearField = 8;
+// The terrain's level of detail (LdiRenderer::set_terrain_error): the most its chunks' levels may
+// stray from the fine mesh, in pixels, by default.
+inline constexpr double kDefaultTerrainError = 0.5;
 
 // What one frame drew.
 struct ViewFrameStats {
@@ -49,14 +52,16 @@ struct ViewFrameStats {
   // Of it: choosing and culling tiles, warping LDIs, rasterizing the terrain, ray tracing the
   // near field, resolving (sky).
   std::array<double, 5> phase_ms{};
-  std::uint64_t depth_pixels = 0;    // depth pixels warped
-  std::uint64_t tiles_drawn = 0;     // in the frustum: drawn as LDIs or as far-field color
-  std::uint64_t tiles_culled = 0;    // outside the frustum
-  std::uint64_t steep_tiles = 0;     // of those drawn, from the world's steep sets (seen from above)
-  std::uint64_t near_tiles = 0;      // in the frustum or not, within the near field: ray traced
-  std::uint64_t near_rays = 0;       // rays the near field cast (primary and shadow)
-  std::uint64_t tiles_occluded = 0;  // LDI tiles not warped: wholly behind the near field
-  bool ray_cast = false;             // the frame beyond the near field was ray cast (ViewEngine)
+  std::uint64_t depth_pixels = 0;       // depth pixels warped
+  std::uint64_t tiles_drawn = 0;        // in the frustum: drawn as LDIs or as far-field color
+  std::uint64_t tiles_culled = 0;       // outside the frustum
+  std::uint64_t steep_tiles = 0;        // of those drawn, from the world's steep sets (seen from above)
+  std::uint64_t near_tiles = 0;         // in the frustum or not, within the near field: ray traced
+  std::uint64_t near_rays = 0;          // rays the near field cast (primary and shadow)
+  std::uint64_t tiles_occluded = 0;     // LDI tiles not warped: wholly behind the near field
+  bool ray_cast = false;                // the frame beyond the near field was ray cast (ViewEngine)
+  std::uint64_t terrain_triangles = 0;  // terrain triangles of the chunks drawn, at their levels of detail
+  std::uint64_t terrain_pixels = 0;     // pixels the terrain's triangles tested (inside or not)
   // Tiles drawn per level (each at its nearer level when two are dithered); the last entry
   // counts those beyond the last level, drawn as the far-field color.
   std::vector<std::uint64_t> levels;
@@ -111,6 +116,11 @@ class LdiRenderer {
   // over the LDIs and the terrain beyond. 0: LDIs everywhere. Throws Error outside
   // 0 .. kMaxNearField.
   void set_near_field(double meters);
+  // The terrain's level of detail: each chunk drawn at the coarsest level whose error (how far it
+  // strays from the fine mesh, meters) projects to at most `pixels` at the chunk's nearest
+  // point; 0: the fine mesh everywhere (large errors are for looking at the levels). Throws
+  // Error outside 0 .. 64.
+  void set_terrain_error(double pixels);
   // How frames are drawn (ViewEngine); the first frame that ray casts beyond the near field
   // builds the whole scene's Embree BVH.
   void set_engine(ViewEngine engine) { engine_ = engine; }
@@ -152,6 +162,7 @@ class LdiRenderer {
   ViewFrameStats stats_;
   double detail_ = 1;
   double near_field_ = 0;
+  double terrain_error_ = kDefaultTerrainError;
   ViewEngine engine_ = ViewEngine::ldi;
   int samples_ = 1;
   std::array<float, 2> subpixel_{0, 0};  // the sample's offset, pixels

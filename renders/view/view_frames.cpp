@@ -297,6 +297,9 @@ int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewReq
                   static_cast<unsigned long long>(stats.tiles_occluded));
       std::printf("depth pixels: %llu (%.1f M/s)\n", static_cast<unsigned long long>(stats.depth_pixels),
                   stats.frame_ms > 0 ? double(stats.depth_pixels) / stats.frame_ms / 1e3 : 0.0);
+      std::printf("terrain: %llu triangles, %llu pixels tested\n",
+                  static_cast<unsigned long long>(stats.terrain_triangles),
+                  static_cast<unsigned long long>(stats.terrain_pixels));
       std::printf("tiles: %llu drawn (%llu from the steep sets, seen from above), %llu culled\n",
                   static_cast<unsigned long long>(stats.tiles_drawn),
                   static_cast<unsigned long long>(stats.steep_tiles),

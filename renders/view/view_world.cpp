@@ -167,74 +167,6 @@ std::vector<float> terrain_sun_visibility(const Mesh& mesh, const std::array<flo
   return visible;
 }
 
-constexpr std::size_t kTerrainChunkTriangles = 1024;
-
-// The mesh cut into a square grid of chunks by triangle centroid (about kTerrainChunkTriangles
-// each); a vertex shared by chunks is copied into each, with its light.
-ViewWorld::Terrain chunked_terrain(const Mesh& mesh, const std::vector<std::array<float, 3>>& light) {
-  ViewWorld::Terrain out;
-  if (mesh.triangles.empty()) return out;
-  std::array<float, 2> low{std::numeric_limits<float>::max(), std::numeric_limits<float>::max()};
-  std::array<float, 2> high{-low[0], -low[1]};
-  for (const auto& p : mesh.positions)
-    for (std::size_t k = 0; k < 2; ++k) {
-      low[k] = std::min(low[k], p[k]);
-      high[k] = std::max(high[k], p[k]);
-    }
-  const int side =
-      std::max(1, int(std::lround(std::sqrt(double(mesh.triangles.size()) / double(kTerrainChunkTriangles)))));
-  const auto cell = [&](float v, std::size_t k) {
-    const float f = (v - low[k]) / std::max(high[k] - low[k], 1e-6f);
-    return std::clamp(int(f * float(side)), 0, side - 1);
-  };
-  std::vector<std::vector<std::uint32_t>> members(std::size_t(side) * std::size_t(side));
-  for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
-    const auto& ids = mesh.triangles[t];
-    float cx = 0, cy = 0;
-    for (const std::uint32_t i : ids) {
-      cx += mesh.positions[i][0] / 3;
-      cy += mesh.positions[i][1] / 3;
-    }
-    members[std::size_t(cell(cy, 1)) * std::size_t(side) + std::size_t(cell(cx, 0))].push_back(t);
-  }
-  std::vector<std::uint32_t> local(mesh.positions.size(), ~0u);  // this chunk's copy of a vertex
-  for (const auto& chunk_triangles : members) {
-    if (chunk_triangles.empty()) continue;
-    ViewWorld::Terrain::Chunk chunk;
-    chunk.first_vertex = std::uint32_t(out.x.size());
-    chunk.first_triangle = std::uint32_t(out.triangles.size());
-    chunk.low = {std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
-                 std::numeric_limits<float>::max()};
-    chunk.high = {-chunk.low[0], -chunk.low[1], -chunk.low[2]};
-    for (const std::uint32_t t : chunk_triangles) {
-      std::array<std::uint32_t, 3> remapped{};
-      for (std::size_t k = 0; k < 3; ++k) {
-        const std::uint32_t i = mesh.triangles[t][k];
-        if (local[i] == ~0u || local[i] < chunk.first_vertex) {
-          local[i] = std::uint32_t(out.x.size());
-          const auto& p = mesh.positions[i];
-          out.x.push_back(p[0]);
-          out.y.push_back(p[1]);
-          out.z.push_back(p[2]);
-          out.light_r.push_back(light[i][0]);
-          out.light_g.push_back(light[i][1]);
-          out.light_b.push_back(light[i][2]);
-          for (std::size_t c = 0; c < 3; ++c) {
-            chunk.low[c] = std::min(chunk.low[c], p[c]);
-            chunk.high[c] = std::max(chunk.high[c], p[c]);
-          }
-        }
-        remapped[k] = local[i];
-      }
-      out.triangles.push_back(remapped);
-    }
-    chunk.vertex_count = std::uint32_t(out.x.size()) - chunk.first_vertex;
-    chunk.triangle_count = std::uint32_t(out.triangles.size()) - chunk.first_triangle;
-    out.chunks.push_back(chunk);
-  }
-  return out;
-}
-
 }  // namespace
 
 std::shared_ptr<const ViewWorld> ViewWorld::load(const fs::path& dir, const StageObserver& stage) {
@@ -340,7 +272,7 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
     const float cos_sun = sunlit[v] * std::max(0.0f, n[0] * sun_[0] + n[1] * sun_[1] + n[2] * sun_[2]);
     light[v] = lit(sun_shading_, {1, 1, 1}, cos_sun, 1);  // the irradiance: a white ground's color
   }
-  terrain_ = chunked_terrain(mesh, light);
+  terrain_ = make_terrain_chunks(mesh, light);
 
   // The far field: per tile and direction, the coarsest LDI's front flower samples averaged —
   // those in the canopy's upper part: seen from afar at a grazing angle, the tiles in front hide

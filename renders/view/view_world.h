@@ -18,6 +18,7 @@
 #include "renders/ldi/ldi_pack.h"
 #include "renders/trace/ground_colors.h"
 #include "renders/trace/shading.h"
+#include "renders/view/terrain_chunks.h"
 #include "scene/scene.h"
 
 namespace wangscape {
@@ -49,19 +50,8 @@ class ViewWorld {
     std::vector<std::array<std::uint8_t, kPlantCells * kPlantCells * kPlantSpecies>> plant_steps;
     std::size_t size() const { return tile.size(); }
   };
-  // The terrain mesh in square chunks of about kTerrainChunkTriangles triangles, each with its
-  // own copy of its vertices (contiguous), so a frame culls whole chunks by their box and
-  // transforms only the vertices of those it draws, with no two tasks writing one vertex.
-  struct Terrain {                                        // structure of arrays
-    std::vector<float> x, y, z;                           // ENU meters
-    std::vector<float> light_r, light_g, light_b;         // sun + sky irradiance (linear) at the vertex
-    std::vector<std::array<std::uint32_t, 3>> triangles;  // chunk by chunk
-    struct Chunk {
-      std::uint32_t first_vertex = 0, vertex_count = 0, first_triangle = 0, triangle_count = 0;
-      std::array<float, 3> low{}, high{};  // the box of its vertices, ENU meters
-    };
-    std::vector<Chunk> chunks;
-  };
+  // The terrain mesh in chunks with their levels of detail (renders/view/terrain_chunks.h).
+  using Terrain = TerrainChunks;
 
   const Scene& scene() const { return scene_; }
   const LdiPack& pack() const { return *pack_; }
