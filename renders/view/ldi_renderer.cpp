@@ -54,6 +54,8 @@ constexpr int kShareGridX = 32, kShareGridY = 18;
 constexpr double kNearFlowerRadius = 0.5;
 constexpr double kNearShadowMargin = 4.0;
 constexpr int kOcclusionBlock = 8;  // pixels: the side of a block of the occlusion test
+// The sign of a terrain triangle's screen area (counter-clockwise seen from above) seen from above.
+constexpr float kUpperSide = -1;
 // Meters a terrain skirt reaches below the errors it bridges (float rounding at the terrain's heights).
 constexpr float kSkirtMargin = 0.01f;
 
@@ -546,13 +548,15 @@ void LdiRenderer::draw_terrain() {
     depth_write(m.zbuffer[std::size_t(py) * std::size_t(m.width) + std::size_t(px)],
                 pack_entry(depth, lut.encode(r), lut.encode(g), lut.encode(b)));
   };
-  // Counts the pixels it tests into `tests`.
-  auto raster = [&](const Vertex& a, const Vertex& b, const Vertex& c, std::uint64_t& tests) {
+  // Counts the pixels it tests into `tests`. With `one_sided`, a triangle seen from below is
+  // skipped: the terrain is a height field and the eye above it, so where a ray meets the
+  // underside it has met the upper side first (only the skirts are seen from either side).
+  auto raster = [&](const Vertex& a, const Vertex& b, const Vertex& c, bool one_sided, std::uint64_t& tests) {
     const float ax = m.cx + m.focal * a.x / a.z, ay = m.cy - m.focal * a.y / a.z;
     const float bx = m.cx + m.focal * b.x / b.z, by = m.cy - m.focal * b.y / b.z;
     const float cx = m.cx + m.focal * c.x / c.z, cy = m.cy - m.focal * c.y / c.z;
     const float area = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
-    if (!(std::abs(area) > 1e-12f)) return;
+    if (!(std::abs(area) > 1e-12f) || (one_sided && area * kUpperSide < 0)) return;
     const int x0 = std::max(0, int(std::floor(std::min({ax, bx, cx})))),
               x1 = std::min(m.width - 1, int(std::ceil(std::max({ax, bx, cx}))));
     const int y0 = std::max(0, int(std::floor(std::min({ay, by, cy})))),
@@ -601,8 +605,11 @@ void LdiRenderer::draw_terrain() {
         // Barycentric weights (either winding), a pixel on a shared edge goes to one side only.
         float wa = ((bx - fx) * (cy - fy) - (by - fy) * (cx - fx)) * inv_area;
         float wb = ((cx - fx) * (ay - fy) - (cy - fy) * (ax - fx)) * inv_area;
+        // The third edge by its own function too (not 1 - wa - wb), so that two triangles meeting
+        // on an edge agree exactly on which side of it a pixel lies: a silhouette's pixels then
+        // belong to its upper side whenever to its underside, which may be skipped.
+        if (wa < 0 || wb < 0 || ((ax - fx) * (by - fy) - (ay - fy) * (bx - fx)) * inv_area < 0) continue;
         float wc = 1 - wa - wb;
-        if (wa < 0 || wb < 0 || wc < 0) continue;
         const float iz = wa * iza + wb * izb + wc * izc;
         const float z = 1 / iz;
         const float drawn_depth = z * (1 + kTerrainDepthBias);
@@ -620,7 +627,7 @@ void LdiRenderer::draw_terrain() {
       }
     }
   };
-  auto draw_triangle = [&](const std::array<std::uint32_t, 3>& ids, std::uint64_t& tests) {
+  auto draw_triangle = [&](const std::array<std::uint32_t, 3>& ids, bool one_sided, std::uint64_t& tests) {
     Vertex v[3];
     int behind = 0;
     for (int k = 0; k < 3; ++k) {
@@ -644,7 +651,7 @@ void LdiRenderer::draw_terrain() {
         out([&](const Vertex& q) { return q.y < -q.z * m.tan_y; }))
       return;
     if (behind == 0) {
-      raster(v[0], v[1], v[2], tests);
+      raster(v[0], v[1], v[2], one_sided, tests);
       return;
     }
     // Clip against the near plane (Sutherland-Hodgman): 3 or 4 vertices, drawn as a fan.
@@ -662,7 +669,7 @@ void LdiRenderer::draw_terrain() {
                      lerp(p.lr, q.lr), lerp(p.lg, q.lg), lerp(p.lb, q.lb)};
       }
     }
-    for (int k = 1; k + 1 < n; ++k) raster(poly[0], poly[k], poly[k + 1], tests);
+    for (int k = 1; k + 1 < n; ++k) raster(poly[0], poly[k], poly[k + 1], one_sided, tests);
   };
   // The chunks in the frustum, nearest first: the early depth test then skips the shading of
   // ground that nearer ground hides. Each at the coarsest level whose error projects to at most
@@ -715,13 +722,13 @@ void LdiRenderer::draw_terrain() {
         m.vz[v] = c[2];
       }
       for (std::uint32_t t = level.first_triangle; t < level.first_triangle + level.triangle_count; ++t)
-        draw_triangle(terrain.triangles[t], tested);
+        draw_triangle(terrain.triangles[t], terrain.triangles[t][2] < skirts, tested);
       drawn += level.triangle_count;
       // The fine mesh's triangles that its coarser neighbours' grids leave out.
       if (m.chunk_level[k] == 0)
         for (std::uint32_t b = chunk.first_borrowed; b < chunk.first_borrowed + chunk.borrowed_count; ++b)
           if (m.chunk_level[terrain.borrowed[b].owner] != 0) {
-            draw_triangle(terrain.borrowed[b].ids, tested);
+            draw_triangle(terrain.borrowed[b].ids, true, tested);
             ++drawn;
           }
     }
