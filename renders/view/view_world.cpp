@@ -113,14 +113,13 @@ LdiImage one_layer_ldi(const LdiView& v, int factor) {
 
 // How many rank steps of each species' plants grow at (x, y, z): none where its rules forbid it,
 // else its density there in steps (the stream keeps a plant where its rank < the density).
-std::array<std::uint8_t, kPlantSpecies> plant_steps(const SpeciesRules& rules, double x, double y, double z,
-                                                    std::size_t species) {
+std::array<std::uint8_t, kPlantSpecies> plant_steps(const SpeciesRules& rules, double x, double y, double z) {
+  const std::size_t species = rules.size();
+  std::vector<double> densities(species);  // every species' at once: the ground is read once
+  rules.densities_where_grow(x, y, z, densities);
   std::array<std::uint8_t, kPlantSpecies> steps{};
-  for (std::size_t s = 0; s < std::min<std::size_t>(species, kPlantSpecies); ++s) {
-    const auto k = std::uint8_t(s);
-    steps[s] = std::uint8_t(
-        std::clamp(std::lround(rules.density_where_grows(k, x, y, z) * kPlantRankSteps), 0L, long(kPlantRankSteps)));
-  }
+  for (std::size_t s = 0; s < std::min<std::size_t>(species, kPlantSpecies); ++s)
+    steps[s] = std::uint8_t(std::clamp(std::lround(densities[s] * kPlantRankSteps), 0L, long(kPlantRankSteps)));
   return steps;
 }
 
@@ -252,8 +251,7 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
         for (int j = 0; j < n; ++j)
           for (int i = 0; i < n; ++i) {
             const double x = x0 + (i + 0.5) * tile_size_ / n, y = y0 + (j + 0.5) * tile_size_ / n;
-            const auto cell_steps =
-                plant_steps(*field.species, x, y, ground_height(x, y, centre), field.species->size());
+            const auto cell_steps = plant_steps(*field.species, x, y, ground_height(x, y, centre));
             std::copy(cell_steps.begin(), cell_steps.end(), steps.begin() + (j * n + i) * kPlantSpecies);
           }
       }
