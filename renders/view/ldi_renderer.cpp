@@ -53,10 +53,10 @@ constexpr int kShareGridX = 32, kShareGridY = 18;
 // flowers are kept as sun occluders (a low sun's shadows fall into the near field from there).
 constexpr double kNearFlowerRadius = 0.5;
 constexpr double kNearShadowMargin = 4.0;
-constexpr int kOcclusionBlock = 8;
-constexpr std::uint32_t kTerrainPiece =
-    512;  // triangles: the terrain's unit of parallel work  // pixels: the side of a block of the occlusion test
-// The sign of a terrain triangle's screen area (counter-clockwise seen from above) seen from above.
+constexpr int kOcclusionBlock = 8;            // pixels: the side of a block of the occlusion test
+constexpr std::uint32_t kTerrainPiece = 512;  // triangles: the terrain's unit of parallel work
+// The sign of the screen area of a terrain triangle (counter-clockwise seen from above) when its
+// upper side faces the eye.
 constexpr float kUpperSide = -1;
 // Meters a terrain skirt reaches below the errors it bridges (float rounding at the terrain's heights).
 constexpr float kSkirtMargin = 0.01f;

@@ -55,6 +55,12 @@ struct ChunkPart {
     }
     return std::uint32_t(x.size() - 1);
   }
+  // Drops what was added after the first `vertices` vertices and `triangles_kept` triangles (a level
+  // not kept). The box keeps them: it only grows, and a level's points lie on the fine surface.
+  void truncate(std::size_t vertices, std::size_t triangles_kept) {
+    for (auto* v : {&x, &y, &z, &r, &g, &b}) v->resize(vertices);
+    triangles.resize(triangles_kept);
+  }
 };
 
 // A regular lattice of (n + 1) x (n + 1) points over a chunk's square with the fine mesh's
@@ -140,13 +146,7 @@ class ChunkBuilder {
       TerrainChunks::Level level =
           grid_level(part, ci, cj, lattice, cells, overlapping, neighbour, references, skirt_triangles);
       if (level.triangle_count - skirt_triangles >= previous) {  // not cheaper: dropped
-        part.x.resize(before_vertices);
-        part.y.resize(before_vertices);
-        part.z.resize(before_vertices);
-        part.r.resize(before_vertices);
-        part.g.resize(before_vertices);
-        part.b.resize(before_vertices);
-        part.triangles.resize(before_triangles);
+        part.truncate(before_vertices, before_triangles);
         continue;
       }
       previous = level.triangle_count - skirt_triangles;
