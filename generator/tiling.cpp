@@ -323,7 +323,7 @@ class SweepTiler {
   // alike tiles (cohen8 at 128 x 128: periodicity 0.056 at offset (1, 1), against 0.035).
   static constexpr std::size_t kMaskTiles = 64;
   // The tilt of the row draw (next_row_with_lookahead), chosen over 10 seeds of cohen8 at 64 and
-  // 128 (docs/tileset-format.md).
+  // 128 (docs/tileset-format.md); cohen8 itself has since moved to kEqualityTilt.
   static constexpr double kTiltTwoRowsBack = 0.85, kTiltTwoRowsBackBeside = 0.88, kTiltPreviousRowTwoAside = 0.85;
   using TileMask = std::uint64_t;
   static TileMask bit(std::size_t t) { return TileMask{1} << t; }
@@ -406,8 +406,9 @@ class SweepTiler {
     // the tile two rows back, kTiltTwoRowsBackBeside per equal tile beside that one, and
     // kTiltPreviousRowTwoAside per equal tile two columns aside in the previous row; the row is
     // drawn in proportion to the product of its tiles' weights. Only for two colors on each
-    // alphabet (cohen8, cohen8-corners): cohen12 and owen12 are below the plain tiling untilted,
-    // and the tilt put cohen12 at 64 x 64 just above it (0.0441 against 0.0438).
+    // alphabet (cohen8-corners; cohen8 now draws with kEqualityTilt): cohen12 and owen12 are below
+    // the plain tiling untilted, and the tilt put cohen12 at 64 x 64 just above it (0.0441 against
+    // 0.0438).
     const auto weight = [&](std::size_t i, std::size_t t) {
       if (!tilt_ || two_back_.size() != width) return 1.0;
       double w = two_back_[i] == t ? kTiltTwoRowsBack : 1.0;
