@@ -9,7 +9,8 @@
 //   - noise: 1 + sum over offsets r within 4 of (sum_kl P_kl(r)^2 - chance^2) / (chance - chance^2),
 //     P_kl(r) the share of tiles k with an l at +r (pooled over the seeds). A far offset's
 //     autocorrelation has about this times the variance of tiles drawn independently
-//     (docs/tileset-format.md); each term is 0 where the tiles at r are independent, else above.
+//     (docs/tileset-format.md); each term is 0 where the tiles at r are independent, and with every
+//     tile equally frequent above 0 otherwise.
 //   build/release/bench/no_identical_neighbours_structure_bench cohen8 scanline 128 100
 #include <algorithm>
 #include <cmath>
