@@ -177,7 +177,9 @@ TEST(ldi_view, SameBytesOnEveryVectorPath) {
   }
   set_vector_path(widest);
   EXPECT_EQ(vector_path(), widest);
-  if (widest != VectorPath::avx512) EXPECT_THROW(set_vector_path(VectorPath::avx512), Error);
+  if (widest != VectorPath::avx512) {
+    EXPECT_THROW(set_vector_path(VectorPath::avx512), Error);
+  }
 }
 
 TEST(ldi_view, NoHolesInACloseView) {

@@ -40,7 +40,9 @@ TEST(ViewPath, HeightsAboveTheGroundFollowTheTerrain) {
     const PathCamera c = camera_along(path, t, sloped_ground, "walk.json");
     EXPECT_NEAR(c.position[2] - *sloped_ground(c.position[0], 0), 1.7, 1e-9) << t;
     EXPECT_NEAR(c.look_at[2] - *sloped_ground(c.look_at[0], 0), 1.0, 1e-9) << t;
-    if (std::fmod(t, 2) == 0) EXPECT_NEAR(c.position[0], 10 * t, 1e-9) << t;  // the spline passes the keys
+    if (std::fmod(t, 2) == 0) {
+      EXPECT_NEAR(c.position[0], 10 * t, 1e-9) << t;  // the spline passes the keys
+    }
   }
 }
 
