@@ -323,45 +323,59 @@ class SweepTiler {
   // alike tiles (cohen8 at 128 x 128: periodicity 0.056 at offset (1, 1), against 0.035).
   static constexpr std::size_t kMaskTiles = 64;
   // The tilt of the row draw (next_row_with_lookahead), chosen over 10 seeds of cohen8 at 64 and
-  // 128 (docs/tileset-format.md); cohen8 itself has since moved to kEqualityTilt.
+  // 128 (docs/tileset-format.md); cohen8 itself has since moved to kCohen8Tilt.
   static constexpr double kTiltTwoRowsBack = 0.85, kTiltTwoRowsBackBeside = 0.88, kTiltPreviousRowTwoAside = 0.85;
   using TileMask = std::uint64_t;
   static TileMask bit(std::size_t t) { return TileMask{1} << t; }
 
-  // Edge sets of eight tiles with two colours each way (cohen8: two tiles per north and west) draw
-  // each row in proportion to the product, over its tiles, of exp(log_weight) per tile equal to the
-  // tile `columns` aside (either side) `rows_back` rows back, or `columns` back in the row itself
-  // (rows_back 0). Rows uniform among those that may follow give cohen8 at 128 x 128 a mean
-  // autocorrelation of +0.036 at (0, 2), +0.022 at (2, 1), +0.012 at (3, 0) (seeds 1000+, 20
-  // tilings); the weights were fitted so that it is about 0 at every one of these offsets (each
-  // round: 40 tilings, log_weight -= 5 x mean autocorrelation, 40 rounds; scanline and bottom-left
-  // agreed within 0.01 and are averaged and mirrored). Over seeds 1-100 no offset within 6 of the
-  // origin but the forbidden neighbours keeps more than 0.005 (the five-term tilt before it: +0.015
-  // at (0, 2), +0.011 at (3, 0)). docs/tileset-format.md gives the figures.
-  struct EqualityTilt {
+  // Some sets draw each row in proportion to the product, over its tiles, of exp(log weight) per
+  // tile equal to the tile `columns` aside (either side) `rows_back` rows back, or `columns` back in
+  // the row itself (rows_back 0): one log weight per offset of kTiltOffsets, from the set's table.
+  // Rows uniform among those that may follow give cohen8 at 128 x 128 a mean autocorrelation of
+  // +0.036 at (0, 2), +0.022 at (2, 1), +0.012 at (3, 0) (seeds 1000+, 20 tilings); the weights were
+  // fitted so that it is about 0 at every one of these offsets (each round: 40 tilings of 128 x 128,
+  // log weight -= 5 x mean autocorrelation; scanline and bottom-left agreed within 0.01 and are
+  // averaged and mirrored). cohen8 over seeds 1-100: no offset within 6 of the origin but the
+  // forbidden neighbours keeps more than 0.005 (the five-term tilt before it: +0.015 at (0, 2),
+  // +0.011 at (3, 0)). docs/tileset-format.md gives the figures.
+  struct TiltOffset {
     int columns, rows_back;
-    double log_weight;
   };
-  static constexpr std::array<EqualityTilt, 12> kEqualityTilt = {{{1, 1, -0.03},
-                                                                  {2, 1, -0.16},
-                                                                  {3, 1, -0.04},
-                                                                  {0, 2, -0.31},
-                                                                  {1, 2, -0.22},
-                                                                  {2, 2, -0.05},
-                                                                  {0, 3, -0.05},
-                                                                  {1, 3, -0.03},
-                                                                  {2, 3, 0.02},
-                                                                  {1, 4, 0.035},
-                                                                  {2, 0, -0.045},
-                                                                  {3, 0, -0.08}}};
-  static constexpr std::size_t kEqualityTiltRows = 4, kTiltTiles = 8;
+  static constexpr std::array<TiltOffset, 12> kTiltOffsets = {
+      {{1, 1}, {2, 1}, {3, 1}, {0, 2}, {1, 2}, {2, 2}, {0, 3}, {1, 3}, {2, 3}, {1, 4}, {2, 0}, {3, 0}}};
+  using TiltTable = std::array<double, kTiltOffsets.size()>;
+  // Edge sets of eight tiles with two colours each way (cohen8: two tiles per north and west).
+  static constexpr TiltTable kCohen8Tilt = {-0.03, -0.16, -0.04, -0.31, -0.22,  -0.05,
+                                            -0.05, -0.03, 0.02,  0.035, -0.045, -0.08};
+  // The complete edge set with two colours each way (complete-edge-2) and the complete corner set
+  // with two (corner-2), fitted likewise (30 rounds of 40 tilings): rows uniform among those that
+  // may follow had +0.010 at (1, 1) and +0.009 at (1, 2).
+  static constexpr TiltTable kCompleteEdge2Tilt = {-0.128, -0.022, 0.001, -0.013, 0.004, 0.009,
+                                                   0.005,  -0.003, 0.002, 0.0,    0.005, -0.015};
+  static constexpr TiltTable kCorner2Tilt = {-0.038, -0.068, 0.015, 0.211, -0.073, -0.02,
+                                             -0.067, 0.026,  0.01,  0.007, 0.049,  -0.051};
+  static constexpr std::size_t kEqualityTiltRows = 4, kTiltTiles = 16;
+  // The most chain states a row may hold (1.6 x 10^7 doubles, 128 MB). A row that would hold more is
+  // drawn untilted: for sets of 16 tiles the first row beyond 4096 tiles (every tile may stand
+  // there), complete-edge-2's later rows beyond 32768; cohen8's first row beyond 32768.
+  static constexpr std::size_t kMaxTiltStates = std::size_t{1} << 24;
+
+  // The table for this set, or none.
+  const TiltTable* tilt_table() const {
+    if (row_classes_.size() != 1 || column_classes_.size() != 1) return nullptr;
+    if (set_.size() == 8 && set_.has_edges && !set_.has_corners && tilt_) return &kCohen8Tilt;
+    if (set_.size() == 16 && set_.has_edges && !set_.has_corners && tilt_) return &kCompleteEdge2Tilt;
+    if (set_.size() == 16 && set_.has_corners && !set_.has_edges && set_.corner_colors == 2) return &kCorner2Tilt;
+    return nullptr;
+  }
 
   void prepare_row_lookahead() {
     row_classes_ = side_classes(set_, true);
     column_classes_ = side_classes(set_, false);
-    equality_tilt_ = set_.size() == 8 && set_.has_edges && !set_.has_corners && tilt_ && row_classes_.size() == 1 &&
-                     column_classes_.size() == 1;
-    for (std::size_t k = 0; k < kEqualityTilt.size(); ++k) tilt_factor_[k] = std::exp(kEqualityTilt[k].log_weight);
+    if (const TiltTable* table = tilt_table()) {
+      equality_tilt_ = true;
+      for (std::size_t k = 0; k < table->size(); ++k) tilt_factor_[k] = std::exp((*table)[k]);
+    }
     vertical_mask_.assign(set_.size(), 0);
     east_mask_.assign(set_.size(), 0);
     for (std::size_t t = 0; t < set_.size(); ++t) {
@@ -382,7 +396,7 @@ class SweepTiler {
   }
 
   void next_row_with_lookahead(std::span<const std::uint16_t> previous, std::span<std::uint16_t> row) {
-    if (equality_tilt_) return next_row_tilted(previous, row);
+    if (equality_tilt_ && next_row_tilted(previous, row)) return;
     const std::size_t width = row.size(), tiles = set_.size();
     const TileMask all = tiles == 64 ? ~TileMask{0} : bit(tiles) - 1;
     // A set whose rows keep a class (side_classes; cohen8-corners): drawn uniformly, a row took the
@@ -406,7 +420,7 @@ class SweepTiler {
     // the tile two rows back, kTiltTwoRowsBackBeside per equal tile beside that one, and
     // kTiltPreviousRowTwoAside per equal tile two columns aside in the previous row; the row is
     // drawn in proportion to the product of its tiles' weights. Only for two colors on each
-    // alphabet (cohen8-corners; cohen8 now draws with kEqualityTilt): cohen12 and owen12 are below
+    // alphabet (cohen8-corners; cohen8 now draws with kCohen8Tilt): cohen12 and owen12 are below
     // the plain tiling untilted, and the tilt put cohen12 at 64 x 64 just above it (0.0441 against
     // 0.0438).
     const auto weight = [&](std::size_t i, std::size_t t) {
@@ -462,19 +476,17 @@ class SweepTiler {
       row[i] = pick_weighted(choices, std::span(completions_).subspan(i * tiles, tiles));
     }
     two_back_.assign(previous.begin(), previous.end());
+    if (equality_tilt_) remember_tilted_row(row);  // a row too wide for the tilt's chain
   }
 
-  // The row drawn in proportion to the product of kEqualityTilt's weights, among the rows that may
+  // The row drawn in proportion to the product of the tilt's weights, among the rows that may
   // follow: a chain over (tile two back, tile one back, tile) carries the in-row terms too. Each
   // position's allowed tiles (at most kTiltTiles) are listed; positions -2 and -1 hold one stand-in
-  // that every tile may follow.
-  void next_row_tilted(std::span<const std::uint16_t> previous, std::span<std::uint16_t> row) {
-    constexpr std::size_t kTiles = kTiltTiles, kStates = kTiles * kTiles * kTiles;
+  // that every tile may follow. False, with nothing drawn, if the chain would exceed kMaxTiltStates.
+  bool next_row_tilted(std::span<const std::uint16_t> previous, std::span<std::uint16_t> row) {
+    constexpr std::size_t kTiles = kTiltTiles;
     constexpr std::uint16_t kNone = 0xFFFF;
     const std::size_t width = row.size(), positions = width + 2;  // position p is column p - 2
-    std::array<double, 4> in_row = {1, 1, 1, 1};                  // by columns back
-    for (std::size_t k = 0; k < kEqualityTilt.size(); ++k)
-      if (kEqualityTilt[k].rows_back == 0) in_row[static_cast<std::size_t>(kEqualityTilt[k].columns)] = tilt_factor_[k];
     tilt_count_.assign(positions, 1);
     tilt_tile_.assign(positions * kTiles, kNone);
     tilt_weight_.assign(positions * kTiles, 1.0);
@@ -483,16 +495,16 @@ class SweepTiler {
     std::array<double, kTiles> by_tile{};
     for (std::size_t i = 0; i < width; ++i) {
       by_tile.fill(1.0);
-      for (const EqualityTilt& term : kEqualityTilt) {
-        if (term.rows_back == 0 || term.rows_back > static_cast<int>(history_.size())) continue;
-        const std::vector<std::uint16_t>& back = history_[static_cast<std::size_t>(term.rows_back - 1)];
-        const double factor = tilt_factor_[static_cast<std::size_t>(&term - kEqualityTilt.data())];
-        if (i + static_cast<std::size_t>(term.columns) < width)
-          by_tile[back[i + static_cast<std::size_t>(term.columns)]] *= factor;
-        if (term.columns > 0 && i >= static_cast<std::size_t>(term.columns))
-          by_tile[back[i - static_cast<std::size_t>(term.columns)]] *= factor;
+      for (std::size_t k = 0; k < kTiltOffsets.size(); ++k) {
+        const auto [columns, rows_back] = kTiltOffsets[k];
+        if (rows_back == 0 || rows_back > static_cast<int>(history_.size())) continue;
+        const std::vector<std::uint16_t>& back = history_[static_cast<std::size_t>(rows_back - 1)];
+        const auto aside = static_cast<std::size_t>(columns);
+        if (i + aside < width) by_tile[back[i + aside]] *= tilt_factor_[k];
+        if (aside > 0 && i >= aside) by_tile[back[i - aside]] *= tilt_factor_[k];
       }
-      const TileMask allowed = previous.empty() ? bit(kTiles) - 1 : vertical_mask_[previous[i]] & ~bit(previous[i]);
+      const TileMask allowed =
+          previous.empty() ? bit(set_.size()) - 1 : vertical_mask_[previous[i]] & ~bit(previous[i]);
       std::size_t count = 0;
       for (TileMask rest = allowed; rest != 0; rest &= rest - 1, ++count) {
         const auto t = static_cast<std::uint16_t>(std::countr_zero(rest));
@@ -501,23 +513,33 @@ class SweepTiler {
       }
       tilt_count_[i + 2] = count;
     }
+    // Where each position's chain states begin (a, b, c: list indices at p - 2, p - 1, p).
+    tilt_offset_.assign(positions + 1, 0);
+    for (std::size_t p = 2; p < positions; ++p)
+      tilt_offset_[p + 1] = tilt_offset_[p] + tilt_count_[p - 2] * tilt_count_[p - 1] * tilt_count_[p];
+    if (tilt_offset_[positions] > kMaxTiltStates) return false;
     // Which tiles of the next position may follow each tile (east edge, not identical).
     for (std::size_t p = 0; p + 1 < positions; ++p)
       for (std::size_t k = 0; k < tilt_count_[p]; ++k) {
         const std::uint16_t t = tilt_tile_[p * kTiles + k];
-        std::uint8_t next = 0;
+        std::uint16_t next = 0;
         for (std::size_t d = 0; d < tilt_count_[p + 1]; ++d) {
           const std::uint16_t u = tilt_tile_[(p + 1) * kTiles + d];
-          if (t == kNone || ((east_mask_[t] & ~bit(t)) & bit(u)) != 0) next |= static_cast<std::uint8_t>(1u << d);
+          if (t == kNone || ((east_mask_[t] & ~bit(t)) & bit(u)) != 0) next |= static_cast<std::uint16_t>(1u << d);
         }
         tilt_next_[p * kTiles + k] = next;
       }
     const auto tile = [&](std::size_t p, std::size_t k) { return tilt_tile_[p * kTiles + k]; };
-    // ways[p * kStates + (a * kTiles + b) * kTiles + c]: the weighted completions of the positions
-    // after p when a, b, c stand at p - 2, p - 1, p; written for every triple that may stand there,
-    // which are the only ones read.
-    tilt_ways_.resize(positions * kStates);
-    // Calls visit(a, b, c) for each triple of list indices that may stand at p - 2, p - 1, p.
+    const auto state = [&](std::size_t p, std::size_t a, std::size_t b, std::size_t c) {
+      return tilt_offset_[p] + (a * tilt_count_[p - 1] + b) * tilt_count_[p] + c;
+    };
+    std::array<double, 4> in_row = {1, 1, 1, 1};  // by columns back
+    for (std::size_t k = 0; k < kTiltOffsets.size(); ++k)
+      if (kTiltOffsets[k].rows_back == 0) in_row[static_cast<std::size_t>(kTiltOffsets[k].columns)] = tilt_factor_[k];
+    // ways[state(p, a, b, c)]: the weighted completions of the positions after p; written for
+    // every triple that may stand at p - 2, p - 1, p, which are the only ones read.
+    tilt_ways_.resize(tilt_offset_[positions]);
+    // Calls visit(a, b, c) for each of those triples.
     const auto for_each_state = [&](std::size_t p, const auto& visit) {
       for (std::size_t a = 0; a < tilt_count_[p - 2]; ++a)
         for (unsigned bs = tilt_next_[(p - 2) * kTiles + a]; bs != 0; bs &= bs - 1)
@@ -526,7 +548,6 @@ class SweepTiler {
             visit(a, static_cast<std::size_t>(std::countr_zero(bs)), static_cast<std::size_t>(std::countr_zero(cs)));
     };
     for (std::size_t p = positions; p-- > 2;) {
-      double* ways = tilt_ways_.data() + p * kStates;
       double largest = 0;
       for_each_state(p, [&](std::size_t a, std::size_t b, std::size_t c) {
         double sum = p + 1 == positions ? 1.0 : 0.0;
@@ -535,9 +556,9 @@ class SweepTiler {
             const auto d = static_cast<std::size_t>(std::countr_zero(ds));
             const std::uint16_t u = tile(p + 1, d);
             sum += tilt_weight_[(p + 1) * kTiles + d] * (tile(p - 1, b) == u ? in_row[2] : 1.0) *
-                   (tile(p - 2, a) == u ? in_row[3] : 1.0) * ways[kStates + (b * kTiles + c) * kTiles + d];
+                   (tile(p - 2, a) == u ? in_row[3] : 1.0) * tilt_ways_[state(p + 1, b, c, d)];
           }
-        ways[(a * kTiles + b) * kTiles + c] = sum;
+        tilt_ways_[state(p, a, b, c)] = sum;
         largest = std::max(largest, sum);
       });
       if (largest == 0)
@@ -546,8 +567,7 @@ class SweepTiler {
                     (previous.empty() ? std::string("to start with")
                                       : "can follow sweep row " + std::to_string(rows_done_ - 1)));
       // Only ratios within a position matter: keep the counts in range.
-      for_each_state(
-          p, [&](std::size_t a, std::size_t b, std::size_t c) { ways[(a * kTiles + b) * kTiles + c] /= largest; });
+      for_each_state(p, [&](std::size_t a, std::size_t b, std::size_t c) { tilt_ways_[state(p, a, b, c)] /= largest; });
     }
     std::size_t a = 0, b = 0;        // list indices at p - 2 and p - 1
     std::uint16_t before_a = kNone;  // the tile at p - 3
@@ -559,7 +579,7 @@ class SweepTiler {
         const auto c = static_cast<std::size_t>(std::countr_zero(cs));
         const std::uint16_t t = tile(p, c);
         weight[c] = tilt_weight_[p * kTiles + c] * (tile(p - 2, a) == t ? in_row[2] : 1.0) *
-                    (before_a == t ? in_row[3] : 1.0) * tilt_ways_[p * kStates + (a * kTiles + b) * kTiles + c];
+                    (before_a == t ? in_row[3] : 1.0) * tilt_ways_[state(p, a, b, c)];
         total += weight[c];
       }
       double target = total * (next_bits() / 4294967296.0);
@@ -575,6 +595,12 @@ class SweepTiler {
       a = b;
       b = chosen;
     }
+    remember_tilted_row(row);
+    return true;
+  }
+
+  // The rows the tilt reads, the last first.
+  void remember_tilted_row(std::span<const std::uint16_t> row) {
     if (history_.size() < kEqualityTiltRows) history_.emplace_back();
     std::rotate(history_.rbegin(), history_.rbegin() + 1, history_.rend());
     history_.front().assign(row.begin(), row.end());
@@ -677,19 +703,19 @@ class SweepTiler {
   std::uint32_t spare_bits_ = 0;
   std::uint64_t bit_word_ = 0;
   int bits_left_ = 0;
-  std::vector<std::uint64_t> pairs_;                        // two-choice fast path (see prepare_pairs)
-  std::vector<TileMask> vertical_mask_, east_mask_;         // row lookahead (forbid, <= 64 tiles)
-  std::vector<double> completions_;                         // its counts, width x tiles
-  std::vector<std::uint16_t> two_back_;                     // the row before the previous one
-  std::vector<std::vector<std::uint16_t>> history_;         // next_row_tilted's rows, the last first
-  std::array<double, kEqualityTilt.size()> tilt_factor_{};  // exp(log_weight) of each term
-  std::vector<std::size_t> tilt_count_;                     // next_row_tilted's lists, kept for their storage
+  std::vector<std::uint64_t> pairs_;                   // two-choice fast path (see prepare_pairs)
+  std::vector<TileMask> vertical_mask_, east_mask_;    // row lookahead (forbid, <= 64 tiles)
+  std::vector<double> completions_;                    // its counts, width x tiles
+  std::vector<std::uint16_t> two_back_;                // the row before the previous one
+  std::vector<std::vector<std::uint16_t>> history_;    // next_row_tilted's rows, the last first
+  TiltTable tilt_factor_{};                            // exp(log weight) per kTiltOffsets entry
+  std::vector<std::size_t> tilt_count_, tilt_offset_;  // next_row_tilted's lists, kept for their storage
   std::vector<std::uint16_t> tilt_tile_;
   std::vector<double> tilt_weight_, tilt_ways_;
-  std::vector<std::uint8_t> tilt_next_;
+  std::vector<std::uint16_t> tilt_next_;
   std::vector<TileMask> row_classes_, column_classes_;  // side_classes (row lookahead)
   bool tilt_ = set_.horizontal_colors == 2 && set_.vertical_colors == 2;
-  bool equality_tilt_ = false;  // kEqualityTilt's sets (set when the row lookahead is prepared)
+  bool equality_tilt_ = false;  // the set has a tilt_table() (set when the row lookahead is prepared)
   int rows_done_ = 0;
   bool spare_bits_left_ = false;
 };
