@@ -374,7 +374,11 @@ class SweepTiler {
     column_classes_ = side_classes(set_, false);
     if (const TiltTable* table = tilt_table()) {
       equality_tilt_ = true;
-      for (std::size_t k = 0; k < table->size(); ++k) tilt_factor_[k] = std::exp((*table)[k]);
+      for (std::size_t k = 0; k < table->size(); ++k) {
+        tilt_factor_[k] = std::exp((*table)[k]);
+        if (kTiltOffsets[k].rows_back == 0)
+          tilt_in_row_[static_cast<std::size_t>(kTiltOffsets[k].columns)] = tilt_factor_[k];
+      }
     }
     vertical_mask_.assign(set_.size(), 0);
     east_mask_.assign(set_.size(), 0);
@@ -424,10 +428,11 @@ class SweepTiler {
     // the plain tiling untilted, and the tilt put cohen12 at 64 x 64 just above it (0.0441 against
     // 0.0438).
     const auto weight = [&](std::size_t i, std::size_t t) {
-      if (!tilt_ || two_back_.size() != width) return 1.0;
-      double w = two_back_[i] == t ? kTiltTwoRowsBack : 1.0;
-      if (i > 0 && two_back_[i - 1] == t) w *= kTiltTwoRowsBackBeside;
-      if (i + 1 < width && two_back_[i + 1] == t) w *= kTiltTwoRowsBackBeside;
+      if (!tilt_ || history_.size() < 2) return 1.0;
+      const std::vector<std::uint16_t>& two_back = history_[1];
+      double w = two_back[i] == t ? kTiltTwoRowsBack : 1.0;
+      if (i > 0 && two_back[i - 1] == t) w *= kTiltTwoRowsBackBeside;
+      if (i + 1 < width && two_back[i + 1] == t) w *= kTiltTwoRowsBackBeside;
       if (i >= 2 && previous[i - 2] == t) w *= kTiltPreviousRowTwoAside;
       if (i + 2 < width && previous[i + 2] == t) w *= kTiltPreviousRowTwoAside;
       return w;
@@ -464,19 +469,20 @@ class SweepTiler {
       column_class.clear();
       count_completions();
     }
-    if (possible[0] == 0)
-      throw Error(
-          set_.describe() + ": " + std::string(to_string(options_.algorithm)) +
-          " tiling cannot forbid identical neighbours: no row of " + std::to_string(width) + " tiles " +
-          (previous.empty() ? std::string("to start with") : "can follow sweep row " + std::to_string(rows_done_ - 1)));
+    if (possible[0] == 0) throw no_row(width, previous.empty());
     for (std::size_t i = 0; i < width; ++i) {
       TileMask choices = possible[i];
       if (i > 0) choices &= east_mask_[row[i - 1]] & ~bit(row[i - 1]);
       if (i == 0 && row_classes_.size() > 1) choices &= draw_class(choices, row_classes_);
       row[i] = pick_weighted(choices, std::span(completions_).subspan(i * tiles, tiles));
     }
-    two_back_.assign(previous.begin(), previous.end());
-    if (equality_tilt_) remember_tilted_row(row);  // a row too wide for the tilt's chain
+    remember_row(row);
+  }
+
+  Error no_row(std::size_t width, bool first) const {
+    return Error(set_.describe() + ": " + std::string(to_string(options_.algorithm)) +
+                 " tiling cannot forbid identical neighbours: no row of " + std::to_string(width) + " tiles " +
+                 (first ? std::string("to start with") : "can follow sweep row " + std::to_string(rows_done_ - 1)));
   }
 
   // The row drawn in proportion to the product of the tilt's weights, among the rows that may
@@ -533,9 +539,7 @@ class SweepTiler {
     const auto state = [&](std::size_t p, std::size_t a, std::size_t b, std::size_t c) {
       return tilt_offset_[p] + (a * tilt_count_[p - 1] + b) * tilt_count_[p] + c;
     };
-    std::array<double, 4> in_row = {1, 1, 1, 1};  // by columns back
-    for (std::size_t k = 0; k < kTiltOffsets.size(); ++k)
-      if (kTiltOffsets[k].rows_back == 0) in_row[static_cast<std::size_t>(kTiltOffsets[k].columns)] = tilt_factor_[k];
+    const std::array<double, 4>& in_row = tilt_in_row_;
     // ways[state(p, a, b, c)]: the weighted completions of the positions after p; written for
     // every triple that may stand at p - 2, p - 1, p, which are the only ones read.
     tilt_ways_.resize(tilt_offset_[positions]);
@@ -561,11 +565,7 @@ class SweepTiler {
         tilt_ways_[state(p, a, b, c)] = sum;
         largest = std::max(largest, sum);
       });
-      if (largest == 0)
-        throw Error(set_.describe() + ": " + std::string(to_string(options_.algorithm)) +
-                    " tiling cannot forbid identical neighbours: no row of " + std::to_string(width) + " tiles " +
-                    (previous.empty() ? std::string("to start with")
-                                      : "can follow sweep row " + std::to_string(rows_done_ - 1)));
+      if (largest == 0) throw no_row(width, previous.empty());
       // Only ratios within a position matter: keep the counts in range.
       for_each_state(p, [&](std::size_t a, std::size_t b, std::size_t c) { tilt_ways_[state(p, a, b, c)] /= largest; });
     }
@@ -573,34 +573,26 @@ class SweepTiler {
     std::uint16_t before_a = kNone;  // the tile at p - 3
     std::array<double, kTiles> weight{};
     for (std::size_t p = 2; p < positions; ++p) {
-      double total = 0;
-      weight.fill(0.0);
+      TileMask drawable = 0;  // the list indices that may stand here with some completion
       for (unsigned cs = tilt_next_[(p - 1) * kTiles + b]; cs != 0; cs &= cs - 1) {
         const auto c = static_cast<std::size_t>(std::countr_zero(cs));
         const std::uint16_t t = tile(p, c);
         weight[c] = tilt_weight_[p * kTiles + c] * (tile(p - 2, a) == t ? in_row[2] : 1.0) *
                     (before_a == t ? in_row[3] : 1.0) * tilt_ways_[state(p, a, b, c)];
-        total += weight[c];
+        if (weight[c] > 0) drawable |= bit(c);
       }
-      double target = total * (next_bits() / 4294967296.0);
-      std::size_t chosen = 0;
-      for (std::size_t c = 0; c < tilt_count_[p]; ++c) {
-        if (weight[c] == 0) continue;
-        chosen = c;
-        target -= weight[c];
-        if (target < 0) break;
-      }
+      const std::size_t chosen = pick_weighted(drawable, weight);
       row[p - 2] = tile(p, chosen);
       before_a = tile(p - 2, a);
       a = b;
       b = chosen;
     }
-    remember_tilted_row(row);
+    remember_row(row);
     return true;
   }
 
-  // The rows the tilt reads, the last first.
-  void remember_tilted_row(std::span<const std::uint16_t> row) {
+  // Keeps the rows drawn last (the last first) for the tilts, which read up to kEqualityTiltRows back.
+  void remember_row(std::span<const std::uint16_t> row) {
     if (history_.size() < kEqualityTiltRows) history_.emplace_back();
     std::rotate(history_.rbegin(), history_.rbegin() + 1, history_.rend());
     history_.front().assign(row.begin(), row.end());
@@ -706,9 +698,9 @@ class SweepTiler {
   std::vector<std::uint64_t> pairs_;                   // two-choice fast path (see prepare_pairs)
   std::vector<TileMask> vertical_mask_, east_mask_;    // row lookahead (forbid, <= 64 tiles)
   std::vector<double> completions_;                    // its counts, width x tiles
-  std::vector<std::uint16_t> two_back_;                // the row before the previous one
-  std::vector<std::vector<std::uint16_t>> history_;    // next_row_tilted's rows, the last first
+  std::vector<std::vector<std::uint16_t>> history_;    // the rows drawn last, the last first (remember_row)
   TiltTable tilt_factor_{};                            // exp(log weight) per kTiltOffsets entry
+  std::array<double, 4> tilt_in_row_ = {1, 1, 1, 1};   // the in-row entries' factors, by columns back
   std::vector<std::size_t> tilt_count_, tilt_offset_;  // next_row_tilted's lists, kept for their storage
   std::vector<std::uint16_t> tilt_tile_;
   std::vector<double> tilt_weight_, tilt_ways_;
