@@ -31,29 +31,32 @@ using bench::MeanAndError;
 
 constexpr int kStructureReach = 6, kNoiseReach = 4;
 
+constexpr int kNoiseSide = 2 * kNoiseReach + 1;
+
+// What one kind of tiling (without or with the option) gathers over the seeds.
 struct Kind {
+  explicit Kind(std::size_t tile_count)
+      : mean_autocorrelation((kStructureReach + 1) * (2 * kStructureReach + 1), 0.0),
+        joint(kNoiseSide * kNoiseSide * tile_count * tile_count, 0.0),
+        frequency(tile_count, 0.0) {}
   MeanAndError score;
-  std::vector<double> mean_autocorrelation;  // (2 reach + 1)^2, offsets (di, dj) within kStructureReach
+  std::vector<double> mean_autocorrelation;  // offsets (di, dj), |di| <= kStructureReach, 0 <= dj <= kStructureReach
   std::vector<double> joint;                 // pooled pair counts per noise offset and (k, l)
   std::vector<double> frequency;
   double tiles = 0;
 };
 
 std::size_t structure_index(int di, int dj) {
-  return static_cast<std::size_t>((dj + kStructureReach) * (2 * kStructureReach + 1) + di + kStructureReach);
+  return static_cast<std::size_t>(dj * (2 * kStructureReach + 1) + di + kStructureReach);
 }
 
 // Adds one tiling; returns its score.
 double add(Kind& kind, const Tiling& tiling, std::size_t tile_count, int seeds) {
   const double score = periodicity_score(tiling).score;
   kind.score.add(score);
-  kind.mean_autocorrelation.resize(structure_index(kStructureReach, kStructureReach) + 1, 0.0);
   for (int dj = 0; dj <= kStructureReach; ++dj)
     for (int di = -kStructureReach; di <= kStructureReach; ++di)
       kind.mean_autocorrelation[structure_index(di, dj)] += autocorrelation_at(tiling, di, dj) / seeds;
-  const int side = 2 * kNoiseReach + 1;
-  kind.joint.resize(static_cast<std::size_t>(side * side) * tile_count * tile_count, 0.0);
-  kind.frequency.resize(tile_count, 0.0);
   // Tiles at least kNoiseReach from the border, so every offset sees the same tiles.
   for (int j = kNoiseReach; j < tiling.height - kNoiseReach; ++j)
     for (int i = kNoiseReach; i < tiling.width - kNoiseReach; ++i) {
@@ -62,7 +65,7 @@ double add(Kind& kind, const Tiling& tiling, std::size_t tile_count, int seeds) 
       kind.tiles += 1;
       for (int dj = -kNoiseReach; dj <= kNoiseReach; ++dj)
         for (int di = -kNoiseReach; di <= kNoiseReach; ++di) {
-          const auto r = static_cast<std::size_t>((dj + kNoiseReach) * side + di + kNoiseReach);
+          const auto r = static_cast<std::size_t>((dj + kNoiseReach) * kNoiseSide + di + kNoiseReach);
           kind.joint[(r * tile_count + k) * tile_count + tiling.at(i + di, j + dj)] += 1;
         }
     }
@@ -109,7 +112,7 @@ int main(int argc, char** argv) {
     if (size < 2 * kNoiseReach + 2 || seeds < 2)
       throw Error(std::string("no_identical_neighbours_structure_bench: SIZE '") + argv[3] + "', SEEDS '" + argv[4] +
                   "': expected whole numbers of at least 10 and 2");
-    Kind plain, forbidden;
+    Kind plain(set.size()), forbidden(set.size());
     MeanAndError difference;
     for (int seed = 1; seed <= seeds; ++seed) {
       TilingOptions options;
