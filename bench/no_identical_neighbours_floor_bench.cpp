@@ -177,11 +177,6 @@ void descend(CornerTiling& g, const std::vector<Offset>& offsets, bool forbid, i
   }
 }
 
-// The noise of every far offset's autocorrelation (docs/tileset-format.md): for a tiling whose
-// tiles are independent beyond some range, its variance is, up to the normalisation, chance -
-// chance^2 plus the sum over offsets r != 0 of sum_kl P_kl(r)^2 - chance^2 (P_kl(r): the share of
-// pairs at r that are k and l); here over |ri|, |rj| <= 3 (a half plane, doubled), with the
-// neighbours' part (r = (1, 0) and (0, 1), doubled) on its own.
 // The largest autocorrelation at offsets the score does not look at (and the descent does not
 // lower): max(|di|, dj) from 33 to 48, where the window is at least 97 tiles wide; else nothing.
 std::optional<double> held_out_peak(const Tiling& tiling) {
@@ -195,6 +190,11 @@ std::optional<double> held_out_peak(const Tiling& tiling) {
   return peak;
 }
 
+// The noise of every far offset's autocorrelation (docs/tileset-format.md): for a tiling whose
+// tiles are independent beyond some range, its variance is, up to the normalisation, chance -
+// chance^2 plus the sum over offsets r != 0 of sum_kl P_kl(r)^2 - chance^2 (P_kl(r): the share of
+// pairs at r that are k and l); here over |ri|, |rj| <= 3 (a half plane, doubled), with the
+// neighbours' part (r = (1, 0) and (0, 1), doubled) on its own.
 struct Noise {
   double total = 0, neighbours = 0;
 };
@@ -206,9 +206,9 @@ Noise noise_terms(const Tiling& tiling, std::size_t tile_count) {
   for (const double c : count) chance += (c / (double(n) * n)) * (c / (double(n) * n));
   Noise noise;
   noise.total = chance - chance * chance;
-  for (const Offset& r : score_offsets(7, 3)) {
+  for (const Offset& r : score_offsets(n, 3)) {
     std::vector<double> joint(tile_count * tile_count, 0.0);
-    const double pairs = double(n - std::abs(r.di)) * double(n - r.dj);
+    const double pairs = r.pairs;
     for (int j = 0; j + r.dj < n; ++j)
       for (int i = std::max(0, -r.di); i < n && i + r.di < n; ++i)
         joint[tiling.at(i, j) * tile_count + tiling.at(i + r.di, j + r.dj)] += 1 / pairs;

@@ -5,7 +5,7 @@
 //   build/release/bench/no_identical_neighbours_seeds_bench corner-2 hash 128 200
 // Prints the mean score without and with the option (+- standard error), their paired difference
 // as a share of the plain score, and the tile frequencies with the option (chance level, extremes).
-#include <cmath>
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <string>

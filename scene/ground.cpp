@@ -126,14 +126,19 @@ std::optional<double> SceneGround::height(double x, double y) const {
 }
 
 std::optional<double> SceneGround::slope_degrees(double x, double y) const {
-  if (!impl_->area.contains(x, y)) return std::nullopt;
-  return impl_->terrain ? impl_->terrain->slope_degrees(x, y) : impl_->flat.slope_degrees(x, y);
+  const auto s = sample(x, y);
+  return s ? std::optional<double>(s->slope_degrees()) : std::nullopt;
 }
 
 std::optional<std::array<double, 3>> SceneGround::normal(double x, double y) const {
+  const auto s = sample(x, y);
+  return s ? std::optional<std::array<double, 3>>(s->normal()) : std::nullopt;
+}
+
+std::optional<GroundSample> SceneGround::sample(double x, double y) const {
   if (!impl_->area.contains(x, y)) return std::nullopt;
-  if (!impl_->terrain) return std::array<double, 3>{0, 0, 1};
-  return impl_->terrain->normal(x, y);
+  if (impl_->terrain) return impl_->terrain->sample(x, y);
+  return GroundSample{impl_->flat.z, 0, 0};
 }
 
 double SceneGround::height_or_error(double x, double y) const {

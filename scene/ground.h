@@ -19,6 +19,7 @@
 #include "generator/placement.h"
 #include "scene/scene_file.h"
 #include "templates/mesh.h"
+#include "terrain/terrain.h"
 
 namespace wangscape {
 
@@ -37,6 +38,8 @@ class SceneGround {
   std::optional<double> slope_degrees(double x, double y) const;
   // The ground's unit normal (pointing up) at ENU (x, y); +z on flat ground.
   std::optional<std::array<double, 3>> normal(double x, double y) const;
+  // Height and gradient at ENU (x, y), whence the slope and normal above (one DEM read for both).
+  std::optional<GroundSample> sample(double x, double y) const;
 
   // The ground height at ENU (x, y) (meters, orthometric as the DEM stores it). Throws Error
   // naming the ground and why it has none there: beyond its extent (given in the message), or a

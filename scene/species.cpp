@@ -163,31 +163,33 @@ std::vector<std::string> SpeciesRules::names() const {
   return names;
 }
 
-// The ground at one place as the rules read it: its slope and normal, each read at most once.
+// The ground at one place as the rules read it: sampled at most once, for its slope and normal both.
 class SpeciesRules::GroundAt {
  public:
   GroundAt(const SceneGround& ground, double x, double y) : ground_(ground), x_(x), y_(y) {}
   std::optional<double> slope() {
-    if (!slope_) slope_ = ground_.slope_degrees(x_, y_);
-    return *slope_;
+    const auto& s = sample();
+    return s ? std::optional<double>(s->slope_degrees()) : std::nullopt;
   }
   std::optional<std::array<double, 3>> normal() {
-    if (!normal_) normal_ = ground_.normal(x_, y_);
-    return *normal_;
+    const auto& s = sample();
+    return s ? std::optional<std::array<double, 3>>(s->normal()) : std::nullopt;
   }
 
  private:
+  const std::optional<GroundSample>& sample() {
+    if (!sample_) sample_ = ground_.sample(x_, y_);
+    return *sample_;
+  }
   const SceneGround& ground_;
   double x_, y_;
-  std::optional<std::optional<double>> slope_;
-  std::optional<std::optional<std::array<double, 3>>> normal_;
+  std::optional<std::optional<GroundSample>> sample_;
 };
 
 double SpeciesRules::density_of(const Rule& rule, double x, double y, double z, GroundAt& ground) {
   const SpeciesConfig& c = rule.config;
   if ((c.min_height && z < *c.min_height) || (c.max_height && z > *c.max_height)) return 0;
   if (rule.mask && !rule.mask->allows(x, y)) return 0;
-  // The slope once, for the rules and the density both.
   std::optional<double> slope;
   if (rule.needs_slope) slope = ground.slope();
   if ((c.min_slope || c.max_slope) &&
