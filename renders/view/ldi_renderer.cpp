@@ -97,7 +97,6 @@ struct LdiRenderer::Impl {
   std::vector<std::array<std::uint32_t, 2>> terrain_pieces;  // (chunk, its level's first triangle)
   std::vector<float> chunk_distance;
   std::vector<std::uint8_t> chunk_level;
-  std::vector<float> chunk_height_error;
   std::atomic<std::uint64_t> depth_pixels{0};
   tbb::enumerable_thread_specific<ThreadDepths> thread_depths;  // per thread, kept across frames
   // The near field: the real flowers of the tiles around the eye, ray traced (made on the first
@@ -203,7 +202,6 @@ LdiRenderer::LdiRenderer(std::shared_ptr<const ViewWorld> world, int width, int 
   m.chunk_order.reserve(world_->terrain().chunks.size());
   m.chunk_distance.assign(world_->terrain().chunks.size(), 0);
   m.chunk_level.assign(world_->terrain().chunks.size(), 0);
-  m.chunk_height_error.assign(world_->terrain().chunks.size(), 0);
   stats_.levels.assign(world_->pack().info().levels + 1, 0);
 }
 
@@ -679,7 +677,6 @@ void LdiRenderer::draw_terrain() {
   // terrain_error_ pixels at its nearest point.
   m.chunk_order.clear();
   std::fill(m.chunk_level.begin(), m.chunk_level.end(), 0);
-  std::fill(m.chunk_height_error.begin(), m.chunk_height_error.end(), 0.0f);
   for (std::uint32_t k = 0; k < terrain.chunks.size(); ++k) {
     const ViewWorld::Terrain::Chunk& chunk = terrain.chunks[k];
     const V3 low{chunk.low[0], chunk.low[1], chunk.low[2]}, high{chunk.high[0], chunk.high[1], chunk.high[2]};
@@ -696,7 +693,6 @@ void LdiRenderer::draw_terrain() {
     for (std::uint32_t level = chunk.level_count; level-- > 1;)
       if (terrain.levels[chunk.first_level + level].error <= allowed) {
         m.chunk_level[k] = std::uint8_t(level);
-        m.chunk_height_error[k] = terrain.levels[chunk.first_level + level].height_error;
         break;
       }
   }
@@ -716,8 +712,11 @@ void LdiRenderer::draw_terrain() {
       // the fine surface, so their sides are at most the sum apart).
       float drop = level.height_error + kSkirtMargin;
       float neighbours_error = 0;
-      for (const std::int32_t n : chunk.neighbours)
-        if (n >= 0) neighbours_error = std::max(neighbours_error, m.chunk_height_error[std::size_t(n)]);
+      for (const std::int32_t n : chunk.neighbours)  // level 0 (the fine mesh, or not drawn): 0
+        if (n >= 0)
+          neighbours_error = std::max(
+              neighbours_error, terrain.levels[terrain.chunks[std::size_t(n)].first_level + m.chunk_level[std::size_t(n)]]
+                                    .height_error);
       drop += neighbours_error;
       const std::uint32_t skirts = level.first_vertex + level.vertex_count - level.skirt_vertices;
       for (std::uint32_t v = level.first_vertex; v < level.first_vertex + level.vertex_count; ++v) {
@@ -741,11 +740,10 @@ void LdiRenderer::draw_terrain() {
       const auto [k, first] = m.terrain_pieces[o];
       const ViewWorld::Terrain::Chunk& chunk = terrain.chunks[k];
       const ViewWorld::Terrain::Level& level = terrain.levels[chunk.first_level + m.chunk_level[k]];
-      const std::uint32_t skirts = level.first_vertex + level.vertex_count - level.skirt_vertices;
+      const std::uint32_t skirts = level.first_triangle + level.triangle_count - level.skirt_triangles;
       const std::uint32_t begin = level.first_triangle + first;
       const std::uint32_t end = level.first_triangle + std::min(level.triangle_count, first + kTerrainPiece);
-      for (std::uint32_t t = begin; t < end; ++t)
-        draw_triangle(terrain.triangles[t], terrain.triangles[t][2] < skirts, tested);
+      for (std::uint32_t t = begin; t < end; ++t) draw_triangle(terrain.triangles[t], t < skirts, tested);
       drawn += end - begin;
       // The fine mesh's triangles that its coarser neighbours' grids leave out (with the chunk's
       // first piece).
@@ -820,6 +818,15 @@ void LdiRenderer::set_samples(int samples) {
   samples_ = samples;
 }
 
+void ViewFrameStats::add_work(const ViewFrameStats& sample) {
+  frame_ms += sample.frame_ms;
+  for (std::size_t p = 0; p < phase_ms.size(); ++p) phase_ms[p] += sample.phase_ms[p];
+  depth_pixels += sample.depth_pixels;
+  near_rays += sample.near_rays;
+  terrain_triangles += sample.terrain_triangles;
+  terrain_pixels += sample.terrain_pixels;
+}
+
 const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   if (samples_ <= 1) return render_sample(camera);
   // Jittered samples (the R2 sequence: the first at the pixel centres), averaged in linear light.
@@ -827,24 +834,21 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   sum.assign(image_.pixels.size(), 0.0f);
   std::array<float, 256> linear{};
   for (std::size_t v = 0; v < 256; ++v) linear[v] = srgb8_to_linear(std::uint8_t(v));
-  ViewFrameStats total;
+  ViewFrameStats total;  // the first sample's, with every sample's time and work
   for (int k = 0; k < samples_; ++k) {
     const double jx = std::fmod(0.5 + k * 0.7548776662466927, 1.0) - 0.5;
     const double jy = std::fmod(0.5 + k * 0.5698402909980532, 1.0) - 0.5;
     subpixel_ = {float(jx), float(jy)};
     const ViewFrameStats& one = render_sample(camera);
     for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += linear[image_.pixels[i]];
-    total.frame_ms += one.frame_ms;
-    for (std::size_t p = 0; p < total.phase_ms.size(); ++p) total.phase_ms[p] += one.phase_ms[p];
-    total.depth_pixels += one.depth_pixels;
-    total.near_rays += one.near_rays;
+    if (k == 0)
+      total = one;
+    else
+      total.add_work(one);
   }
   subpixel_ = {0, 0};
   for (std::size_t i = 0; i < sum.size(); ++i) image_.pixels[i] = linear_to_srgb8(sum[i] / float(samples_));
-  stats_.frame_ms = total.frame_ms;
-  stats_.phase_ms = total.phase_ms;
-  stats_.depth_pixels = total.depth_pixels;
-  stats_.near_rays = total.near_rays;
+  stats_ = std::move(total);
   return stats_;
 }
 

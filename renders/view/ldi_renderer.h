@@ -65,6 +65,10 @@ struct ViewFrameStats {
   // Tiles drawn per level (each at its nearer level when two are dithered); the last entry
   // counts those beyond the last level, drawn as the far-field color.
   std::vector<std::uint64_t> levels;
+
+  // Adds another sample's time and work (times, depth pixels, rays, terrain triangles and pixels);
+  // the tile counts stay this sample's.
+  void add_work(const ViewFrameStats& sample);
 };
 
 class SceneTracer;
@@ -126,7 +130,8 @@ class LdiRenderer {
   void set_engine(ViewEngine engine) { engine_ = engine; }
   // Samples per pixel: render() draws this many frames, each moved by a sub-pixel offset (a
   // low-discrepancy sequence whose first is the pixel centres), and averages them in linear light
-  // (anti-aliased offline frames); the statistics are the samples' sums. Throws Error outside
+  // (anti-aliased offline frames); the statistics sum the samples' time and work (add_work) and
+  // count the first sample's tiles. Throws Error outside
   // 1 .. kMaxViewSamples.
   void set_samples(int samples);
   int samples() const { return samples_; }

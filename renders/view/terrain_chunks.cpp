@@ -142,14 +142,12 @@ class ChunkBuilder {
     std::uint32_t previous = fine.triangle_count;
     for (int cells = n; cells >= 1; cells /= 2) {
       const std::size_t before_vertices = part.x.size(), before_triangles = part.triangles.size();
-      std::uint32_t skirt_triangles = 0;
-      TerrainChunks::Level level =
-          grid_level(part, ci, cj, lattice, cells, overlapping, neighbour, references, skirt_triangles);
-      if (level.triangle_count - skirt_triangles >= previous) {  // not cheaper: dropped
+      const TerrainChunks::Level level = grid_level(part, ci, cj, lattice, cells, overlapping, neighbour, references);
+      if (level.triangle_count - level.skirt_triangles >= previous) {  // not cheaper: dropped
         part.truncate(before_vertices, before_triangles);
         continue;
       }
-      previous = level.triangle_count - skirt_triangles;
+      previous = level.triangle_count - level.skirt_triangles;
       part.levels.push_back(level);
     }
     return part;
@@ -199,11 +197,11 @@ class ChunkBuilder {
 
   // The level of `cells` x `cells` grid cells (every (lattice.n / cells)-th lattice point),
   // appended to `part`: its grid triangles, the fine triangles of cells that leave the mesh, its
-  // skirts (`skirt_triangles` of its triangles), and its errors measured at `references`.
+  // skirts (its last triangles, Level::skirt_triangles), and its errors measured at `references`.
   template <class References>
   TerrainChunks::Level grid_level(ChunkPart& part, int ci, int cj, const Lattice& lattice, int cells,
                                   const std::vector<std::uint32_t>& overlapping, const std::array<bool, 4>& neighbour,
-                                  const References& references, std::uint32_t& skirt_triangles) const {
+                                  const References& references) const {
     const int step = lattice.n / cells;
     const auto point = [&](int a, int b) { return lattice.at(a * step, b * step); };
     std::vector<std::uint8_t> cell_valid(std::size_t(cells) * std::size_t(cells));
@@ -302,7 +300,7 @@ class ChunkBuilder {
       part.triangles.push_back({p, q, qb});
       part.triangles.push_back({p, qb, pb});
     }
-    skirt_triangles = std::uint32_t(2 * sides.size());
+    level.skirt_triangles = std::uint32_t(2 * sides.size());
     level.vertex_count = std::uint32_t(part.x.size()) - level.first_vertex;
     level.skirt_vertices = std::uint32_t(part.x.size()) - skirt_base;
     level.triangle_count = std::uint32_t(part.triangles.size()) - level.first_triangle;
@@ -337,13 +335,8 @@ class ChunkBuilder {
 TerrainChunks make_terrain_chunks(const Mesh& mesh, const std::vector<std::array<float, 3>>& light) {
   TerrainChunks out;
   if (mesh.triangles.empty()) return out;
-  std::array<float, 2> low{std::numeric_limits<float>::max(), std::numeric_limits<float>::max()};
-  std::array<float, 2> high{-low[0], -low[1]};
-  for (const auto& p : mesh.positions)
-    for (std::size_t k = 0; k < 2; ++k) {
-      low[k] = std::min(low[k], p[k]);
-      high[k] = std::max(high[k], p[k]);
-    }
+  const MeshExtent extent = measure_extent(mesh);
+  const std::array<float, 3>&low = extent.min, &high = extent.max;
   ChunkGrid grid;
   grid.side = std::max(1, int(std::lround(std::sqrt(double(mesh.triangles.size()) / double(kTerrainChunkTriangles)))));
   grid.low_x = low[0];

@@ -113,9 +113,11 @@ LdiImage one_layer_ldi(const LdiView& v, int factor) {
 
 // How many rank steps of each species' plants grow at (x, y, z): none where its rules forbid it,
 // else its density there in steps (the stream keeps a plant where its rank < the density).
-std::array<std::uint8_t, kPlantSpecies> plant_steps(const SpeciesRules& rules, double x, double y, double z) {
+// densities: the caller's buffer of rules.size(), filled with every species' at once (the ground
+// is read once).
+std::array<std::uint8_t, kPlantSpecies> plant_steps(const SpeciesRules& rules, double x, double y, double z,
+                                                    std::vector<double>& densities) {
   const std::size_t species = rules.size();
-  std::vector<double> densities(species);  // every species' at once: the ground is read once
   rules.densities_where_grow(x, y, z, densities);
   std::array<std::uint8_t, kPlantSpecies> steps{};
   for (std::size_t s = 0; s < std::min<std::size_t>(species, kPlantSpecies); ++s)
@@ -248,10 +250,11 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
       if (field.species) {
         constexpr int n = Tiles::kPlantCells;
         auto& steps = tiles_.plant_steps.emplace_back();
+        std::vector<double> densities(field.species->size());
         for (int j = 0; j < n; ++j)
           for (int i = 0; i < n; ++i) {
             const double x = x0 + (i + 0.5) * tile_size_ / n, y = y0 + (j + 0.5) * tile_size_ / n;
-            const auto cell_steps = plant_steps(*field.species, x, y, ground_height(x, y, centre));
+            const auto cell_steps = plant_steps(*field.species, x, y, ground_height(x, y, centre), densities);
             std::copy(cell_steps.begin(), cell_steps.end(), steps.begin() + (j * n + i) * kPlantSpecies);
           }
       }

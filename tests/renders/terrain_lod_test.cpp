@@ -106,7 +106,8 @@ TEST(ldi_view_terrain, NoCrackBetweenChunksOfDifferentLevels) {
   // chunks of levels 0-4 side by side, their grids up to tens of meters off the fine mesh). A
   // crack between two chunks shows what lies beyond the surface through a slit. Measured: 3, 5
   // and 0 slit pixels with the fine mesh, 2, 1 and 0 with the levels, 44, 16 and 0 with the
-  // levels but no skirts.
+  // levels but no skirts: the first two cameras catch missing skirts; the third, over the
+  // gentler north-east flank, only that coarser levels are drawn there too.
   constexpr int kError = 40;
   const ViewCamera cameras[] = {over_ground(0, -2800, 60, -540, 460, 0), over_ground(-2800, 0, 40, -540, 460, 0),
                                 over_ground(2500, 2500, 80, -540, 460, 0)};
@@ -121,7 +122,7 @@ TEST(ldi_view_terrain, NoCrackBetweenChunksOfDifferentLevels) {
     const std::uint64_t coarse = renderer.render(camera).terrain_triangles;
     std::printf("slit pixels: %d with the fine mesh (%llu triangles), %d with levels of detail (%llu)\n", fine_slits,
                 static_cast<unsigned long long>(fine), slits, static_cast<unsigned long long>(coarse));
-    EXPECT_LT(coarse, fine);  // levels mixed, not all fine
+    EXPECT_LT(coarse, fine);  // some chunks drawn coarser than the fine mesh
     EXPECT_LE(slits, fine_slits);
   }
 }
