@@ -696,6 +696,10 @@ void LdiRenderer::draw_terrain() {
         break;
       }
   }
+  // The level chunk k is drawn at this frame (0, the fine mesh, where not drawn).
+  const auto level_of = [&](std::size_t k) -> const ViewWorld::Terrain::Level& {
+    return terrain.levels[terrain.chunks[k].first_level + m.chunk_level[k]];
+  };
   std::sort(m.chunk_order.begin(), m.chunk_order.end(), [&](std::uint32_t p, std::uint32_t q) {
     return m.chunk_distance[p] != m.chunk_distance[q] ? m.chunk_distance[p] < m.chunk_distance[q] : p < q;
   });
@@ -707,16 +711,13 @@ void LdiRenderer::draw_terrain() {
     for (std::size_t o = r.begin(); o != r.end(); ++o) {
       const std::uint32_t k = m.chunk_order[o];
       const ViewWorld::Terrain::Chunk& chunk = terrain.chunks[k];
-      const ViewWorld::Terrain::Level& level = terrain.levels[chunk.first_level + m.chunk_level[k]];
+      const ViewWorld::Terrain::Level& level = level_of(k);
       // A skirt bridges this level's vertical error and its neighbours' (each within its error of
       // the fine surface, so their sides are at most the sum apart).
       float drop = level.height_error + kSkirtMargin;
       float neighbours_error = 0;
       for (const std::int32_t n : chunk.neighbours)  // level 0 (the fine mesh, or not drawn): 0
-        if (n >= 0)
-          neighbours_error = std::max(
-              neighbours_error, terrain.levels[terrain.chunks[std::size_t(n)].first_level + m.chunk_level[std::size_t(n)]]
-                                    .height_error);
+        if (n >= 0) neighbours_error = std::max(neighbours_error, level_of(std::size_t(n)).height_error);
       drop += neighbours_error;
       const std::uint32_t skirts = level.first_vertex + level.vertex_count - level.skirt_vertices;
       for (std::uint32_t v = level.first_vertex; v < level.first_vertex + level.vertex_count; ++v) {
@@ -729,7 +730,7 @@ void LdiRenderer::draw_terrain() {
   });
   m.terrain_pieces.clear();
   for (const std::uint32_t k : m.chunk_order) {
-    const ViewWorld::Terrain::Level& level = terrain.levels[terrain.chunks[k].first_level + m.chunk_level[k]];
+    const ViewWorld::Terrain::Level& level = level_of(k);
     for (std::uint32_t first = 0; first < level.triangle_count; first += kTerrainPiece)
       m.terrain_pieces.push_back({k, first});
   }
@@ -739,7 +740,7 @@ void LdiRenderer::draw_terrain() {
     for (std::size_t o = r.begin(); o != r.end(); ++o) {
       const auto [k, first] = m.terrain_pieces[o];
       const ViewWorld::Terrain::Chunk& chunk = terrain.chunks[k];
-      const ViewWorld::Terrain::Level& level = terrain.levels[chunk.first_level + m.chunk_level[k]];
+      const ViewWorld::Terrain::Level& level = level_of(k);
       const std::uint32_t skirts = level.first_triangle + level.triangle_count - level.skirt_triangles;
       const std::uint32_t begin = level.first_triangle + first;
       const std::uint32_t end = level.first_triangle + std::min(level.triangle_count, first + kTerrainPiece);

@@ -23,8 +23,9 @@ inline constexpr std::size_t kTerrainChunkTriangles = 1024;
 // border, the cell keeps the fine triangles). A level's error bounds how far it strays from the
 // fine mesh: vertically, or by its cell's size where its light strays (a shadow's edge moved
 // by up to a cell). A frame takes the coarsest level whose error projects under the renderer's
-// terrain error (LdiRenderer::set_terrain_error, in pixels). Skirts hang from a grid's edges, so that no crack opens between chunks of different
-// levels; how deep is decided per frame, from the levels drawn around (Level::height_error).
+// terrain error (LdiRenderer::set_terrain_error, in pixels). Skirts hang from a grid's edges, so that no crack opens
+// between chunks of different levels; how deep is decided per frame, from the levels drawn around
+// (Level::height_error).
 struct TerrainChunks {                                  // structure of arrays
   std::vector<float> x, y, z;                           // ENU meters (a skirt's bottom: its top)
   std::vector<float> light_r, light_g, light_b;         // sun + sky irradiance (linear) at the vertex
@@ -33,8 +34,8 @@ struct TerrainChunks {                                  // structure of arrays
     std::uint32_t first_vertex = 0, vertex_count = 0, first_triangle = 0, triangle_count = 0;
     std::uint32_t skirt_vertices = 0;   // the level's last vertices: skirts' bottoms (z: their top)
     std::uint32_t skirt_triangles = 0;  // the level's last triangles: skirts (seen from both sides)
-    float error = 0;                   // meters: vertical, or the cell's size where the light strays
-    float height_error = 0;            // meters: vertical only (what a skirt must bridge)
+    float error = 0;                    // meters: vertical, or the cell's size where the light strays
+    float height_error = 0;             // meters: vertical only (what a skirt must bridge)
   };
   // A fine triangle owned by a neighbouring chunk (its centroid there) that reaches into this
   // chunk's square: drawn with this chunk's level 0 while its owner is drawn coarser (a grid
