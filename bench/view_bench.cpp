@@ -69,7 +69,7 @@ const Worlds& default_worlds() {
 
 std::shared_ptr<const ViewWorld> default_world() { return default_worlds().lit; }
 
-ViewCamera bench_camera(const ViewWorld& world, int which) {
+Camera bench_camera(const ViewWorld& world, int which) {
   const double head = std::numeric_limits<double>::quiet_NaN();  // head height above the ground
   ViewRequest request;
   if (which == 1) {
@@ -98,7 +98,7 @@ void measure_frames(benchmark::State& state, bool ray_cast, bool shadows = true)
   LdiRenderer renderer(world, int(state.range(1)), int(state.range(2)));
   renderer.set_near_field(ray_cast ? 0 : double(state.range(3)) / 100);
   renderer.set_engine(ray_cast ? ViewEngine::embree : ViewEngine::ldi);
-  const ViewCamera camera = bench_camera(*world, int(state.range(0)));
+  const Camera camera = bench_camera(*world, int(state.range(0)));
   renderer.render(camera);  // the near field's (or the ray cast's) scene is made on the first frame
   std::uint64_t depth_pixels = 0, tiles = 0, near_tiles = 0, near_rays = 0;
   std::array<std::vector<double>, 5> phases;
@@ -135,7 +135,7 @@ void against_truth(benchmark::State& state, bool ray_cast) {
   LdiRenderer renderer(world, int(state.range(1)), int(state.range(2)));
   renderer.set_near_field(ray_cast ? 0 : double(state.range(3)) / 100);
   renderer.set_engine(ray_cast ? ViewEngine::embree : ViewEngine::ldi);
-  const ViewCamera camera = bench_camera(*world, int(state.range(0)));
+  const Camera camera = bench_camera(*world, int(state.range(0)));
   for (auto _ : state) {
     renderer.render(camera);
     const ViewComparison v = compare_with_reference(*world, renderer, camera, kDefaultTruthSamples);
@@ -154,7 +154,7 @@ void BM_RayCastAgainstTruth(benchmark::State& state) { against_truth(state, true
 
 void BM_EmbreeOneSample(benchmark::State& state) {
   const auto world = default_world();
-  const ViewCamera camera = bench_camera(*world, int(state.range(0)));
+  const Camera camera = bench_camera(*world, int(state.range(0)));
   ReferenceOptions options;
   options.camera = Camera{camera.position, camera.target, camera.fov_degrees};
   options.width = int(state.range(1));

@@ -36,7 +36,16 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--repeat", o->request.repeat, "Frames timed for --stats (default 200)");
   sub->add_option("--path", o->request.path, "Keyframes JSON to fly along (docs/viewer.md)");
   sub->add_option("--frames", o->request.frames_dir, "Folder for the path's frames (and path.mp4 with ffmpeg)");
-  sub->add_option("--fps", o->request.path_fps, "Frames per second of the path")->check(finite_number());
+  sub->add_option("--fps", o->request.fps,
+                  "Frames per second: of the path (default 24), or the rate the window holds (default 60); each "
+                  "frame traces anew what a frame at that rate has time for, the rest reused from the frame before "
+                  "(1 .. 240)")
+      ->check(finite_number());
+  sub->add_option("--compare-every", o->request.compare_every,
+                  "With --path: compare frames 0, K, 2K, ... with the truth and the exact one-sample image (one JSON "
+                  "line each)");
+  sub->add_flag("--no-cache", [o](std::int64_t) { o->request.cached = false; },
+                "With --path: draw every frame whole instead of from the frame before");
   sub->add_option("--record", o->request.record,
                   "Window: where the keyframes dropped with K go on exit, a path file for --path (default path.json)");
   sub->add_option("--script", o->request.script, "Window: scripted input, e.g. \"W*30,screenshot,Escape\"");

@@ -18,9 +18,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const GroundHeightAt flat = [](double, double) { return std::optional<double>(0.0); };
         const double t0 = path.keys.front().time;
         for (const double t : {t0, t0 + path.duration() / 2, path.keys.back().time}) {
-          const PathCamera c = camera_along(path, t, flat, file.path());
+          const Camera c = camera_along(path, t, 50, flat, file.path());
           for (int k = 0; k < 3; ++k)
-            if (!std::isfinite(c.position[k]) || !std::isfinite(c.look_at[k])) std::abort();
+            if (!std::isfinite(c.position[k]) || !std::isfinite(c.target[k])) std::abort();
         }
         return path;
       },

@@ -24,6 +24,7 @@
 
 #include "renders/trace/scene_tracer.h"
 #include "renders/view/ldi_warp.h"
+#include "renders/view/view_projection.h"
 #include "renders/view/view_samples.h"
 
 namespace wangscape {
@@ -112,13 +113,9 @@ struct LdiRenderer::Impl {
     const V3 d{x - eye[0], y - eye[1], z - eye[2]};
     return {float(dot(d, right)), float(dot(d, up)), float(dot(d, forward))};
   }
+  ViewProjection projection;  // the frame's, whence the fields above
   // The unit direction (ENU) of the ray through the screen point (x, y) (pixel centres at +0.5).
-  V3 ray_through(double x, double y) const {
-    const double ray_right = (x - double(cx)) / double(focal), ray_up = -(y - double(cy)) / double(focal);
-    V3 d;
-    for (std::size_t c = 0; c < 3; ++c) d[c] = forward[c] + ray_right * right[c] + ray_up * up[c];
-    return normalized(d);
-  }
+  V3 ray_through(double x, double y) const { return projection.ray_through(x, y); }
   std::array<float, 3> direction_to_camera(double x, double y, double z) const {
     const V3 d{x, y, z};
     return {float(dot(d, right)), float(dot(d, up)), float(dot(d, forward))};
@@ -241,21 +238,18 @@ void LdiRenderer::set_near_field(double meters) {
 }
 
 // The frame's camera (its basis, focal length, centre) and empty buffers and counters.
-void LdiRenderer::begin_frame(const ViewCamera& camera) {
+void LdiRenderer::begin_frame(const Camera& camera) {
   Impl& m = *impl_;
-  check_field_of_view(camera.fov_degrees, "view: field of view");
-  const auto basis = camera_basis(camera.position, camera.target);
-  if (!basis)
-    throw Error("view: the camera must look somewhere sideways (its target is straight above, below or at it)");
-  m.eye = camera.position;
-  m.forward = basis->forward;
-  m.right = basis->right;
-  m.up = basis->up;
-  m.tan_x = float(std::tan(camera.fov_degrees * std::numbers::pi / 360));
-  m.focal = float(m.width) / 2 / m.tan_x;
-  m.tan_y = float(m.height) / 2 / m.focal;
-  m.cx = float(m.width) / 2 + subpixel_[0];
-  m.cy = float(m.height) / 2 + subpixel_[1];
+  const ViewProjection& p = m.projection = ViewProjection::of(camera, m.width, m.height, subpixel_);
+  m.eye = p.eye;
+  m.forward = p.forward;
+  m.right = p.right;
+  m.up = p.up;
+  m.tan_x = p.tan_x;
+  m.focal = p.focal;
+  m.tan_y = p.tan_y;
+  m.cx = p.cx;
+  m.cy = p.cy;
 
   std::fill(m.zbuffer.begin(), m.zbuffer.end(), kEmpty);
   m.depth_pixels = 0;
@@ -828,7 +822,7 @@ void ViewFrameStats::add_work(const ViewFrameStats& sample) {
   terrain_pixels += sample.terrain_pixels;
 }
 
-const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
+const ViewFrameStats& LdiRenderer::render(const Camera& camera) {
   if (samples_ <= 1) return render_sample(camera);
   // Jittered samples (the R2 sequence: the first at the pixel centres), averaged in linear light.
   std::vector<float>& sum = impl_->accumulated;
@@ -837,9 +831,7 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   for (std::size_t v = 0; v < 256; ++v) linear[v] = srgb8_to_linear(std::uint8_t(v));
   ViewFrameStats total;  // the first sample's, with every sample's time and work
   for (int k = 0; k < samples_; ++k) {
-    const double jx = std::fmod(0.5 + k * 0.7548776662466927, 1.0) - 0.5;
-    const double jy = std::fmod(0.5 + k * 0.5698402909980532, 1.0) - 0.5;
-    subpixel_ = {float(jx), float(jy)};
+    subpixel_ = r2_offset(k);
     const ViewFrameStats& one = render_sample(camera);
     for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += linear[image_.pixels[i]];
     if (k == 0)
@@ -853,7 +845,7 @@ const ViewFrameStats& LdiRenderer::render(const ViewCamera& camera) {
   return stats_;
 }
 
-const ViewFrameStats& LdiRenderer::render_sample(const ViewCamera& camera) {
+const ViewFrameStats& LdiRenderer::render_sample(const Camera& camera) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   begin_frame(camera);
@@ -998,7 +990,9 @@ double LdiRenderer::place_near_field() {
 
 // The whole frame ray cast (ViewEngine::embree, or automatic in the field): every flower of the
 // scene and the terrain in one Embree scene, built on the first frame that needs it.
-std::uint64_t LdiRenderer::ray_cast_frame() {
+std::uint64_t LdiRenderer::ray_cast_frame() { return cast_rays(whole_scene(), std::numeric_limits<double>::infinity()); }
+
+const SceneTracer& LdiRenderer::whole_scene() {
   Impl& m = *impl_;
   if (!m.whole_tracer) {
     const Extent& area = world_->scene().field_area;
@@ -1007,7 +1001,7 @@ std::uint64_t LdiRenderer::ray_cast_frame() {
         SceneTracer::Layout::whole);
     m.whole_tracer->bake_sky(world_->sun_shading());
   }
-  return cast_rays(*m.whole_tracer, std::numeric_limits<double>::infinity());
+  return *m.whole_tracer;
 }
 
 // One ray through each pixel's centre, up to `reach` meters across the ground, shaded into the

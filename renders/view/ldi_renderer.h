@@ -30,13 +30,6 @@
 
 namespace wangscape {
 
-// Where the eye is and where it looks (ENU meters), and its horizontal field of view.
-struct ViewCamera {
-  std::array<double, 3> position{0, 0, 2};
-  std::array<double, 3> target{10, 0, 2};
-  double fov_degrees = 50;
-};
-
 inline constexpr double kMinViewDetail = 0.1, kMaxViewDetail = 10;
 // The near field (LdiRenderer::set_near_field): at most this far (meters), and the distance
 // `wangscape view` uses unless told (docs/viewer.md says how it was chosen).
@@ -104,7 +97,7 @@ class LdiRenderer {
 
   // Draws one frame into image(). Throws Error for a camera with no direction or a field of
   // view outside (0, 179] degrees (core/vecmath.h check_field_of_view).
-  const ViewFrameStats& render(const ViewCamera& camera);
+  const ViewFrameStats& render(const Camera& camera);
   const ImageRgb8& image() const { return image_; }
   // Per pixel of the last frame: true where the sky shows (nothing was drawn), and the camera
   // depth (meters along the view axis; infinity for the sky).
@@ -155,6 +148,10 @@ class LdiRenderer {
   };
   TileChoice tile_choice(std::uint32_t t) const;
   int width() const { return image_.width; }
+  // The whole scene in Embree (the terrain and every flower, the models' sky share baked), as
+  // ViewEngine::embree ray casts it; built on the first call (or the first ray-cast frame), kept.
+  const SceneTracer& whole_scene();
+  const std::shared_ptr<const ViewWorld>& world() const { return world_; }
   int height() const { return image_.height; }
 
  private:
@@ -171,9 +168,9 @@ class LdiRenderer {
   ViewEngine engine_ = ViewEngine::ldi;
   int samples_ = 1;
   std::array<float, 2> subpixel_{0, 0};  // the sample's offset, pixels
-  const ViewFrameStats& render_sample(const ViewCamera& camera);
+  const ViewFrameStats& render_sample(const Camera& camera);
   // The frame's named steps (docs/viewer.md, "What a frame does"), in the order render() runs them.
-  void begin_frame(const ViewCamera& camera);
+  void begin_frame(const Camera& camera);
   void choose_tiles();
   void warp_tiles();
   void draw_terrain();

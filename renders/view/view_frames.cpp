@@ -58,7 +58,7 @@ class FramesCleanup {
 
 void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest& request, const ViewPath& path,
                int width, int height, double fov) {
-  const double fps = request.path_fps;
+  const double fps = request.fps.value_or(kDefaultPathFps);
   const long long frames = path.frame_count(fps);
   if (frames > kMaxPathFrames)
     throw Error(request.path, "",
@@ -66,22 +66,64 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest&
                     number_text(fps) + " frames/s; at most " + std::to_string(kMaxPathFrames) +
                     " are rendered (lower --fps or cut the path in parts)");
   const GroundHeightAt ground = [&](double e, double n) { return world->scene().field->ground.height(e, n); };
-  for (double t : {path.keys.front().time, path.keys.back().time}) camera_along(path, t, ground, request.path);
+  for (double t : {path.keys.front().time, path.keys.back().time}) camera_along(path, t, fov, ground, request.path);
 
   std::error_code ec;
-  FramesCleanup cleanup(request.frames_dir);
-  fs::create_directories(request.frames_dir, ec);
-  if (!fs::is_directory(request.frames_dir, ec)) throw Error(request.frames_dir, "", "cannot make the frames folder");
+  const bool writes = !request.frames_dir.empty();
+  std::optional<FramesCleanup> cleanup;
+  if (writes) {
+    cleanup.emplace(request.frames_dir);
+    fs::create_directories(request.frames_dir, ec);
+    if (!fs::is_directory(request.frames_dir, ec)) throw Error(request.frames_dir, "", "cannot make the frames folder");
+  }
   LdiRenderer renderer(world, width, height);
   renderer.apply(request.settings);
+  // Each frame from the previous frame's samples, with the budget of a frame at the path's rate:
+  // the frames the window draws at that rate.
+  FrameBudget budget;
+  budget.fps = std::clamp(fps, kMinViewFps, kMaxViewFps);
+  if (std::getenv("WSB")) budget.fps = std::atof(std::getenv("WSB"));
+  FrameCache cache(renderer, budget);
+  std::vector<double> frame_ms;
+  double fresh_share = 0;
   const auto start = std::chrono::steady_clock::now();
   for (long long k = 0; k < frames; ++k) {
-    const PathCamera at = camera_along(path, path.keys.front().time + double(k) / fps, ground, request.path);
-    renderer.render(ViewCamera{at.position, at.look_at, fov});
-    char name[32];
-    std::snprintf(name, sizeof name, "frame-%05lld.png", k);
-    write_image(request.frames_dir / name, renderer.image());
-    cleanup.wrote(request.frames_dir / name);
+    const Camera camera = camera_along(path, path.keys.front().time + double(k) / fps, fov, ground, request.path);
+    const ImageRgb8* image = &renderer.image();
+    if (request.cached) {
+      const CachedFrameStats& stats = cache.render(camera);
+      frame_ms.push_back(stats.frame_ms);
+      fresh_share += stats.fresh_share();
+      image = &cache.image();
+      if (std::getenv("WANGSCAPE_DEBUG_CACHE"))
+        std::fprintf(stderr, "frame %lld: %.2f ms [%.2f %.2f %.2f %.2f], cold %d still %d budget %llu fresh %llu holes %llu filled %llu stretched %llu refresh %llu\n", k,
+                     stats.frame_ms, stats.phase_ms[0], stats.phase_ms[1], stats.phase_ms[2], stats.phase_ms[3], stats.cold, stats.still, (unsigned long long)stats.budget,
+                     (unsigned long long)stats.fresh, (unsigned long long)stats.holes, (unsigned long long)stats.filled, (unsigned long long)stats.stretched, (unsigned long long)stats.refresh);
+    } else {
+      frame_ms.push_back(renderer.render(camera).frame_ms);
+      fresh_share += 1;
+    }
+    if (request.compare_every > 0 && k % request.compare_every == 0) {
+      const ViewComparison v = compare_with_reference(
+          *world, *image,
+          [&](int x, int y) { return request.cached ? std::isinf(cache.depth_at(x, y)) : renderer.sky_at(x, y); },
+          camera, request.truth_samples, 1);
+      std::printf("{\"frame\": %lld, \"frame_ms\": %s, %s}\n", k, number_text(frame_ms.back()).c_str(),
+                  comparison_json_members(v, 1).c_str());
+      std::fflush(stdout);
+      if (writes) {  // the truth beside the frame it was compared with
+        char name[32];
+        std::snprintf(name, sizeof name, "truth-%05lld.png", k);
+        write_image(request.frames_dir / name, v.truth);
+        cleanup->wrote(request.frames_dir / name);
+      }
+    }
+    if (writes) {
+      char name[32];
+      std::snprintf(name, sizeof name, "frame-%05lld.png", k);
+      write_image(request.frames_dir / name, *image);
+      cleanup->wrote(request.frames_dir / name);
+    }
     if (!request.quiet && isatty(2)) {
       const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       std::fprintf(stderr, "\rwangscape: frame %lld / %lld, about %.0f s left ", k + 1, frames,
@@ -90,6 +132,21 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest&
   }
   if (!request.quiet && isatty(2)) std::fprintf(stderr, "\n");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (request.stats) {
+    std::vector<double> sorted = frame_ms;
+    std::sort(sorted.begin(), sorted.end());
+    const auto at = [&](double q) { return sorted[std::min(sorted.size() - 1, std::size_t(q * double(sorted.size())))]; };
+    if (request.json)
+      std::printf("{\"frame_ms\": %s, \"frame_ms_p95\": %s, \"frame_ms_max\": %s, \"fresh_share\": %s, \"frames\": %lld}\n",
+                  number_text(at(0.5)).c_str(), number_text(at(0.95)).c_str(), number_text(sorted.back()).c_str(),
+                  number_text(fresh_share / double(frames)).c_str(), frames);
+    else
+      std::printf("%lld frames of %dx%d at %s frames/s: median %.2f ms, 95th percentile %.2f ms, max %.2f ms; "
+                  "traced anew: %.1f %% of the pixels a frame\n",
+                  frames, width, height, number_text(fps).c_str(), at(0.5), at(0.95), sorted.back(),
+                  100 * fresh_share / double(frames));
+  }
+  if (!writes) return;
   const fs::path ffmpeg = find_program("ffmpeg");
   if (!ffmpeg.empty()) {
     const fs::path movie = request.frames_dir / "path.mp4", log = request.frames_dir / "ffmpeg.log";
@@ -100,7 +157,7 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest&
     if (!exit.exited || exit.status != 0) throw Error(movie, "", "ffmpeg " + exit.describe() + last_log_lines(log, 3));
     fs::remove(log, ec);
   }
-  cleanup.keep();
+  cleanup->keep();
   if (!request.quiet)
     std::fprintf(stderr, "wangscape: wrote %lld frames of %dx%d to %s%s in %.1f s\n", frames, width, height,
                  request.frames_dir.string().c_str(),
@@ -109,7 +166,7 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest&
 
 // --compare: the same camera ray traced by the Embree reference (the truth, and the exact
 // geometry at one sample per pixel), and the figures.
-void print_comparison(const ViewWorld& world, const LdiRenderer& renderer, const ViewCamera& camera,
+void print_comparison(const ViewWorld& world, const LdiRenderer& renderer, const Camera& camera,
                       const ViewRequest& request, const ViewFrameStats& frame) {
   const ViewComparison v = compare_with_reference(world, renderer, camera, request.truth_samples);
   const ImageComparison& c = v.comparison;
@@ -118,16 +175,8 @@ void print_comparison(const ViewWorld& world, const LdiRenderer& renderer, const
   if (!request.truth_out.empty()) write_image(request.truth_out, v.truth);
   if (!request.side_by_side.empty()) write_image(request.side_by_side, side_by_side(renderer.image(), v.truth));
   if (request.json)
-    std::printf(
-        "{\"psnr_db\": %s, \"ssim\": %s, \"hole_share\": %s, \"holes\": %llu, \"reference_seconds\": %s, "
-        "\"truth_samples\": %d, \"exact_psnr_db\": %s, \"exact_ssim\": %s, \"exact_hole_share\": %s, "
-        "\"psnr_gap_db\": %s, \"ssim_gap\": %s, \"exact_seconds\": %s, \"samples\": %d, \"frame_ms\": %s}\n",
-        number_text(c.psnr_db).c_str(), number_text(c.ssim).c_str(), number_text(c.holes.share).c_str(),
-        static_cast<unsigned long long>(c.holes.holes), number_text(v.reference.seconds).c_str(),
-        v.reference.samples_per_pixel, number_text(e.psnr_db).c_str(), number_text(e.ssim).c_str(),
-        number_text(e.holes.share).c_str(), number_text(e.psnr_db - c.psnr_db).c_str(),
-        number_text(e.ssim - c.ssim).c_str(), number_text(v.one_sample.seconds).c_str(), renderer.samples(),
-        number_text(frame.frame_ms).c_str());
+    std::printf("{%s, \"frame_ms\": %s}\n", comparison_json_members(v, renderer.samples()).c_str(),
+                number_text(frame.frame_ms).c_str());
   else
     std::printf(
         "PSNR: %.2f dB (the exact geometry at %d sample(s) per pixel: %.2f dB, a gap of %.2f dB)\n"
@@ -147,31 +196,52 @@ void print_comparison(const ViewWorld& world, const LdiRenderer& renderer, const
 
 }  // namespace
 
-ViewComparison compare_with_reference(const ViewWorld& world, const LdiRenderer& renderer, const ViewCamera& camera,
+ViewComparison compare_with_reference(const ViewWorld& world, const LdiRenderer& renderer, const Camera& camera,
                                       int samples_per_pixel) {
+  return compare_with_reference(
+      world, renderer.image(), [&](int x, int y) { return renderer.sky_at(x, y); }, camera, samples_per_pixel,
+      renderer.samples());
+}
+
+ViewComparison compare_with_reference(const ViewWorld& world, const ImageRgb8& frame,
+                                      const std::function<bool(int, int)>& sky_at, const Camera& camera,
+                                      int samples_per_pixel, int frame_samples) {
   ReferenceOptions options;
-  options.camera = Camera{camera.position, camera.target, camera.fov_degrees};
-  options.width = renderer.width();
-  options.height = renderer.height();
+  options.camera = camera;
+  options.width = frame.width;
+  options.height = frame.height;
   options.samples_per_pixel = samples_per_pixel;
   options.shading = world.shading();
   const ReferenceImage truth = render_reference(world.scene(), options);
-  options.samples_per_pixel = renderer.samples();
+  options.samples_per_pixel = frame_samples;
   const ReferenceImage one_sample = render_reference(world.scene(), options);
-  const CoverageMask truth_mask = coverage_mask(truth.coverage, renderer.width(), renderer.height());
-  CoverageMask view_mask{renderer.width(), renderer.height(), {}};
-  view_mask.covered.resize(std::size_t(renderer.width()) * std::size_t(renderer.height()));
-  for (int y = 0; y < renderer.height(); ++y)
-    for (int x = 0; x < renderer.width(); ++x)
-      view_mask.covered[std::size_t(y) * std::size_t(renderer.width()) + std::size_t(x)] = !renderer.sky_at(x, y);
-  const CoverageMask one_sample_mask = coverage_mask(one_sample.coverage, renderer.width(), renderer.height());
-  return {compare_images(renderer.image(), truth.image, &view_mask, &truth_mask),
+  const CoverageMask truth_mask = coverage_mask(truth.coverage, frame.width, frame.height);
+  CoverageMask view_mask{frame.width, frame.height, {}};
+  view_mask.covered.resize(std::size_t(frame.width) * std::size_t(frame.height));
+  for (int y = 0; y < frame.height; ++y)
+    for (int x = 0; x < frame.width; ++x)
+      view_mask.covered[std::size_t(y) * std::size_t(frame.width) + std::size_t(x)] = !sky_at(x, y);
+  const CoverageMask one_sample_mask = coverage_mask(one_sample.coverage, frame.width, frame.height);
+  return {compare_images(frame, truth.image, &view_mask, &truth_mask),
           compare_images(one_sample.image, truth.image, &one_sample_mask, &truth_mask), truth.stats, one_sample.stats,
           truth.image};
 }
 
-ViewCamera view_camera(const ViewWorld& world, const ViewRequest& request) {
-  ViewCamera camera;
+std::string comparison_json_members(const ViewComparison& v, int frame_samples) {
+  const ImageComparison& c = v.comparison;
+  const ImageComparison& e = v.exact;
+  return "\"psnr_db\": " + number_text(c.psnr_db) + ", \"ssim\": " + number_text(c.ssim) +
+         ", \"hole_share\": " + number_text(c.holes.share) + ", \"holes\": " + std::to_string(c.holes.holes) +
+         ", \"reference_seconds\": " + number_text(v.reference.seconds) +
+         ", \"truth_samples\": " + std::to_string(v.reference.samples_per_pixel) +
+         ", \"exact_psnr_db\": " + number_text(e.psnr_db) + ", \"exact_ssim\": " + number_text(e.ssim) +
+         ", \"exact_hole_share\": " + number_text(e.holes.share) +
+         ", \"psnr_gap_db\": " + number_text(e.psnr_db - c.psnr_db) + ", \"ssim_gap\": " + number_text(e.ssim - c.ssim) +
+         ", \"exact_seconds\": " + number_text(v.one_sample.seconds) + ", \"samples\": " + std::to_string(frame_samples);
+}
+
+Camera view_camera(const ViewWorld& world, const ViewRequest& request) {
+  Camera camera;
   const Camera& scene = world.scene().camera;
   camera.position = scene.position;
   camera.target = scene.target;
@@ -193,7 +263,7 @@ ViewCamera view_camera(const ViewWorld& world, const ViewRequest& request) {
   return camera;
 }
 
-ViewFrameStats measure_view(LdiRenderer& renderer, const ViewCamera& camera, int frames) {
+ViewFrameStats measure_view(LdiRenderer& renderer, const Camera& camera, int frames) {
   // The frame time and each phase's: medians of their own.
   std::array<std::vector<double>, 6> times;
   ViewFrameStats stats;
@@ -228,8 +298,13 @@ void check_view_request(const ViewRequest& request) {
     throw Error("--size " + std::to_string(request.width) + "x" + std::to_string(request.height) +
                 ": expected WIDTHxHEIGHT, each 1 .. 16384 pixels");
   if (request.fov_degrees) check_field_of_view(*request.fov_degrees, "--fov");
-  if (!request.path.empty() && request.frames_dir.empty()) throw Error("--path: needs --frames OUTDIR");
-  if (!(request.path_fps > 0 && request.path_fps <= 240)) throw Error("--fps: expected 0 .. 240 frames per second");
+  if (!request.path.empty() && request.frames_dir.empty() && !request.stats && request.compare_every == 0)
+    throw Error("--path: needs --frames OUTDIR (or --stats, or --compare-every K)");
+  if (request.compare_every < 0) throw Error("--compare-every: expected a number of frames, 1 or more");
+  if (request.compare_every > 0 && request.path.empty()) throw Error("--compare-every: needs --path FILE");
+  if (request.fps && !(*request.fps >= kMinViewFps && *request.fps <= kMaxViewFps))
+    throw Error("--fps " + number_text(*request.fps) + ": expected " + number_text(kMinViewFps) + " .. " +
+                number_text(kMaxViewFps) + " frames per second");
   if (request.repeat < 0 || request.repeat > 100000) throw Error("--repeat: expected 0 .. 100000 frames");
   if (!(request.settings.detail >= kMinViewDetail && request.settings.detail <= kMaxViewDetail))
     throw Error("--detail " + number_text(request.settings.detail) + ": expected " + number_text(kMinViewDetail) +
@@ -259,7 +334,7 @@ std::shared_ptr<const ViewWorld> load_view_world(const ViewRequest& request) {
 }
 
 int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewRequest& request, const ViewPath* path) {
-  const ViewCamera camera = view_camera(*world, request);
+  const Camera camera = view_camera(*world, request);
   const int width = request.width ? request.width : world->scene().render.width;
   const int height = request.height ? request.height : world->scene().render.height;
 

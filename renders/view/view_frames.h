@@ -4,12 +4,14 @@
 
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "renders/trace/embree_reference.h"
 #include "renders/trace/image_compare.h"
+#include "renders/view/frame_cache.h"
 #include "renders/view/ldi_renderer.h"
 #include "renders/view/view_path.h"
 
@@ -18,6 +20,7 @@ namespace wangscape {
 // The truth of a comparison: the Embree reference at 64 samples per pixel (40 dB from 256, so
 // converged for a comparison of one-sample frames; docs/viewer.md).
 inline constexpr int kDefaultTruthSamples = 64;
+inline constexpr double kDefaultPathFps = 24;
 
 struct ViewRequest {
   std::filesystem::path dir;
@@ -30,7 +33,9 @@ struct ViewRequest {
   int repeat = 0;                    // frames timed for --stats (0: 200)
   std::filesystem::path path;        // keyframes JSON
   std::filesystem::path frames_dir;  // where the path's frames go
-  double path_fps = 24;
+  std::optional<double> fps;          // --path: frames per second (24); the window: the rate it holds (60)
+  bool cached = true;                // --path: each frame from the previous frame's samples (FrameCache)
+  int compare_every = 0;             // --path: compare frames 0, K, 2K, ... with the truth (0: none)
   std::string script;                        // window: scripted input (docs/viewer.md)
   std::filesystem::path record;              // window: where K's keyframes go (empty: path.json)
   bool compare = false;                      // also ray trace the frame with Embree and compare
@@ -45,7 +50,7 @@ struct ViewRequest {
 
 // The camera of the request: its flags, or the scene's own camera. Throws Error naming the
 // flag at fault (--fov outside (0, 179], a camera off the ground without a height, ...).
-ViewCamera view_camera(const ViewWorld& world, const ViewRequest& request);
+Camera view_camera(const ViewWorld& world, const ViewRequest& request);
 
 // Refuses a request's flags out of range (sizes, --fov, --fps, --repeat, --detail, --spp) and
 // flags that need another (--path without --frames, --diff without --compare), before anything
@@ -74,11 +79,18 @@ struct ViewComparison {
   ReferenceStats one_sample;   // the exact image's (at the renderer's samples per pixel)
   ImageRgb8 truth;             // the truth image itself
 };
-ViewComparison compare_with_reference(const ViewWorld& world, const LdiRenderer& renderer, const ViewCamera& camera,
+ViewComparison compare_with_reference(const ViewWorld& world, const LdiRenderer& renderer, const Camera& camera,
                                       int samples_per_pixel);
+// The same for any frame of the view: `frame` drawn from `camera` at `frame_samples` samples per
+// pixel, `sky_at(x, y)` true where it shows the sky.
+ViewComparison compare_with_reference(const ViewWorld& world, const ImageRgb8& frame,
+                                      const std::function<bool(int, int)>& sky_at, const Camera& camera,
+                                      int samples_per_pixel, int frame_samples);
+// The comparison's figures as one JSON object's members (no braces): "psnr_db": ..., ...
+std::string comparison_json_members(const ViewComparison& v, int frame_samples);
 
 // Median frame statistics over `frames` renders of one camera.
-ViewFrameStats measure_view(LdiRenderer& renderer, const ViewCamera& camera, int frames);
+ViewFrameStats measure_view(LdiRenderer& renderer, const Camera& camera, int frames);
 // {"frame_ms": ..., "fps": ..., "depth_pixels": ..., "tiles": {...}, "levels": [...]}
 std::string view_stats_json(const ViewFrameStats& stats);
 

@@ -79,6 +79,7 @@ std::array<double, 3> spline(const std::vector<PathKeyframe>& keys, double time,
   const double f = std::clamp((time - keys[i].time) / (keys[i + 1].time - keys[i].time), 0.0, 1.0);
   auto at = [&](std::size_t k) { return look ? keys[k].look_at : keys[k].position; };
   const auto p1 = at(i), p2 = at(i + 1);
+  if (p1 == p2) return p1;  // a still segment stays still (the neighbours' tangents would move it)
   const auto p0 = i > 0 ? at(i - 1) : p1, p3 = i + 2 < keys.size() ? at(i + 2) : p2;
   std::array<double, 3> out{};
   for (std::size_t c = 0; c < 3; ++c)
@@ -152,8 +153,9 @@ std::string view_path_json(const ViewPath& path) {
   return out + "]}\n";
 }
 
-PathCamera camera_along(const ViewPath& path, double time, const GroundHeightAt& ground, const fs::path& file) {
-  PathCamera camera{spline(path.keys, time, false), spline(path.keys, time, true)};
+Camera camera_along(const ViewPath& path, double time, double fov_degrees, const GroundHeightAt& ground,
+                    const fs::path& file) {
+  Camera camera{spline(path.keys, time, false), spline(path.keys, time, true), fov_degrees};
   const auto over_ground = [&](std::array<double, 3>& p, const char* what) {
     const std::optional<double> h = ground(p[0], p[1]);
     if (!h)
@@ -163,7 +165,7 @@ PathCamera camera_along(const ViewPath& path, double time, const GroundHeightAt&
     p[2] += *h;
   };
   if (path.position_above_ground) over_ground(camera.position, "eye");
-  if (path.look_at_above_ground) over_ground(camera.look_at, "look-at point");
+  if (path.look_at_above_ground) over_ground(camera.target, "look-at point");
   return camera;
 }
 

@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "scene/scene.h"
+
 namespace wangscape {
 
 inline constexpr std::uintmax_t kMaxPathFileBytes = 16u << 20;  // about 200,000 keyframes as written
@@ -49,14 +51,12 @@ std::string view_path_json(const ViewPath& path);
 // The ground height at E, N (nullopt: no ground there).
 using GroundHeightAt = std::function<std::optional<double>(double east, double north)>;
 
-struct PathCamera {
-  std::array<double, 3> position{}, look_at{};
-};
-// The camera at `time` (clamped to the path's times): E, N and the height interpolated by the
+// The camera at `time` (clamped to the path's times), with the horizontal field of view
+// `fov_degrees`: E, N and the height of the eye and of the point looked at interpolated by the
 // spline; a height above the ground is added to the ground under the interpolated point, so
 // the spline is taken over the ground. Throws Error naming `file` and the time when such a
 // point has no ground under it.
-PathCamera camera_along(const ViewPath& path, double time, const GroundHeightAt& ground,
+Camera camera_along(const ViewPath& path, double time, double fov_degrees, const GroundHeightAt& ground,
                         const std::filesystem::path& file);
 
 }  // namespace wangscape

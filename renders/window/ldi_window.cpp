@@ -143,6 +143,14 @@ std::uint16_t glyph(char c) {
       return 0b101101010010010;
     case 'X':
       return 0b101101010101101;
+    case 'N':
+      return 0b110101101101101;
+    case 'T':
+      return 0b111010010010010;
+    case 'I':
+      return 0b111010010010111;
+    case '%':
+      return 0b101001010100101;
     default:
       return 0;
   }
@@ -162,13 +170,13 @@ void draw_text(ImageRgb8& image, int x, int y, const std::string& text, int scal
 }
 
 struct Walker {
-  ViewCamera camera;
+  Camera camera;
   bool moved = false;  // until the first move the start camera is used as given (the offline frame's)
   double yaw = 0, pitch = 0;
   bool fly = false;
   double speed = 1.4;  // meters per second
 
-  explicit Walker(const ViewCamera& start) : camera(start) {
+  explicit Walker(const Camera& start) : camera(start) {
     const double dx = start.target[0] - start.position[0], dy = start.target[1] - start.position[1],
                  dz = start.target[2] - start.position[2];
     yaw = std::atan2(dy, dx);
@@ -270,7 +278,7 @@ namespace {
 // The keyframes K drops: the eye by its height above the ground, the point looked at as it is.
 class WalkRecorder {
  public:
-  void drop(const ViewWorld& world, const ViewCamera& camera, double time) {
+  void drop(const ViewWorld& world, const Camera& camera, double time) {
     const auto mm = [](double v) { return std::round(v * 1000) / 1000; };     // a file a person edits
     if (!path_.keys.empty() && !(mm(time) > path_.keys.back().time)) return;  // one a millisecond
     const double ground = world.ground_height(camera.position[0], camera.position[1],
@@ -302,11 +310,15 @@ class WalkRecorder {
 
 }  // namespace
 
-void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& start,
+void run_view_window(std::shared_ptr<const ViewWorld> world, const Camera& start,
                      const ViewWindowOptions& options) {
   const std::vector<ScriptStep> script = parse_script(options.script);
   LdiRenderer renderer(world, options.width, options.height);
   renderer.apply(options.settings);
+  FrameBudget budget;
+  budget.fps = options.fps;
+  budget.adaptive = script.empty();
+  FrameCache cache(renderer, budget);
   SdlSession sdl(options.width, options.height);
   if (options.script.empty()) SDL_SetRelativeMouseMode(SDL_TRUE);  // mouse look (a script moves it itself)
 
@@ -320,7 +332,7 @@ void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& s
   int step_frames_left = 0;
   const bool scripted = !script.empty();
   auto last = std::chrono::steady_clock::now();
-  double shown_ms = 0, shown_rate = 0;
+  double shown_ms = 0, shown_fresh = 0;
   for (bool running = true; running;) {
     // The script: each step's events go into SDL's queue, keys are released when it ends.
     if (scripted && step_frames_left == 0) {
@@ -381,20 +393,21 @@ void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& s
     walk_time += dt;
     if (keyframe) recorder.drop(*world, walker.camera, walk_time);
 
-    const ViewFrameStats& stats = renderer.render(walker.camera);
+    const CachedFrameStats& stats = cache.render(walker.camera);
     if (screenshot) {
       char name[32];
       std::snprintf(name, sizeof name, "view-%04d.png", ++screenshots);
-      write_image(options.screenshot_dir / name, renderer.image());  // the frame, without the overlay
+      write_image(options.screenshot_dir / name, cache.image());  // the frame, without the overlay
       if (!options.quiet) std::printf("%s\n", (options.screenshot_dir / name).string().c_str());
     }
-    // The overlay: a smoothed frame time and depth-pixel rate.
+    // The overlay: a smoothed frame time and share of the pixels traced anew.
     shown_ms = shown_ms == 0 ? stats.frame_ms : shown_ms * 0.9 + stats.frame_ms * 0.1;
-    const double rate = stats.frame_ms > 0 ? double(stats.depth_pixels) / stats.frame_ms / 1e3 : 0;  // M/s
-    shown_rate = shown_rate == 0 ? rate : shown_rate * 0.9 + rate * 0.1;
-    shown.pixels = renderer.image().pixels;
-    char text[64];
-    std::snprintf(text, sizeof text, "%.1f MS  %.1f MDP/S  %s%s", shown_ms, shown_rate, walker.fly ? "FLY" : "WALK",
+    const double fresh = 100 * stats.fresh_share();
+    shown_fresh = shown_fresh == 0 ? fresh : shown_fresh * 0.9 + fresh * 0.1;
+    shown.pixels = cache.image().pixels;
+    char text[80];
+    std::snprintf(text, sizeof text, "%.1f MS  %.0f%% NEW  %s%s%s", shown_ms, shown_fresh, walker.fly ? "FLY" : "WALK",
+                  stats.still_frames > 0 ? "  STILL" : "",
                   recorder.size() ? ("  KEYS " + std::to_string(recorder.size())).c_str() : "");
     draw_text(shown, 6, 6, text, 2);
     SDL_UpdateTexture(sdl.texture, nullptr, shown.pixels.data(), shown.width * 3);

@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "renders/view/frame_cache.h"
 #include "renders/view/ldi_renderer.h"
 
 namespace wangscape {
@@ -18,6 +19,10 @@ inline constexpr int kDefaultWindowWidth = 1280, kDefaultWindowHeight = 720;
 struct ViewWindowOptions {
   int width = 640, height = 360;
   ViewSettings settings;
+  // The rate to hold: each frame traces anew what its share of 1000 / fps ms allows (FrameCache),
+  // sized by the window's own clock, or, under a script, by the nominal costs (the frames of
+  // `view --path` at the same rate).
+  double fps = kDefaultViewFps;
   // "W*30,mouse:40:0,screenshot,Escape": KEY*N holds KEY for N frames, KEY alone one frame,
   // mouse:DX:DY moves the mouse, screenshot presses F12, wait*N waits N frames. Scripted
   // frames advance time by 1/30 s each, so a script gives the same frames on any machine.
@@ -31,7 +36,7 @@ struct ViewWindowOptions {
 
 // Opens the window at `start` and runs until Escape, the window's close button or the end of
 // the script. Throws Error when SDL cannot open a window (no display) or the script is bad.
-void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewCamera& start, const ViewWindowOptions& options);
+void run_view_window(std::shared_ptr<const ViewWorld> world, const Camera& start, const ViewWindowOptions& options);
 
 // Throws Error at once when there is no display to open a window on (no DISPLAY and no
 // WAYLAND_DISPLAY, unless SDL_VIDEODRIVER names a driver): SDL would otherwise wait.

@@ -23,7 +23,7 @@ int run_view(const ViewRequest& request) {
   if (!request.path.empty()) path = read_view_path(request.path);
   const auto world = load_view_world(request);
   if (!window) return run_view_frames(world, request, path ? &*path : nullptr);
-  const ViewCamera camera = view_camera(*world, request);
+  const Camera camera = view_camera(*world, request);
   ViewWindowOptions options;
   options.width = request.width ? request.width : kDefaultWindowWidth;
   options.height = request.height ? request.height : kDefaultWindowHeight;
@@ -31,6 +31,7 @@ int run_view(const ViewRequest& request) {
   options.script = request.script;
   options.quiet = request.quiet;
   options.settings = request.settings;
+  options.fps = request.fps.value_or(kDefaultViewFps);
   run_view_window(world, camera, options);
   return 0;
 }

@@ -69,7 +69,7 @@ const std::shared_ptr<const ViewWorld>& field() {
   return world;
 }
 
-ViewCamera looking(double x, double y, double z, double tx, double ty, double tz, double fov = 60) {
+Camera looking(double x, double y, double z, double tx, double ty, double tz, double fov = 60) {
   return {{x, y, z}, {tx, ty, tz}, fov};
 }
 
@@ -84,7 +84,7 @@ double mean_drawn_level(const ViewFrameStats& stats) {
 }
 
 // A frame of only the tiles `mask` keeps: its depths (row-major) and its pixels.
-std::pair<std::vector<float>, std::vector<std::uint8_t>> masked_frame(LdiRenderer& renderer, const ViewCamera& camera,
+std::pair<std::vector<float>, std::vector<std::uint8_t>> masked_frame(LdiRenderer& renderer, const Camera& camera,
                                                                       std::vector<std::uint8_t> mask) {
   renderer.set_tile_mask(std::move(mask));
   renderer.render(camera);
@@ -102,7 +102,7 @@ TEST(ldi_view, PlacesEveryTileOfTheArea) {
 
 TEST(ldi_view, DrawnAndCulledAddUpToThePlacedTiles) {
   LdiRenderer renderer(field(), 96, 64);
-  for (const ViewCamera& camera : {looking(0, -16, 2, 0, 0, 1), looking(3, 1, 1.7, 10, 5, 1),
+  for (const Camera& camera : {looking(0, -16, 2, 0, 0, 1), looking(3, 1, 1.7, 10, 5, 1),
                                    looking(-30, -30, 20, 0, 0, 0), looking(0, 0, 1.7, 0, -10, 0.5)}) {
     const ViewFrameStats& stats = renderer.render(camera);
     EXPECT_EQ(stats.tiles_drawn + stats.tiles_culled, 36u);
@@ -123,7 +123,7 @@ TEST(ldi_view, LookingAwayFromTheFieldDrawsNoTile) {
 }
 
 TEST(ldi_view, SameBytesOnOneAndTwoThreadsAndTwice) {
-  const ViewCamera camera = looking(-2, -9, 1.7, 4, 6, 0.8);
+  const Camera camera = looking(-2, -9, 1.7, 4, 6, 0.8);
   std::vector<std::uint8_t> one, two;
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
@@ -150,7 +150,7 @@ TEST(ldi_view, SameBytesOnOneAndTwoThreadsAndTwice) {
 // rarely do: compiled with contraction, the colors still agreed).
 TEST(ldi_view, SameBytesOnEveryVectorPath) {
   static const auto above = tiny_world("[-40.0, -8.0, 40.0, 120.0]", "above", "300.0");
-  const std::pair<std::shared_ptr<const ViewWorld>, ViewCamera> views[] = {
+  const std::pair<std::shared_ptr<const ViewWorld>, Camera> views[] = {
       {field(), looking(-2, -9, 1.7, 4, 6, 0.8)}, {above, looking(0, -10, 20, 0, 40, 1.0, 60)}};
   const VectorPath widest = widest_vector_path();
   std::printf("this CPU's widest vector path: %s\n", std::string(to_string(widest)).c_str());
@@ -190,7 +190,7 @@ TEST(ldi_view, NoHolesInACloseView) {
   // between stems); with 0.6 x they cover 24 %.
   const int w = 240, h = 160;
   LdiRenderer renderer(field(), w, h);
-  const ViewCamera camera = looking(0, -6, 1.7, 0, 4, 0.6, 60);
+  const Camera camera = looking(0, -6, 1.7, 0, 4, 0.6, 60);
   const auto ground = masked_frame(renderer, camera, std::vector<std::uint8_t>(field()->tiles().size(), 0)).first;
   const auto all = masked_frame(renderer, camera, {}).first;
   int flowers = 0, holes = 0;
@@ -208,7 +208,7 @@ TEST(ldi_view, NoHolesInACloseView) {
 
 TEST(ldi_view, LevelsCoarsenWithDistance) {
   LdiRenderer renderer(field(), 160, 90);
-  auto mean_level = [&](const ViewCamera& camera) { return mean_drawn_level(renderer.render(camera)); };
+  auto mean_level = [&](const Camera& camera) { return mean_drawn_level(renderer.render(camera)); };
   const double near = mean_level(looking(0, -14, 1.7, 0, 0, 0.5));
   const double middle = mean_level(looking(0, -22, 1.7, 0, 0, 0.5));
   const double far = mean_level(looking(0, -120, 1.7, 0, 0, 0.5));
@@ -228,7 +228,7 @@ TEST(ldi_view, LevelsCoarsenWithDistance) {
 
 TEST(ldi_view, LessDetailDrawsCoarserLevelsAndFewerDepthPixels) {
   LdiRenderer renderer(field(), 160, 90);
-  const ViewCamera camera = looking(0, -14, 1.7, 0, 0, 0.5);
+  const Camera camera = looking(0, -14, 1.7, 0, 0, 0.5);
   const ViewFrameStats full = renderer.render(camera);
   renderer.set_detail(0.5);
   const ViewFrameStats half = renderer.render(camera);
@@ -255,7 +255,7 @@ TEST(ldi_view, TheNearTileHidesTheFarOne) {
   const std::size_t near_tile = world->tiles().x0[0] < world->tiles().x0[1] ? 0 : 1;
   const int w = 120, h = 80;
   LdiRenderer renderer(world, w, h);
-  const ViewCamera camera = looking(-2.5, 2, 0.9, 8, 2, 0.9, 70);
+  const Camera camera = looking(-2.5, 2, 0.9, 8, 2, 0.9, 70);
   auto frame = [&](std::vector<std::uint8_t> mask) { return masked_frame(renderer, camera, std::move(mask)); };
   std::vector<std::uint8_t> only_near(2, 0), only_far(2, 0);
   only_near[near_tile] = 1;
@@ -287,7 +287,7 @@ namespace {
 
 // The near field: the tiles around the eye ray traced from their real flowers.
 TEST(ldi_view_near, SameBytesOnOneAndTwoThreadsAndAfterMovingAway) {
-  const ViewCamera camera = looking(0.5, -5, 1.5, 0, 3, 0.9);
+  const Camera camera = looking(0.5, -5, 1.5, 0, 3, 0.9);
   std::vector<std::uint8_t> one, two;
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
@@ -312,7 +312,7 @@ TEST(ldi_view_near, SameBytesOnOneAndTwoThreadsAndAfterMovingAway) {
 TEST(ldi_view_near, NearTilesAreNotWarpedAndTheFrameIsCloserToTheTruth) {
   // A close-up, 1.2 m from the flowers: the LDIs' splats against the real geometry. The truth is
   // the reference at 16 samples per pixel, the pack's light.
-  const ViewCamera camera = looking(0.3, -7.2, 1.3, 0.3, -4, 1.0, 60);
+  const Camera camera = looking(0.3, -7.2, 1.3, 0.3, -4, 1.0, 60);
   LdiRenderer ldis(field(), 160, 120), near(field(), 160, 120);
   near.set_near_field(6);
   const ViewFrameStats& a = ldis.render(camera);
@@ -342,7 +342,7 @@ TEST(ldi_view_near, NearTilesAreNotWarpedAndTheFrameIsCloserToTheTruth) {
 TEST(ldi_view_near, AFrameDoesNotDependOnWhereTheViewStarted) {
   // A field three near-field windows long (at 2 m, a window is about 25 m across).
   const auto world = tiny_world("[-36.0, -12.0, 36.0, 12.0]", "long", "90.0");
-  const ViewCamera camera = looking(-28, -2, 1.5, -20, 3, 0.9);
+  const Camera camera = looking(-28, -2, 1.5, -20, 3, 0.9);
   LdiRenderer direct(world, 120, 80), elsewhere_first(world, 120, 80);
   direct.set_near_field(2);
   elsewhere_first.set_near_field(2);
@@ -363,7 +363,7 @@ TEST(ldi_view_near, ADistanceOutOfRangeIsRefused) {
 // the exact geometry at one sample per pixel without sky rays: as close to the truth as the
 // reference's own one-sample image (whose few sky rays are noise), the same on 1 and 2 threads.
 TEST(ldi_view_ray_cast, IsTheExactOneSampleFrameOnAnyThreadCount) {
-  const ViewCamera camera = looking(0.3, -7.2, 1.3, 0.3, -4, 1.0, 60);
+  const Camera camera = looking(0.3, -7.2, 1.3, 0.3, -4, 1.0, 60);
   std::vector<std::uint8_t> one;
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
@@ -387,9 +387,9 @@ TEST(ldi_view_ray_cast, IsTheExactOneSampleFrameOnAnyThreadCount) {
 // ViewEngine::automatic: rays where the eye stands in the field (the near field stops most rays),
 // LDIs from outside it; each frame byte for byte the one of the engine it chose.
 TEST(ldi_view_automatic, RaysInTheFieldLdisFromOutside) {
-  const ViewCamera inside = looking(0.3, -7.2, 1.3, 0.3, -4, 1.0, 60);
-  const ViewCamera outside = looking(0, -16, 2.2, 0, 0, 1.2, 60);
-  const auto frame = [](ViewEngine engine, const ViewCamera& camera, bool* ray_cast) {
+  const Camera inside = looking(0.3, -7.2, 1.3, 0.3, -4, 1.0, 60);
+  const Camera outside = looking(0, -16, 2.2, 0, 0, 1.2, 60);
+  const auto frame = [](ViewEngine engine, const Camera& camera, bool* ray_cast) {
     LdiRenderer renderer(field(), 96, 64);
     renderer.set_near_field(6);
     renderer.set_engine(engine);
@@ -407,7 +407,7 @@ TEST(ldi_view_automatic, RaysInTheFieldLdisFromOutside) {
 // --spp N: N frames at sub-pixel offsets averaged; the first sample is the one-sample frame, and
 // the average is closer to the truth than one sample (edges anti-aliased).
 TEST(ldi_view_samples, JitteredFramesAreAveragedAndCloserToTheTruth) {
-  const ViewCamera camera = looking(0.3, -7.2, 1.3, 0.3, -4, 1.0, 60);
+  const Camera camera = looking(0.3, -7.2, 1.3, 0.3, -4, 1.0, 60);
   for (const ViewEngine engine : {ViewEngine::ldi, ViewEngine::embree}) {
     LdiRenderer one(field(), 96, 64), four(field(), 96, 64);
     one.set_engine(engine);
@@ -434,7 +434,7 @@ TEST(ldi_view_samples, JitteredFramesAreAveragedAndCloserToTheTruth) {
 // cast against the truth.
 TEST(ldi_view_above, TwentyMetersUpDrawsTheSteepSetsTheSameOnAnyThreadCount) {
   static const auto world = tiny_world("[-40.0, -8.0, 40.0, 120.0]", "above", "300.0");
-  const ViewCamera camera = looking(0, -10, 20, 0, 40, 1.0, 60);
+  const Camera camera = looking(0, -10, 20, 0, 40, 1.0, 60);
   std::vector<std::uint8_t> one;
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
@@ -543,7 +543,7 @@ TEST(ldi_view_species, PlantsTheRulesLeaveOutAreNotDrawn) {
             sunflower_rule,
         name);
   };
-  const ViewCamera camera = looking(0, -15, 1.7, 0, 0, 0.8, 60);
+  const Camera camera = looking(0, -15, 1.7, 0, 0, 0.8, 60);
   LdiRenderer everywhere(world("", "species_everywhere"), 160, 120);
   LdiRenderer nowhere(world("max_height = -1.0\n", "species_nowhere"), 160, 120);
   LdiRenderer half(world("density_by_height = [[0.0, 0.5], [1.0, 0.5]]\n", "species_half"), 160, 120);
@@ -585,7 +585,7 @@ TEST(ldi_view_species, RulesFollowTheGroundWithinATile) {
             "max_height = " +
             std::to_string(top) + "\n",
         "species_rule_slope_" + std::to_string(seed));
-    const ViewCamera camera = looking(-2000, 1990, top + 14, -2000, 2000, top, fov);
+    const Camera camera = looking(-2000, 1990, top + 14, -2000, 2000, top, fov);
     LdiRenderer renderer(world, width, height);
     renderer.set_near_field(0);  // LDIs everywhere
     renderer.render(camera);

@@ -46,12 +46,12 @@ const std::shared_ptr<const ViewWorld>& mountain() {
   return world;
 }
 
-ViewCamera looking(double x, double y, double z, double tx, double ty, double tz, double fov = 60) {
+Camera looking(double x, double y, double z, double tx, double ty, double tz, double fov = 60) {
   return {{x, y, z}, {tx, ty, tz}, fov};
 }
 
 // Per pixel, the depth of a frame of the terrain alone (no tile drawn; infinity for the sky).
-std::vector<float> depths_of(LdiRenderer& renderer, const ViewCamera& camera) {
+std::vector<float> depths_of(LdiRenderer& renderer, const Camera& camera) {
   renderer.set_tile_mask(std::vector<std::uint8_t>(mountain()->tiles().size(), 0));
   renderer.render(camera);
   std::vector<float> depth(std::size_t(renderer.width() * renderer.height()));
@@ -75,14 +75,14 @@ int slit_pixels(const std::vector<float>& depth, int w, int h) {
 }
 
 // A camera `above` meters over the ground at (x, y), looking at the ground at (tx, ty) `lift` meters up.
-ViewCamera over_ground(double x, double y, double above, double tx, double ty, double lift) {
+Camera over_ground(double x, double y, double above, double tx, double ty, double lift) {
   const SceneGround& ground = mountain()->scene().field->ground;
   return looking(x, y, *ground.height(x, y) + above, tx, ty, *ground.height(tx, ty) + lift);
 }
 
 TEST(ldi_view_terrain, FarChunksAreDrawnCoarser) {
   // The whole crop from 40 km: its 30 m cells are about a fifth of a pixel there.
-  const ViewCamera far = looking(0, -40000, 6000, 0, 0, 1500);
+  const Camera far = looking(0, -40000, 6000, 0, 0, 1500);
   LdiRenderer renderer(mountain(), 320, 180);
   renderer.set_terrain_error(0);
   const std::uint64_t fine = renderer.render(far).terrain_triangles;
@@ -93,7 +93,7 @@ TEST(ldi_view_terrain, FarChunksAreDrawnCoarser) {
   EXPECT_GT(fine, 50000u);
   EXPECT_LT(coarse * 4, fine * 3);  // a quarter fewer at least
   // Close by, within half a pixel, the fine mesh.
-  const ViewCamera near = over_ground(0, -2800, 60, -540, 460, 0);
+  const Camera near = over_ground(0, -2800, 60, -540, 460, 0);
   renderer.set_terrain_error(0);
   const std::uint64_t near_fine = renderer.render(near).terrain_triangles;
   renderer.set_terrain_error(kDefaultTerrainError);
@@ -109,11 +109,11 @@ TEST(ldi_view_terrain, NoCrackBetweenChunksOfDifferentLevels) {
   // levels but no skirts: the first two cameras catch missing skirts; the third, over the
   // gentler north-east flank, only that coarser levels are drawn there too.
   constexpr int kError = 40;
-  const ViewCamera cameras[] = {over_ground(0, -2800, 60, -540, 460, 0), over_ground(-2800, 0, 40, -540, 460, 0),
+  const Camera cameras[] = {over_ground(0, -2800, 60, -540, 460, 0), over_ground(-2800, 0, 40, -540, 460, 0),
                                 over_ground(2500, 2500, 80, -540, 460, 0)};
   const int w = 480, h = 270;
   LdiRenderer renderer(mountain(), w, h);
-  for (const ViewCamera& camera : cameras) {
+  for (const Camera& camera : cameras) {
     renderer.set_terrain_error(0);
     const int fine_slits = slit_pixels(depths_of(renderer, camera), w, h);
     const std::uint64_t fine = renderer.render(camera).terrain_triangles;
@@ -128,7 +128,7 @@ TEST(ldi_view_terrain, NoCrackBetweenChunksOfDifferentLevels) {
 }
 
 TEST(ldi_view_terrain, SameBytesOnOneAndTwoThreads) {
-  const ViewCamera camera = over_ground(0, -2800, 60, -540, 460, 0);
+  const Camera camera = over_ground(0, -2800, 60, -540, 460, 0);
   std::vector<std::uint8_t> frames[2];
   for (int threads = 1; threads <= 2; ++threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));

@@ -37,9 +37,9 @@ TEST(ViewPath, HeightsAboveTheGroundFollowTheTerrain) {
   ASSERT_TRUE(path.look_at_above_ground);
   EXPECT_EQ(path.frame_count(24), 97);
   for (double t = 0; t <= 4; t += 0.25) {
-    const PathCamera c = camera_along(path, t, sloped_ground, "walk.json");
+    const Camera c = camera_along(path, t, 50, sloped_ground, "walk.json");
     EXPECT_NEAR(c.position[2] - *sloped_ground(c.position[0], 0), 1.7, 1e-9) << t;
-    EXPECT_NEAR(c.look_at[2] - *sloped_ground(c.look_at[0], 0), 1.0, 1e-9) << t;
+    EXPECT_NEAR(c.target[2] - *sloped_ground(c.target[0], 0), 1.0, 1e-9) << t;
     if (std::fmod(t, 2) == 0) {
       EXPECT_NEAR(c.position[0], 10 * t, 1e-9) << t;  // the spline passes the keys
     }
@@ -52,7 +52,7 @@ TEST(ViewPath, AbsoluteHeightsAreKeptAndTheJsonRoundTrips) {
                         {"time": 3.5, "position": [4, 5, 1510], "look_at": [4, 90, 1495]}]})";
   const ViewPath path = parse_view_path(text, "walk.json");
   EXPECT_FALSE(path.position_above_ground);
-  const PathCamera c = camera_along(path, 3.5, sloped_ground, "walk.json");
+  const Camera c = camera_along(path, 3.5, 50, sloped_ground, "walk.json");
   EXPECT_DOUBLE_EQ(c.position[2], 1510);
   const ViewPath again = parse_view_path(view_path_json(path), "again.json");
   ASSERT_EQ(again.keys.size(), 2u);
@@ -74,7 +74,7 @@ TEST(ViewPath, AHeightAboveNoGroundIsRefusedWithItsTime) {
                         {"time": 1, "position": [-400, 0], "height_above_ground": 2, "look_at": [0, 50, 1000]}]})",
       "walk.json");
   try {
-    camera_along(path, 1, sloped_ground, "walk.json");
+    camera_along(path, 1, 50, sloped_ground, "walk.json");
     FAIL() << "expected a refusal";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("at 1.000 s the eye"), std::string::npos) << e.what();

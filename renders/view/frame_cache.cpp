@@ -1,0 +1,656 @@
+#include "renders/view/frame_cache.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include "core/error.h"
+#include "core/hash.h"
+#include "core/number_text.h"
+#include "renders/trace/scene_tracer.h"
+#include "renders/trace/shading.h"
+#include "renders/view/view_projection.h"
+#include "renders/view/view_samples.h"
+
+namespace wangscape {
+
+using namespace view_detail;
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kNone = std::numeric_limits<float>::quiet_NaN();  // a pixel without a sample
+constexpr std::uint64_t kNoKey = ~std::uint64_t{0};
+constexpr float kNearest = 0.05f;  // meters: samples nearer the eye are dropped (the renderer's near plane)
+// A sample is seen through a gap in a nearer surface (the surface magnified, its samples spread)
+// when at least kGapNeighbours of its eight neighbours are nearer by more than kGapDepth of its
+// depth; beside a thin stem at most three are, inside a gap of a spread surface five to eight.
+constexpr int kGapNeighbours = 5;
+constexpr float kGapDepth = 0.1f;
+// Every sample is traced anew once every kRefreshPeriod frames (its slot's turn) or when it
+// is kMaxAge frames old: the rotating share that catches what reprojection cannot see (a thin
+// stem a pixel centre missed before, now in front of it).
+constexpr std::uint32_t kRefreshPeriod = 32;
+constexpr std::uint8_t kMaxAge = 64;
+// A still camera's samples are scheduled in kStillSlots slots: a frame takes the next slots.
+constexpr std::uint32_t kStillSlots = 64;
+// Sky rays per sample while still: one each is an unbiased estimate of the sky share, and the
+// reference's eight cost eight times a sample in the budget (docs/viewer.md, "The sample cache").
+constexpr int kStillSkyRays = 1;
+// A camera that moved this far or turned this much since the last frame, or that leaves this
+// share of the pixels empty, is drawn cold.
+constexpr double kJumpMeters = 20;
+constexpr double kJumpCosine = 0.866;  // 30 degrees
+constexpr double kColdHoleShare = 0.5;
+// Positions within the pixel are kept in 1/kSubScale of a pixel.
+constexpr float kSubScale = 60;  // (a copy's lies up to kMaxStretch / 2 + 0.5 pixels out: within 127 / 60)
+
+// What a frame does with a pixel, in the order the budget serves them.
+enum Need : std::uint8_t {
+  kHole = 0,       // no sample (none arrived, or it was seen through a gap): traced, or filled
+  kStretched = 1,  // a magnified neighbour's sample covers it: shown, and traced soon
+  kStale = 2,      // a cold frame's LDI or terrain pixel: an approximation, traced soon
+  kRefresh = 3,    // its turn in the rotating share, or too old
+  kKeep = 4,
+  kNeeds = 5,
+  kSkyFill = 6,  // (transient) a hole among sky: the sky
+};
+// A reprojected sample covers the pixels whose centres lie in a square of its footprint's size
+// (one pixel at its old depth) times kSplatScale, up to kMaxStretch pixels. A pixel prefers a
+// sample of its own (whose position lies in it) to a neighbour's copy unless the copy is nearer
+// by more than kCopyMargin of its depth (a near stem's copies hide the background that slid
+// behind it; a continuous surface keeps its own samples, rows of ground at a grazing angle
+// too); a copy keeps its true position, so nothing drifts. Without copies, samples that met in one pixel
+// (a sample traced at a pixel centre beside reprojected ones) were lost, and the holes they left
+// grew frame after frame (in the field at 640 x 360: 5,000 in the first frame, 35,000 by the
+// tenth, every one of them traced); with them, such a pixel shows its neighbour's sample.
+constexpr float kSplatScale = 1.5f;
+constexpr float kMaxStretch = 3.0f;
+constexpr float kCopyMargin = 0.25f;
+constexpr std::uint64_t kCopyBit = 1ull << 31;  // in a key: a neighbour's copy (loses ties)
+// A pixel whose sample lies more than this far from its centre (pixels, either axis) is stretched.
+constexpr float kStretchedOffset = 0.5f;
+constexpr int kBlock = 16;  // fresh samples are listed by 4 x 4 blocks, so a packet of rays stays together
+
+bool is_none(float depth) { return std::isnan(depth); }
+// floor() of a value above -64, without a call into libm (the baseline x86-64 build has no
+// rounding instruction): the frame's inner loops round several times a pixel.
+inline int floor_above(float v) { return int(v + 64.0f) - 64; }
+inline int ceil_above(float v) { return 64 - int(64.0f - v); }
+inline std::int8_t sub_code(float offset) {  // offset in pixels -> 1/kSubScale, rounded, clamped
+  return std::int8_t(floor_above(std::clamp(offset * kSubScale, -127.0f, 127.0f) + 0.5f));
+}
+std::uint32_t pixel_hash(std::uint64_t p, std::uint64_t salt) { return std::uint32_t(mix64(p * 0x100000001B3ull + salt) >> 32); }
+
+}  // namespace
+
+void FrameBudget::check() const {
+  if (!(fps >= kMinViewFps && fps <= kMaxViewFps))
+    throw Error("view: " + number_text(fps) + " frames/s; expected " + number_text(kMinViewFps) + " .. " +
+                number_text(kMaxViewFps));
+  if (!(pixel_ns > 0 && sample_ns > 0 && still_sample_ns > 0)) throw Error("view: a frame budget's costs must be positive");
+}
+
+// One kept sample: all of it moves together, so it is one 24-byte record (two generations of
+// them, the keys, the needs and the fresh list make 61 bytes a pixel).
+struct Sample {
+  float depth = kNone;                  // camera depth (m); +inf: sky; NaN: none
+  std::array<float, 3> color{0, 0, 0};  // linear RGB (the sky's own along the sample's ray)
+  std::int8_t sub_x = 0, sub_y = 0;     // position from the pixel's centre, 1/kSubScale pixels
+  std::uint16_t count = 0;              // still samples averaged in color (0: not still)
+  std::uint8_t age = 0;                 // frames since traced
+  SampleSource source = SampleSource::sky;
+};
+static_assert(sizeof(Sample) == 24);
+using KeptSamples = std::vector<Sample>;
+
+struct FrameCache::Impl {
+  int width = 0, height = 0;
+  KeptSamples kept[2];
+  int current = 0;                   // kept[current]: the last frame's samples
+  std::vector<std::uint64_t> keys;   // reprojection: (depth bits, previous pixel), the smallest wins
+  std::vector<std::uint8_t> need;    // per pixel, Need
+  std::vector<std::uint32_t> fresh;  // the pixels traced this frame, row by row
+  std::vector<std::array<std::uint32_t, kNeeds>> row_needs;
+  std::vector<std::uint32_t> row_fresh;
+  ViewProjection projection;  // the last frame's
+  std::uint32_t still_slot = 0;
+  double measured_sample_ns = 0;  // FrameBudget::adaptive: the last frames' cost per fresh sample
+
+  std::size_t pixels() const { return std::size_t(width) * std::size_t(height); }
+  KeptSamples& now() { return kept[current]; }
+  void resize(int w, int h) {
+    width = w;
+    height = h;
+    for (KeptSamples& k : kept) k.assign(pixels(), Sample{});
+    keys.assign(pixels(), kNoKey);
+    need.assign(pixels(), kKeep);
+    fresh.assign(pixels(), 0);
+    row_needs.assign(std::size_t(h), {});
+    row_fresh.assign(std::size_t(h) + 1, 0);
+  }
+  std::size_t bytes() const {
+    return (kept[0].size() + kept[1].size()) * sizeof(Sample) + keys.size() * 8 + need.size() + fresh.size() * 4 +
+           row_needs.size() * sizeof(row_needs[0]) + row_fresh.size() * 4;
+  }
+
+  void reproject(const ViewProjection& to);
+  void classify(std::uint64_t frame, bool still);
+  std::array<std::uint64_t, kNeeds> count_needs() const;
+  std::size_t select(const std::array<std::uint64_t, kNeeds>& needs, std::uint64_t budget, std::uint64_t frame);
+  std::size_t select_still(std::uint64_t budget);
+  template <class Take>
+  std::size_t gather_fresh(const Take& take);
+  void trace(LdiRenderer& renderer, std::size_t n, bool still);
+  std::uint64_t resolve(const ViewWorld& world, ImageRgb8& image) const;
+};
+
+// ---- reprojection: each kept sample to where the new camera sees it ------------------------
+
+void FrameCache::Impl::reproject(const ViewProjection& to) {
+  const ViewProjection& from = projection;
+  // New camera coordinates = M * old camera coordinates + t (M = R_new^T R_old).
+  const Vector3d* old_axes[3] = {&from.right, &from.up, &from.forward};
+  const Vector3d* new_axes[3] = {&to.right, &to.up, &to.forward};
+  float M[3][3], t[3];
+  const Vector3d shift{from.eye[0] - to.eye[0], from.eye[1] - to.eye[1], from.eye[2] - to.eye[2]};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) M[i][j] = float(dot(*new_axes[i], *old_axes[j]));
+    t[i] = float(dot(*new_axes[i], shift));
+  }
+  const KeptSamples& old = now();
+  std::fill(keys.begin(), keys.end(), kNoKey);
+  const float inv_focal = 1.0f / from.focal, inv_sub = 1.0f / kSubScale;
+  const float stretch = kSplatScale * to.focal / from.focal;
+  // Where the new camera sees old sample p of pixel (x, y): screen (px, py), the footprint's
+  // side (pixels) and the new depth (+inf: the sky; NaN: behind the eye).
+  struct Seen {
+    float px, py, side, depth;
+  };
+  const auto project = [&](std::size_t p, int x, int y) -> Seen {
+    const float depth = old[p].depth;
+    const float u = (float(x) + 0.5f - from.cx + float(old[p].sub_x) * inv_sub) * inv_focal;
+    const float v = (from.cy - float(y) - 0.5f - float(old[p].sub_y) * inv_sub) * inv_focal;
+    if (std::isinf(depth)) {  // a direction: turned, not moved
+      const float n0 = M[0][0] * u + M[0][1] * v + M[0][2], n1 = M[1][0] * u + M[1][1] * v + M[1][2];
+      const float n2 = M[2][0] * u + M[2][1] * v + M[2][2];
+      if (!(n2 > 1e-6f)) return {0, 0, 0, kNone};
+      const float inv = to.focal / n2;
+      return {to.cx + n0 * inv, to.cy - n1 * inv, 1.0f, kInf};
+    }
+    const float c0 = u * depth, c1 = v * depth;
+    const float n0 = M[0][0] * c0 + M[0][1] * c1 + M[0][2] * depth + t[0];
+    const float n1 = M[1][0] * c0 + M[1][1] * c1 + M[1][2] * depth + t[1];
+    const float n2 = M[2][0] * c0 + M[2][1] * c1 + M[2][2] * depth + t[2];
+    if (!(n2 > kNearest)) return {0, 0, 0, kNone};
+    const float inv = to.focal / n2;
+    return {to.cx + n0 * inv, to.cy - n1 * inv, std::min(kMaxStretch, stretch * depth / n2), n2};
+  };
+  const auto write = [&](int qx, int qy, std::uint64_t k) {
+    std::atomic_ref<std::uint64_t> slot(keys[std::size_t(qy) * std::size_t(width) + std::size_t(qx)]);
+    std::uint64_t seen = slot.load(std::memory_order_relaxed);
+    while (k < seen && !slot.compare_exchange_weak(seen, k, std::memory_order_relaxed)) {
+    }
+  };
+  tbb::parallel_for(tbb::blocked_range<int>(0, height, 4), [&](const tbb::blocked_range<int>& r) {
+    for (int y = r.begin(); y != r.end(); ++y)
+      for (int x = 0; x < width; ++x) {
+        const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+        if (is_none(old[p].depth)) continue;
+        const Seen s = project(p, x, y);
+        if (is_none(s.depth) || !(s.px > -kMaxStretch && s.py > -kMaxStretch && s.px < float(width) + kMaxStretch &&
+                                  s.py < float(height) + kMaxStretch))
+          continue;
+        const std::uint64_t key = std::uint64_t(std::bit_cast<std::uint32_t>(s.depth)) << 32 | std::uint64_t(p);
+        const std::uint64_t copy_key =
+            std::uint64_t(std::bit_cast<std::uint32_t>(s.depth * (1 + kCopyMargin))) << 32 | kCopyBit | std::uint64_t(p);
+        // The pixels whose centres the footprint holds: the own pixel's key, the others' a copy's.
+        const int home_x = floor_above(s.px), home_y = floor_above(s.py);
+        const float half = s.side * 0.5f;
+        const int x0 = std::max(0, ceil_above(s.px - half - 0.5f)), x1 = std::min(width - 1, floor_above(s.px + half - 0.5f));
+        const int y0 = std::max(0, ceil_above(s.py - half - 0.5f)), y1 = std::min(height - 1, floor_above(s.py + half - 0.5f));
+        if (home_x >= 0 && home_y >= 0 && home_x < width && home_y < height) write(home_x, home_y, key);
+        for (int qy = y0; qy <= y1; ++qy)
+          for (int qx = x0; qx <= x1; ++qx)
+            if (qx != home_x || qy != home_y) write(qx, qy, copy_key);
+      }
+  });
+  KeptSamples& next = kept[1 - current];
+  tbb::parallel_for(tbb::blocked_range<int>(0, height, 4), [&](const tbb::blocked_range<int>& r) {
+    for (int y = r.begin(); y != r.end(); ++y)
+      for (int x = 0; x < width; ++x) {
+        const std::size_t q = std::size_t(y) * std::size_t(width) + std::size_t(x);
+        need[q] = kKeep;
+        if (keys[q] == kNoKey) {
+          next[q].depth = kNone;
+          continue;
+        }
+        const std::uint32_t p = std::uint32_t(keys[q] & (kCopyBit - 1));
+        const std::uint32_t py_old = p / std::uint32_t(width);
+        const Seen s = project(p, int(p - py_old * std::uint32_t(width)), int(py_old));
+        Sample& to_sample = next[q];
+        to_sample = old[p];
+        to_sample.age = std::uint8_t(std::min(255, to_sample.age + 1));
+        to_sample.depth = s.depth;
+        const float sx = s.px - float(x) - 0.5f, sy = s.py - float(y) - 0.5f;
+        if (std::abs(sx) > kStretchedOffset || std::abs(sy) > kStretchedOffset) need[q] = kStretched;
+        next[q].sub_x = sub_code(sx);
+        next[q].sub_y = sub_code(sy);
+      }
+  });
+  current = 1 - current;
+}
+
+// ---- what each pixel needs ------------------------------------------------------------------
+
+void FrameCache::Impl::classify(std::uint64_t frame, bool still) {
+  KeptSamples& k = now();
+  const auto depth_or = [&](int x, int y, float outside) {
+    return x < 0 || y < 0 || x >= width || y >= height ? outside
+                                                       : k[std::size_t(y) * std::size_t(width) + std::size_t(x)].depth;
+  };
+  tbb::parallel_for(tbb::blocked_range<int>(0, height, 4), [&](const tbb::blocked_range<int>& r) {
+    for (int y = r.begin(); y != r.end(); ++y)
+      for (int x = 0; x < width; ++x) {
+        const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+        const float d = k[p].depth;
+        const float gap = d * (1 - kGapDepth);  // NaN for no sample: nothing is nearer
+        int nearer = 0, sky = 0;
+        if (x > 0 && y > 0 && x + 1 < width && y + 1 < height) {
+          const Sample* above = k.data() + p - std::size_t(width);
+          const Sample* below = k.data() + p + std::size_t(width);
+          const Sample* row = k.data() + p;
+          for (const float n : {above[-1].depth, above[0].depth, above[1].depth, row[-1].depth, row[1].depth,
+                                below[-1].depth, below[0].depth, below[1].depth}) {
+            sky += n == kInf;
+            nearer += n < gap;
+          }
+        } else {
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+              if (dx == 0 && dy == 0) continue;
+              const float n = depth_or(x + dx, y + dy, kNone);
+              sky += n == kInf;
+              nearer += n < gap;
+            }
+        }
+        std::uint8_t judged;
+        if (is_none(d))
+          judged = sky == 8 ? kSkyFill : kHole;  // a hole among sky is sky: nothing stands in it
+        else if (still)  // the same view: nothing new shows through a gap, nothing is stale
+          judged = need[p] == kStretched ? kStretched : kKeep;
+        else if (nearer >= kGapNeighbours)
+          judged = kHole;
+        else if (need[p] == kStretched)
+          judged = kStretched;
+        else if (k[p].source == SampleSource::frame)
+          judged = kStale;
+        else if (k[p].age >= kMaxAge || (pixel_hash(p, 1) + frame) % kRefreshPeriod == 0)
+          judged = kRefresh;
+        else
+          judged = kKeep;
+        need[p] = judged;
+      }
+  });
+  // Applied after every pixel was judged, so a judgement never sees another's outcome.
+  tbb::parallel_for(tbb::blocked_range<int>(0, height, 4), [&](const tbb::blocked_range<int>& r) {
+    for (int y = r.begin(); y != r.end(); ++y) {
+      std::array<std::uint32_t, kNeeds>& counts = row_needs[std::size_t(y)];
+      counts = {};
+      for (int x = 0; x < width; ++x) {
+        const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+        if (need[p] == kSkyFill) {
+          k[p].depth = kInf;
+          k[p].source = SampleSource::sky;
+          k[p].count = 0;
+          k[p].age = 0;
+          k[p].sub_x = k[p].sub_y = 0;
+          need[p] = kKeep;
+        } else if (need[p] == kHole) {
+          k[p].depth = kNone;
+        }
+        ++counts[need[p]];
+      }
+    }
+  });
+}
+
+std::array<std::uint64_t, kNeeds> FrameCache::Impl::count_needs() const {
+  std::array<std::uint64_t, kNeeds> total{};
+  for (const auto& row : row_needs)
+    for (std::size_t c = 0; c < kNeeds; ++c) total[c] += row[c];
+  return total;
+}
+
+// The pixels `take` accepts into fresh, block by block (kBlock x kBlock pixels, in rows of
+// blocks), so that 16 neighbouring fresh samples make one packet of rays. Parallel: counted per
+// row of blocks, then written at each one's offset. Returns how many.
+template <class Take>
+std::size_t FrameCache::Impl::gather_fresh(const Take& take) {
+  const int block_rows = (height + kBlock - 1) / kBlock;
+  const auto visit = [&](int by, auto&& on) {
+    for (int bx = 0; bx < width; bx += kBlock)
+      for (int y = by * kBlock; y < std::min(height, (by + 1) * kBlock); ++y)
+        for (int x = bx; x < std::min(width, bx + kBlock); ++x) {
+          const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+          if (take(p)) on(p);
+        }
+  };
+  tbb::parallel_for(0, block_rows, [&](int by) {
+    std::uint32_t n = 0;
+    visit(by, [&](std::size_t) { ++n; });
+    row_fresh[std::size_t(by) + 1] = n;
+  });
+  row_fresh[0] = 0;
+  for (int by = 0; by < block_rows; ++by) row_fresh[std::size_t(by) + 1] += row_fresh[std::size_t(by)];
+  tbb::parallel_for(0, block_rows, [&](int by) {
+    std::uint32_t at = row_fresh[std::size_t(by)];
+    visit(by, [&](std::size_t p) { fresh[at++] = std::uint32_t(p); });
+  });
+  return row_fresh[std::size_t(block_rows)];
+}
+
+// In motion: the needs in order (holes, stale, refresh) while the budget lasts; of the need it
+// runs out in, a share spread over the frame by a hash.
+std::size_t FrameCache::Impl::select(const std::array<std::uint64_t, kNeeds>& needs, std::uint64_t budget,
+                                     std::uint64_t frame) {
+  std::uint8_t last = kKeep;  // the first need not taken whole
+  std::uint32_t share = 0;    // of it, the pixels whose hash is below this (of 2^32)
+  std::uint64_t left = budget;
+  for (std::uint8_t c = kHole; c < kKeep; ++c) {
+    if (needs[c] <= left) {
+      left -= needs[c];
+      continue;
+    }
+    last = c;
+    share = std::uint32_t(double(left) / double(needs[c]) * 4294967295.0);
+    break;
+  }
+  return gather_fresh([&](std::size_t p) {
+    const std::uint8_t c = need[p];
+    return c < last || (c == last && pixel_hash(p, frame * 2 + 7) < share);
+  });
+}
+
+// While still: the holes, then the next slots of the schedule, as many as the budget holds
+// (at least one).
+std::size_t FrameCache::Impl::select_still(std::uint64_t budget) {
+  const std::uint64_t holes = count_needs()[kHole] + count_needs()[kStretched];
+  const double per_slot = double(pixels()) / kStillSlots;
+  const std::uint32_t slots = std::uint32_t(
+      std::clamp(std::floor(double(budget > holes ? budget - holes : 0) / per_slot), 1.0, double(kStillSlots)));
+  const std::uint32_t first = still_slot;
+  still_slot = (still_slot + slots) % kStillSlots;
+  return gather_fresh([&](std::size_t p) {
+    return need[p] < kStale || (pixel_hash(p, 3) % kStillSlots - first + kStillSlots) % kStillSlots < slots;
+  });
+}
+
+// ---- tracing the fresh samples: the whole scene's rays --------------------------------------
+
+void FrameCache::Impl::trace(LdiRenderer& renderer, std::size_t n, bool still) {
+  const SceneTracer& tracer = renderer.whole_scene();
+  const ViewWorld& world = *renderer.world();
+  const ViewProjection& view = projection;
+  const Vector3d from{view.eye[0] - tracer.origin()[0], view.eye[1] - tracer.origin()[1],
+                      view.eye[2] - tracer.origin()[2]};
+  ShadingSettings shading = world.sun_shading();
+  shading.ao_rays = still ? std::min(kStillSkyRays, shading.ao_rays) : 0;
+  KeptSamples& k = now();
+  const std::size_t packets = (n + 15) / 16;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, packets, 4), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::array<Vector3d, 16> d;
+    std::array<float, 16> tfar;
+    std::array<std::array<float, 2>, 16> offset;
+    bool valid[16], hit_valid[16];
+    std::optional<SceneTracer::Hit> hit[16];
+    SurfaceSample surfaces[16];
+    Vec3f colors[16];
+    for (std::size_t packet = r.begin(); packet != r.end(); ++packet) {
+      for (int l = 0; l < 16; ++l) {
+        const std::size_t i = packet * 16 + std::size_t(l);
+        valid[l] = i < n;
+        if (!valid[l]) continue;
+        const std::size_t p = fresh[i];
+        const int x = int(p % std::size_t(width)), y = int(p / std::size_t(width));
+        // Still: the pixel's next point of the R2 sequence (its first at the centre).
+        offset[l] = still ? r2_offset(k[p].source == SampleSource::still ? k[p].count : 0) : std::array<float, 2>{0, 0};
+        d[l] = view.ray_through(double(x) + 0.5 + offset[l][0], double(y) + 0.5 + offset[l][1]);
+        tfar[l] = kInf;
+      }
+      tracer.intersect16(from, d.data(), tfar.data(), valid, hit);
+      for (int l = 0; l < 16; ++l) {
+        hit_valid[l] = valid[l] && hit[l].has_value();
+        if (hit_valid[l]) surfaces[l] = tracer.surface(*hit[l], from, d[l], world.ground_colors());
+      }
+      if (still) {
+        for (int l = 0; l < 16; ++l)
+          if (hit_valid[l]) {
+            const std::size_t p = fresh[packet * 16 + std::size_t(l)];
+            colors[l] = shade(tracer.scene(), shading, surfaces[l], mix64(p * 65537 + k[p].count));
+          }
+      } else {
+        shade_in_the_open16(tracer.scene(), shading, surfaces, hit_valid, colors);
+      }
+      for (int l = 0; l < 16; ++l) {
+        if (!valid[l]) continue;
+        const std::size_t p = fresh[packet * 16 + std::size_t(l)];
+        const Vec3f dir{float(d[l][0]), float(d[l][1]), float(d[l][2])};
+        const Vec3f c = hit_valid[l] ? colors[l] : sky_radiance(world.shading(), dir);
+        const float depth = hit_valid[l] ? float(double(hit[l]->t) * dot(d[l], view.forward)) : kInf;
+        const bool accumulate = still && k[p].source == SampleSource::still && k[p].count > 0 && !is_none(k[p].depth);
+        if (accumulate) {
+          const float w = 1.0f / float(k[p].count + 1);
+          for (int c3 = 0; c3 < 3; ++c3) k[p].color[std::size_t(c3)] += (c[std::size_t(c3)] - k[p].color[std::size_t(c3)]) * w;
+          k[p].count = std::uint16_t(std::min(65535, k[p].count + 1));
+          k[p].depth = std::min(k[p].depth, depth);  // the pixel reprojects with its nearest surface
+        } else {
+          k[p].color = {c[0], c[1], c[2]};
+          k[p].count = still ? 1 : 0;
+          k[p].depth = depth;
+          k[p].sub_x = sub_code(offset[l][0]);
+          k[p].sub_y = sub_code(offset[l][1]);
+          k[p].source = still ? SampleSource::still : hit_valid[l] ? SampleSource::ray : SampleSource::sky;
+        }
+        k[p].age = 0;
+        need[p] = kKeep;  // a sample of its own now
+      }
+    }
+  });
+  tracer.check("tracing the frame's fresh samples");
+}
+
+// ---- the picture ----------------------------------------------------------------------------
+
+std::uint64_t FrameCache::Impl::resolve(const ViewWorld& world, ImageRgb8& image) const {
+  const KeptSamples& k = kept[current];
+  const Luts& lut = luts();
+  const ViewProjection& view = projection;
+  tbb::parallel_for(tbb::blocked_range<int>(0, height, 8), [&](const tbb::blocked_range<int>& r) {
+    for (int y = r.begin(); y != r.end(); ++y) {
+      const float ray_up = -(float(y) + 0.5f - view.cy) / view.focal;
+      std::uint8_t* out = image.pixels.data() + image.offset(0, y);
+      for (int x = 0; x < width; ++x, out += 3) {
+        const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+        if (is_none(k[p].depth)) continue;  // a hole: its neighbours', below
+        Vec3f c{k[p].color[0], k[p].color[1], k[p].color[2]};
+        if (k[p].source == SampleSource::sky) {  // the sky along the pixel's own ray, as LdiRenderer draws it
+          const float ray_right = (float(x) + 0.5f - view.cx) / view.focal;
+          Vec3f d;
+          for (std::size_t a = 0; a < 3; ++a)
+            d[a] = float(view.forward[a]) + ray_right * float(view.right[a]) + ray_up * float(view.up[a]);
+          c = sky_radiance(world.shading(), d);
+        }
+        out[0] = lut.encode(c[0]);
+        out[1] = lut.encode(c[1]);
+        out[2] = lut.encode(c[2]);
+      }
+    }
+  });
+  // Holes the budget left: the mean (linear) of the nearest ring of neighbours that have a sample.
+  std::atomic<std::uint64_t> filled{0};
+  tbb::parallel_for(tbb::blocked_range<int>(0, height, 8), [&](const tbb::blocked_range<int>& r) {
+    std::uint64_t holes = 0;
+    for (int y = r.begin(); y != r.end(); ++y)
+      for (int x = 0; x < width; ++x) {
+        if (!is_none(k[std::size_t(y) * std::size_t(width) + std::size_t(x)].depth)) continue;
+        ++holes;
+        std::uint8_t* out = image.pixels.data() + image.offset(x, y);
+        for (int ring = 1; ring <= 4; ++ring) {
+          float sum[3] = {0, 0, 0};
+          int n = 0;
+          for (int dy = -ring; dy <= ring; ++dy)
+            for (int dx = -ring; dx <= ring; ++dx) {
+              const int nx = x + dx, ny = y + dy;
+              if ((std::abs(dx) != ring && std::abs(dy) != ring) || nx < 0 || ny < 0 || nx >= width || ny >= height ||
+                  is_none(k[std::size_t(ny) * std::size_t(width) + std::size_t(nx)].depth))
+                continue;
+              const std::uint8_t* in = image.pixels.data() + image.offset(nx, ny);
+              for (int c = 0; c < 3; ++c) sum[c] += lut.to_linear[in[c]];
+              ++n;
+            }
+          if (n == 0) continue;
+          for (int c = 0; c < 3; ++c) out[c] = lut.encode(sum[c] / float(n));
+          break;
+        }
+      }
+    filled += holes;
+  });
+  return filled.load();
+}
+
+// ---- the frame ------------------------------------------------------------------------------
+
+FrameCache::FrameCache(LdiRenderer& renderer, const FrameBudget& budget)
+    : renderer_(renderer), impl_(std::make_unique<Impl>()) {
+  set_budget(budget);
+}
+
+FrameCache::~FrameCache() = default;
+
+void FrameCache::set_budget(const FrameBudget& budget) {
+  budget.check();
+  budget_ = budget;
+}
+
+float FrameCache::depth_at(int x, int y) const {
+  return impl_->now()[std::size_t(y) * std::size_t(impl_->width) + std::size_t(x)].depth;
+}
+
+SampleSource FrameCache::source_at(int x, int y) const {
+  return impl_->now()[std::size_t(y) * std::size_t(impl_->width) + std::size_t(x)].source;
+}
+
+double FrameCache::bytes_per_pixel() const {
+  return impl_->pixels() ? double(impl_->bytes()) / double(impl_->pixels()) : 0;
+}
+
+std::uint64_t FrameCache::fresh_budget(bool still) const {
+  const Impl& m = *impl_;
+  const double frame_ns = 1e9 / budget_.fps - budget_.pixel_ns * double(m.pixels());
+  double per_sample = still ? budget_.still_sample_ns : budget_.sample_ns;
+  if (budget_.adaptive && m.measured_sample_ns > 0) per_sample = m.measured_sample_ns * (still ? 2 : 1);
+  return std::uint64_t(std::clamp(frame_ns / per_sample, double(m.pixels()) / 256, double(m.pixels())));
+}
+
+void FrameCache::draw_cold(const Camera& camera) {
+  Impl& m = *impl_;
+  const ViewFrameStats& drawn = renderer_.render(camera);
+  m.projection = ViewProjection::of(camera, m.width, m.height);
+  KeptSamples& k = m.now();
+  const Luts& lut = luts();
+  const ImageRgb8& frame = renderer_.image();
+  const SampleSource source = drawn.ray_cast ? SampleSource::ray : SampleSource::frame;
+  tbb::parallel_for(tbb::blocked_range<int>(0, m.height, 8), [&](const tbb::blocked_range<int>& r) {
+    for (int y = r.begin(); y != r.end(); ++y)
+      for (int x = 0; x < m.width; ++x) {
+        const std::size_t p = std::size_t(y) * std::size_t(m.width) + std::size_t(x);
+        const std::uint8_t* rgb = frame.pixels.data() + frame.offset(x, y);
+        const bool sky = renderer_.sky_at(x, y);
+        k[p].depth = sky ? kInf : renderer_.depth_at(x, y);
+        k[p].color = {lut.to_linear[rgb[0]], lut.to_linear[rgb[1]], lut.to_linear[rgb[2]]};
+        k[p].sub_x = k[p].sub_y = 0;
+        k[p].count = 0;
+        k[p].age = 0;
+        k[p].source = sky ? SampleSource::sky : source;
+      }
+  });
+  std::fill(m.need.begin(), m.need.end(), std::uint8_t(kKeep));
+  image_.pixels = frame.pixels;
+  stats_.cold = true;
+  stats_.fresh = m.pixels();
+  stats_.holes = stats_.filled = 0;
+  stats_.budget = m.pixels();
+  stats_.trace_ms = drawn.frame_ms;
+}
+
+const CachedFrameStats& FrameCache::render(const Camera& camera) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  Impl& m = *impl_;
+  if (m.width != renderer_.width() || m.height != renderer_.height()) {
+    m.resize(renderer_.width(), renderer_.height());
+    image_ = ImageRgb8(m.width, m.height);
+    warm_ = false;
+  }
+  const ViewProjection view = ViewProjection::of(camera, m.width, m.height);
+  const bool still = warm_ && camera.position == previous_.position && camera.target == previous_.target &&
+                     camera.fov_degrees == previous_.fov_degrees;
+  const bool jump = !warm_ || camera.fov_degrees != previous_.fov_degrees ||
+                    length(view.eye - m.projection.eye) > kJumpMeters ||
+                    dot(view.forward, m.projection.forward) < kJumpCosine;
+  stats_ = CachedFrameStats{};
+  stats_.pixels = m.pixels();
+  stats_.still = still;
+  ++frame_index_;
+  if (jump) {
+    draw_cold(camera);
+  } else {
+    const auto ms_since = [](Clock::time_point from) {
+      return std::chrono::duration<double, std::milli>(Clock::now() - from).count();
+    };
+    auto phase = Clock::now();
+    if (!still) m.reproject(view);
+    stats_.phase_ms[0] = ms_since(phase);
+    phase = Clock::now();
+    m.projection = view;
+    m.classify(frame_index_, still);
+    const std::array<std::uint64_t, kNeeds> needs = m.count_needs();
+    stats_.holes = needs[kHole];
+    stats_.stretched = needs[kStretched];
+    stats_.refresh = needs[kStale] + needs[kRefresh];
+    if (!still && double(needs[kHole]) > kColdHoleShare * double(m.pixels())) {
+      draw_cold(camera);
+    } else {
+      stats_.budget = fresh_budget(still);
+      const std::size_t n = still ? m.select_still(stats_.budget) : m.select(needs, stats_.budget, frame_index_);
+      stats_.phase_ms[1] = ms_since(phase);
+      phase = Clock::now();
+      m.trace(renderer_, n, still);
+      stats_.trace_ms = stats_.phase_ms[2] = ms_since(phase);
+      phase = Clock::now();
+      if (n > 0) {
+        const double ns = stats_.trace_ms * 1e6 / double(n);
+        m.measured_sample_ns = m.measured_sample_ns > 0 ? 0.8 * m.measured_sample_ns + 0.2 * ns : ns;
+      }
+      stats_.fresh = n;
+      stats_.filled = m.resolve(*renderer_.world(), image_);
+      stats_.phase_ms[3] = ms_since(phase);
+    }
+  }
+  still_frames_ = still ? still_frames_ + 1 : 0;
+  stats_.still_frames = still_frames_;
+  previous_ = camera;
+  warm_ = true;
+  stats_.frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  return stats_;
+}
+
+}  // namespace wangscape
