@@ -60,24 +60,27 @@ enum Need : std::uint8_t {
   kRefresh = 3,    // its turn in the rotating share, or too old
   kKeep = 4,
   kNeeds = 5,
-  kSkyFill = 6,  // (transient) a hole among sky: the sky
+  kSkyFill = 6,   // (transient) a hole among sky: the sky
+  kTraced = 7,    // traced this frame
+  kHidden = 8,    // (transient) kept, but seen through a gap in a surface traced this frame
 };
 // A reprojected sample covers the pixels whose centres lie in a square of its footprint's size
 // (one pixel at its old depth) times kSplatScale, up to kMaxStretch pixels. A pixel prefers a
-// sample of its own (whose position lies in it) to a neighbour's copy unless the copy is nearer
-// by more than kCopyMargin of its depth (a near stem's copies hide the background that slid
-// behind it; a continuous surface keeps its own samples, rows of ground at a grazing angle
-// too); a copy keeps its true position, so nothing drifts. Without copies, samples that met in one pixel
+// sample of its own (whose position lies in it) to any neighbour's copy: copies only fill what
+// no sample reached (with a copy nearer by a quarter winning, every edge of a near stem or leaf
+// grew by a copy in a quarter of its pixels each frame, 15,000 pixels to trace after a pure turn).
+// A copy keeps its true position, so nothing drifts. Background seen where a nearer surface has
+// a gap is found by the gap test, before tracing and again after it. Without copies, samples that met in one pixel
 // (a sample traced at a pixel centre beside reprojected ones) were lost, and the holes they left
 // grew frame after frame (in the field at 640 x 360: 5,000 in the first frame, 35,000 by the
 // tenth, every one of them traced); with them, such a pixel shows its neighbour's sample.
-constexpr float kSplatScale = 1.5f;
+constexpr float kSplatScale = 1.25f;
 constexpr float kMaxStretch = 3.0f;
-constexpr float kCopyMargin = 0.25f;
-constexpr std::uint64_t kCopyBit = 1ull << 31;  // in a key: a neighbour's copy (loses ties)
+constexpr std::uint64_t kCopyBit = 1ull << 63;  // in a key: a neighbour's copy (above every depth)
 // A pixel whose sample lies more than this far from its centre (pixels, either axis) is stretched.
 constexpr float kStretchedOffset = 0.5f;
-constexpr int kBlock = 16;  // fresh samples are listed by 4 x 4 blocks, so a packet of rays stays together
+constexpr float kAdoptedOffset = 1.25f;  // an adopted sample (below) may lie this far
+constexpr int kBlock = 4;  // fresh samples are listed by 4 x 4 blocks: 16 of one block make a packet of rays
 
 bool is_none(float depth) { return std::isnan(depth); }
 // floor() of a value above -64, without a call into libm (the baseline x86-64 build has no
@@ -109,6 +112,15 @@ struct Sample {
   SampleSource source = SampleSource::sky;
 };
 static_assert(sizeof(Sample) == 24);
+
+// The samples a still camera's mean at this pixel already holds: its still samples, or the view's
+// own ray (its sky share baked, not sampled: biased a little, far less noisy than one sky ray)
+// as the first; a cold frame's LDI pixel, the sky and a hole start afresh.
+int still_samples(const Sample& s) {
+  if (std::isnan(s.depth)) return 0;
+  if (s.source == SampleSource::still) return s.count;
+  return s.source == SampleSource::ray ? 1 : 0;
+}
 using KeptSamples = std::vector<Sample>;
 
 struct FrameCache::Impl {
@@ -117,7 +129,13 @@ struct FrameCache::Impl {
   int current = 0;                   // kept[current]: the last frame's samples
   std::vector<std::uint64_t> keys;   // reprojection: (depth bits, previous pixel), the smallest wins
   std::vector<std::uint8_t> need;    // per pixel, Need
-  std::vector<std::uint32_t> fresh;  // the pixels traced this frame, row by row
+  std::vector<std::uint32_t> fresh;  // the pixels traced this frame, block by block
+  // In motion, where in its pixel each fresh sample is traced (1/kSubScale pixels): where the
+  // samples around it lie, so that it joins their lattice (traced at pixel centres among samples
+  // that moved a fraction of a pixel, two met in one pixel every few frames and the samples thinned
+  // out: in a pure turn 15,000 pixels of 230,400 showed a neighbour's sample after one frame,
+  // 60,000 after thirty).
+  std::vector<std::array<std::int8_t, 2>> lattice;
   std::vector<std::array<std::uint32_t, kNeeds>> row_needs;
   std::vector<std::uint32_t> row_fresh;
   ViewProjection projection;  // the last frame's
@@ -133,23 +151,28 @@ struct FrameCache::Impl {
     keys.assign(pixels(), kNoKey);
     need.assign(pixels(), kKeep);
     fresh.assign(pixels(), 0);
+    lattice.assign(pixels(), {0, 0});
     row_needs.assign(std::size_t(h), {});
     row_fresh.assign(std::size_t(h) + 1, 0);
   }
   std::size_t bytes() const {
     return (kept[0].size() + kept[1].size()) * sizeof(Sample) + keys.size() * 8 + need.size() + fresh.size() * 4 +
+           lattice.size() * 2 +
            row_needs.size() * sizeof(row_needs[0]) + row_fresh.size() * 4;
   }
 
   void reproject(const ViewProjection& to);
   void classify(std::uint64_t frame, bool still);
   std::array<std::uint64_t, kNeeds> count_needs() const;
+  std::array<int, 2> neighbours(int x, int y, float depth) const;
+  void drop_hidden();
   std::size_t select(const std::array<std::uint64_t, kNeeds>& needs, std::uint64_t budget, std::uint64_t frame);
   std::size_t select_still(std::uint64_t budget);
   template <class Take>
   std::size_t gather_fresh(const Take& take);
   void trace(LdiRenderer& renderer, std::size_t n, bool still);
-  std::uint64_t resolve(const ViewWorld& world, ImageRgb8& image) const;
+  std::uint64_t fill_holes(ImageRgb8& image) const;
+  void resolve(const ViewWorld& world, ImageRgb8& image) const;
 };
 
 // ---- reprojection: each kept sample to where the new camera sees it ------------------------
@@ -209,8 +232,7 @@ void FrameCache::Impl::reproject(const ViewProjection& to) {
                                   s.py < float(height) + kMaxStretch))
           continue;
         const std::uint64_t key = std::uint64_t(std::bit_cast<std::uint32_t>(s.depth)) << 32 | std::uint64_t(p);
-        const std::uint64_t copy_key =
-            std::uint64_t(std::bit_cast<std::uint32_t>(s.depth * (1 + kCopyMargin))) << 32 | kCopyBit | std::uint64_t(p);
+        const std::uint64_t copy_key = key | kCopyBit;
         // The pixels whose centres the footprint holds: the own pixel's key, the others' a copy's.
         const int home_x = floor_above(s.px), home_y = floor_above(s.py);
         const float half = s.side * 0.5f;
@@ -232,7 +254,7 @@ void FrameCache::Impl::reproject(const ViewProjection& to) {
           next[q].depth = kNone;
           continue;
         }
-        const std::uint32_t p = std::uint32_t(keys[q] & (kCopyBit - 1));
+        const std::uint32_t p = std::uint32_t(keys[q]);
         const std::uint32_t py_old = p / std::uint32_t(width);
         const Seen s = project(p, int(p - py_old * std::uint32_t(width)), int(py_old));
         Sample& to_sample = next[q];
@@ -240,7 +262,15 @@ void FrameCache::Impl::reproject(const ViewProjection& to) {
         to_sample.age = std::uint8_t(std::min(255, to_sample.age + 1));
         to_sample.depth = s.depth;
         const float sx = s.px - float(x) - 0.5f, sy = s.py - float(y) - 0.5f;
-        if (std::abs(sx) > kStretchedOffset || std::abs(sy) > kStretchedOffset) need[q] = kStretched;
+        // A copy of a sample that lost its own pixel to another (two met there) is adopted: it lives
+        // on here, beside its pixel, so that the samples do not thin out frame after frame.
+        const int hx = floor_above(s.px), hy = floor_above(s.py);
+        const bool orphan = (keys[q] & kCopyBit) &&
+                            !(hx >= 0 && hy >= 0 && hx < width && hy < height &&
+                              keys[std::size_t(hy) * std::size_t(width) + std::size_t(hx)] ==
+                                  (keys[q] & ~kCopyBit));
+        const float allowed = orphan ? kAdoptedOffset : kStretchedOffset;
+        if (std::abs(sx) > allowed || std::abs(sy) > allowed) need[q] = kStretched;
         next[q].sub_x = sub_code(sx);
         next[q].sub_y = sub_code(sy);
       }
@@ -250,37 +280,42 @@ void FrameCache::Impl::reproject(const ViewProjection& to) {
 
 // ---- what each pixel needs ------------------------------------------------------------------
 
+// Of the eight neighbours of pixel (x, y): how many show the sky, and how many lie nearer than
+// `depth` by more than kGapDepth of it (none when depth is NaN).
+std::array<int, 2> FrameCache::Impl::neighbours(int x, int y, float depth) const {
+  const KeptSamples& k = kept[current];
+  const float gap = depth * (1 - kGapDepth);
+  int nearer = 0, sky = 0;
+  const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+  if (x > 0 && y > 0 && x + 1 < width && y + 1 < height) {
+    const Sample* above = k.data() + p - std::size_t(width);
+    const Sample* below = k.data() + p + std::size_t(width);
+    const Sample* row = k.data() + p;
+    for (const float n : {above[-1].depth, above[0].depth, above[1].depth, row[-1].depth, row[1].depth,
+                          below[-1].depth, below[0].depth, below[1].depth}) {
+      sky += n == kInf;
+      nearer += n < gap;
+    }
+    return {sky, nearer};
+  }
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      if ((dx == 0 && dy == 0) || x + dx < 0 || y + dy < 0 || x + dx >= width || y + dy >= height) continue;
+      const float n = k[std::size_t(y + dy) * std::size_t(width) + std::size_t(x + dx)].depth;
+      sky += n == kInf;
+      nearer += n < gap;
+    }
+  return {sky, nearer};
+}
+
 void FrameCache::Impl::classify(std::uint64_t frame, bool still) {
   KeptSamples& k = now();
-  const auto depth_or = [&](int x, int y, float outside) {
-    return x < 0 || y < 0 || x >= width || y >= height ? outside
-                                                       : k[std::size_t(y) * std::size_t(width) + std::size_t(x)].depth;
-  };
   tbb::parallel_for(tbb::blocked_range<int>(0, height, 4), [&](const tbb::blocked_range<int>& r) {
     for (int y = r.begin(); y != r.end(); ++y)
       for (int x = 0; x < width; ++x) {
         const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
         const float d = k[p].depth;
-        const float gap = d * (1 - kGapDepth);  // NaN for no sample: nothing is nearer
-        int nearer = 0, sky = 0;
-        if (x > 0 && y > 0 && x + 1 < width && y + 1 < height) {
-          const Sample* above = k.data() + p - std::size_t(width);
-          const Sample* below = k.data() + p + std::size_t(width);
-          const Sample* row = k.data() + p;
-          for (const float n : {above[-1].depth, above[0].depth, above[1].depth, row[-1].depth, row[1].depth,
-                                below[-1].depth, below[0].depth, below[1].depth}) {
-            sky += n == kInf;
-            nearer += n < gap;
-          }
-        } else {
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-              if (dx == 0 && dy == 0) continue;
-              const float n = depth_or(x + dx, y + dy, kNone);
-              sky += n == kInf;
-              nearer += n < gap;
-            }
-        }
+        const auto [sky, nearer] = neighbours(x, y, d);
         std::uint8_t judged;
         if (is_none(d))
           judged = sky == 8 ? kSkyFill : kHole;  // a hole among sky is sky: nothing stands in it
@@ -373,10 +408,38 @@ std::size_t FrameCache::Impl::select(const std::array<std::uint64_t, kNeeds>& ne
     share = std::uint32_t(double(left) / double(needs[c]) * 4294967295.0);
     break;
   }
-  return gather_fresh([&](std::size_t p) {
+  const std::size_t n = gather_fresh([&](std::size_t p) {
     const std::uint8_t c = need[p];
     return c < last || (c == last && pixel_hash(p, frame * 2 + 7) < share);
   });
+  // Where each is traced: its own sample's place, or the mean place of its neighbours' own samples.
+  const KeptSamples& k = now();
+  const int own = int(kStretchedOffset * kSubScale);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const std::size_t p = fresh[i];
+      const Sample& s = k[p];
+      if (!is_none(s.depth) && need[p] >= kStale && std::abs(s.sub_x) <= own && std::abs(s.sub_y) <= own) {
+        lattice[p] = {s.sub_x, s.sub_y};
+        continue;
+      }
+      const int x = int(p % std::size_t(width)), y = int(p / std::size_t(width));
+      int sum_x = 0, sum_y = 0, count = 0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          if ((dx == 0 && dy == 0) || x + dx < 0 || y + dy < 0 || x + dx >= width || y + dy >= height) continue;
+          const std::size_t q = std::size_t(y + dy) * std::size_t(width) + std::size_t(x + dx);
+          const Sample& n2 = k[q];
+          if (is_none(n2.depth) || need[q] < kStale || std::abs(n2.sub_x) > own || std::abs(n2.sub_y) > own) continue;
+          sum_x += n2.sub_x;
+          sum_y += n2.sub_y;
+          ++count;
+        }
+      lattice[p] = count ? std::array<std::int8_t, 2>{std::int8_t(sum_x / count), std::int8_t(sum_y / count)}
+                         : std::array<std::int8_t, 2>{0, 0};
+    }
+  });
+  return n;
 }
 
 // While still: the holes, then the next slots of the schedule, as many as the budget holds
@@ -389,7 +452,10 @@ std::size_t FrameCache::Impl::select_still(std::uint64_t budget) {
   const std::uint32_t first = still_slot;
   still_slot = (still_slot + slots) % kStillSlots;
   return gather_fresh([&](std::size_t p) {
-    return need[p] < kStale || (pixel_hash(p, 3) % kStillSlots - first + kStillSlots) % kStillSlots < slots;
+    // Whole 4 x 4 blocks take their turn together: their rays make full, coherent packets (a
+    // scattered share cost about three times as much a sample).
+    const std::size_t block = (p / std::size_t(width) / kBlock) * std::size_t(width) + p % std::size_t(width) / kBlock;
+    return need[p] < kStale || (pixel_hash(block, 3) % kStillSlots - first + kStillSlots) % kStillSlots < slots;
   });
 }
 
@@ -421,7 +487,8 @@ void FrameCache::Impl::trace(LdiRenderer& renderer, std::size_t n, bool still) {
         const std::size_t p = fresh[i];
         const int x = int(p % std::size_t(width)), y = int(p / std::size_t(width));
         // Still: the pixel's next point of the R2 sequence (its first at the centre).
-        offset[l] = still ? r2_offset(k[p].source == SampleSource::still ? k[p].count : 0) : std::array<float, 2>{0, 0};
+        offset[l] = still ? r2_offset(still_samples(k[p]))
+                          : std::array<float, 2>{float(lattice[p][0]) / kSubScale, float(lattice[p][1]) / kSubScale};
         d[l] = view.ray_through(double(x) + 0.5 + offset[l][0], double(y) + 0.5 + offset[l][1]);
         tfar[l] = kInf;
       }
@@ -445,12 +512,13 @@ void FrameCache::Impl::trace(LdiRenderer& renderer, std::size_t n, bool still) {
         const Vec3f dir{float(d[l][0]), float(d[l][1]), float(d[l][2])};
         const Vec3f c = hit_valid[l] ? colors[l] : sky_radiance(world.shading(), dir);
         const float depth = hit_valid[l] ? float(double(hit[l]->t) * dot(d[l], view.forward)) : kInf;
-        const bool accumulate = still && k[p].source == SampleSource::still && k[p].count > 0 && !is_none(k[p].depth);
-        if (accumulate) {
-          const float w = 1.0f / float(k[p].count + 1);
-          for (int c3 = 0; c3 < 3; ++c3) k[p].color[std::size_t(c3)] += (c[std::size_t(c3)] - k[p].color[std::size_t(c3)]) * w;
-          k[p].count = std::uint16_t(std::min(65535, k[p].count + 1));
+        const int before = still_samples(k[p]);
+        if (still && before > 0) {
+          const float w = 1.0f / float(before + 1);
+          for (std::size_t a = 0; a < 3; ++a) k[p].color[a] += (c[a] - k[p].color[a]) * w;
+          k[p].count = std::uint16_t(std::min(65535, before + 1));
           k[p].depth = std::min(k[p].depth, depth);  // the pixel reprojects with its nearest surface
+          k[p].source = SampleSource::still;
         } else {
           k[p].color = {c[0], c[1], c[2]};
           k[p].count = still ? 1 : 0;
@@ -460,16 +528,35 @@ void FrameCache::Impl::trace(LdiRenderer& renderer, std::size_t n, bool still) {
           k[p].source = still ? SampleSource::still : hit_valid[l] ? SampleSource::ray : SampleSource::sky;
         }
         k[p].age = 0;
-        need[p] = kKeep;  // a sample of its own now
+        need[p] = kTraced;
       }
     }
   });
   tracer.check("tracing the frame's fresh samples");
 }
 
+// After tracing: a kept sample that a surface traced this frame now surrounds (five of its
+// neighbours nearer) was seen through what was a gap: it is dropped (shown as its neighbours,
+// traced next frame). Judged first, then applied, so no judgement sees another's outcome.
+void FrameCache::Impl::drop_hidden() {
+  KeptSamples& k = now();
+  for (int pass = 0; pass < 2; ++pass)
+    tbb::parallel_for(tbb::blocked_range<int>(0, height, 4), [&](const tbb::blocked_range<int>& r) {
+      for (int y = r.begin(); y != r.end(); ++y)
+        for (int x = 0; x < width; ++x) {
+          const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+          if (pass == 1) {
+            if (need[p] == kHidden) k[p].depth = kNone;
+          } else if (need[p] != kTraced && !is_none(k[p].depth) && neighbours(x, y, k[p].depth)[1] >= kGapNeighbours) {
+            need[p] = kHidden;
+          }
+        }
+    });
+}
+
 // ---- the picture ----------------------------------------------------------------------------
 
-std::uint64_t FrameCache::Impl::resolve(const ViewWorld& world, ImageRgb8& image) const {
+void FrameCache::Impl::resolve(const ViewWorld& world, ImageRgb8& image) const {
   const KeptSamples& k = kept[current];
   const Luts& lut = luts();
   const ViewProjection& view = projection;
@@ -479,7 +566,7 @@ std::uint64_t FrameCache::Impl::resolve(const ViewWorld& world, ImageRgb8& image
       std::uint8_t* out = image.pixels.data() + image.offset(0, y);
       for (int x = 0; x < width; ++x, out += 3) {
         const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
-        if (is_none(k[p].depth)) continue;  // a hole: its neighbours', below
+        if (is_none(k[p].depth)) continue;  // a hole: fill_holes
         Vec3f c{k[p].color[0], k[p].color[1], k[p].color[2]};
         if (k[p].source == SampleSource::sky) {  // the sky along the pixel's own ray, as LdiRenderer draws it
           const float ray_right = (float(x) + 0.5f - view.cx) / view.focal;
@@ -494,7 +581,15 @@ std::uint64_t FrameCache::Impl::resolve(const ViewWorld& world, ImageRgb8& image
       }
     }
   });
-  // Holes the budget left: the mean (linear) of the nearest ring of neighbours that have a sample.
+}
+
+// Holes the budget left are shown as the mean (linear) of the nearest ring of neighbours that
+// have a sample, and stay holes: the next frame traces them first. (Kept as samples of their own,
+// the farthest neighbour's, they spared later frames the holes but smeared near stems over the
+// field: 4.7 dB below the exact image in the walk at 640 x 360, against 3.3 dB.) Returns how many.
+std::uint64_t FrameCache::Impl::fill_holes(ImageRgb8& image) const {
+  const KeptSamples& k = kept[current];
+  const Luts& lut = luts();
   std::atomic<std::uint64_t> filled{0};
   tbb::parallel_for(tbb::blocked_range<int>(0, height, 8), [&](const tbb::blocked_range<int>& r) {
     std::uint64_t holes = 0;
@@ -636,12 +731,14 @@ const CachedFrameStats& FrameCache::render(const Camera& camera) {
       m.trace(renderer_, n, still);
       stats_.trace_ms = stats_.phase_ms[2] = ms_since(phase);
       phase = Clock::now();
+      if (!still) m.drop_hidden();
       if (n > 0) {
         const double ns = stats_.trace_ms * 1e6 / double(n);
         m.measured_sample_ns = m.measured_sample_ns > 0 ? 0.8 * m.measured_sample_ns + 0.2 * ns : ns;
       }
       stats_.fresh = n;
-      stats_.filled = m.resolve(*renderer_.world(), image_);
+      m.resolve(*renderer_.world(), image_);
+      stats_.filled = m.fill_holes(image_);
       stats_.phase_ms[3] = ms_since(phase);
     }
   }

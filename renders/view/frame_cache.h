@@ -43,9 +43,9 @@ enum class SampleSource : std::uint8_t {
 // instead (the window's own clock): the rate holds on any machine, the frames vary with it.
 struct FrameBudget {
   double fps = kDefaultViewFps;
-  double pixel_ns = 12;         // per pixel and frame: reprojection, tests, resolve (both threads)
-  double sample_ns = 380;       // per fresh sample in motion (a primary and a shadow ray, shading)
-  double still_sample_ns = 700; // per fresh sample while still (with the sky ray)
+  double pixel_ns = 55;          // per pixel and frame: reprojection, tests, resolve (both threads)
+  double sample_ns = 550;        // per fresh sample in motion (a primary and a shadow ray, shading)
+  double still_sample_ns = 750;  // per fresh sample while still (with the sky ray)
   bool adaptive = false;
   // Throws Error for fps outside kMinViewFps .. kMaxViewFps.
   void check() const;

@@ -82,7 +82,6 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest&
   // the frames the window draws at that rate.
   FrameBudget budget;
   budget.fps = std::clamp(fps, kMinViewFps, kMaxViewFps);
-  if (std::getenv("WSB")) budget.fps = std::atof(std::getenv("WSB"));
   FrameCache cache(renderer, budget);
   std::vector<double> frame_ms;
   double fresh_share = 0;
@@ -95,10 +94,6 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest&
       frame_ms.push_back(stats.frame_ms);
       fresh_share += stats.fresh_share();
       image = &cache.image();
-      if (std::getenv("WANGSCAPE_DEBUG_CACHE"))
-        std::fprintf(stderr, "frame %lld: %.2f ms [%.2f %.2f %.2f %.2f], cold %d still %d budget %llu fresh %llu holes %llu filled %llu stretched %llu refresh %llu\n", k,
-                     stats.frame_ms, stats.phase_ms[0], stats.phase_ms[1], stats.phase_ms[2], stats.phase_ms[3], stats.cold, stats.still, (unsigned long long)stats.budget,
-                     (unsigned long long)stats.fresh, (unsigned long long)stats.holes, (unsigned long long)stats.filled, (unsigned long long)stats.stretched, (unsigned long long)stats.refresh);
     } else {
       frame_ms.push_back(renderer.render(camera).frame_ms);
       fresh_share += 1;
