@@ -22,56 +22,13 @@
 #include "renders/view/view_frames.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
+#include "tests/renders/view_test_world.h"
 
 namespace wangscape {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("wangscape_ldi_view_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
-
-// A flat field over `area` (ENU m), its pack built with 3 levels x 4 directions at a coarse
-// resolution, and the view's world over both.
-// With `full_pack`, the pack has the scene file's defaults (7 levels x 8 directions, 512 pixels).
-// The view's world of the scene file `text`, with its pack (see tiny_world).
-std::shared_ptr<const ViewWorld> world_of(const std::string& text, const std::string& name, bool full_pack = false) {
-  const SceneConfig config = parse_scene_config(text, name + ".toml", fs::temp_directory_path());
-  Scene scene = make_scene(config);
-  LdiBuildOptions options;
-  if (!full_pack) {
-    options.view.levels = 3;
-    options.view.directions = 4;
-    options.view.image_width = 128;
-  }
-  options.shading.ao_rays = 0;
-  const fs::path pack = scratch(name + ".ldi");
-  build_scene_ldi_pack(scene, pack, options);
-  return std::make_shared<const ViewWorld>(std::move(scene), pack);
-}
-
-std::shared_ptr<const ViewWorld> tiny_world(const std::string& area, const std::string& name,
-                                            const std::string& flat_size = "60.0", bool full_pack = false,
-                                            const std::string& points_per_tile = "10") {
-  return world_of("name = \"view test\"\n[terrain]\nflat_size = " + flat_size +
-                      "\n[tiles]\nset = \"cohen8\"\n"
-                      "tile_size = 4.0\npoints_per_tile = " +
-                      points_per_tile + "\nseed = 5\narea = " + area +
-                      "\n[models]\nvariants = 2\ntriangle_budget = 400\n[sun]\nazimuth = 200.0\nelevation = 40.0\n",
-                  name, full_pack);
-}
-
-const std::shared_ptr<const ViewWorld>& field() {
-  static const auto world = tiny_world("[-12.0, -12.0, 12.0, 12.0]", "field");
-  return world;
-}
-
-Camera looking(double x, double y, double z, double tx, double ty, double tz, double fov = 60) {
-  return {{x, y, z}, {tx, ty, tz}, fov};
-}
+using namespace view_test;
 
 // The mean level of the drawn tiles (the far field counted as the last).
 double mean_drawn_level(const ViewFrameStats& stats) {
