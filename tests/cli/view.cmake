@@ -46,6 +46,15 @@ view_sh_test(path "path.mp4"
   "rm -rf \"$3\" && \"$0\" --quiet view \"$1\" --path \"$4\" --frames \"$3\" --fps 10 --size 48x32 && ls \"$3\" && test -s \"$3/frame-00003.png\" && test ! -e \"$3/frame-00004.png\" && test -s \"$3/path.mp4\""
   "${view_dir}/path_frames" "${view_dir}/path.json")
 
+# The path drawn from the sample cache: --stats --json is one object with exactly its keys,
+# without a frames folder; --compare-every 2 compares frames 0 and 2 (one JSON line each).
+view_sh_test(path_stats_json "^ok 4 frames$"
+  "\"$0\" --quiet view \"$1\" --path \"$4\" --fps 10 --size 48x32 --stats --json | \"$2\" \"$3\" stats"
+  "${CMAKE_CURRENT_LIST_DIR}/view_path_check.py" "${view_dir}/path.json")
+view_sh_test(path_compare_every "^ok 0 2$"
+  "\"$0\" --quiet view \"$1\" --path \"$4\" --fps 10 --size 48x32 --compare-every 2 --truth-spp 4 | \"$2\" \"$3\" compare"
+  "${CMAKE_CURRENT_LIST_DIR}/view_path_check.py" "${view_dir}/path.json")
+
 # A walk given by heights above the ground: 4 frames, and one line saying what was written.
 file(WRITE "${view_dir}/walk.json"
   "{\"keyframes\": [{\"time\": 0, \"position\": [0, -16], \"height_above_ground\": 1.7, \"look_at\": [0, 0], \"look_at_height_above_ground\": 1.0},\n"
