@@ -35,6 +35,7 @@
 #include <limits>
 #include <memory>
 
+#include "bench/default_view_world.h"
 #include "renders/ldi/ldi_scene.h"
 #include "renders/view/view_frames.h"
 #include "scene/scene.h"
@@ -43,31 +44,7 @@
 namespace {
 
 using namespace wangscape;
-
-// The default scene's world, and the same world lit without sun-shadow rays (BM_ViewRayCastUnshadowed),
-// both from one pack built once per run.
-struct Worlds {
-  std::shared_ptr<const ViewWorld> lit, unshadowed;
-};
-
-const Worlds& default_worlds() {
-  static const Worlds worlds = [] {
-    const SceneConfig config = default_scene_config();
-    const std::filesystem::path pack =
-        std::filesystem::temp_directory_path() / ("wangscape-view-bench-" + std::to_string(::getpid()) + ".ldi");
-    Scene scene = make_scene(config);
-    build_scene_ldi_pack(scene, pack, ldi_options(config));
-    ShadingSettings unshadowed = ldi_options(config).shading;
-    unshadowed.shadows = false;
-    Worlds made{std::make_shared<const ViewWorld>(std::move(scene), pack, ldi_options(config).shading),
-                std::make_shared<const ViewWorld>(make_scene(config), pack, unshadowed)};
-    std::filesystem::remove(pack);  // the pack stays mapped
-    return made;
-  }();
-  return worlds;
-}
-
-std::shared_ptr<const ViewWorld> default_world() { return default_worlds().lit; }
+using namespace wangscape::bench;
 
 Camera bench_camera(const ViewWorld& world, int which) {
   const double head = std::numeric_limits<double>::quiet_NaN();  // head height above the ground

@@ -44,8 +44,9 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--compare-every", o->request.compare_every,
                   "With --path: compare frames 0, K, 2K, ... with the truth and the exact one-sample image (one JSON "
                   "line each)");
-  sub->add_flag("--no-cache", [o](std::int64_t) { o->request.cached = false; },
-                "With --path: draw every frame whole instead of from the frame before");
+  sub->add_flag(
+      "--no-cache", [o](std::int64_t) { o->request.cached = false; },
+      "With --path: draw every frame whole instead of from the frame before");
   sub->add_option("--record", o->request.record,
                   "Window: where the keyframes dropped with K go on exit, a path file for --path (default path.json)");
   sub->add_option("--script", o->request.script, "Window: scripted input, e.g. \"W*30,screenshot,Escape\"");

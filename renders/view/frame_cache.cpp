@@ -60,9 +60,9 @@ enum Need : std::uint8_t {
   kRefresh = 3,    // its turn in the rotating share, or too old
   kKeep = 4,
   kNeeds = 5,
-  kSkyFill = 6,   // (transient) a hole among sky: the sky
-  kTraced = 7,    // traced this frame
-  kHidden = 8,    // (transient) kept, but seen through a gap in a surface traced this frame
+  kSkyFill = 6,  // (transient) a hole among sky: the sky
+  kTraced = 7,   // traced this frame
+  kHidden = 8,   // (transient) kept, but seen through a gap in a surface traced this frame
 };
 // A reprojected sample covers the pixels whose centres lie in a square of its footprint's size
 // (one pixel at its old depth) times kSplatScale, up to kMaxStretch pixels. A pixel prefers a
@@ -90,7 +90,9 @@ inline int ceil_above(float v) { return 64 - int(64.0f - v); }
 inline std::int8_t sub_code(float offset) {  // offset in pixels -> 1/kSubScale, rounded, clamped
   return std::int8_t(floor_above(std::clamp(offset * kSubScale, -127.0f, 127.0f) + 0.5f));
 }
-std::uint32_t pixel_hash(std::uint64_t p, std::uint64_t salt) { return std::uint32_t(mix64(p * 0x100000001B3ull + salt) >> 32); }
+std::uint32_t pixel_hash(std::uint64_t p, std::uint64_t salt) {
+  return std::uint32_t(mix64(p * 0x100000001B3ull + salt) >> 32);
+}
 
 }  // namespace
 
@@ -98,7 +100,8 @@ void FrameBudget::check() const {
   if (!(fps >= kMinViewFps && fps <= kMaxViewFps))
     throw Error("view: " + number_text(fps) + " frames/s; expected " + number_text(kMinViewFps) + " .. " +
                 number_text(kMaxViewFps));
-  if (!(pixel_ns > 0 && sample_ns > 0 && still_sample_ns > 0)) throw Error("view: a frame budget's costs must be positive");
+  if (!(pixel_ns > 0 && sample_ns > 0 && still_sample_ns > 0))
+    throw Error("view: a frame budget's costs must be positive");
 }
 
 // One kept sample: all of it moves together, so it is one 24-byte record (two generations of
@@ -157,8 +160,7 @@ struct FrameCache::Impl {
   }
   std::size_t bytes() const {
     return (kept[0].size() + kept[1].size()) * sizeof(Sample) + keys.size() * 8 + need.size() + fresh.size() * 4 +
-           lattice.size() * 2 +
-           row_needs.size() * sizeof(row_needs[0]) + row_fresh.size() * 4;
+           lattice.size() * 2 + row_needs.size() * sizeof(row_needs[0]) + row_fresh.size() * 4;
   }
 
   void reproject(const ViewProjection& to);
@@ -236,8 +238,10 @@ void FrameCache::Impl::reproject(const ViewProjection& to) {
         // The pixels whose centres the footprint holds: the own pixel's key, the others' a copy's.
         const int home_x = floor_above(s.px), home_y = floor_above(s.py);
         const float half = s.side * 0.5f;
-        const int x0 = std::max(0, ceil_above(s.px - half - 0.5f)), x1 = std::min(width - 1, floor_above(s.px + half - 0.5f));
-        const int y0 = std::max(0, ceil_above(s.py - half - 0.5f)), y1 = std::min(height - 1, floor_above(s.py + half - 0.5f));
+        const int x0 = std::max(0, ceil_above(s.px - half - 0.5f)),
+                  x1 = std::min(width - 1, floor_above(s.px + half - 0.5f));
+        const int y0 = std::max(0, ceil_above(s.py - half - 0.5f)),
+                  y1 = std::min(height - 1, floor_above(s.py + half - 0.5f));
         if (home_x >= 0 && home_y >= 0 && home_x < width && home_y < height) write(home_x, home_y, key);
         for (int qy = y0; qy <= y1; ++qy)
           for (int qx = x0; qx <= x1; ++qx)
@@ -267,8 +271,7 @@ void FrameCache::Impl::reproject(const ViewProjection& to) {
         const int hx = floor_above(s.px), hy = floor_above(s.py);
         const bool orphan = (keys[q] & kCopyBit) &&
                             !(hx >= 0 && hy >= 0 && hx < width && hy < height &&
-                              keys[std::size_t(hy) * std::size_t(width) + std::size_t(hx)] ==
-                                  (keys[q] & ~kCopyBit));
+                              keys[std::size_t(hy) * std::size_t(width) + std::size_t(hx)] == (keys[q] & ~kCopyBit));
         const float allowed = orphan ? kAdoptedOffset : kStretchedOffset;
         if (std::abs(sx) > allowed || std::abs(sy) > allowed) need[q] = kStretched;
         next[q].sub_x = sub_code(sx);
@@ -291,8 +294,8 @@ std::array<int, 2> FrameCache::Impl::neighbours(int x, int y, float depth) const
     const Sample* above = k.data() + p - std::size_t(width);
     const Sample* below = k.data() + p + std::size_t(width);
     const Sample* row = k.data() + p;
-    for (const float n : {above[-1].depth, above[0].depth, above[1].depth, row[-1].depth, row[1].depth,
-                          below[-1].depth, below[0].depth, below[1].depth}) {
+    for (const float n : {above[-1].depth, above[0].depth, above[1].depth, row[-1].depth, row[1].depth, below[-1].depth,
+                          below[0].depth, below[1].depth}) {
       sky += n == kInf;
       nearer += n < gap;
     }
@@ -319,7 +322,7 @@ void FrameCache::Impl::classify(std::uint64_t frame, bool still) {
         std::uint8_t judged;
         if (is_none(d))
           judged = sky == 8 ? kSkyFill : kHole;  // a hole among sky is sky: nothing stands in it
-        else if (still)  // the same view: nothing new shows through a gap, nothing is stale
+        else if (still)                          // the same view: nothing new shows through a gap, nothing is stale
           judged = need[p] == kStretched ? kStretched : kKeep;
         else if (nearer >= kGapNeighbours)
           judged = kHole;

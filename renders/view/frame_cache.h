@@ -53,11 +53,11 @@ struct FrameBudget {
 
 struct CachedFrameStats {
   double frame_ms = 0;
-  double trace_ms = 0;          // of it: tracing the fresh samples (a cold frame: all of it)
+  double trace_ms = 0;  // of it: tracing the fresh samples (a cold frame: all of it)
   // Of a warm frame: reprojecting, judging and choosing the pixels to trace, tracing, resolving.
   std::array<double, 4> phase_ms{};
-  bool cold = false;            // drawn whole by the LdiRenderer
-  bool still = false;           // the camera held still: the fresh samples were accumulated
+  bool cold = false;   // drawn whole by the LdiRenderer
+  bool still = false;  // the camera held still: the fresh samples were accumulated
   std::uint64_t pixels = 0;
   std::uint64_t budget = 0;     // fresh samples this frame allowed
   std::uint64_t fresh = 0;      // samples traced anew (every pixel of a cold frame)

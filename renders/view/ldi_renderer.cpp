@@ -990,7 +990,9 @@ double LdiRenderer::place_near_field() {
 
 // The whole frame ray cast (ViewEngine::embree, or automatic in the field): every flower of the
 // scene and the terrain in one Embree scene, built on the first frame that needs it.
-std::uint64_t LdiRenderer::ray_cast_frame() { return cast_rays(whole_scene(), std::numeric_limits<double>::infinity()); }
+std::uint64_t LdiRenderer::ray_cast_frame() {
+  return cast_rays(whole_scene(), std::numeric_limits<double>::infinity());
+}
 
 const SceneTracer& LdiRenderer::whole_scene() {
   Impl& m = *impl_;

@@ -130,16 +130,20 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewRequest&
   if (request.stats) {
     std::vector<double> sorted = frame_ms;
     std::sort(sorted.begin(), sorted.end());
-    const auto at = [&](double q) { return sorted[std::min(sorted.size() - 1, std::size_t(q * double(sorted.size())))]; };
+    const auto at = [&](double q) {
+      return sorted[std::min(sorted.size() - 1, std::size_t(q * double(sorted.size())))];
+    };
     if (request.json)
-      std::printf("{\"frame_ms\": %s, \"frame_ms_p95\": %s, \"frame_ms_max\": %s, \"fresh_share\": %s, \"frames\": %lld}\n",
-                  number_text(at(0.5)).c_str(), number_text(at(0.95)).c_str(), number_text(sorted.back()).c_str(),
-                  number_text(fresh_share / double(frames)).c_str(), frames);
+      std::printf(
+          "{\"frame_ms\": %s, \"frame_ms_p95\": %s, \"frame_ms_max\": %s, \"fresh_share\": %s, \"frames\": %lld}\n",
+          number_text(at(0.5)).c_str(), number_text(at(0.95)).c_str(), number_text(sorted.back()).c_str(),
+          number_text(fresh_share / double(frames)).c_str(), frames);
     else
-      std::printf("%lld frames of %dx%d at %s frames/s: median %.2f ms, 95th percentile %.2f ms, max %.2f ms; "
-                  "traced anew: %.1f %% of the pixels a frame\n",
-                  frames, width, height, number_text(fps).c_str(), at(0.5), at(0.95), sorted.back(),
-                  100 * fresh_share / double(frames));
+      std::printf(
+          "%lld frames of %dx%d at %s frames/s: median %.2f ms, 95th percentile %.2f ms, max %.2f ms; "
+          "traced anew: %.1f %% of the pixels a frame\n",
+          frames, width, height, number_text(fps).c_str(), at(0.5), at(0.95), sorted.back(),
+          100 * fresh_share / double(frames));
   }
   if (!writes) return;
   const fs::path ffmpeg = find_program("ffmpeg");
@@ -231,8 +235,10 @@ std::string comparison_json_members(const ViewComparison& v, int frame_samples) 
          ", \"truth_samples\": " + std::to_string(v.reference.samples_per_pixel) +
          ", \"exact_psnr_db\": " + number_text(e.psnr_db) + ", \"exact_ssim\": " + number_text(e.ssim) +
          ", \"exact_hole_share\": " + number_text(e.holes.share) +
-         ", \"psnr_gap_db\": " + number_text(e.psnr_db - c.psnr_db) + ", \"ssim_gap\": " + number_text(e.ssim - c.ssim) +
-         ", \"exact_seconds\": " + number_text(v.one_sample.seconds) + ", \"samples\": " + std::to_string(frame_samples);
+         ", \"psnr_gap_db\": " + number_text(e.psnr_db - c.psnr_db) +
+         ", \"ssim_gap\": " + number_text(e.ssim - c.ssim) +
+         ", \"exact_seconds\": " + number_text(v.one_sample.seconds) +
+         ", \"samples\": " + std::to_string(frame_samples);
 }
 
 Camera view_camera(const ViewWorld& world, const ViewRequest& request) {

@@ -30,12 +30,12 @@ struct ViewRequest {
   int width = 0, height = 0;  // 0 = the scene's image size
   std::filesystem::path out;  // one offline frame
   bool stats = false, json = false;
-  int repeat = 0;                    // frames timed for --stats (0: 200)
-  std::filesystem::path path;        // keyframes JSON
-  std::filesystem::path frames_dir;  // where the path's frames go
-  std::optional<double> fps;          // --path: frames per second (24); the window: the rate it holds (60)
-  bool cached = true;                // --path: each frame from the previous frame's samples (FrameCache)
-  int compare_every = 0;             // --path: compare frames 0, K, 2K, ... with the truth (0: none)
+  int repeat = 0;                            // frames timed for --stats (0: 200)
+  std::filesystem::path path;                // keyframes JSON
+  std::filesystem::path frames_dir;          // where the path's frames go
+  std::optional<double> fps;                 // --path: frames per second (24); the window: the rate it holds (60)
+  bool cached = true;                        // --path: each frame from the previous frame's samples (FrameCache)
+  int compare_every = 0;                     // --path: compare frames 0, K, 2K, ... with the truth (0: none)
   std::string script;                        // window: scripted input (docs/viewer.md)
   std::filesystem::path record;              // window: where K's keyframes go (empty: path.json)
   bool compare = false;                      // also ray trace the frame with Embree and compare

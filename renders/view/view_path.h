@@ -57,6 +57,6 @@ using GroundHeightAt = std::function<std::optional<double>(double east, double n
 // the spline is taken over the ground. Throws Error naming `file` and the time when such a
 // point has no ground under it.
 Camera camera_along(const ViewPath& path, double time, double fov_degrees, const GroundHeightAt& ground,
-                        const std::filesystem::path& file);
+                    const std::filesystem::path& file);
 
 }  // namespace wangscape

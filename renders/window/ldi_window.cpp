@@ -310,8 +310,7 @@ class WalkRecorder {
 
 }  // namespace
 
-void run_view_window(std::shared_ptr<const ViewWorld> world, const Camera& start,
-                     const ViewWindowOptions& options) {
+void run_view_window(std::shared_ptr<const ViewWorld> world, const Camera& start, const ViewWindowOptions& options) {
   const std::vector<ScriptStep> script = parse_script(options.script);
   LdiRenderer renderer(world, options.width, options.height);
   renderer.apply(options.settings);

@@ -60,7 +60,7 @@ TEST(ldi_view, PlacesEveryTileOfTheArea) {
 TEST(ldi_view, DrawnAndCulledAddUpToThePlacedTiles) {
   LdiRenderer renderer(field(), 96, 64);
   for (const Camera& camera : {looking(0, -16, 2, 0, 0, 1), looking(3, 1, 1.7, 10, 5, 1),
-                                   looking(-30, -30, 20, 0, 0, 0), looking(0, 0, 1.7, 0, -10, 0.5)}) {
+                               looking(-30, -30, 20, 0, 0, 0), looking(0, 0, 1.7, 0, -10, 0.5)}) {
     const ViewFrameStats& stats = renderer.render(camera);
     EXPECT_EQ(stats.tiles_drawn + stats.tiles_culled, 36u);
     std::uint64_t by_level = 0;
@@ -107,8 +107,8 @@ TEST(ldi_view, SameBytesOnOneAndTwoThreadsAndTwice) {
 // rarely do: compiled with contraction, the colors still agreed).
 TEST(ldi_view, SameBytesOnEveryVectorPath) {
   static const auto above = tiny_world("[-40.0, -8.0, 40.0, 120.0]", "above", "300.0");
-  const std::pair<std::shared_ptr<const ViewWorld>, Camera> views[] = {
-      {field(), looking(-2, -9, 1.7, 4, 6, 0.8)}, {above, looking(0, -10, 20, 0, 40, 1.0, 60)}};
+  const std::pair<std::shared_ptr<const ViewWorld>, Camera> views[] = {{field(), looking(-2, -9, 1.7, 4, 6, 0.8)},
+                                                                       {above, looking(0, -10, 20, 0, 40, 1.0, 60)}};
   const VectorPath widest = widest_vector_path();
   std::printf("this CPU's widest vector path: %s\n", std::string(to_string(widest)).c_str());
   for (const auto& [world, camera] : views) {

@@ -110,7 +110,7 @@ TEST(ldi_view_terrain, NoCrackBetweenChunksOfDifferentLevels) {
   // gentler north-east flank, only that coarser levels are drawn there too.
   constexpr int kError = 40;
   const Camera cameras[] = {over_ground(0, -2800, 60, -540, 460, 0), over_ground(-2800, 0, 40, -540, 460, 0),
-                                over_ground(2500, 2500, 80, -540, 460, 0)};
+                            over_ground(2500, 2500, 80, -540, 460, 0)};
   const int w = 480, h = 270;
   LdiRenderer renderer(mountain(), w, h);
   for (const Camera& camera : cameras) {

@@ -27,7 +27,8 @@ inline fs::path scratch(const std::string& name) {
 // resolution, and the view's world over both.
 // With `full_pack`, the pack has the scene file's defaults (7 levels x 8 directions, 512 pixels).
 // The view's world of the scene file `text`, with its pack (see tiny_world).
-inline std::shared_ptr<const ViewWorld> world_of(const std::string& text, const std::string& name, bool full_pack = false) {
+inline std::shared_ptr<const ViewWorld> world_of(const std::string& text, const std::string& name,
+                                                 bool full_pack = false) {
   const SceneConfig config = parse_scene_config(text, name + ".toml", fs::temp_directory_path());
   Scene scene = make_scene(config);
   LdiBuildOptions options;
@@ -43,8 +44,8 @@ inline std::shared_ptr<const ViewWorld> world_of(const std::string& text, const 
 }
 
 inline std::shared_ptr<const ViewWorld> tiny_world(const std::string& area, const std::string& name,
-                                            const std::string& flat_size = "60.0", bool full_pack = false,
-                                            const std::string& points_per_tile = "10") {
+                                                   const std::string& flat_size = "60.0", bool full_pack = false,
+                                                   const std::string& points_per_tile = "10") {
   return world_of("name = \"view test\"\n[terrain]\nflat_size = " + flat_size +
                       "\n[tiles]\nset = \"cohen8\"\n"
                       "tile_size = 4.0\npoints_per_tile = " +

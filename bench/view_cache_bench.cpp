@@ -1,0 +1,101 @@
+// The view in motion (renders/view/frame_cache.h) on the default scene, along three paths of
+// bench/paths/ (issue 37's):
+//  - 0, walk.json: 8 s at head height through the field at 1.4 m/s, the gaze turning up to about
+//    60 degrees a second;
+//  - 1, walk_then_still.json: the same walk, then 2 s standing still;
+//  - 2, flight.json: 8 s 25 m above the field at 10 m/s, looking ahead and down.
+// BM_CachedPath/PATH/W/H: one iteration plays the whole path at 60 frames/s through a FrameCache
+// with its default budget (the frames `wangscape view --path P --fps 60` draws), the first frame
+// cold. Counters: the median, 95th percentile and slowest frame (ms), the 95th percentile over
+// the median, the mean share of the pixels traced anew, the median of the warm frames' phases
+// (reprojecting, choosing, tracing, resolving; ms), the cold frames, and the process CPU
+// seconds per frame (all threads: getrusage). Quality along the same paths: `wangscape view DIR
+// --path P --fps 60 --compare-every K --json` (docs/viewer.md, "The sample cache").
+// BM_CachedPath/PATH/W/H/0 draws every frame whole instead (LdiRenderer::render, the default
+// engine): the frames before the cache.
+#include <benchmark/benchmark.h>
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <array>
+#include <vector>
+
+#include "bench/default_view_world.h"
+#include "renders/view/frame_cache.h"
+#include "renders/view/view_path.h"
+
+namespace {
+
+using namespace wangscape;
+using namespace wangscape::bench;
+
+constexpr const char* kPaths[] = {"walk.json", "walk_then_still.json", "flight.json"};
+
+double process_cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) / 1e6;
+}
+
+double at(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[std::min(v.size() - 1, std::size_t(q * double(v.size())))];
+}
+
+void BM_CachedPath(benchmark::State& state) {
+  const auto world = default_world();
+  const std::filesystem::path file =
+      std::filesystem::path(WANGSCAPE_SOURCE_DIR) / "bench/paths" / kPaths[state.range(0)];
+  const ViewPath path = read_view_path(file);
+  const GroundHeightAt ground = [&](double e, double n) { return world->scene().field->ground.height(e, n); };
+  const double fps = kDefaultViewFps, fov = world->scene().camera.fov_degrees;
+  const bool cached = state.range(3) != 0;
+  for (auto _ : state) {
+    LdiRenderer renderer(world, int(state.range(1)), int(state.range(2)));
+    renderer.apply(ViewSettings{});
+    FrameCache cache(renderer);
+    std::vector<double> frame_ms;
+    std::array<std::vector<double>, 4> phases;
+    double fresh = 0, cold = 0;
+    const double cpu_start = process_cpu_seconds();
+    for (long long k = 0; k < path.frame_count(fps); ++k) {
+      const Camera camera = camera_along(path, path.keys.front().time + double(k) / fps, fov, ground, file);
+      if (!cached) {
+        frame_ms.push_back(renderer.render(camera).frame_ms);
+        fresh += 1;
+        continue;
+      }
+      const CachedFrameStats& s = cache.render(camera);
+      frame_ms.push_back(s.frame_ms);
+      fresh += s.fresh_share();
+      cold += s.cold;
+      if (!s.cold)
+        for (std::size_t p = 0; p < phases.size(); ++p) phases[p].push_back(s.phase_ms[p]);
+    }
+    const double frames = double(frame_ms.size());
+    state.counters["cpu_s_per_frame"] = (process_cpu_seconds() - cpu_start) / frames;
+    state.counters["median_ms"] = at(frame_ms, 0.5);
+    state.counters["p95_ms"] = at(frame_ms, 0.95);
+    state.counters["max_ms"] = at(frame_ms, 1.0);
+    state.counters["p95_over_median"] = at(frame_ms, 0.95) / at(frame_ms, 0.5);
+    state.counters["fresh_share"] = fresh / frames;
+    state.counters["cold_frames"] = cold;
+    state.counters["frames"] = frames;
+    const char* names[4] = {"reproject_ms", "choose_ms", "trace_ms", "resolve_ms"};
+    for (std::size_t p = 0; p < phases.size(); ++p) state.counters[names[p]] = at(phases[p], 0.5);
+  }
+}
+
+void paths(benchmark::internal::Benchmark* b) {
+  for (int path = 0; path < 3; ++path)
+    for (const auto& [w, h] : {std::pair{640, 360}, std::pair{1280, 720}}) {
+      b->Args({path, w, h, 1});
+      if (path != 1) b->Args({path, w, h, 0});
+    }
+}
+BENCHMARK(BM_CachedPath)->Apply(paths)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
