@@ -666,6 +666,7 @@ void FrameCache::draw_cold(const Camera& camera) {
   const Luts& lut = luts();
   const ImageRgb8& frame = renderer_.image();
   const SampleSource source = drawn.ray_cast ? SampleSource::ray : SampleSource::frame;
+  whole_is_cheaper_ = !drawn.ray_cast && drawn.near_tiles == 0;
   tbb::parallel_for(tbb::blocked_range<int>(0, m.height, 8), [&](const tbb::blocked_range<int>& r) {
     for (int y = r.begin(); y != r.end(); ++y)
       for (int x = 0; x < m.width; ++x) {
@@ -701,7 +702,10 @@ const CachedFrameStats& FrameCache::render(const Camera& camera) {
   const ViewProjection view = ViewProjection::of(camera, m.width, m.height);
   const bool still = warm_ && camera.position == previous_.position && camera.target == previous_.target &&
                      camera.fov_degrees == previous_.fov_degrees;
-  const bool jump = !warm_ || camera.fov_degrees != previous_.fov_degrees ||
+  // Where the whole frame is drawn by LDIs alone (no near field: from above, from afar), it is the
+  // cheaper source and the closer to the truth (the flight at 640 x 360: 21.1 ms and 19.1 dB
+  // drawn whole, 29.4 ms and 15.8 dB from the cache), so it is drawn whole unless still.
+  const bool jump = !warm_ || camera.fov_degrees != previous_.fov_degrees || (!still && whole_is_cheaper_) ||
                     length(view.eye - m.projection.eye) > kJumpMeters ||
                     dot(view.forward, m.projection.forward) < kJumpCosine;
   stats_ = CachedFrameStats{};

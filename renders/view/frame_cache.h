@@ -10,7 +10,8 @@
 // frame adds samples at new sub-pixel positions (the R2 sequence) shaded as the reference shades
 // them (sky rays included), averaged, so the picture converges to the anti-aliased truth. A first
 // frame, a jump, a resize or a new field of view draws a whole frame with the LdiRenderer (a
-// cold frame: the same bytes as LdiRenderer::render).
+// cold frame: the same bytes as LdiRenderer::render), and so does a moving camera whose last whole
+// frame was LDIs alone (no near field: from above or afar, where that is the cheaper source).
 //
 // Deterministic: the fresh samples a frame may draw are a count (FrameBudget), not a clock, so a
 // path gives the same bytes on any thread count; the window may size them by its clock instead.
@@ -103,6 +104,7 @@ class FrameCache {
   Camera previous_{};
   std::uint64_t frame_index_ = 0;
   int still_frames_ = 0;
+  bool whole_is_cheaper_ = false;  // the last whole frame was LDIs alone: moving, draw whole
 
   void draw_cold(const Camera& camera);
   std::uint64_t fresh_budget(bool still) const;

@@ -77,8 +77,24 @@ TEST(ldi_view_cache, TheColdFrameIsTheRenderersFrame) {
   EXPECT_TRUE(cache.render(wider).cold);
 }
 
+TEST(ldi_view_cache, FromAfarTheWholeFrameIsDrawnWhileMoving) {
+  // 20 m up and 30 m off the field: no near field, the LDIs alone are the cheaper source.
+  LdiRenderer renderer(field(), kWidth, kHeight), alone(field(), kWidth, kHeight);
+  renderer.apply(ViewSettings{});
+  alone.apply(ViewSettings{});
+  FrameCache cache(renderer);
+  cache.render(looking(0, -30, 20, 0, 0, 0));
+  const CachedFrameStats& moving = cache.render(looking(0.1, -30, 20, 0, 0, 0));
+  EXPECT_TRUE(moving.cold);
+  alone.render(looking(0.1, -30, 20, 0, 0, 0));
+  EXPECT_EQ(cache.image().pixels, alone.image().pixels);
+  // Still, it converges from the cache instead.
+  EXPECT_FALSE(cache.render(looking(0.1, -30, 20, 0, 0, 0)).cold);
+}
+
 TEST(ldi_view_cache, WhatASideStepUncoversIsTheExactImage) {
   LdiRenderer renderer(field(), kWidth, kHeight);
+  renderer.apply(ViewSettings{});  // the view's defaults: the near field, the engine by the frame
   FrameCache cache(renderer, quarter_budget());
   cache.render(in_the_field(0.3));
   std::vector<float> first(std::size_t(kWidth * kHeight));
@@ -116,6 +132,7 @@ TEST(ldi_view_cache, WhatASideStepUncoversIsTheExactImage) {
 
 TEST(ldi_view_cache, NoGhostAfterAFastTurn) {
   LdiRenderer renderer(field(), kWidth, kHeight);
+  renderer.apply(ViewSettings{});  // the view's defaults: the near field, the engine by the frame
   FrameCache cache(renderer);
   cache.render(in_the_field(0.3, 0));
   // 24 degrees in one frame (1,440 degrees a second at 60 frames/s), below a jump.
@@ -131,6 +148,7 @@ TEST(ldi_view_cache, NoGhostAfterAFastTurn) {
 std::vector<std::uint8_t> walk_frames(int threads) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   LdiRenderer renderer(field(), kWidth, kHeight);
+  renderer.apply(ViewSettings{});  // the view's defaults: the near field, the engine by the frame
   FrameCache cache(renderer, quarter_budget());
   std::vector<std::uint8_t> bytes;
   for (int k = 0; k < 16; ++k) {
@@ -155,6 +173,7 @@ TEST(ldi_view_cache, AStillCameraConvergesPastTheExactOneSampleImage) {
   const double exact = compare_images(render_reference(field()->scene(), options).image, truth).psnr_db;
 
   LdiRenderer renderer(field(), kWidth, kHeight);
+  renderer.apply(ViewSettings{});                // the view's defaults: the near field, the engine by the frame
   FrameCache cache(renderer, quarter_budget());  // a quarter of the pixels a frame
   cache.render(camera);
   std::vector<double> psnr;
@@ -170,6 +189,7 @@ TEST(ldi_view_cache, AStillCameraConvergesPastTheExactOneSampleImage) {
 
 TEST(ldi_view_cache, TheCacheFitsSixtyFourBytesAPixel) {
   LdiRenderer renderer(field(), kWidth, kHeight);
+  renderer.apply(ViewSettings{});  // the view's defaults: the near field, the engine by the frame
   FrameCache cache(renderer);
   cache.render(in_the_field());
   EXPECT_LE(cache.bytes_per_pixel(), 64.0);
