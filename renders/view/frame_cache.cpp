@@ -100,7 +100,7 @@ void FrameBudget::check() const {
   if (!(fps >= kMinViewFps && fps <= kMaxViewFps))
     throw Error("view: " + number_text(fps) + " frames/s; expected " + number_text(kMinViewFps) + " .. " +
                 number_text(kMaxViewFps));
-  if (!(pixel_ns > 0 && sample_ns > 0 && still_sample_ns > 0))
+  if (!(pixel_ns > 0 && still_pixel_ns > 0 && sample_ns > 0 && still_sample_ns > 0))
     throw Error("view: a frame budget's costs must be positive");
 }
 
@@ -652,7 +652,7 @@ double FrameCache::bytes_per_pixel() const {
 
 std::uint64_t FrameCache::fresh_budget(bool still) const {
   const Impl& m = *impl_;
-  const double frame_ns = 1e9 / budget_.fps - budget_.pixel_ns * double(m.pixels());
+  const double frame_ns = 1e9 / budget_.fps - (still ? budget_.still_pixel_ns : budget_.pixel_ns) * double(m.pixels());
   double per_sample = still ? budget_.still_sample_ns : budget_.sample_ns;
   if (budget_.adaptive && m.measured_sample_ns > 0) per_sample = m.measured_sample_ns * (still ? 2 : 1);
   return std::uint64_t(std::clamp(frame_ns / per_sample, double(m.pixels()) / 256, double(m.pixels())));
