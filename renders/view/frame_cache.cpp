@@ -41,9 +41,10 @@ constexpr std::uint32_t kRefreshPeriod = 32;
 constexpr std::uint8_t kMaxAge = 64;
 // A still camera's samples are scheduled in kStillSlots slots: a frame takes the next slots.
 constexpr std::uint32_t kStillSlots = 64;
-// Sky rays per sample while still: one each is an unbiased estimate of the sky share, and the
-// reference's eight cost eight times a sample in the budget (docs/viewer.md, "The sample cache").
-constexpr int kStillSkyRays = 1;
+// Sky rays per sample while still: the reference's own (the pack's light: 8 by default), so a
+// still sample is a reference sample. One each is unbiased too and cheaper, but a camera that
+// stopped showed the grain of one-ray samples over its leaves for seconds.
+constexpr int kStillSkyRays = 64;
 // A camera that moved this far or turned this much since the last frame, or that leaves this
 // share of the pixels empty, is drawn cold.
 constexpr double kJumpMeters = 20;
