@@ -44,9 +44,9 @@ enum class SampleSource : std::uint8_t {
 // instead (the window's own clock): the rate holds on any machine, the frames vary with it.
 struct FrameBudget {
   double fps = kDefaultViewFps;
-  double pixel_ns = 55;          // per pixel and frame: reprojection, tests, resolve (both threads)
-  double still_pixel_ns = 20;    // the same while still (nothing to reproject)
-  double sample_ns = 550;        // per fresh sample in motion (a primary and a shadow ray, shading)
+  double pixel_ns = 55;           // per pixel and frame: reprojection, tests, resolve (both threads)
+  double still_pixel_ns = 20;     // the same while still (nothing to reproject)
+  double sample_ns = 550;         // per fresh sample in motion (a primary and a shadow ray, shading)
   double still_sample_ns = 1600;  // per fresh sample while still (with the reference's sky rays)
   bool adaptive = false;
   // Throws Error for fps outside kMinViewFps .. kMaxViewFps.
