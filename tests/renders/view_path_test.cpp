@@ -120,7 +120,10 @@ TEST(ViewPath, RefusesWhatItCannotUseNamingThePlace) {
 
 TEST(ViewPath, TooManyKeyframesAreRefusedBeforeTheyAreKept) {
   std::string text = R"({"keyframes": [)";
-  for (std::size_t k = 0; k <= kMaxPathKeyframes; ++k) text += (k ? "," : "") + std::string("0");
+  for (std::size_t k = 0; k <= kMaxPathKeyframes; ++k) {
+    if (k) text += ',';  // (appended char by char: GCC 12 warned -Wrestrict on "," + std::string)
+    text += '0';
+  }
   text += "]}";
   EXPECT_NE(refusal(text).find("holds 100001 keyframes; at most 100000"), std::string::npos) << refusal(text);
 }
