@@ -8,7 +8,6 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
-#include <functional>
 #include <limits>
 
 #include "core/error.h"
@@ -41,10 +40,6 @@ constexpr std::uint32_t kRefreshPeriod = 32;
 constexpr std::uint8_t kMaxAge = 64;
 // A still camera's samples are scheduled in kStillSlots slots: a frame takes the next slots.
 constexpr std::uint32_t kStillSlots = 64;
-// Sky rays per sample while still: the reference's own (the pack's light: 8 by default), so a
-// still sample is a reference sample. One each is unbiased too and cheaper, but a camera that
-// stopped showed the grain of one-ray samples over its leaves for seconds.
-constexpr int kStillSkyRays = 64;
 // A camera that moved this far or turned this much since the last frame, or that leaves this
 // share of the pixels empty, is drawn cold.
 constexpr double kJumpMeters = 20;
@@ -66,15 +61,14 @@ enum Need : std::uint8_t {
   kHidden = 8,   // (transient) kept, but seen through a gap in a surface traced this frame
 };
 // A reprojected sample covers the pixels whose centres lie in a square of its footprint's size
-// (one pixel at its old depth) times kSplatScale, up to kMaxStretch pixels. A pixel prefers a
-// sample of its own (whose position lies in it) to any neighbour's copy: copies only fill what
-// no sample reached (with a copy nearer by a quarter winning, every edge of a near stem or leaf
-// grew by a copy in a quarter of its pixels each frame, 15,000 pixels to trace after a pure turn).
-// A copy keeps its true position, so nothing drifts. Background seen where a nearer surface has
-// a gap is found by the gap test, before tracing and again after it. Without copies, samples that met in one pixel
-// (a sample traced at a pixel centre beside reprojected ones) were lost, and the holes they left
-// grew frame after frame (in the field at 640 x 360: 5,000 in the first frame, 35,000 by the
-// tenth, every one of them traced); with them, such a pixel shows its neighbour's sample.
+// (one pixel at its old depth) times kSplatScale, up to kMaxStretch pixels. Without such copies,
+// samples that met in one pixel were lost and the holes they left grew frame after frame (in the
+// field at 640 x 360: 5,000 in the first frame, 35,000 by the tenth, every one traced). A pixel
+// prefers a sample of its own (whose position lies in it) to any neighbour's copy: copies only
+// fill what no sample reached (with a copy nearer by a quarter winning, every edge of a near stem
+// or leaf grew by a copy in a quarter of its pixels each frame, 15,000 pixels to trace after a
+// pure turn). A copy keeps its true position, so nothing drifts. Background seen where a nearer
+// surface has a gap is found by the gap test, before tracing and again after it.
 constexpr float kSplatScale = 1.25f;
 constexpr float kMaxStretch = 3.0f;
 constexpr std::uint64_t kCopyBit = 1ull << 63;  // in a key: a neighbour's copy (above every depth)
@@ -105,8 +99,8 @@ void FrameBudget::check() const {
     throw Error("view: a frame budget's costs must be positive");
 }
 
-// One kept sample: all of it moves together, so it is one 24-byte record (two generations of
-// them, the keys, the needs and the fresh list make 61 bytes a pixel).
+// One kept sample: all of it moves together, so it is one 24-byte record (FrameCache::bytes_per_pixel
+// counts it twice with the keys, needs, fresh list and lattice: 63 bytes a pixel).
 struct Sample {
   float depth = kNone;                  // camera depth (m); +inf: sky; NaN: none
   std::array<float, 3> color{0, 0, 0};  // linear RGB (the sky's own along the sample's ray)
@@ -144,7 +138,7 @@ struct FrameCache::Impl {
   std::vector<std::uint32_t> row_fresh;
   ViewProjection projection;  // the last frame's
   std::uint32_t still_slot = 0;
-  double measured_sample_ns = 0;  // FrameBudget::adaptive: the last frames' cost per fresh sample
+  double measured_sample_ns = 0;  // FrameBudget::adaptive: the last moving frames' cost per fresh sample
 
   std::size_t pixels() const { return std::size_t(width) * std::size_t(height); }
   KeptSamples& now() { return kept[current]; }
@@ -368,7 +362,7 @@ std::array<std::uint64_t, kNeeds> FrameCache::Impl::count_needs() const {
   return total;
 }
 
-// The pixels `take` accepts into fresh, block by block (kBlock x kBlock pixels, in rows of
+// The pixels `take(p, x, y)` accepts into fresh, block by block (kBlock x kBlock pixels, in rows of
 // blocks), so that 16 neighbouring fresh samples make one packet of rays. Parallel: counted per
 // row of blocks, then written at each one's offset. Returns how many.
 template <class Take>
@@ -379,7 +373,7 @@ std::size_t FrameCache::Impl::gather_fresh(const Take& take) {
       for (int y = by * kBlock; y < std::min(height, (by + 1) * kBlock); ++y)
         for (int x = bx; x < std::min(width, bx + kBlock); ++x) {
           const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
-          if (take(p)) on(p);
+          if (take(p, x, y)) on(p);
         }
   };
   tbb::parallel_for(0, block_rows, [&](int by) {
@@ -396,7 +390,7 @@ std::size_t FrameCache::Impl::gather_fresh(const Take& take) {
   return row_fresh[std::size_t(block_rows)];
 }
 
-// In motion: the needs in order (holes, stale, refresh) while the budget lasts; of the need it
+// In motion: the needs in order (holes, stretched, stale, refresh) while the budget lasts; of the need it
 // runs out in, a share spread over the frame by a hash.
 std::size_t FrameCache::Impl::select(const std::array<std::uint64_t, kNeeds>& needs, std::uint64_t budget,
                                      std::uint64_t frame) {
@@ -412,19 +406,22 @@ std::size_t FrameCache::Impl::select(const std::array<std::uint64_t, kNeeds>& ne
     share = std::uint32_t(double(left) / double(needs[c]) * 4294967295.0);
     break;
   }
-  const std::size_t n = gather_fresh([&](std::size_t p) {
+  const std::size_t n = gather_fresh([&](std::size_t p, int, int) {
     const std::uint8_t c = need[p];
     return c < last || (c == last && pixel_hash(p, frame * 2 + 7) < share);
   });
   // Where each is traced: its own sample's place, or the mean place of its neighbours' own samples.
   const KeptSamples& k = now();
   const int own = int(kStretchedOffset * kSubScale);
+  const auto own_sample = [&](std::size_t q) {  // a sample in its own pixel, not a hole or a copy
+    const Sample& s = k[q];
+    return !is_none(s.depth) && need[q] >= kStale && std::abs(s.sub_x) <= own && std::abs(s.sub_y) <= own;
+  };
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const std::size_t p = fresh[i];
-      const Sample& s = k[p];
-      if (!is_none(s.depth) && need[p] >= kStale && std::abs(s.sub_x) <= own && std::abs(s.sub_y) <= own) {
-        lattice[p] = {s.sub_x, s.sub_y};
+      if (own_sample(p)) {
+        lattice[p] = {k[p].sub_x, k[p].sub_y};
         continue;
       }
       const int x = int(p % std::size_t(width)), y = int(p / std::size_t(width));
@@ -433,10 +430,9 @@ std::size_t FrameCache::Impl::select(const std::array<std::uint64_t, kNeeds>& ne
         for (int dx = -1; dx <= 1; ++dx) {
           if ((dx == 0 && dy == 0) || x + dx < 0 || y + dy < 0 || x + dx >= width || y + dy >= height) continue;
           const std::size_t q = std::size_t(y + dy) * std::size_t(width) + std::size_t(x + dx);
-          const Sample& n2 = k[q];
-          if (is_none(n2.depth) || need[q] < kStale || std::abs(n2.sub_x) > own || std::abs(n2.sub_y) > own) continue;
-          sum_x += n2.sub_x;
-          sum_y += n2.sub_y;
+          if (!own_sample(q)) continue;
+          sum_x += k[q].sub_x;
+          sum_y += k[q].sub_y;
           ++count;
         }
       lattice[p] = count ? std::array<std::int8_t, 2>{std::int8_t(sum_x / count), std::int8_t(sum_y / count)}
@@ -449,16 +445,17 @@ std::size_t FrameCache::Impl::select(const std::array<std::uint64_t, kNeeds>& ne
 // While still: the holes, then the next slots of the schedule, as many as the budget holds
 // (at least one).
 std::size_t FrameCache::Impl::select_still(std::uint64_t budget) {
-  const std::uint64_t holes = count_needs()[kHole] + count_needs()[kStretched];
+  const std::array<std::uint64_t, kNeeds> needs = count_needs();
+  const std::uint64_t holes = needs[kHole] + needs[kStretched];
   const double per_slot = double(pixels()) / kStillSlots;
   const std::uint32_t slots = std::uint32_t(
       std::clamp(std::floor(double(budget > holes ? budget - holes : 0) / per_slot), 1.0, double(kStillSlots)));
   const std::uint32_t first = still_slot;
   still_slot = (still_slot + slots) % kStillSlots;
-  return gather_fresh([&](std::size_t p) {
-    // Whole 4 x 4 blocks take their turn together: their rays make full, coherent packets (a
-    // scattered share cost about three times as much a sample).
-    const std::size_t block = (p / std::size_t(width) / kBlock) * std::size_t(width) + p % std::size_t(width) / kBlock;
+  return gather_fresh([&](std::size_t p, int x, int y) {
+    // Whole 4 x 4 blocks take their turn together: their rays make full, coherent packets
+    // (scattered rays cost 550 ns each in motion against 214 ns a pixel for a whole frame's).
+    const std::size_t block = std::size_t(y / kBlock) * std::size_t(width) + std::size_t(x / kBlock);
     return need[p] < kStale || (pixel_hash(block, 3) % kStillSlots - first + kStillSlots) % kStillSlots < slots;
   });
 }
@@ -472,7 +469,10 @@ void FrameCache::Impl::trace(LdiRenderer& renderer, std::size_t n, bool still) {
   const Vector3d from{view.eye[0] - tracer.origin()[0], view.eye[1] - tracer.origin()[1],
                       view.eye[2] - tracer.origin()[2]};
   ShadingSettings shading = world.sun_shading();
-  shading.ao_rays = still ? std::min(kStillSkyRays, shading.ao_rays) : 0;
+  // Still: the reference's own sky rays (the pack's light), so a still sample is a reference
+  // sample (one ray each is unbiased too and cheaper, but a camera that stopped showed the grain
+  // of one-ray samples over its leaves for seconds). Moving: the baked sky share instead.
+  if (!still) shading.ao_rays = 0;
   KeptSamples& k = now();
   const std::size_t packets = (n + 15) / 16;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, packets, 4), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -655,7 +655,9 @@ std::uint64_t FrameCache::fresh_budget(bool still) const {
   const Impl& m = *impl_;
   const double frame_ns = 1e9 / budget_.fps - (still ? budget_.still_pixel_ns : budget_.pixel_ns) * double(m.pixels());
   double per_sample = still ? budget_.still_sample_ns : budget_.sample_ns;
-  if (budget_.adaptive && m.measured_sample_ns > 0) per_sample = m.measured_sample_ns * (still ? 2 : 1);
+  // Measured in motion; a still sample costs what the nominal costs say it costs beside it.
+  if (budget_.adaptive && m.measured_sample_ns > 0)
+    per_sample = m.measured_sample_ns * (still ? budget_.still_sample_ns / budget_.sample_ns : 1);
   return std::uint64_t(std::clamp(frame_ns / per_sample, double(m.pixels()) / 256, double(m.pixels())));
 }
 
@@ -740,7 +742,7 @@ const CachedFrameStats& FrameCache::render(const Camera& camera) {
       stats_.trace_ms = stats_.phase_ms[2] = ms_since(phase);
       phase = Clock::now();
       if (!still) m.drop_hidden();
-      if (n > 0) {
+      if (n > 0 && !still) {
         const double ns = stats_.trace_ms * 1e6 / double(n);
         m.measured_sample_ns = m.measured_sample_ns > 0 ? 0.8 * m.measured_sample_ns + 0.2 * ns : ns;
       }

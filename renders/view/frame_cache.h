@@ -15,7 +15,7 @@
 //
 // Deterministic: the fresh samples a frame may draw are a count (FrameBudget), not a clock, so a
 // path gives the same bytes on any thread count; the window may size them by its clock instead.
-// Buffers are sized with the frame (57 bytes a pixel): a frame allocates nothing. Prints nothing.
+// Buffers are sized with the frame (63 bytes a pixel): a frame allocates nothing. Prints nothing.
 #pragma once
 
 #include <array>
