@@ -50,15 +50,33 @@ constexpr float kSubScale = 60;  // (a copy's lies up to kMaxStretch / 2 + 0.5 p
 
 // What a frame does with a pixel, in the order the budget serves them.
 enum Need : std::uint8_t {
-  kHole = 0,       // no sample (none arrived, or it was seen through a gap): traced, or filled
-  kStretched = 1,  // a magnified neighbour's sample covers it: shown, and traced soon
-  kStale = 2,      // a cold frame's LDI or terrain pixel: an approximation, traced soon
-  kRefresh = 3,    // its turn in the rotating share, or too old
-  kKeep = 4,
-  kNeeds = 5,
-  kSkyFill = 6,  // (transient) a hole among sky: the sky
-  kTraced = 7,   // traced this frame
-  kHidden = 8,   // (transient) kept, but seen through a gap in a surface traced this frame
+  kProbe = 0,      // one pixel of each 2 x 2 in the band the camera moves toward (EnteringBand)
+  kHole = 1,       // no sample (none arrived, or it was seen through a gap): traced, or filled
+  kStretched = 2,  // a magnified neighbour's sample covers it: shown, and traced soon
+  kStale = 3,      // an approximation (a cold frame's LDIs, a found surface's neighbour): traced soon
+  kRefresh = 4,    // its turn in the rotating share, or too old
+  kKeep = 5,
+  kNeeds = 6,
+  kSkyFill = 7,   // (transient) a hole among sky: the sky
+  kTraced = 8,    // traced this frame
+  kFound = 9,     // traced this frame, nearer than the sample it replaced: something came into view
+  kHidden = 10,   // (transient) kept, but seen through a gap in a surface traced this frame
+  kCovered = 11,  // (transient) kept, but a found surface beside it is nearer: shows that surface
+};
+// In motion, objects nearer than the samples at the edge the camera moves toward come into view
+// over them (a sideways step past a flower 1.5 m away moves it 9 pixels a frame at 640 x 360):
+// reprojection knows nothing of them and sees no hole there. The band where an object
+// kEnteringDepth away or farther may have come in is probed (a ray in each 2 x 2 pixels, before
+// any other need), and a fresh sample that finds a surface nearer than the sample it replaced
+// lends it to its neighbours behind it (kCovered) until they are traced. Before, a flower head
+// entering at the right edge stayed missing for seconds, the sky's samples reprojected over it.
+constexpr double kEnteringDepth = 0.5;  // meters
+// The band's width at each edge, pixels.
+struct EnteringBand {
+  int left = 0, right = 0, top = 0, bottom = 0;
+  bool holds(int x, int y, int width, int height) const {
+    return x < left || x >= width - right || y < top || y >= height - bottom;
+  }
 };
 // A reprojected sample covers the pixels whose centres lie in a square of its footprint's size
 // (one pixel at its old depth) times kSplatScale, up to kMaxStretch pixels. Without such copies,
@@ -87,6 +105,21 @@ inline std::int8_t sub_code(float offset) {  // offset in pixels -> 1/kSubScale,
 }
 std::uint32_t pixel_hash(std::uint64_t p, std::uint64_t salt) {
   return std::uint32_t(mix64(p * 0x100000001B3ull + salt) >> 32);
+}
+
+// Where objects kEnteringDepth away or farther may have come into view moving from `from` to `to`:
+// at the edges the picture slides away from (a step right slides it left: the right edge), and at
+// every edge stepping back; up to a quarter of the frame.
+EnteringBand entering_band(const ViewProjection& from, const ViewProjection& to, int frame_width, int frame_height) {
+  const Vector3d shift = from.eye - to.eye;  // in the new camera's axes below
+  const double side = dot(to.right, shift), up = dot(to.up, shift), back = std::max(0.0, dot(to.forward, shift));
+  const double reach = to.focal / kEnteringDepth;  // pixels a meter of shift moves such an object
+  const auto width = [&](double pixels, int size) {
+    return pixels > 0 ? std::min(size / 4, int(std::ceil(pixels)) + 1) : 0;
+  };
+  const double sideways_back = back / kEnteringDepth * to.cx, upward_back = back / kEnteringDepth * to.cy;
+  return {width(side * reach + sideways_back, frame_width), width(-side * reach + sideways_back, frame_width),
+          width(-up * reach + upward_back, frame_height), width(up * reach + upward_back, frame_height)};
 }
 
 }  // namespace
@@ -136,7 +169,8 @@ struct FrameCache::Impl {
   std::vector<std::array<std::int8_t, 2>> lattice;
   std::vector<std::array<std::uint32_t, kNeeds>> row_needs;
   std::vector<std::uint32_t> row_fresh;
-  ViewProjection projection;  // the last frame's
+  std::vector<std::uint8_t> row_has_holes;  // resolve(): a row fill_holes() must visit
+  ViewProjection projection;                // the last frame's
   std::uint32_t still_slot = 0;
   double measured_sample_ns = 0;  // FrameBudget::adaptive: the last moving frames' cost per fresh sample
 
@@ -152,24 +186,25 @@ struct FrameCache::Impl {
     lattice.assign(pixels(), {0, 0});
     row_needs.assign(std::size_t(h), {});
     row_fresh.assign(std::size_t(h) + 1, 0);
+    row_has_holes.assign(std::size_t(h), 0);
   }
   std::size_t bytes() const {
     return (kept[0].size() + kept[1].size()) * sizeof(Sample) + keys.size() * 8 + need.size() + fresh.size() * 4 +
-           lattice.size() * 2 + row_needs.size() * sizeof(row_needs[0]) + row_fresh.size() * 4;
+           lattice.size() * 2 + row_needs.size() * sizeof(row_needs[0]) + row_fresh.size() * 4 + row_has_holes.size();
   }
 
   void reproject(const ViewProjection& to);
-  void classify(std::uint64_t frame, bool still);
+  void classify(std::uint64_t frame, bool still, const EnteringBand& band);
   std::array<std::uint64_t, kNeeds> count_needs() const;
   std::array<int, 2> neighbours(int x, int y, float depth) const;
-  void drop_hidden();
+  void drop_hidden(std::size_t n);
   std::size_t select(const std::array<std::uint64_t, kNeeds>& needs, std::uint64_t budget, std::uint64_t frame);
   std::size_t select_still(std::uint64_t budget);
   template <class Take>
   std::size_t gather_fresh(const Take& take);
   void trace(LdiRenderer& renderer, std::size_t n, bool still);
   std::uint64_t fill_holes(ImageRgb8& image) const;
-  void resolve(const ViewWorld& world, ImageRgb8& image) const;
+  void resolve(const ViewWorld& world, ImageRgb8& image);
 };
 
 // ---- reprojection: each kept sample to where the new camera sees it ------------------------
@@ -306,7 +341,7 @@ std::array<int, 2> FrameCache::Impl::neighbours(int x, int y, float depth) const
   return {sky, nearer};
 }
 
-void FrameCache::Impl::classify(std::uint64_t frame, bool still) {
+void FrameCache::Impl::classify(std::uint64_t frame, bool still, const EnteringBand& band) {
   KeptSamples& k = now();
   tbb::parallel_for(tbb::blocked_range<int>(0, height, 4), [&](const tbb::blocked_range<int>& r) {
     for (int y = r.begin(); y != r.end(); ++y)
@@ -323,12 +358,14 @@ void FrameCache::Impl::classify(std::uint64_t frame, bool still) {
           judged = kHole;
         else if (need[p] == kStretched)
           judged = kStretched;
-        else if (k[p].source == SampleSource::frame)
+        else if (k[p].source == SampleSource::frame || k[p].source == SampleSource::lent)
           judged = kStale;
         else if (k[p].age >= kMaxAge || (pixel_hash(p, 1) + frame) % kRefreshPeriod == 0)
           judged = kRefresh;
         else
           judged = kKeep;
+        if (judged != kHole && !still && (x & 1) == 0 && (y & 1) == 0 && band.holds(x, y, width, height))
+          judged = kProbe;
         need[p] = judged;
       }
   });
@@ -397,7 +434,7 @@ std::size_t FrameCache::Impl::select(const std::array<std::uint64_t, kNeeds>& ne
   std::uint8_t last = kKeep;  // the first need not taken whole
   std::uint32_t share = 0;    // of it, the pixels whose hash is below this (of 2^32)
   std::uint64_t left = budget;
-  for (std::uint8_t c = kHole; c < kKeep; ++c) {
+  for (std::uint8_t c = kProbe; c < kKeep; ++c) {
     if (needs[c] <= left) {
       left -= needs[c];
       continue;
@@ -415,7 +452,8 @@ std::size_t FrameCache::Impl::select(const std::array<std::uint64_t, kNeeds>& ne
   const int own = int(kStretchedOffset * kSubScale);
   const auto own_sample = [&](std::size_t q) {  // a sample in its own pixel, not a hole or a copy
     const Sample& s = k[q];
-    return !is_none(s.depth) && need[q] >= kStale && std::abs(s.sub_x) <= own && std::abs(s.sub_y) <= own;
+    return !is_none(s.depth) && need[q] >= kStale && s.source != SampleSource::lent && std::abs(s.sub_x) <= own &&
+           std::abs(s.sub_y) <= own;
   };
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
@@ -517,6 +555,7 @@ void FrameCache::Impl::trace(LdiRenderer& renderer, std::size_t n, bool still) {
         const Vec3f c = hit_valid[l] ? colors[l] : sky_radiance(world.shading(), dir);
         const float depth = hit_valid[l] ? float(double(hit[l]->t) * dot(d[l], view.forward)) : kInf;
         const int before = still_samples(k[p]);
+        const bool found = !still && depth < k[p].depth * (1 - kGapDepth);  // (false for a hole's NaN)
         if (still && before > 0) {
           const float w = 1.0f / float(before + 1);
           for (std::size_t a = 0; a < 3; ++a) k[p].color[a] += (c[a] - k[p].color[a]) * w;
@@ -532,35 +571,69 @@ void FrameCache::Impl::trace(LdiRenderer& renderer, std::size_t n, bool still) {
           k[p].source = still ? SampleSource::still : hit_valid[l] ? SampleSource::ray : SampleSource::sky;
         }
         k[p].age = 0;
-        need[p] = kTraced;
+        need[p] = found ? kFound : kTraced;
       }
     }
   });
   tracer.check("tracing the frame's fresh samples");
 }
 
-// After tracing: a kept sample that a surface traced this frame now surrounds (five of its
-// neighbours nearer) was seen through what was a gap: it is dropped (shown as its neighbours,
-// traced next frame). Judged first, then applied, so no judgement sees another's outcome.
-void FrameCache::Impl::drop_hidden() {
+// After tracing, of the kept samples beside a traced one (only there can the neighbourhood
+// classify() judged have changed):
+// - one behind a found surface beside it (nearer by kGapDepth) shows that surface until traced
+//   (kCovered: a copy of the nearest found sample at its own centre, SampleSource::lent);
+// - one that traced surfaces now surround (five of its neighbours nearer) was seen through what
+//   was a gap: it is dropped (a hole, shown as its neighbours, traced first next frame).
+// Judged first, then applied, so no judgement sees another's outcome; two traced pixels may judge
+// one neighbour at once (both write the same mark), and one of them claims the applying.
+void FrameCache::Impl::drop_hidden(std::size_t n) {
   KeptSamples& k = now();
+  const auto traced = [](std::uint8_t c) { return c == kTraced || c == kFound; };
+  // The nearest found sample among the neighbours of q (x, y) that lies nearer than `depth` by
+  // kGapDepth of it (none: pixels()); the lower index wins a tie, so the choice is the same on
+  // any thread count.
+  const auto nearest_found = [&](int x, int y, float depth) {
+    std::size_t best = pixels();
+    for (int fy = std::max(0, y - 1); fy <= std::min(height - 1, y + 1); ++fy)
+      for (int fx = std::max(0, x - 1); fx <= std::min(width - 1, x + 1); ++fx) {
+        const std::size_t f = std::size_t(fy) * std::size_t(width) + std::size_t(fx);
+        if (std::atomic_ref<std::uint8_t>(need[f]).load(std::memory_order_relaxed) == kFound &&
+            k[f].depth < depth * (1 - kGapDepth) && (best == pixels() || k[f].depth < k[best].depth))
+          best = f;
+      }
+    return best;
+  };
   for (int pass = 0; pass < 2; ++pass)
-    tbb::parallel_for(tbb::blocked_range<int>(0, height, 4), [&](const tbb::blocked_range<int>& r) {
-      for (int y = r.begin(); y != r.end(); ++y)
-        for (int x = 0; x < width; ++x) {
-          const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
-          if (pass == 1) {
-            if (need[p] == kHidden) k[p].depth = kNone;
-          } else if (need[p] != kTraced && !is_none(k[p].depth) && neighbours(x, y, k[p].depth)[1] >= kGapNeighbours) {
-            need[p] = kHidden;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        const int x = int(fresh[i] % std::size_t(width)), y = int(fresh[i] / std::size_t(width));
+        for (int qy = std::max(0, y - 1); qy <= std::min(height - 1, y + 1); ++qy)
+          for (int qx = std::max(0, x - 1); qx <= std::min(width - 1, x + 1); ++qx) {
+            const std::size_t q = std::size_t(qy) * std::size_t(width) + std::size_t(qx);
+            std::atomic_ref<std::uint8_t> mark(need[q]);
+            std::uint8_t seen = mark.load(std::memory_order_relaxed);
+            if (pass == 1) {
+              if (seen == kHidden) {
+                std::atomic_ref<float>(k[q].depth).store(kNone, std::memory_order_relaxed);
+              } else if (seen == kCovered && mark.compare_exchange_strong(seen, kKeep, std::memory_order_relaxed)) {
+                const Sample& lender = k[nearest_found(qx, qy, k[q].depth)];
+                k[q] = Sample{lender.depth, lender.color, 0, 0, 0, 0, SampleSource::lent};
+              }
+              continue;
+            }
+            if (traced(seen) || seen == kHidden || seen == kCovered || is_none(k[q].depth)) continue;
+            if (nearest_found(qx, qy, k[q].depth) != pixels())
+              mark.store(kCovered, std::memory_order_relaxed);
+            else if (neighbours(qx, qy, k[q].depth)[1] >= kGapNeighbours)
+              mark.store(kHidden, std::memory_order_relaxed);
           }
-        }
+      }
     });
 }
 
 // ---- the picture ----------------------------------------------------------------------------
 
-void FrameCache::Impl::resolve(const ViewWorld& world, ImageRgb8& image) const {
+void FrameCache::Impl::resolve(const ViewWorld& world, ImageRgb8& image) {
   const KeptSamples& k = kept[current];
   const Luts& lut = luts();
   const ViewProjection& view = projection;
@@ -568,9 +641,13 @@ void FrameCache::Impl::resolve(const ViewWorld& world, ImageRgb8& image) const {
     for (int y = r.begin(); y != r.end(); ++y) {
       const float ray_up = -(float(y) + 0.5f - view.cy) / view.focal;
       std::uint8_t* out = image.pixels.data() + image.offset(0, y);
+      bool holes = false;
       for (int x = 0; x < width; ++x, out += 3) {
         const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
-        if (is_none(k[p].depth)) continue;  // a hole: fill_holes
+        if (is_none(k[p].depth)) {  // a hole: fill_holes
+          holes = true;
+          continue;
+        }
         Vec3f c{k[p].color[0], k[p].color[1], k[p].color[2]};
         if (k[p].source == SampleSource::sky) {  // the sky along the pixel's own ray, as LdiRenderer draws it
           const float ray_right = (float(x) + 0.5f - view.cx) / view.focal;
@@ -583,6 +660,7 @@ void FrameCache::Impl::resolve(const ViewWorld& world, ImageRgb8& image) const {
         out[1] = lut.encode(c[1]);
         out[2] = lut.encode(c[2]);
       }
+      row_has_holes[std::size_t(y)] = holes;
     }
   });
 }
@@ -598,7 +676,7 @@ std::uint64_t FrameCache::Impl::fill_holes(ImageRgb8& image) const {
   tbb::parallel_for(tbb::blocked_range<int>(0, height, 8), [&](const tbb::blocked_range<int>& r) {
     std::uint64_t holes = 0;
     for (int y = r.begin(); y != r.end(); ++y)
-      for (int x = 0; x < width; ++x) {
+      for (int x = 0; row_has_holes[std::size_t(y)] && x < width; ++x) {
         if (!is_none(k[std::size_t(y) * std::size_t(width) + std::size_t(x)].depth)) continue;
         ++holes;
         std::uint8_t* out = image.pixels.data() + image.offset(x, y);
@@ -722,14 +800,16 @@ const CachedFrameStats& FrameCache::render(const Camera& camera) {
       return std::chrono::duration<double, std::milli>(Clock::now() - from).count();
     };
     auto phase = Clock::now();
+    const EnteringBand band = entering_band(m.projection, view, m.width, m.height);
     if (!still) m.reproject(view);
     stats_.phase_ms[0] = ms_since(phase);
     phase = Clock::now();
     m.projection = view;
-    m.classify(frame_index_, still);
+    m.classify(frame_index_, still, band);
     const std::array<std::uint64_t, kNeeds> needs = m.count_needs();
     stats_.holes = needs[kHole];
     stats_.stretched = needs[kStretched];
+    stats_.probes = needs[kProbe];
     stats_.refresh = needs[kStale] + needs[kRefresh];
     if (!still && double(needs[kHole]) > kColdHoleShare * double(m.pixels())) {
       draw_cold(camera);
@@ -741,7 +821,7 @@ const CachedFrameStats& FrameCache::render(const Camera& camera) {
       m.trace(renderer_, n, still);
       stats_.trace_ms = stats_.phase_ms[2] = ms_since(phase);
       phase = Clock::now();
-      if (!still) m.drop_hidden();
+      if (!still) m.drop_hidden(n);
       if (n > 0 && !still) {
         const double ns = stats_.trace_ms * 1e6 / double(n);
         m.measured_sample_ns = m.measured_sample_ns > 0 ? 0.8 * m.measured_sample_ns + 0.2 * ns : ns;

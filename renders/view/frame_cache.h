@@ -36,6 +36,7 @@ enum class SampleSource : std::uint8_t {
   ray,    // traced anew at the pixel centre by the view's rays (sun shadow ray, baked sky share)
   still,  // the mean of samples shaded as the reference shades them (sky rays), camera still
   sky,    // nothing there: the sky, drawn along the pixel's own ray
+  lent,   // a nearer surface found beside it this frame: that sample's, shown until traced
 };
 
 // How many samples a frame may trace anew: sized to the frame time 1000 / fps ms from nominal
@@ -66,6 +67,7 @@ struct CachedFrameStats {
   std::uint64_t holes = 0;      // pixels no kept sample reached, or one seen through a gap
   std::uint64_t filled = 0;     // of the holes, those the budget left: shown as their neighbours
   std::uint64_t stretched = 0;  // pixels showing a neighbour's sample (magnified, or its own lost)
+  std::uint64_t probes = 0;     // pixels probed at the edge the camera moves toward (objects coming in)
   std::uint64_t refresh = 0;    // pixels whose turn to be traced anew it was (or too old, or a cold frame's LDIs)
   int still_frames = 0;         // frames the camera has held still (0: moving)
   double fresh_share() const { return pixels ? double(fresh) / double(pixels) : 0; }
