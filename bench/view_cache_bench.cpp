@@ -1,13 +1,16 @@
-// The view in motion (renders/view/frame_cache.h) on the default scene, along three paths of
-// bench/paths/ (issue 37's):
+// The view in motion (renders/view/frame_cache.h) on the default scene, along four paths of
+// bench/paths/ (issue 37's three, and a sideways step):
 //  - 0, walk.json: 8 s at head height through the field at 1.4 m/s, the gaze turning up to about
 //    60 degrees a second;
 //  - 1, walk_then_still.json: the same walk, then 2 s standing still;
-//  - 2, flight.json: 8 s 25 m above the field at 10 m/s, looking ahead and down.
+//  - 2, flight.json: 8 s 25 m above the field at 10 m/s, looking ahead and down;
+//  - 3, side_step.json: 2 s of a sideways step at 1.4 m/s past the flowers of the close-up,
+//    1-2 m away (they come in at the right edge).
 // BM_CachedPath/PATH/W/H: one iteration plays the whole path at 60 frames/s through a FrameCache
 // with its default budget (the frames `wangscape view --path P --fps 60` draws), the first frame
 // cold. Counters: the median, 95th percentile and slowest frame (ms), the 95th percentile over
-// the median, the mean share of the pixels traced anew, the median of the warm frames' phases
+// the median, the mean share of the pixels traced anew, of those probed at the edge the camera
+// steps toward and of the holes reprojection left (before tracing), the median of the warm frames' phases
 // (reprojecting, choosing, tracing, resolving; ms), the cold frames, and the process CPU
 // seconds per frame (all threads: getrusage). Quality along the same paths: `wangscape view DIR
 // --path P --fps 60 --compare-every K --json` (docs/viewer.md, "The sample cache").
@@ -29,7 +32,7 @@ namespace {
 using namespace wangscape;
 using namespace wangscape::bench;
 
-constexpr const char* kPaths[] = {"walk.json", "walk_then_still.json", "flight.json"};
+constexpr const char* kPaths[] = {"walk.json", "walk_then_still.json", "flight.json", "side_step.json"};
 
 double process_cpu_seconds() {
   rusage usage{};
@@ -57,7 +60,7 @@ void BM_CachedPath(benchmark::State& state) {
     FrameCache cache(renderer);
     std::vector<double> frame_ms;
     std::array<std::vector<double>, 4> phases;
-    double fresh = 0, cold = 0;
+    double fresh = 0, cold = 0, probes = 0, holes = 0;
     const double cpu_start = process_cpu_seconds();
     for (long long k = 0; k < path.frame_count(fps); ++k) {
       const Camera camera = camera_along(path, path.keys.front().time + double(k) / fps, fov, ground, file);
@@ -70,6 +73,8 @@ void BM_CachedPath(benchmark::State& state) {
       frame_ms.push_back(s.frame_ms);
       fresh += s.fresh_share();
       cold += s.cold;
+      probes += double(s.probes) / double(s.pixels);
+      holes += double(s.holes) / double(s.pixels);
       if (!s.cold)
         for (std::size_t p = 0; p < phases.size(); ++p) phases[p].push_back(s.phase_ms[p]);
     }
@@ -81,6 +86,8 @@ void BM_CachedPath(benchmark::State& state) {
     state.counters["p95_over_median"] = at(frame_ms, 0.95) / at(frame_ms, 0.5);
     state.counters["fresh_share"] = fresh / frames;
     state.counters["cold_frames"] = cold;
+    state.counters["probe_share"] = probes / frames;
+    state.counters["hole_share"] = holes / frames;
     state.counters["frames"] = frames;
     const char* names[4] = {"reproject_ms", "choose_ms", "trace_ms", "resolve_ms"};
     for (std::size_t p = 0; p < phases.size(); ++p) state.counters[names[p]] = at(phases[p], 0.5);
@@ -88,7 +95,7 @@ void BM_CachedPath(benchmark::State& state) {
 }
 
 void paths(benchmark::internal::Benchmark* b) {
-  for (int path = 0; path < 3; ++path)
+  for (int path = 0; path < 4; ++path)
     for (const auto& [w, h] : {std::pair{640, 360}, std::pair{1280, 720}}) {
       b->Args({path, w, h, 1});
       if (path != 1) b->Args({path, w, h, 0});
