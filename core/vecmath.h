@@ -8,6 +8,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "core/error.h"
 #include "core/number_text.h"
@@ -68,10 +69,10 @@ inline bool valid_field_of_view(double degrees) { return degrees > 0 && degrees 
 
 // Throws Error("<what> <degrees>: expected degrees in (0, 179]") unless valid_field_of_view; `what`
 // names the value for the user ("--fov", "reference render: camera field of view").
-inline void check_field_of_view(double degrees, const std::string& what) {
+inline void check_field_of_view(double degrees, std::string_view what) {
   if (!valid_field_of_view(degrees))
-    throw Error(what + " " + number_text(degrees) + ": expected degrees in (0, " + number_text(kMaxFieldOfViewDegrees) +
-                "]");
+    throw Error(std::string(what) + " " + number_text(degrees) + ": expected degrees in (0, " +
+                number_text(kMaxFieldOfViewDegrees) + "]");
 }
 
 // Unit vectors of a camera looking from a position at a target: forward (to the target), right

@@ -15,9 +15,9 @@ EmbreeDevice::EmbreeDevice() {
 
 EmbreeDevice::~EmbreeDevice() { rtcReleaseDevice(device_); }
 
-void EmbreeDevice::check(const std::string& doing) {
+void EmbreeDevice::check(std::string_view doing) {
   std::lock_guard lock(mutex_);
-  if (!error_.empty()) throw Error("Embree error while " + doing + ": " + error_);
+  if (!error_.empty()) throw Error("Embree error while " + std::string(doing) + ": " + error_);
 }
 
 void EmbreeDevice::on_error(void* user, RTCError code, const char* message) {

@@ -10,6 +10,7 @@
 #include <mutex>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "templates/mesh.h"
@@ -24,7 +25,7 @@ class EmbreeDevice {
   EmbreeDevice& operator=(const EmbreeDevice&) = delete;
   RTCDevice get() const { return device_; }
   // Throws the first error Embree reported, naming what we were doing.
-  void check(const std::string& doing);
+  void check(std::string_view doing);
 
  private:
   static void on_error(void* user, RTCError code, const char* message);

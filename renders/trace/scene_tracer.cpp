@@ -202,7 +202,7 @@ SceneTracer::~SceneTracer() = default;
 const std::array<double, 3>& SceneTracer::origin() const { return impl_->origin; }
 std::uint64_t SceneTracer::instances() const { return impl_->variant.size(); }
 RTCSceneTy* SceneTracer::scene() const { return impl_->top->get(); }
-void SceneTracer::check(const std::string& doing) const { impl_->device.check(doing); }
+void SceneTracer::check(std::string_view doing) const { impl_->device.check(doing); }
 
 std::optional<SceneTracer::Hit> SceneTracer::intersect(const V3& from, const V3& d, float tfar) const {
   RTCIntersectContext context;

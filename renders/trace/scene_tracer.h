@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "renders/trace/ground_colors.h"
 #include "renders/trace/shading.h"
@@ -45,7 +46,7 @@ class SceneTracer {
   std::uint64_t instances() const;              // flowers
   RTCSceneTy* scene() const;                    // the top-level scene: every occluder, for shade()
   // Throws the first error Embree reported while tracing, naming what we were doing.
-  void check(const std::string& doing) const;
+  void check(std::string_view doing) const;
 
   struct Hit {
     float t, u, v;

@@ -1,7 +1,8 @@
 // The view in motion (renders/view/frame_cache.h) on the tiny field of view_test_world.h: the
 // cold frame is the renderer's, what a sideways step uncovers and a fast turn brings in match the
 // exact image (the whole frame ray cast), the frames are the same bytes on 1 and 2 threads, a
-// still camera converges past the exact one-sample image, and the cache fits 64 bytes a pixel.
+// still camera converges past the exact one-sample image, the cache fits 64 bytes a pixel and a
+// warm frame allocates nothing.
 // Suites are named ldi_view_cache so `ctest -R ldi` runs them.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -15,6 +16,7 @@
 #include "renders/view/frame_cache.h"
 #include "renders/view/view_frames.h"
 #include "renders/view/view_projection.h"
+#include "tests/renders/counted_allocations.h"
 #include "tests/renders/view_test_world.h"
 
 namespace wangscape {
@@ -229,6 +231,19 @@ TEST(ldi_view_cache, AStillCameraConvergesPastTheExactOneSampleImage) {
   for (std::size_t i = 1; i < psnr.size(); ++i) EXPECT_GT(psnr[i], psnr[i - 1] - 0.05) << "checkpoint " << i;
   EXPECT_GT(psnr.back(), psnr.front() + 2);
   EXPECT_GT(psnr[1], exact) << "after 8 still frames: " << psnr[1] << " dB, the exact one-sample image " << exact;
+}
+
+TEST(ldi_view_cache, AWarmFrameAllocatesNothing) {
+  LdiRenderer renderer(field(), kWidth, kHeight);
+  renderer.apply(ViewSettings{});  // the view's defaults: the near field, the engine by the frame
+  FrameCache cache(renderer, quarter_budget());
+  cache.render(in_the_field(0.3));
+  cache.render(in_the_field(0.31));  // (the first warm frame may build what warm frames share)
+  // Before: two a frame (a message's std::string built for a check that passed).
+  const long allocations = test::count_allocations([&] {
+    for (int k = 2; k <= 12; ++k) cache.render(in_the_field(0.3 + 0.01 * std::min(k, 8), 0.5 * std::min(k, 8)));
+  });
+  EXPECT_EQ(allocations, 0) << "allocations in 11 warm frames (moving, then still)";
 }
 
 TEST(ldi_view_cache, TheCacheFitsSixtyFourBytesAPixel) {
