@@ -20,6 +20,8 @@ strace -o /dev/null true 2>/dev/null || {
   echo "durable_publish: skipped: strace cannot trace here (ptrace refused)"
   exit 77
 }
+case $bin in /*) ;; */*) bin=$(pwd)/$bin ;; esac
+case $checker in /*) ;; *) checker=$(pwd)/$checker ;; esac
 rm -rf "$dir"
 mkdir -p "$dir" || fail "cannot create $dir"
 cd "$dir" || exit 1
