@@ -49,7 +49,7 @@ def unescape(text):
     return out.decode(errors="surrogateescape")
 
 
-def events(trace_path, cwd):
+def events(trace_path):
     """(name, args, result, result_path, start, end) per completed system call, in the order
     strace saw them complete; start and end are line numbers of its entry and its result."""
     pending = {}
@@ -115,7 +115,7 @@ def main():
     write_opens = {}   # path -> [end] of openat for writing
     changes = {}       # folder -> [end] of changes of its entries (create, rename in or out, mkdir)
     renames = []       # (src, dst, start, end)
-    for name, args, ret, ret_path, start, end in events(trace, cwd):
+    for name, args, ret, ret_path, start, end in events(trace):
         if ret < 0:
             continue
         if name in ("fsync", "fdatasync"):
