@@ -4,6 +4,7 @@
 
 #include <system_error>
 
+#include "core/durable_file.h"
 #include "core/run_cleanup.h"
 
 namespace wangscape {
@@ -20,8 +21,17 @@ std::filesystem::path temporary_beside(const std::filesystem::path& path) {
   return temp;
 }
 
+// Publishes the complete temporary `from` as `to` durably (core/durable_file.h): its data
+// flushed before the rename, the folder after it.
 void rename_into_place(const std::filesystem::path& from, const std::filesystem::path& to) {
   std::error_code ec;
+  try {
+    sync_file(from);
+  } catch (const Error& e) {
+    std::filesystem::remove(from, ec);
+    unregister_temporary(from);
+    throw Error(to, "", e.message());
+  }
   std::filesystem::rename(from, to, ec);
   if (ec) {
     std::filesystem::remove(from, ec);
@@ -29,6 +39,7 @@ void rename_into_place(const std::filesystem::path& from, const std::filesystem:
     throw Error("cannot write '" + to.string() + "': rename failed");
   }
   unregister_temporary(from);
+  sync_folder(to.parent_path());
 }
 
 void remove_temporary(const std::filesystem::path& temp) {

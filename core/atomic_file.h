@@ -1,6 +1,8 @@
 // Outputs are written atomically: to a temporary file beside the target, renamed into
-// place only when complete, so a failed run never leaves a partial file. Errors are
-// wangscape::Error naming the file.
+// place only when complete, so a failed run never leaves a partial file; and durably
+// (core/durable_file.h): the temporary is flushed to disk before the rename and the folder
+// after it, so a power cut leaves the old file or the new one, never a truncated one. Errors
+// are wangscape::Error naming the file.
 #pragma once
 
 #include <filesystem>
@@ -26,7 +28,8 @@ class AtomicFile {
   const std::filesystem::path& temp_path() const { return temp_path_; }
   const std::filesystem::path& path() const { return path_; }
 
-  // Flushes, closes and renames into place. Throws Error if any write failed.
+  // Flushes, closes, flushes to disk and renames into place, then flushes the folder. Throws
+  // Error if any write or flush failed.
   void commit();
 
  private:

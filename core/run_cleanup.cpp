@@ -13,6 +13,9 @@
 #include <thread>
 #include <vector>
 
+#include "core/durable_file.h"
+#include "core/error.h"
+
 namespace wangscape {
 
 namespace fs = std::filesystem;
@@ -113,9 +116,13 @@ void remove_if_stale(const fs::path& folder, const std::string& entry) {
   }
   const std::string old_of = staged_name(entry, "old", pid);
   if (old_of.empty() || !process_is_gone(pid)) return;
-  if (fs::symlink_status(folder / old_of, ec).type() == fs::file_type::not_found)
+  if (fs::symlink_status(folder / old_of, ec).type() == fs::file_type::not_found) {
     fs::rename(folder / entry, folder / old_of, ec);  // the swap was cut short: the old build is all there is
-  else
+    try {
+      if (!ec) sync_folder(folder);  // durably: the old build's files were flushed when it was published
+    } catch (const Error&) {         // ignored, as every error here
+    }
+  } else
     fs::remove_all(folder / entry, ec);
 }
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/durable_file.h"
 #include "core/run_cleanup.h"
 #include "core/text_file.h"
 #include "exporters/blender_export.h"
@@ -53,12 +54,16 @@ fs::path sibling(const fs::path& out_dir, const char* role) {
 // removed after. Where the filesystem cannot exchange (EINVAL: not supported there), out_dir is
 // renamed aside first and the new one renamed in, which the observer is told: in between, for a
 // moment, there is no folder (a run killed there puts the old one back on the next write).
+// Durably (core/durable_file.h): every file and folder of staging is flushed to disk before the
+// swap, the folder holding out_dir after it, so a power cut leaves the old build or the new one.
 void publish(const fs::path& staging, const fs::path& out_dir, const SceneFolderObserver& observer) {
+  sync_tree(staging);
   auto uninterrupted = hold_run_cleanup();  // an interrupt waits until the swap is done
   std::error_code ec;
   if (fs::exists(out_dir, ec)) {
     if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, out_dir.c_str(), RENAME_EXCHANGE) == 0) {
       uninterrupted.unlock();  // staging (still a registered temporary) now holds the old build
+      sync_folder(out_dir.parent_path());
       fs::remove_all(staging, ec);
       unregister_temporary(staging);
       return;
@@ -81,6 +86,7 @@ void publish(const fs::path& staging, const fs::path& out_dir, const SceneFolder
     unregister_temporary(staging);
     register_temporary(old);
     uninterrupted.unlock();
+    sync_folder(out_dir.parent_path());
     fs::remove_all(old, ec);
     unregister_temporary(old);
     return;
@@ -88,6 +94,7 @@ void publish(const fs::path& staging, const fs::path& out_dir, const SceneFolder
   fs::rename(staging, out_dir, ec);
   if (ec) throw Error(out_dir, "", "cannot create the scene folder: " + ec.message());
   unregister_temporary(staging);
+  sync_folder(out_dir.parent_path());
 }
 
 }  // namespace
@@ -195,6 +202,9 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
     if (!scene_base_dir.empty())
       write_file_atomically(staging / kSceneBaseFile, fs::absolute(scene_base_dir).lexically_normal().string() + "\n");
     publish(staging, out_dir, observer);
+    // The folders this build made hold their entries durably too (the nearest is out_dir's
+    // parent, flushed by publish).
+    for (const fs::path& p : made) sync_folder(p.parent_path());
   } catch (...) {
     fs::remove_all(staging, ec);
     unregister_temporary(staging);

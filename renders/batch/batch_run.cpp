@@ -22,6 +22,7 @@
 #include <thread>
 
 #include "core/atomic_file.h"
+#include "core/durable_file.h"
 #include "core/json_text.h"
 #include "core/number_text.h"
 #include "core/printable.h"
@@ -701,6 +702,10 @@ void make_output_folders(const fs::path& out) {
     if (ec || !fs::is_directory(folder))
       throw Error(folder, "", "cannot create the batch output folder: " + (ec ? ec.message() : "not a folder"));
   }
+  // Durably (core/durable_file.h): the stills and task records are renamed into these folders,
+  // which must outlive a power cut as the files do.
+  sync_folder(out);
+  sync_folder(fs::absolute(out).parent_path());
 }
 
 // One `batch run` at a time per output folder: a second one would render every still again
