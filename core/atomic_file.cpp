@@ -16,7 +16,12 @@ namespace {
 std::filesystem::path temporary_beside(const std::filesystem::path& path) {
   remove_stale_temporaries(path.parent_path());
   std::filesystem::path temp = path;
-  temp.replace_filename("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()));
+  // Appended, not "." + string: GCC 12 warns (-Wrestrict) on that operator+ where it is inlined.
+  std::string name = ".";
+  name += path.filename().string();
+  name += ".tmp-";
+  name += std::to_string(::getpid());
+  temp.replace_filename(name);
   register_temporary(temp);
   return temp;
 }

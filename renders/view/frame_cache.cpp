@@ -50,7 +50,7 @@ constexpr float kSubScale = 60;  // (a copy's lies up to kMaxStretch / 2 + 0.5 p
 
 // What a frame does with a pixel, in the order the budget serves them.
 enum Need : std::uint8_t {
-  kProbe = 0,      // one pixel of each 2 x 2 in the band the camera moves toward (EnteringBand)
+  kProbe = 0,      // one pixel of each 4 x 4 in the band the camera moves toward (EnteringBand)
   kHole = 1,       // no sample (none arrived, or it was seen through a gap): traced, or filled
   kStretched = 2,  // a magnified neighbour's sample covers it: shown, and traced soon
   kStale = 3,      // an approximation (a cold frame's LDIs, a found surface's neighbour): traced soon
@@ -66,11 +66,13 @@ enum Need : std::uint8_t {
 // In motion, objects nearer than the samples at the edge the camera moves toward come into view
 // over them (a sideways step past a flower 1.5 m away moves it 9 pixels a frame at 640 x 360):
 // reprojection knows nothing of them and sees no hole there. The band where an object
-// kEnteringDepth away or farther may have come in is probed (a ray in each 2 x 2 pixels, before
+// kEnteringDepth away or farther may have come in is probed (a ray in each 4 x 4 pixels, before
 // any other need), and a fresh sample that finds a surface nearer than the sample it replaced
-// lends it to its neighbours behind it (kCovered) until they are traced. Before, a flower head
+// lends it to the samples behind it within kLendReach (kCovered) until they are traced. Before, a flower head
 // entering at the right edge stayed missing for seconds, the sky's samples reprojected over it.
 constexpr double kEnteringDepth = 0.5;  // meters
+constexpr int kProbeSpacing = 4;        // pixels between probes, across and down
+constexpr int kLendReach = 2;           // pixels from a found sample that it lends to: a 5 x 5
 // The band's width at each edge, pixels.
 struct EnteringBand {
   int left = 0, right = 0, top = 0, bottom = 0;
@@ -364,7 +366,8 @@ void FrameCache::Impl::classify(std::uint64_t frame, bool still, const EnteringB
           judged = kRefresh;
         else
           judged = kKeep;
-        if (judged != kHole && !still && (x & 1) == 0 && (y & 1) == 0 && band.holds(x, y, width, height))
+        if (judged != kHole && !still && x % kProbeSpacing == kProbeSpacing / 2 &&
+            y % kProbeSpacing == kProbeSpacing / 2 && band.holds(x, y, width, height))
           judged = kProbe;
         need[p] = judged;
       }
@@ -578,57 +581,71 @@ void FrameCache::Impl::trace(LdiRenderer& renderer, std::size_t n, bool still) {
   tracer.check("tracing the frame's fresh samples");
 }
 
-// After tracing, of the kept samples beside a traced one (only there can the neighbourhood
+// After tracing, of the kept samples near a traced one (only there can the neighbourhood
 // classify() judged have changed):
-// - one behind a found surface beside it (nearer by kGapDepth) shows that surface until traced
-//   (kCovered: a copy of the nearest found sample at its own centre, SampleSource::lent);
-// - one that traced surfaces now surround (five of its neighbours nearer) was seen through what
-//   was a gap: it is dropped (a hole, shown as its neighbours, traced first next frame).
-// Judged first, then applied, so no judgement sees another's outcome; two traced pixels may judge
-// one neighbour at once (both write the same mark), and one of them claims the applying.
+// - one behind a found surface within kLendReach pixels (nearer by kGapDepth) shows that surface
+//   until traced (kCovered: a copy of the nearest found sample at its own centre, SampleSource::lent);
+// - else one that traced surfaces now surround (five of its neighbours nearer) was seen through
+//   what was a gap: it is dropped (a hole, shown as its neighbours, traced first next frame).
+// Judged first, then applied, so no judgement sees another's outcome. Marks only rise (kept <
+// kHidden < kCovered), so a pixel two traced ones judge at once ends the same on any thread count;
+// one of them claims the applying.
 void FrameCache::Impl::drop_hidden(std::size_t n) {
   KeptSamples& k = now();
-  const auto traced = [](std::uint8_t c) { return c == kTraced || c == kFound; };
-  // The nearest found sample among the neighbours of q (x, y) that lies nearer than `depth` by
-  // kGapDepth of it (none: pixels()); the lower index wins a tie, so the choice is the same on
-  // any thread count.
-  const auto nearest_found = [&](int x, int y, float depth) {
-    std::size_t best = pixels();
-    for (int fy = std::max(0, y - 1); fy <= std::min(height - 1, y + 1); ++fy)
-      for (int fx = std::max(0, x - 1); fx <= std::min(width - 1, x + 1); ++fx) {
-        const std::size_t f = std::size_t(fy) * std::size_t(width) + std::size_t(fx);
-        if (std::atomic_ref<std::uint8_t>(need[f]).load(std::memory_order_relaxed) == kFound &&
-            k[f].depth < depth * (1 - kGapDepth) && (best == pixels() || k[f].depth < k[best].depth))
-          best = f;
-      }
-    return best;
+  const auto mark_of = [&](std::size_t q) { return std::atomic_ref<std::uint8_t>(need[q]); };
+  const auto kept_sample = [&](std::uint8_t c, std::size_t q) {
+    return c != kTraced && c != kFound && !is_none(k[q].depth);
   };
-  for (int pass = 0; pass < 2; ++pass)
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t i = r.begin(); i != r.end(); ++i) {
-        const int x = int(fresh[i] % std::size_t(width)), y = int(fresh[i] / std::size_t(width));
-        for (int qy = std::max(0, y - 1); qy <= std::min(height - 1, y + 1); ++qy)
-          for (int qx = std::max(0, x - 1); qx <= std::min(width - 1, x + 1); ++qx) {
-            const std::size_t q = std::size_t(qy) * std::size_t(width) + std::size_t(qx);
-            std::atomic_ref<std::uint8_t> mark(need[q]);
-            std::uint8_t seen = mark.load(std::memory_order_relaxed);
-            if (pass == 1) {
-              if (seen == kHidden) {
-                std::atomic_ref<float>(k[q].depth).store(kNone, std::memory_order_relaxed);
-              } else if (seen == kCovered && mark.compare_exchange_strong(seen, kKeep, std::memory_order_relaxed)) {
-                const Sample& lender = k[nearest_found(qx, qy, k[q].depth)];
-                k[q] = Sample{lender.depth, lender.color, 0, 0, 0, 0, SampleSource::lent};
-              }
-              continue;
-            }
-            if (traced(seen) || seen == kHidden || seen == kCovered || is_none(k[q].depth)) continue;
-            if (nearest_found(qx, qy, k[q].depth) != pixels())
-              mark.store(kCovered, std::memory_order_relaxed);
-            else if (neighbours(qx, qy, k[q].depth)[1] >= kGapNeighbours)
-              mark.store(kHidden, std::memory_order_relaxed);
-          }
-      }
-    });
+  const auto raise = [&](std::size_t q, std::uint8_t to) {
+    std::atomic_ref<std::uint8_t> mark = mark_of(q);
+    std::uint8_t seen = mark.load(std::memory_order_relaxed);
+    while (seen < to && seen != kTraced && seen != kFound &&
+           !mark.compare_exchange_weak(seen, to, std::memory_order_relaxed)) {
+    }
+  };
+  // Calls visit(qx, qy, q) for the pixels within `reach` of pixel p.
+  const auto around = [&](std::size_t p, int reach, auto&& visit) {
+    const int x = int(p % std::size_t(width)), y = int(p / std::size_t(width));
+    for (int qy = std::max(0, y - reach); qy <= std::min(height - 1, y + reach); ++qy)
+      for (int qx = std::max(0, x - reach); qx <= std::min(width - 1, x + reach); ++qx)
+        visit(qx, qy, std::size_t(qy) * std::size_t(width) + std::size_t(qx));
+  };
+  // Judging.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const std::size_t p = fresh[i];
+      if (mark_of(p).load(std::memory_order_relaxed) == kFound)
+        around(p, kLendReach, [&](int, int, std::size_t q) {
+          if (kept_sample(mark_of(q).load(std::memory_order_relaxed), q) && k[p].depth < k[q].depth * (1 - kGapDepth))
+            raise(q, kCovered);
+        });
+      around(p, 1, [&](int qx, int qy, std::size_t q) {
+        const std::uint8_t seen = mark_of(q).load(std::memory_order_relaxed);
+        if (kept_sample(seen, q) && seen < kHidden && neighbours(qx, qy, k[q].depth)[1] >= kGapNeighbours)
+          raise(q, kHidden);
+      });
+    }
+  });
+  // Applying. The lender: the nearest found sample within reach that is nearer by kGapDepth (the
+  // lower index wins a tie).
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i)
+      around(fresh[i], kLendReach, [&](int, int, std::size_t q) {
+        std::atomic_ref<std::uint8_t> mark = mark_of(q);
+        std::uint8_t seen = mark.load(std::memory_order_relaxed);
+        if (seen == kHidden) {
+          std::atomic_ref<float>(k[q].depth).store(kNone, std::memory_order_relaxed);
+        } else if (seen == kCovered && mark.compare_exchange_strong(seen, kKeep, std::memory_order_relaxed)) {
+          std::size_t lender = pixels();
+          around(q, kLendReach, [&](int, int, std::size_t f) {
+            if (mark_of(f).load(std::memory_order_relaxed) == kFound && k[f].depth < k[q].depth * (1 - kGapDepth) &&
+                (lender == pixels() || k[f].depth < k[lender].depth))
+              lender = f;
+          });
+          k[q] = Sample{k[lender].depth, k[lender].color, 0, 0, 0, 0, SampleSource::lent};
+        }
+      });
+  });
 }
 
 // ---- the picture ----------------------------------------------------------------------------

@@ -138,7 +138,17 @@ ViewPath read_view_path(const fs::path& file) {
 
 std::string view_path_json(const ViewPath& path) {
   const auto point = [](const std::array<double, 3>& p, bool above) {
-    return "[" + number_text(p[0]) + ", " + number_text(p[1]) + (above ? "" : ", " + number_text(p[2])) + "]";
+    // Appended, not "[" + string: GCC 12 warns (-Wrestrict) on that operator+ where it is inlined.
+    std::string text = "[";
+    text += number_text(p[0]);
+    text += ", ";
+    text += number_text(p[1]);
+    if (!above) {
+      text += ", ";
+      text += number_text(p[2]);
+    }
+    text += "]";
+    return text;
   };
   std::string out = "{\"keyframes\": [\n";
   for (std::size_t k = 0; k < path.keys.size(); ++k) {
