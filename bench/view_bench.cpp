@@ -48,18 +48,18 @@ using namespace wangscape::bench;
 
 Camera bench_camera(const ViewWorld& world, int which) {
   const double head = std::numeric_limits<double>::quiet_NaN();  // head height above the ground
-  ViewRequest request;
+  CameraChoice choice;
   if (which == 1) {
-    request.camera = {0, 6300, head};
-    request.look_at = {0, 1200, 1500};
+    choice.position = {0, 6300, head};
+    choice.look_at = {0, 1200, 1500};
   } else if (which == 2) {
-    request.camera = {0, 6640, 1150};
-    request.look_at = {0, 6450, 1125};
+    choice.position = {0, 6640, 1150};
+    choice.look_at = {0, 6450, 1125};
   } else if (which == 3) {
-    request.camera = {1.0, 6291.3, 1131.6};
-    request.look_at = {-0.5, 6291.3, 1131.5};
+    choice.position = {1.0, 6291.3, 1131.6};
+    choice.look_at = {-0.5, 6291.3, 1131.5};
   }
-  return view_camera(world, request);
+  return view_camera(world, choice);
 }
 
 double process_cpu_seconds() {

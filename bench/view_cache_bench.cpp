@@ -6,7 +6,7 @@
 //  - 2, flight.json: 8 s 25 m above the field at 10 m/s, looking ahead and down;
 //  - 3, side_step.json: 2 s of a sideways step at 1.4 m/s past the flowers of the close-up,
 //    1-2 m away (they come in at the right edge).
-// BM_CachedPath/PATH/W/H: one iteration plays the whole path at 60 frames/s through a FrameCache
+// BM_CachedPath/PATH/W/H: one iteration plays the whole path at 60 frames/s (play_view_path) through a FrameCache
 // with its default budget (the frames `wangscape view --path P --fps 60` draws), the first frame
 // cold. Counters: the median, 95th percentile and slowest frame (ms), the 95th percentile over
 // the median, the mean share of the pixels traced anew, of those probed at the edge the camera
@@ -24,8 +24,7 @@
 #include <vector>
 
 #include "bench/default_view_world.h"
-#include "renders/view/frame_cache.h"
-#include "renders/view/view_path.h"
+#include "renders/view/view_frames.h"
 
 namespace {
 
@@ -51,33 +50,27 @@ void BM_CachedPath(benchmark::State& state) {
   const std::filesystem::path file =
       std::filesystem::path(WANGSCAPE_SOURCE_DIR) / "bench/paths" / kPaths[state.range(0)];
   const ViewPath path = read_view_path(file);
-  const GroundHeightAt ground = [&](double e, double n) { return world->scene().field->ground.height(e, n); };
-  const double fps = kDefaultViewFps, fov = world->scene().camera.fov_degrees;
-  const bool cached = state.range(3) != 0;
+  PathPlayback playback;
+  playback.width = int(state.range(1));
+  playback.height = int(state.range(2));
+  playback.fov_degrees = world->scene().camera.fov_degrees;
+  playback.fps = kDefaultViewFps;
+  playback.cached = state.range(3) != 0;
   for (auto _ : state) {
-    LdiRenderer renderer(world, int(state.range(1)), int(state.range(2)));
-    renderer.apply(ViewSettings{});
-    FrameCache cache(renderer);
     std::vector<double> frame_ms;
     std::array<std::vector<double>, 4> phases;
     double fresh = 0, cold = 0, probes = 0, holes = 0;
     const double cpu_start = process_cpu_seconds();
-    for (long long k = 0; k < path.frame_count(fps); ++k) {
-      const Camera camera = camera_along(path, path.keys.front().time + double(k) / fps, fov, ground, file);
-      if (!cached) {
-        frame_ms.push_back(renderer.render(camera).frame_ms);
-        fresh += 1;
-        continue;
-      }
-      const CachedFrameStats& s = cache.render(camera);
-      frame_ms.push_back(s.frame_ms);
-      fresh += s.fresh_share();
-      cold += s.cold;
-      probes += double(s.probes) / double(s.pixels);
-      holes += double(s.holes) / double(s.pixels);
-      if (!s.cold)
-        for (std::size_t p = 0; p < phases.size(); ++p) phases[p].push_back(s.phase_ms[p]);
-    }
+    play_view_path(world, path, file, playback, [&](const PathFrame& frame) {
+      frame_ms.push_back(frame.frame_ms);
+      fresh += frame.fresh_share;
+      if (!frame.cached) return;
+      cold += frame.cached->cold;
+      probes += double(frame.cached->probes) / double(frame.cached->pixels);
+      holes += double(frame.cached->holes) / double(frame.cached->pixels);
+      if (!frame.cached->cold)
+        for (std::size_t p = 0; p < phases.size(); ++p) phases[p].push_back(frame.cached->phase_ms[p]);
+    });
     const double frames = double(frame_ms.size());
     state.counters["cpu_s_per_frame"] = (process_cpu_seconds() - cpu_start) / frames;
     state.counters["median_ms"] = at(frame_ms, 0.5);

@@ -35,7 +35,7 @@ struct LdiBuildArgs {
   std::string scene, out;
   std::optional<double> head_height;
   std::optional<int> levels, directions, sky_rays;
-  std::string ground = "visible";
+  LdiGround ground = LdiGround::visible;
 };
 
 void run_ldi_build(const LdiBuildArgs& args, const GlobalOptions& global) {
@@ -46,9 +46,7 @@ void run_ldi_build(const LdiBuildArgs& args, const GlobalOptions& global) {
   options.view.levels = args.levels.value_or(options.view.levels);
   options.view.directions = args.directions.value_or(options.view.directions);
   options.shading.ao_rays = args.sky_rays.value_or(options.shading.ao_rays);
-  options.ground = args.ground == "none"     ? LdiGround::none
-                   : args.ground == "always" ? LdiGround::always
-                                             : LdiGround::visible;
+  options.ground = args.ground;
   std::unique_ptr<Progress> progress;
   const LdiSceneObserver observer = ldi_terminal_observer(global, progress);
   const LdiBuildReport report = build_scene_ldi_pack(config, args.out, options, observer);
@@ -73,9 +71,8 @@ void register_ldi_command(CLI::App& app, const GlobalOptions& global) {
   build->add_option("--levels", args->levels, "Levels of detail (1 .. 64 tiles away)")->check(CLI::Range(1, 64));
   build->add_option("--directions", args->directions, "View directions around a tile")->check(CLI::Range(1, 64));
   build->add_option("--sky-rays", args->sky_rays, "Ambient-occlusion rays per sample")->check(CLI::Range(0, 1024));
-  build->add_option("--ground", args->ground, "The ground in the LDIs: none, visible (where it shows through), always")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"none", "visible", "always"}));
+  add_enum_option(build, "--ground", args->ground, kLdiGroundNames,
+                  "The ground in the LDIs: none, visible (where it shows through), always");
   set_help_footer(build, "the pack --out (docs/ldi-pack-format.md), the file `wangscape view` maps",
                   {"wangscape ldi build templates/scenes/small.toml --out small.ldi",
                    "wangscape ldi build templates/scenes/small.toml --out small-near.ldi --levels 1 --directions 4"});

@@ -4,11 +4,15 @@
 
 #include <CLI/CLI.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <exception>
 #include <initializer_list>
 #include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include "scene/ground.h"
 
@@ -70,6 +74,30 @@ inline CLI::Validator lat_lon_validator() {
         }
       },
       "LAT,LON");
+}
+
+// An option that takes one of an enum's names (`names`: each value with its name) and stores the
+// value itself in `value`, parsed once here; any other name is a usage error (exit 2) that lists
+// the names. The help shows `value`'s name as the default.
+template <class Enum, std::size_t N>
+CLI::Option* add_enum_option(CLI::App* sub, const std::string& name, Enum& value,
+                             const std::array<std::pair<Enum, std::string_view>, N>& names, const std::string& help) {
+  std::vector<std::string> choices;
+  std::string shown;
+  for (const auto& [v, text] : names) {
+    choices.emplace_back(text);
+    if (v == value) shown = text;
+  }
+  return sub
+      ->add_option_function<std::string>(
+          name,
+          [&value, names](const std::string& text) {
+            for (const auto& [v, known] : names)
+              if (text == known) value = v;
+          },
+          help)
+      ->check(CLI::IsMember(choices))
+      ->default_str(shown);
 }
 
 // The end of a subcommand's --help: what it writes and where, then two or three examples that

@@ -2,7 +2,8 @@
 # architecture_check.sh SOURCE_DIR: every #include "folder/..." in a library folder must point to
 # the folder itself or to one it may depend on (docs/architecture.md); renders/ is checked room by
 # room (renders/trace, renders/ldi, ...), and the third-party libraries that make a room heavy
-# (Embree, SDL2) may be linked only where the design puts them. Prints each wrong arrow.
+# (Embree, SDL2) may be linked only where the design puts them; the view library and the window
+# print nothing and name no flag (only cli/ does). Prints each wrong arrow.
 cd "$1" || exit 2
 below_scene="core generator terrain templates scene"
 allowed() {
@@ -14,7 +15,7 @@ allowed() {
     renders/trace) echo "$below_scene renders/trace" ;;
     renders/ldi) echo "$below_scene exporters renders/trace renders/ldi" ;;
     renders/external) echo "core templates exporters renders/external" ;;
-    renders/view) echo "$below_scene exporters renders/trace renders/ldi renders/external renders/view" ;;
+    renders/view) echo "$below_scene exporters renders/trace renders/ldi renders/view" ;;
     renders/window) echo "core exporters renders/view renders/window" ;;
     renders/batch) echo "$below_scene exporters renders/external renders/batch" ;;
     renders) echo "$below_scene exporters renders/trace renders/ldi renders/external renders" ;;
@@ -55,5 +56,18 @@ for cmake in $(find core generator terrain templates scene exporters renders cli
     grep -q '[ (]embree[ )]' "$cmake" && { echo "$cmake links Embree: only renders/trace, ldi and view may"; status=1; } ;;
   esac
 done
-[ "$status" -eq 0 ] && echo "architecture: every include and link follows docs/architecture.md"
+# The view library and the window are typed APIs: no print to stdout or stderr and no flag's name
+# ("--fov") in a string literal outside comments. The program (cli/) parses the flags, words the
+# messages that name them and prints progress, figures and what it wrote.
+prints='(^|[^a-z_])(printf|puts|fputs|fputc|putchar|perror)[[:space:]]*\(|std::(cout|cerr|clog)|(^|[^a-zA-Z_])(stdout|stderr)([^a-zA-Z_]|$)'
+for file in $(find renders/view renders/window -name '*.h' -o -name '*.cpp'); do
+  code=$(sed 's|//.*||' "$file")
+  for line in $(printf '%s\n' "$code" | grep -nE "$prints" | cut -d: -f1); do
+    echo "$file:$line: prints: only cli/ may (report through a callback or a return value)"; status=1
+  done
+  for line in $(printf '%s\n' "$code" | grep -no '"\([^"\\]\|\\.\)*"' | grep -- '--[a-zA-Z]' | cut -d: -f1 | sort -u); do
+    echo "$file:$line: names a flag: only cli/ may (take the name as a parameter, or let cli/ check first)"; status=1
+  done
+done
+[ "$status" -eq 0 ] && echo "architecture: every include and link follows docs/architecture.md; renders/view and renders/window print nothing and name no flag"
 exit "$status"

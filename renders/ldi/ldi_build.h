@@ -12,10 +12,13 @@
 // edge, z up from the ground plane at z = 0).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <span>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "generator/poisson_tiles.h"
@@ -46,6 +49,9 @@ enum class LdiGround : std::uint8_t {
   visible,  // one sample where a ray reaches it without meeting a flower first (where it shows through)
   always,   // the last layer of every ray that reaches it
 };
+// The grounds by the names users write, for the command line's choices.
+inline constexpr std::array<std::pair<LdiGround, std::string_view>, 3> kLdiGroundNames{
+    {{LdiGround::none, "none"}, {LdiGround::visible, "visible"}, {LdiGround::always, "always"}}};
 
 struct LdiBuildOptions {
   double tile_size = 4.0;  // meters

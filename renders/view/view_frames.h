@@ -1,5 +1,8 @@
-// `wangscape view` without a window: the request's flags, offline frames, statistics, path
-// playback and the comparison with the Embree reference (renders/trace/embree_reference.h).
+// The view's frames without a window, as typed calls: the camera a view starts from, a path
+// played frame by frame, the median statistics of one camera and a frame against the Embree
+// reference (renders/trace/embree_reference.h). Prints nothing and names no flag: the program
+// (`wangscape view`, cli/cmd_view.cpp) checks its flags, prints the figures and progress and
+// writes the files; the window, the benches and the tests drive the same calls.
 #pragma once
 
 #include <array>
@@ -7,7 +10,8 @@
 #include <functional>
 #include <memory>
 #include <optional>
-#include <string>
+#include <string_view>
+#include <utility>
 
 #include "renders/trace/embree_reference.h"
 #include "renders/trace/image_compare.h"
@@ -22,56 +26,83 @@ namespace wangscape {
 inline constexpr int kDefaultTruthSamples = 64;
 inline constexpr double kDefaultPathFps = 24;
 
-struct ViewRequest {
-  std::filesystem::path dir;
-  std::optional<std::array<double, 3>> camera;   // E, N, H; H absent (NaN) = head height above the ground
-  std::optional<std::array<double, 3>> look_at;  // E, N, H
-  std::optional<double> fov_degrees;
-  int width = 0, height = 0;  // 0 = the scene's image size
-  std::filesystem::path out;  // one offline frame
-  bool stats = false, json = false;
-  int repeat = 0;                            // frames timed for --stats (0: 200)
-  std::filesystem::path path;                // keyframes JSON
-  std::filesystem::path frames_dir;          // where the path's frames go
-  std::optional<double> fps;                 // --path: frames per second (24); the window: the rate it holds (60)
-  bool cached = true;                        // --path: each frame from the previous frame's samples (FrameCache)
-  int compare_every = 0;                     // --path: compare frames 0, K, 2K, ... with the truth (0: none)
-  std::string script;                        // window: scripted input (docs/viewer.md)
-  std::filesystem::path record;              // window: where K's keyframes go (empty: path.json)
-  bool compare = false;                      // also ray trace the frame with Embree and compare
-  std::filesystem::path diff;                // with compare: the difference image
-  int truth_samples = kDefaultTruthSamples;  // with compare: the truth's samples per pixel
-  std::filesystem::path truth_out;           // with compare: where the truth image goes (empty: none)
-  std::filesystem::path side_by_side;        // with compare: the frame beside the truth (empty: none)
-  int threads = 0;                           // 0 = all cores
-  ViewSettings settings;                     // --detail, --near, --engine, --spp
-  bool quiet = false;
+// The engines by the names users write, for the command line's choices.
+inline constexpr std::array<std::pair<ViewEngine, std::string_view>, 3> kViewEngineNames{
+    {{ViewEngine::automatic, "auto"}, {ViewEngine::ldi, "ldi"}, {ViewEngine::embree, "embree"}}};
+
+// ---- the camera ------------------------------------------------------------------------------
+
+// What a view changes of the scene's own camera: each part given replaces the scene's.
+struct CameraChoice {
+  std::optional<std::array<double, 3>> position;  // E, N, H (ENU m); H NaN: head height above the ground
+  std::optional<std::array<double, 3>> look_at;   // E, N, H (ENU m)
+  std::optional<double> fov_degrees;              // horizontal
 };
 
-// The camera of the request: its flags, or the scene's own camera. Throws Error naming the
-// flag at fault (--fov outside (0, 179], a camera off the ground without a height, ...).
-Camera view_camera(const ViewWorld& world, const ViewRequest& request);
+// True when `target` lies sideways of `eye` (not straight above, below or at it), as a camera
+// needs: its right vector is horizontal.
+bool looks_sideways(const std::array<double, 3>& eye, const std::array<double, 3>& target);
 
-// Refuses a request's flags out of range (sizes, --fov, --fps, --repeat, --detail, --spp) and
-// flags that need another (--path without --frames, --diff without --compare), before anything
-// is read. Throws Error naming the flag.
-void check_view_request(const ViewRequest& request);
-// True when the request asks for no file and no figures: the window.
-bool wants_window(const ViewRequest& request);
-// The folder's world (ViewWorld::load), stages on stderr unless quiet.
-std::shared_ptr<const ViewWorld> load_view_world(const ViewRequest& request);
-// Offline frame(s), statistics, comparison or path playback, as the request says; prints
-// figures to stdout. Returns the exit code (0). Throws Error for bad input.
-// `path`: the request's path file already read (read_view_path), or null to read it here.
-int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewRequest& request,
-                    const ViewPath* path = nullptr);
+// The scene's camera with `choice` applied; an eye without a height stands at the pack's head
+// height above the ground. Throws Error for a field of view outside (0, 179] degrees, an eye
+// without a height that is not over the ground, or a point looked at that is not sideways of
+// the eye.
+Camera view_camera(const ViewWorld& world, const CameraChoice& choice);
+
+// ---- a path, frame by frame ------------------------------------------------------------------
+
+// How a path is played (play_view_path).
+struct PathPlayback {
+  int width = 640, height = 360;  // pixels
+  double fov_degrees = 60;        // horizontal, every frame's
+  // Frames per second along the path; each cached frame traces anew what a frame at this rate
+  // has time for (FrameBudget::fps; kMinViewFps .. kMaxViewFps).
+  double fps = kDefaultPathFps;
+  bool cached = true;                        // each frame from the previous frame's samples (FrameCache)
+  int compare_every = 0;                     // compare frames 0, K, 2K, ... with the truth (0: none)
+  int truth_samples = kDefaultTruthSamples;  // the truth's samples per pixel
+  ViewSettings settings;
+};
+
+struct ViewComparison;
+
+// One frame of a path as it is played. What it points to lives until the callback returns.
+struct PathFrame {
+  long long index = 0;  // 0 .. count - 1
+  long long count = 0;  // the path's frames
+  Camera camera;
+  const ImageRgb8* image = nullptr;
+  double frame_ms = 0;
+  double fresh_share = 1;                      // of the pixels, those traced anew (1: drawn whole)
+  const CachedFrameStats* cached = nullptr;    // the cache's figures (null: drawn whole)
+  const ViewComparison* comparison = nullptr;  // the frames compare_every picks: against the truth
+};
+
+// The path's frames at `fps`. Throws Error naming `file` when they are more than kMaxPathFrames;
+// the message asks to lower `rate` (what sets the frame rate) or to cut the path in parts.
+long long path_frame_count(const ViewPath& path, double fps, const std::filesystem::path& file,
+                           std::string_view rate = "the frame rate");
+
+// Plays `path` (read from `file`, which errors name): checks its frame count and that its first
+// and last cameras are over the ground before the first frame, then draws every frame in order
+// and hands it to `on_frame`, on the calling thread. Throws Error for a camera of the path that
+// is not over the ground (the file and the time) or settings the renderer refuses; whatever
+// `on_frame` throws ends the playback.
+void play_view_path(const std::shared_ptr<const ViewWorld>& world, const ViewPath& path,
+                    const std::filesystem::path& file, const PathPlayback& playback,
+                    const std::function<void(const PathFrame&)>& on_frame);
+
+// ---- statistics and the truth ----------------------------------------------------------------
+
+// Median frame statistics over `frames` renders of one camera.
+ViewFrameStats measure_view(LdiRenderer& renderer, const Camera& camera, int frames);
 
 // The renderer's last frame (drawn from `camera`) against the truth, the Embree reference of the
 // same camera and size ray traced with the light the pack was shaded with at `samples_per_pixel`
 // (0: the scene's): PSNR, SSIM, holes (sky in the frame where the truth has geometry) and the
 // difference image. Also the exact geometry at the renderer's samples per pixel (the reference at
-// 1 sample, or N with --spp N) against the same truth: what any frame of that many samples can
-// reach, so the gap is the view's own.
+// 1 sample, or N at N samples per pixel) against the same truth: what any frame of that many
+// samples can reach, so the gap is the view's own.
 struct ViewComparison {
   ImageComparison comparison;  // the renderer's frame against the truth
   ImageComparison exact;       // the exact geometry at the renderer's samples per pixel against the truth
@@ -86,12 +117,5 @@ ViewComparison compare_with_reference(const ViewWorld& world, const LdiRenderer&
 ViewComparison compare_with_reference(const ViewWorld& world, const ImageRgb8& frame,
                                       const std::function<bool(int, int)>& sky_at, const Camera& camera,
                                       int samples_per_pixel, int frame_samples);
-// The comparison's figures as one JSON object's members (no braces): "psnr_db": ..., ...
-std::string comparison_json_members(const ViewComparison& v, int frame_samples);
-
-// Median frame statistics over `frames` renders of one camera.
-ViewFrameStats measure_view(LdiRenderer& renderer, const Camera& camera, int frames);
-// {"frame_ms": ..., "fps": ..., "depth_pixels": ..., "tiles": {...}, "levels": [...]}
-std::string view_stats_json(const ViewFrameStats& stats);
 
 }  // namespace wangscape

@@ -41,7 +41,7 @@ SDL_Keycode script_key(const std::string& name) {
   return 0;
 }
 
-std::vector<ScriptStep> parse_script(const std::string& script) {
+std::vector<ScriptStep> parse_script(const std::string& script, std::string_view what = "script") {
   std::vector<ScriptStep> steps;
   std::size_t at = 0;
   while (at < script.size()) {
@@ -49,7 +49,7 @@ std::vector<ScriptStep> parse_script(const std::string& script) {
     const std::string token = script.substr(at, end - at);
     at = end + 1;
     auto bad = [&](const std::string& why) {
-      return Error("--script: '" + token + "' " + why +
+      return Error(std::string(what) + ": '" + token + "' " + why +
                    " (expected KEY, KEY*N, mouse:DX:DY, size:W:H, wait*N, screenshot or Escape; docs/viewer.md)");
     };
     ScriptStep step;
@@ -217,7 +217,7 @@ struct SdlSession {
   SdlSession(int w, int h) {
     if (SDL_Init(SDL_INIT_VIDEO) != 0)
       throw Error(std::string("view: cannot open a window (SDL: ") + SDL_GetError() +
-                  "); without a display use --out FILE for an offline frame");
+                  "); without a display the view draws offline frames only");
     window =
         SDL_CreateWindow("wangscape view", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, w, h, SDL_WINDOW_RESIZABLE);
     if (window) renderer = SDL_CreateRenderer(window, -1, 0);
@@ -260,17 +260,14 @@ void push_key(SDL_Keycode code, bool pressed) {
 
 }  // namespace
 
-void check_view_script(const std::string& script) { parse_script(script); }
+void check_view_script(const std::string& script, std::string_view what) { parse_script(script, what); }
 
-void check_display() {
+bool display_available() {
   const auto set = [](const char* name) {
     const char* v = std::getenv(name);
     return v != nullptr && *v != 0;
   };
-  if (!set("DISPLAY") && !set("WAYLAND_DISPLAY") && !set("SDL_VIDEODRIVER"))
-    throw Error(
-        "view: no display to open a window on (DISPLAY is not set); write frames with --out FILE, --path FILE "
-        "--frames DIR or --stats, or run the window under xvfb-run");
+  return set("DISPLAY") || set("WAYLAND_DISPLAY") || set("SDL_VIDEODRIVER");
 }
 
 namespace {
@@ -290,18 +287,15 @@ class WalkRecorder {
     path_.keys.push_back(key);
   }
   std::size_t size() const { return path_.keys.size(); }
-  void write(const std::filesystem::path& file, bool quiet) {
-    if (path_.keys.empty()) return;
-    if (path_.keys.size() < 2) {
-      if (!quiet) std::fprintf(stderr, "wangscape: one keyframe recorded; a path needs two: nothing written\n");
-      return;
-    }
+  // Writes the walk to `file` when it has two keyframes or more (a path); what was recorded.
+  RecordedWalk write(const std::filesystem::path& file) {
+    RecordedWalk walk{file, path_.keys.size(), 0, false};
+    if (path_.keys.size() < 2) return walk;
     path_.position_above_ground = true;
     write_file_atomically(file, view_path_json(path_));
-    if (!quiet)
-      std::fprintf(stderr,
-                   "wangscape: wrote %zu keyframes (%.1f s) to %s; replay: wangscape view DIR --path %s --frames DIR\n",
-                   path_.keys.size(), path_.duration(), file.string().c_str(), file.string().c_str());
+    walk.seconds = path_.duration();
+    walk.written = true;
+    return walk;
   }
 
  private:
@@ -310,7 +304,7 @@ class WalkRecorder {
 
 }  // namespace
 
-void run_view_window(std::shared_ptr<const ViewWorld> world, const Camera& start, const ViewWindowOptions& options) {
+void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewWindowOptions& options) {
   const std::vector<ScriptStep> script = parse_script(options.script);
   LdiRenderer renderer(world, options.width, options.height);
   renderer.apply(options.settings);
@@ -321,7 +315,7 @@ void run_view_window(std::shared_ptr<const ViewWorld> world, const Camera& start
   SdlSession sdl(options.width, options.height);
   if (options.script.empty()) SDL_SetRelativeMouseMode(SDL_TRUE);  // mouse look (a script moves it itself)
 
-  Walker walker(start);
+  Walker walker(options.camera);
   std::unordered_set<SDL_Keycode> held;
   ImageRgb8 shown(options.width, options.height);
   WalkRecorder recorder;
@@ -397,7 +391,7 @@ void run_view_window(std::shared_ptr<const ViewWorld> world, const Camera& start
       char name[32];
       std::snprintf(name, sizeof name, "view-%04d.png", ++screenshots);
       write_image(options.screenshot_dir / name, cache.image());  // the frame, without the overlay
-      if (!options.quiet) std::printf("%s\n", (options.screenshot_dir / name).string().c_str());
+      if (options.on_screenshot) options.on_screenshot(options.screenshot_dir / name);
     }
     // The overlay: a smoothed frame time and share of the pixels traced anew.
     shown_ms = shown_ms == 0 ? stats.frame_ms : shown_ms * 0.9 + stats.frame_ms * 0.1;
@@ -414,7 +408,10 @@ void run_view_window(std::shared_ptr<const ViewWorld> world, const Camera& start
     SDL_RenderCopy(sdl.renderer, sdl.texture, nullptr, nullptr);
     SDL_RenderPresent(sdl.renderer);
   }
-  recorder.write(options.record, options.quiet);
+  if (recorder.size() > 0) {
+    const RecordedWalk walk = recorder.write(options.record);
+    if (options.on_recorded) options.on_recorded(walk);
+  }
 }
 
 }  // namespace wangscape

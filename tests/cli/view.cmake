@@ -55,11 +55,12 @@ view_sh_test(path_compare_every "^ok 0 2$"
   "\"$0\" --quiet view \"$1\" --path \"$4\" --fps 10 --size 48x32 --compare-every 2 --truth-spp 4 | \"$2\" \"$3\" compare"
   "${CMAKE_CURRENT_LIST_DIR}/view_path_check.py" "${view_dir}/path.json")
 
-# A walk given by heights above the ground: 4 frames, and one line saying what was written.
+# A walk given by heights above the ground: 4 frames, and the one line saying what was written
+# (cli/progress.h's, as every command's: the folder, then what it holds).
 file(WRITE "${view_dir}/walk.json"
   "{\"keyframes\": [{\"time\": 0, \"position\": [0, -16], \"height_above_ground\": 1.7, \"look_at\": [0, 0], \"look_at_height_above_ground\": 1.0},\n"
   "                {\"time\": 0.3, \"position\": [2, -10], \"height_above_ground\": 1.7, \"look_at\": [0, 4], \"look_at_height_above_ground\": 1.0}]}\n")
-view_sh_test(path_above_ground "wrote 4 frames of 48x32 to .*walk_frames"
+view_sh_test(path_above_ground "wrote .*walk_frames \\(4 frames of 48x32[ ;]"
   "rm -rf \"$3\" && \"$0\" view \"$1\" --path \"$4\" --frames \"$3\" --fps 10 --size 48x32 && test -s \"$3/frame-00003.png\""
   "${view_dir}/walk_frames" "${view_dir}/walk.json")
 # A path refused before anything is written (a height of 1e300 m), and one that leaves the
@@ -78,9 +79,9 @@ view_sh_test(path_off_ground "path_off.json: at 0.[0-9]+ s the eye .* is not ove
   "${view_dir}/off_frames" "${view_dir}/path_off.json")
 
 # --compare writes the reference it compared against and the frame beside it (twice as wide
-# plus a 4-pixel gap), and says so.
+# plus a 4-pixel gap), and says so in one line: the files, then what each is.
 view_sh_test(compare_writes "^ok 100x32$"
-  "rm -f \"$3\"* && \"$0\" view \"$1\" --size 48x32 --compare --truth-spp 2 --reference \"$3ref.png\" --side-by-side \"$3sbs.png\" >/dev/null 2>\"$3log\" && test -s \"$3ref.png\" && grep -q 'wrote the frame beside the reference to .*sbs.png' \"$3log\" && echo ok $(oiiotool \"$3sbs.png\" --echo '{TOP.width}x{TOP.height}')"
+  "rm -f \"$3\"* && \"$0\" view \"$1\" --size 48x32 --compare --truth-spp 2 --reference \"$3ref.png\" --side-by-side \"$3sbs.png\" >/dev/null 2>\"$3log\" && test -s \"$3ref.png\" && grep -q 'wrote .*ref.png, .*sbs.png (the reference and the frame beside the reference, 48x32, ' \"$3log\" && echo ok $(oiiotool \"$3sbs.png\" --echo '{TOP.width}x{TOP.height}')"
   "${view_dir}/compare_")
 
 # The window under a real X server: scripted keys go through SDL's event queue; the first

@@ -1,0 +1,69 @@
+// `wangscape view`'s request: its checks and its camera (cli/view_request.h).
+#include "cli/view_request.h"
+
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "core/number_text.h"
+#include "core/vecmath.h"
+
+namespace wangscape::cli {
+
+namespace {
+
+// A flag that needs another: "--diff: needs --compare".
+void require(bool needed, bool given, const char* flag, const char* needs) {
+  if (needed && !given) throw Error(std::string(flag) + ": needs " + needs);
+}
+
+// "--FLAG VALUE: expected LOW .. HIGH UNIT" unless LOW <= value <= HIGH (NaN fails).
+template <class T>
+void check_range(T value, T low, T high, const char* flag, const std::string& unit) {
+  if (!(value >= low && value <= high))
+    throw Error(std::string(flag) + " " + number_text(value) + ": expected " + number_text(low) + " .. " +
+                number_text(high) + " " + unit);
+}
+
+}  // namespace
+
+void check_view_request(const ViewRequest& request) {
+  if ((request.width != 0 || request.height != 0) &&
+      (request.width < 1 || request.height < 1 || request.width > 16384 || request.height > 16384))
+    throw Error("--size " + std::to_string(request.width) + "x" + std::to_string(request.height) +
+                ": expected WIDTHxHEIGHT, each 1 .. 16384 pixels");
+  if (request.fov_degrees) check_field_of_view(*request.fov_degrees, "--fov");
+  if (!request.path.empty() && request.frames_dir.empty() && !request.stats && request.compare_every == 0)
+    throw Error("--path: needs --frames OUTDIR (or --stats, or --compare-every K)");
+  if (request.compare_every < 0) throw Error("--compare-every: expected a number of frames, 1 or more");
+  require(request.compare_every > 0, !request.path.empty(), "--compare-every", "--path FILE");
+  if (request.fps) check_range(*request.fps, kMinViewFps, kMaxViewFps, "--fps", "frames per second");
+  if (request.repeat < 0 || request.repeat > 100000) throw Error("--repeat: expected 0 .. 100000 frames");
+  check_range(request.settings.detail, kMinViewDetail, kMaxViewDetail, "--detail",
+              "(1: the pack's levels at their own distances)");
+  require(!request.diff.empty(), request.compare, "--diff", "--compare");
+  check_range(request.settings.near_field, 0.0, kMaxNearField, "--near", "meters (0: LDIs everywhere)");
+  check_range(request.settings.samples, 1, kMaxViewSamples, "--spp", "samples per pixel");
+  check_range(request.truth_samples, 1, kMaxReferenceSamples, "--truth-spp", "samples per pixel");
+  require(!request.truth_out.empty(), request.compare, "--reference", "--compare");
+  require(!request.side_by_side.empty(), request.compare, "--side-by-side", "--compare");
+}
+
+bool wants_window(const ViewRequest& request) {
+  return request.out.empty() && request.path.empty() && !request.stats && !request.compare;
+}
+
+Camera request_camera(const ViewWorld& world, const ViewRequest& request) {
+  // The library's refusals, checked first with the flags' names.
+  const Camera& scene = world.scene().camera;
+  check_field_of_view(request.fov_degrees.value_or(scene.fov_degrees), "--fov");
+  if (request.camera && std::isnan((*request.camera)[2]) &&
+      !world.scene().field->ground.height((*request.camera)[0], (*request.camera)[1]))
+    throw Error("--camera " + number_text((*request.camera)[0]) + "," + number_text((*request.camera)[1]) +
+                ": not over the ground; give the height too (E,N,H)");
+  if (!looks_sideways(request.camera.value_or(scene.position), request.look_at.value_or(scene.target)))
+    throw Error("--look-at: must lie sideways of the camera (not straight above, below or at it)");
+  return view_camera(world, {request.camera, request.look_at, request.fov_degrees});
+}
+
+}  // namespace wangscape::cli
