@@ -59,6 +59,19 @@ million_tasks)
   refuse 1 "suns.toml:.*: 'sun.from' to 'to' every 1 minutes is .* suns; at most 10000" "$bin" batch plan suns.toml
   refuse 2 "--workers: Value 100000 not in range 1 to 256" "$bin" batch run million.toml --out million --workers 100000
   ;;
+sun_step)
+  # Issue 41: a step of 1e18 minutes overflowed the second sun's time, which then came before 'to'
+  # again and again until memory ran out (15-26 s, then a generic out-of-memory line).
+  for step in 1e18 1e17 0.5; do
+    batch step '[[viewpoints]]' 'count = 1' '[sun]' 'from = 2024-07-15T09:00:00-07:00' \
+      'to = 2024-07-15T17:00:00-07:00' "step_minutes = $step"
+    refuse 1 "^wangscape: error: step.toml:9: 'sun.step_minutes' is .*; expected minutes from 1 to 1e\+09$" \
+      "$bin" batch plan step.toml
+  done
+  rm -rf step_out
+  refuse 1 "step.toml:9: 'sun.step_minutes'" "$bin" batch run step.toml --out step_out
+  [ -e step_out ] && fail "a refused batch made its output folder"
+  ;;
 numbers)
   for fov in 0 -10 180 1e300; do
     batch "fov" '[[viewpoints]]' "fov = $fov"
