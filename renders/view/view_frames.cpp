@@ -1,5 +1,6 @@
 // `wangscape view` without a window: offline frames, frame statistics, path playback and the
 // comparison with the Embree reference, on top of the renderer of renders/view/ldi_renderer.h.
+#include <tbb/global_control.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "core/number_text.h"
 #include "core/run_cleanup.h"
 #include "core/vecmath.h"
@@ -324,6 +326,29 @@ void check_view_request(const ViewRequest& request) {
   if (!request.side_by_side.empty() && !request.compare) throw Error("--side-by-side: needs --compare");
 }
 
+void check_view_memory(const ViewRequest& request, int width, int height, bool window) {
+  // Bytes a pixel, as measured (peak resident memory at 1024 x 1024 and 2048 x 2048 pixels, the
+  // small template's folder, issue 41): the image (3) and the z-buffer (8), and a z-buffer of
+  // each thread for the LDIs' splats (8 each); the sums of --spp N (12); the sample cache of a
+  // path or the window (64: two 24-byte samples, the key, need, fresh and lattice bytes); the
+  // truth, the exact image, their masks and SSIM's planes of --compare (about 120).
+  const auto threads =
+      double(std::max<std::size_t>(1, tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
+  const bool cached = window || (!request.path.empty() && request.cached);
+  const bool compares = request.compare || request.compare_every > 0;
+  const double per_pixel =
+      11 + 8 * threads + (request.settings.samples > 1 ? 12 : 0) + (cached ? 64 : 0) + (compares ? 120 : 0);
+  const double pixels = double(width) * double(height);
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  const std::string what =
+      (request.width ? "--size " + size : "the scene's image size " + size + " ([image] width, height)") +
+      ": frames of " + fixed_text(pixels, 0) + " pixels at about " + fixed_text(per_pixel, 0) + " bytes a pixel (" +
+      fixed_text(threads, 0) + " threads" + (cached ? ", the sample cache" : "") +
+      (compares ? ", the comparison" : "") + ")";
+  if (const auto excess = memory_estimate_excess(what, pixels * per_pixel))
+    throw Error(*excess + "; lower --size" + (threads > 1 ? " or --threads" : ""));
+}
+
 bool wants_window(const ViewRequest& request) {
   return request.out.empty() && request.path.empty() && !request.stats && !request.compare;
 }
@@ -338,6 +363,7 @@ int run_view_frames(const std::shared_ptr<const ViewWorld>& world, const ViewReq
   const Camera camera = view_camera(*world, request);
   const int width = request.width ? request.width : world->scene().render.width;
   const int height = request.height ? request.height : world->scene().render.height;
+  check_view_memory(request, width, height);
 
   if (!request.path.empty()) {
     play_path(world, request, path ? *path : read_view_path(request.path), width, height, camera.fov_degrees);

@@ -18,6 +18,8 @@ int run_view(const ViewRequest& request) {
   std::optional<tbb::global_control> threads;
   if (request.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(request.threads));
 
+  // Frames too large for memory fail before the folder loads (the scene's own size: after).
+  if (request.width) check_view_memory(request, request.width, request.height, window);
   // A bad path file fails before the folder loads.
   std::optional<ViewPath> path;
   if (!request.path.empty()) path = read_view_path(request.path);
@@ -27,6 +29,7 @@ int run_view(const ViewRequest& request) {
   ViewWindowOptions options;
   options.width = request.width ? request.width : kDefaultWindowWidth;
   options.height = request.height ? request.height : kDefaultWindowHeight;
+  check_view_memory(request, options.width, options.height, true);
   if (!request.record.empty()) options.record = request.record;
   options.script = request.script;
   options.quiet = request.quiet;

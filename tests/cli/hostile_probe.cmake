@@ -1,0 +1,29 @@
+# What the third hostile probe still found (issue 41, "What the probe still finds"): each case is
+# refused at once with exit 1 (2 for flags), a message naming the file and line, or the flag, and
+# what was expected, and leaves nothing behind. Uses hostile_test() of hostile.cmake and the view's
+# folder of view.cmake (CMake globs the *.cmake files in sorted order: hostile.cmake comes first).
+set(probe_dir "${CLI_SCRATCH}/hostile_probe")
+file(MAKE_DIRECTORY "${probe_dir}")
+set(probe_view_folder "${CLI_SCRATCH}/view/field")  # built by cli_view_build (fixture view_folder)
+set(cli_refuse sh "${CMAKE_CURRENT_SOURCE_DIR}/refuse.sh")
+
+# probe_test(NAME CODE REGEX COMMAND...): refuse.sh (exit CODE, REGEX, no library text, 30 s).
+function(probe_test name code regex)
+  add_test(NAME hostile_probe_${name} COMMAND ${cli_refuse} ${code} "${regex}" ${ARGN})
+  set_tests_properties(hostile_probe_${name} PROPERTIES LABELS "cli;hostile" TIMEOUT 60)
+endfunction()
+
+# Kind 2: memory estimated before it is allocated, naming the key or the flag and the limit. A flat
+# field of 10^6 m a side held its scanline tiling whole (125 GB); a view frame of 16384 x 16384
+# pixels under a 4 GB address-space limit failed after 26 s with a generic out-of-memory line.
+file(WRITE "${probe_dir}/flat_1e6.toml" "[terrain]\nflat_size = 1000000.0\n[models]\nvariants = 1\ntriangle_budget = 400\n")
+probe_test(flat_field_memory 0 "flat_1e6.toml:2: 'terrain.flat_size' gives a field of 250001 x 250001 tiles of 4 m, whose placed-tile grid and scanline tiling \\(3 bytes a tile\\) would need about 187.50 GB of memory. the limit is [0-9.]+ GB .*tiles.algorithm = \"hash\""
+           sh -c "rm -rf \"$1\" && ! \"$0\" build \"$2\" --out \"$1\" && test ! -e \"$1\" && ! ls -a \"$(dirname \"$1\")\" | grep -q '^[.]flat_out[.]'"
+           "${WANGSCAPE_BIN}" "${probe_dir}/flat_out" "${probe_dir}/flat_1e6.toml")
+probe_test(view_size_memory 0 "--size 16384x16384: frames of 268435456 pixels at about [0-9]+ bytes a pixel .* would need about [0-9.]+ GB of memory. the limit is 2.00 GB .*lower --size"
+           sh -c "rm -f \"$1\" && ! prlimit --as=4000000000 \"$0\" view \"$2\" --size 16384x16384 --out \"$1\" && test ! -e \"$1\""
+           "${WANGSCAPE_BIN}" "${probe_dir}/big_frame.png" "${probe_view_folder}")
+probe_test(view_compare_memory 1 "--size 16384x16384: frames of 268435456 pixels at about [0-9]+ bytes a pixel \\([0-9]+ threads, the comparison\\) would need about [0-9.]+ GB of memory"
+           "${WANGSCAPE_BIN}" view "${probe_view_folder}" --size 16384x16384 --compare)
+set_tests_properties(hostile_probe_view_size_memory hostile_probe_view_compare_memory PROPERTIES FIXTURES_REQUIRED view_folder)
+set_property(TEST hostile_probe_view_size_memory APPEND PROPERTY LABELS address-space-limit)
