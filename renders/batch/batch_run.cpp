@@ -739,6 +739,15 @@ BatchCounts run_batch(const BatchRunSettings& s) {
   if (s.out_dir.empty()) throw Error("batch run: --out is empty; name the output folder");
   const auto config = load_batch_config(s.batch_file);
   const auto tasks = expand_batch(config);
+  // POV-Ray's stills are rendered in folders under --out, named to POV-Ray in double quotes: a
+  // name it cannot take is refused before any folder is made, as `build` refuses its --out.
+  if (std::any_of(tasks.begin(), tasks.end(), [](const BatchTask& t) { return t.engine == RenderEngine::povray; })) {
+    try {
+      povray_quoted_path(fs::absolute(s.out_dir));
+    } catch (const Error& e) {
+      throw Error("batch run --out " + printable(s.out_dir.string()) + ": " + e.message());
+    }
+  }
   make_output_folders(s.out_dir);
   const RunLock lock(s.out_dir);
   write_plan(s.out_dir, config, tasks);

@@ -3,7 +3,7 @@
 set(hostile_batch_dir "${CLI_SCRATCH}/hostile_batch")
 file(MAKE_DIRECTORY "${hostile_batch_dir}")
 tiny_scene("${hostile_batch_dir}/tiny.toml" EXPORTS "povray = true")
-foreach(case IN ITEMS deep_key not_a_file million_tasks sun_step numbers out plan_ids utf8 lock)
+foreach(case IN ITEMS deep_key not_a_file million_tasks sun_step numbers out out_povray plan_ids utf8 lock)
   add_test(NAME hostile_batch_${case}
     COMMAND sh "${CMAKE_CURRENT_SOURCE_DIR}/hostile_batch.sh" ${case} "${WANGSCAPE_BIN}" "${hostile_batch_dir}"
             "${PROJECT_SOURCE_DIR}")

@@ -101,6 +101,17 @@ out)
   refuse 1 "a-file/x: cannot create the batch output folder: Not a directory" "$bin" batch run one.toml --out a-file/x
   refuse 1 "/proc/wangscape-batch: cannot create the batch output folder" "$bin" batch run one.toml --out /proc/wangscape-batch
   ;;
+out_povray)
+  # Issue 41: a quote or a newline in --out made the whole output folder, then failed every
+  # POV-Ray still (POV-Ray takes its folders in double quotes) and exited 1. Refused first now.
+  batch one '[[viewpoints]]' 'count = 1'
+  for out in 'q"out' "$(printf 'n\nout')"; do
+    rm -rf "$out"
+    refuse 1 '^wangscape: error: batch run --out (q"out|n\\nout): POV-Ray cannot use this path: it holds a control character .* or a double quote' \
+      "$bin" batch run one.toml --out "$out"
+    [ -e "$out" ] && fail "a refused batch made its output folder"
+  done
+  ;;
 plan_ids)
   plan_folder ids
   tamper ids "p['tasks'][0]['id'] = '../../../pwned'"
