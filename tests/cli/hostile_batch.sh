@@ -144,6 +144,18 @@ utf8)
   refuse 0 "$(printf 'b\357\277\275[.]asc')" "$bin" batch plan utf8.toml --json
   refuse 0 "$(printf 'b\357\277\275[.]asc')" "$bin" terrain info --json "dems/$name.asc"
   ;;
+utf8_run)
+  # Issue 41: the plan kept such a name as U+FFFD, so the task then failed with "does not exist".
+  # plan.json keeps its bytes (dem_bytes, in hex) and the still is rendered (POV-Ray, 48 x 36).
+  rm -rf dems utf8_out && mkdir dems || fail "mkdir"
+  name=$(printf 'b\377')
+  cp "$source/tests/data/dem/SRTMGL3_boulder_CO_240x144.asc" "dems/$name.asc" || fail "cp"
+  cp "$source/tests/data/dem/SRTMGL3_boulder_CO_240x144.prj" "dems/$name.prj" || fail "cp"
+  batch utf8 'dem_folder = "dems"' '[[viewpoints]]' 'count = 1'
+  refuse 0 "wrote utf8_out \(1 stills, 0 failed" "$bin" batch run utf8.toml --out utf8_out --workers 1
+  [ -s utf8_out/stills/0000.png ] || fail "no still"
+  grep -q '"dem_bytes": "64656d732f62ff2e617363"' utf8_out/plan.json || fail "plan.json lost the name's bytes"
+  ;;
 lock)
   batch one '[[viewpoints]]' 'count = 1'
   rm -rf locked && mkdir -p locked/logs || fail "mkdir"
