@@ -21,9 +21,12 @@ void register_batch_command(CLI::App& app, const GlobalOptions& global) {
   run->add_option("--executor", *executor, "local or slurm")->check(CLI::IsMember(batch_executor_names()));
   run->add_option("--workers", s->workers, "Local worker processes (default: the cores)")
       ->check(CLI::Range(1, kMaxBatchWorkers));
-  run->add_option("--chunk", s->chunk, "Slurm: tasks per array element")->check(CLI::PositiveNumber);
-  run->add_option("--throttle", s->throttle, "Slurm: array elements running at once")->check(CLI::PositiveNumber);
-  run->add_option("--retries", s->retries, "Slurm: resubmissions of failed elements")->check(CLI::NonNegativeNumber);
+  // Ranges with their real bounds (CLI11's PositiveNumber printed the largest double, 309 digits).
+  run->add_option("--chunk", s->chunk, "Slurm: tasks per array element")->check(CLI::Range(1, kMaxBatchTasks));
+  run->add_option("--throttle", s->throttle, "Slurm: array elements running at once")
+      ->check(CLI::Range(1, kMaxBatchTasks));
+  run->add_option("--retries", s->retries, "Slurm: resubmissions of failed elements")
+      ->check(CLI::Range(0, kMaxBatchRetries));
   run->callback([=, &global] {
     s->executor = parse_batch_executor(*executor);
     s->chatty = chatty(global);

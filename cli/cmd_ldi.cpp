@@ -65,7 +65,7 @@ void register_ldi_command(CLI::App& app, const GlobalOptions& global) {
   auto* build = ldi->add_subcommand("build", "Sample every tile of a scene into an LDI pack with Embree");
   auto args = std::make_shared<LdiBuildArgs>();
   build->add_option("scene", args->scene, "Scene file (TOML, see docs/scene-file.md)")->required();
-  build->add_option("--out,-o", args->out, "The pack to write")->required();
+  build->add_option("--out,-o", args->out, "The pack to write")->required()->check(output_file_path());
   build->add_option("--head-height", args->head_height, "Viewer's eye above the ground (m; default: [ldi])")
       ->check(CLI::Range(0.1, 100.0));
   build->add_option("--levels", args->levels, "Levels of detail (1 .. 64 tiles away)")->check(CLI::Range(1, 64));
@@ -99,7 +99,7 @@ void register_ldi_command(CLI::App& app, const GlobalOptions& global) {
   auto sheet_args = std::make_shared<SheetArgs>();
   sheet->add_option("pack", sheet_args->pack, "LDI pack")->required();
   sheet->add_option("--tile", sheet_args->tile, "Tile index")->required();
-  sheet->add_option("--out,-o", sheet_args->out, "Image to write (PNG)")->required();
+  sheet->add_option("--out,-o", sheet_args->out, "Image to write (PNG)")->required()->check(output_file_path());
   sheet->add_option("--cell", sheet_args->cell, "Pixels per LDI in the sheet")
       ->capture_default_str()
       ->check(CLI::Range(8, 2048));

@@ -44,7 +44,8 @@ void register_render_command(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::Range(1, 32768));
   sub->add_option("--height", request->height, "Image height in pixels (default: the scene's)")
       ->check(CLI::Range(1, 32768));
-  sub->add_option("--out", request->out, "embree: the image to write (default DIR/render_embree.png)");
+  sub->add_option("--out", request->out, "embree: the image to write (default DIR/render_embree.png)")
+      ->check(output_file_path());
   sub->add_option("--spp", request->spp, "embree: samples per pixel (default: the scene's antialias squared)")
       ->check(CLI::Range(1, kMaxReferenceSamples));
   set_help_footer(sub,

@@ -126,10 +126,11 @@ void register_scatter_command(CLI::App& app, const GlobalOptions& global) {
   auto* plane = sub->add_option("--plane", options->plane, "Plane size WIDTHxHEIGHT in meters (east x north)")
                     ->capture_default_str();
   sub->add_option("--tile-size", options->tile_size, "Tile side in meters")->capture_default_str();
-  sub->add_option("--out", options->out, "Instances: CSV (x,y,z,variant,yaw,scale,tile), or binary PLY for .ply");
+  sub->add_option("--out", options->out, "Instances: CSV (x,y,z,variant,yaw,scale,tile), or binary PLY for .ply")
+      ->check(output_file_path());
   sub->add_option("--max-instances", options->max_instances,
                   "Refuse to place more than N instances (default: no cap; the free disk space is checked)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1000000000000000}));  // 1e15: readable, not 309 digits
   sub->add_option("--seed", options->seed, "Tiling seed")->check(seed_number())->capture_default_str();
   sub->add_option("--algorithm", options->algorithm,
                   "Tiling: scanline, bottom-left, hash (complete sets) or aperiodic (culik13)")

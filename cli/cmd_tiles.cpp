@@ -18,7 +18,12 @@ static CLI::App* add_tiles(CLI::App& app, const GlobalOptions& global, const cha
   auto* sub = app.add_subcommand(name, help)->require_subcommand(1)->add_subcommand("tiles", help);
   sub->add_option("--set", job->set, "Built-in tile set or tile-set JSON")->capture_default_str();
   sub->add_option("--out", job->out, "Folder for the tile PNGs and JSON")->required()->check(non_empty_path());
-  const auto preview = [job](const std::vector<std::string>& v) { job->preview_size = v[0], job->preview = v[1]; };
+  const auto preview = [job](const std::vector<std::string>& v) {
+    std::string file = v[1];
+    if (const std::string fault = output_file_path()(file); !fault.empty())
+      throw CLI::ValidationError("--preview", fault);
+    job->preview_size = v[0], job->preview = v[1];
+  };
   sub->add_option_function<std::vector<std::string>>("--preview", preview,
                                                      "Also write a WxH-pixel image FILE of the tiles laid in a tiling")
       ->type_size(2)  // one value of two words: the help shows "WxH FILE", not "TEXT x 2"

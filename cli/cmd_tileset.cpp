@@ -133,7 +133,8 @@ void register_tileset_command(CLI::App& app, const GlobalOptions& global) {
                   "cohen8-corners-full, culik13: aperiodic) or a JSON file (docs/tileset-format.md)")
       ->capture_default_str();
   sub->add_flag("--json", options->json, "Print the set as JSON");
-  sub->add_option("--sheet", options->sheet, "Draw the set's tiles with their edge/corner colors into this PNG");
+  sub->add_option("--sheet", options->sheet, "Draw the set's tiles with their edge/corner colors into this PNG")
+      ->check(output_file_path());
   sub->add_option("--tile-pixels", options->tile_pixels, "Size of each tile on the sheet, in pixels")
       ->check(CLI::Range(8, 1024))
       ->capture_default_str();
@@ -143,7 +144,7 @@ void register_tileset_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--relax", options->relax, "Relaxation rounds after dart throwing (stops before a lattice)")
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
-  sub->add_option("--out", options->out, "With --per-tile: write the filled set as JSON");
+  sub->add_option("--out", options->out, "With --per-tile: write the filled set as JSON")->check(output_file_path());
   sub->add_option_function<std::vector<std::string>>(
          "--class",
          [options](const std::vector<std::string>& values) {

@@ -100,7 +100,7 @@ void register_tiling_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_flag("--no-identical-neighbours", options->no_identical_neighbours,
                 "Never lay a tile next to an identical copy of itself (fails if the set cannot avoid it)");
   sub->add_option("--out", options->out, "Output: .png pseudo-colored tile map (north up) or .csv with i,j,tile")
-      ->check(non_empty_path());
+      ->check(output_file_path());
   sub->add_option("--pixels-per-tile", options->pixels_per_tile, "Tile map block size in pixels")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();

@@ -179,6 +179,7 @@ void open_window(const std::shared_ptr<const ViewWorld>& world, const Camera& ca
   options.camera = camera;
   options.width = request.width ? request.width : kDefaultWindowWidth;
   options.height = request.height ? request.height : kDefaultWindowHeight;
+  check_view_memory(request, options.width, options.height, true);
   if (!request.record.empty()) options.record = request.record;
   options.script = request.script;
   options.settings = request.settings;
@@ -208,6 +209,8 @@ void run_view(const ViewRequest& request) {
   std::optional<tbb::global_control> threads;
   if (request.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(request.threads));
 
+  // Frames too large for memory fail before the folder loads (the scene's own size: after).
+  if (request.width) check_view_memory(request, request.width, request.height, window);
   // A bad path file fails before the folder loads.
   std::optional<ViewPath> path;
   PathPlayback playback;
@@ -223,6 +226,7 @@ void run_view(const ViewRequest& request) {
   if (window) return open_window(world, camera, request, report);
   const int width = request.width ? request.width : world->scene().render.width;
   const int height = request.height ? request.height : world->scene().render.height;
+  check_view_memory(request, width, height);
   if (!path) return draw_frame(world, camera, request, width, height, report);
   playback.width = width;
   playback.height = height;
@@ -248,7 +252,8 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--look-at", o->look_at, "Point looked at, E,N,H (ENU m)");
   sub->add_option("--fov", o->request.fov_degrees, "Horizontal field of view, degrees")->check(finite_number());
   sub->add_option("--size", o->size, "Frame size WIDTHxHEIGHT (default: the scene's image size)");
-  sub->add_option("--out", o->request.out, "Write one offline frame (PNG) instead of opening a window");
+  sub->add_option("--out", o->request.out, "Write one offline frame (PNG) instead of opening a window")
+      ->check(output_file_path());
   sub->add_flag("--stats", o->request.stats, "Print frame statistics (median over --repeat frames)");
   sub->add_flag("--json", o->request.json, "With --stats: as one JSON object");
   sub->add_option("--repeat", o->request.repeat, "Frames timed for --stats (default 200)");
@@ -266,18 +271,22 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
       "--no-cache", [o](std::int64_t) { o->request.cached = false; },
       "With --path: draw every frame whole instead of from the frame before");
   sub->add_option("--record", o->request.record,
-                  "Window: where the keyframes dropped with K go on exit, a path file for --path (default path.json)");
+                  "Window: where the keyframes dropped with K go on exit, a path file for --path (default path.json)")
+      ->check(output_file_path());
   sub->add_option("--script", o->request.script, "Window: scripted input, e.g. \"W*30,screenshot,Escape\"");
   sub->add_flag("--compare", o->request.compare,
                 "Also ray trace the frame with Embree (the truth, and the exact geometry at one sample per pixel) "
                 "and print PSNR, SSIM and holes of both against the truth");
-  sub->add_option("--diff", o->request.diff, "With --compare: write the frame's difference from the truth (PNG)");
+  sub->add_option("--diff", o->request.diff, "With --compare: write the frame's difference from the truth (PNG)")
+      ->check(output_file_path());
   sub->add_option("--truth-spp", o->request.truth_samples,
                   "With --compare: the truth's samples per pixel (default 64: converged for one-sample frames)");
   sub->add_option("--reference,--truth", o->request.truth_out,
-                  "With --compare: write the reference it compared against, the truth (PNG)");
+                  "With --compare: write the reference it compared against, the truth (PNG)")
+      ->check(output_file_path());
   sub->add_option("--side-by-side", o->request.side_by_side,
-                  "With --compare: write the frame (left) beside the reference (right), one PNG");
+                  "With --compare: write the frame (left) beside the reference (right), one PNG")
+      ->check(output_file_path());
   sub->add_option("--threads", o->request.threads, "Threads (default: all cores)")->check(CLI::Range(0, 1024));
   sub->add_option("--detail", o->request.settings.detail,
                   "Level-of-detail scale: 1 the pack's levels, 0.5 coarser and faster, 2 finer (0.1 .. 10)")

@@ -8,12 +8,14 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <filesystem>
 #include <initializer_list>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "core/printable.h"
 #include "scene/ground.h"
 
 namespace wangscape::cli {
@@ -48,6 +50,21 @@ inline CLI::Validator non_empty_path() {
   return CLI::Validator(
       [](std::string& text) { return text.empty() ? std::string("is empty; name a file or folder") : std::string(); },
       "PATH");
+}
+
+// A CLI11 check that a file to write is named and is not a folder: the finished file could not
+// replace the folder, so the run would do all its work and fail only when publishing it ("rename
+// failed"). A usage error, exit 2.
+inline CLI::Validator output_file_path() {
+  return CLI::Validator(
+      [](std::string& text) {
+        if (text.empty()) return std::string("is empty; name a file or folder");
+        std::error_code ec;
+        if (std::filesystem::is_directory(text, ec))
+          return "'" + printable(text) + "' is a folder; name a file to write";
+        return std::string();
+      },
+      "FILE");
 }
 
 // A CLI11 check for seeds: a whole number 0 .. 2^64 - 1 (CLI11 alone reads -1 as 2^64 - 1 and

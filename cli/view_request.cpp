@@ -1,10 +1,14 @@
 // `wangscape view`'s request: its checks and its camera (cli/view_request.h).
 #include "cli/view_request.h"
 
+#include <tbb/global_control.h>
+
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "core/number_text.h"
 #include "core/vecmath.h"
 
@@ -47,6 +51,29 @@ void check_view_request(const ViewRequest& request) {
   check_range(request.truth_samples, 1, kMaxReferenceSamples, "--truth-spp", "samples per pixel");
   require(!request.truth_out.empty(), request.compare, "--reference", "--compare");
   require(!request.side_by_side.empty(), request.compare, "--side-by-side", "--compare");
+}
+
+void check_view_memory(const ViewRequest& request, int width, int height, bool window) {
+  // Bytes a pixel, as measured (peak resident memory at 1024 x 1024 and 2048 x 2048 pixels, the
+  // small template's folder, issue 41): the image (3) and the z-buffer (8), and a z-buffer of
+  // each thread for the LDIs' splats (8 each); the sums of --spp N (12); the sample cache of a
+  // path or the window (64: two 24-byte samples, the key, need, fresh and lattice bytes); the
+  // truth, the exact image, their masks and SSIM's planes of --compare (about 120).
+  const auto threads =
+      double(std::max<std::size_t>(1, tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
+  const bool cached = window || (!request.path.empty() && request.cached);
+  const bool compares = request.compare || request.compare_every > 0;
+  const double per_pixel =
+      11 + 8 * threads + (request.settings.samples > 1 ? 12 : 0) + (cached ? 64 : 0) + (compares ? 120 : 0);
+  const double pixels = double(width) * double(height);
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  const std::string what =
+      (request.width ? "--size " + size : "the scene's image size " + size + " ([image] width, height)") +
+      ": frames of " + fixed_text(pixels, 0) + " pixels at about " + fixed_text(per_pixel, 0) + " bytes a pixel (" +
+      fixed_text(threads, 0) + " threads" + (cached ? ", the sample cache" : "") +
+      (compares ? ", the comparison" : "") + ")";
+  if (const auto excess = memory_estimate_excess(what, pixels * per_pixel))
+    throw Error(*excess + "; lower --size" + (threads > 1 ? " or --threads" : ""));
 }
 
 bool wants_window(const ViewRequest& request) {

@@ -43,6 +43,12 @@ struct ViewRequest {
 // before anything is read. Throws Error naming the flag.
 void check_view_request(const ViewRequest& request);
 
+// Refuses frames of width x height pixels whose buffers would pass the memory limit
+// (core/memory_budget.h), before any is allocated: the estimate names --size (or the scene's
+// image size when the request has none), the bytes a pixel and the limit. `window`: the window's
+// frames, which keep the sample cache as a path's do.
+void check_view_memory(const ViewRequest& request, int width, int height, bool window = false);
+
 // True when the request asks for no file and no figures: the window.
 bool wants_window(const ViewRequest& request);
 

@@ -38,13 +38,15 @@ void set_memory_limit_bytes_for_process(std::uint64_t bytes) {
   process_limit_bytes.store(bytes, std::memory_order_relaxed);
 }
 
-void check_memory_estimate(const std::filesystem::path& file, const std::string& what, double estimated_bytes) {
+std::optional<std::string> memory_estimate_excess(const std::string& what, double estimated_bytes) {
   const auto limit = double(memory_limit_bytes());
-  if (!(estimated_bytes <= limit))
-    throw Error(file, "",
-                what + " would need about " + gigabytes(estimated_bytes) + " of memory; the limit is " +
-                    gigabytes(limit) +
-                    " (half the physical memory or of the address-space limit, at most 8 GiB; see docs/limits.md)");
+  if (estimated_bytes <= limit) return std::nullopt;
+  return what + " would need about " + gigabytes(estimated_bytes) + " of memory; the limit is " + gigabytes(limit) +
+         " (half the physical memory or of the address-space limit, at most 8 GiB; see docs/limits.md)";
+}
+
+void check_memory_estimate(const std::filesystem::path& file, const std::string& what, double estimated_bytes) {
+  if (auto excess = memory_estimate_excess(what, estimated_bytes)) throw Error(file, "", *excess);
 }
 
 }  // namespace wangscape

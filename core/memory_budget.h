@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 namespace wangscape {
@@ -22,5 +23,10 @@ void set_memory_limit_bytes_for_process(std::uint64_t bytes);
 // Throws Error(file, "", "<what> would need about N GB ...; the limit is L GB ...") when
 // `estimated_bytes` (a double: products of sizes never wrap) exceeds memory_limit_bytes().
 void check_memory_estimate(const std::filesystem::path& file, const std::string& what, double estimated_bytes);
+
+// The same message without the file ("<what> would need about N GB ...; the limit is L GB ..."),
+// or nothing within the limit: for callers that name the place themselves (a scene file's key
+// and line, a flag).
+std::optional<std::string> memory_estimate_excess(const std::string& what, double estimated_bytes);
 
 }  // namespace wangscape

@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 
+#include "core/memory_budget.h"
 #include "core/number_text.h"
 #include "generator/tiling.h"
 #include "scene/far_field.h"
@@ -94,6 +95,24 @@ std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGro
                                             " tiles); limit it with tiles.area or a larger tiles.tile_size, or "
                                             "export what the camera sees ([camera_aware] enabled = true, far) "
                                             "(at most 50 million)");
+  // What the field holds a tile of its whole area: a byte in the scene folder's grid of placed
+  // tiles (exporters/folder_state.h), and 2 bytes more for a scanline or bottom-left tiling,
+  // computed for the whole area and held by the placement and the far field (a hashed tiling is
+  // computed row by row).
+  const bool held_tiling = config.tiles.algorithm != TilingAlgorithm::hash;
+  const std::string held = held_tiling ? "placed-tile grid and " + std::string(to_string(config.tiles.algorithm)) +
+                                             " tiling (3 bytes a tile)"
+                                       : std::string("placed-tile grid (1 byte a tile)");
+  if (const auto excess =
+          memory_estimate_excess("gives a field of " + fixed_text(tiles_x, 0) + " x " + fixed_text(tiles_y, 0) +
+                                     " tiles of " + number_text(tile_size) + " m, whose " + held,
+                                 tiles_x * tiles_y * (held_tiling ? 3.0 : 1.0)))
+    throw config.error_at(
+        config.tiles.area            ? "tiles.area"
+        : config.terrain.dem.empty() ? "terrain.flat_size"
+                                     : "terrain.dem",
+        *excess + "; limit it with tiles.area or a larger tiles.tile_size" +
+            (held_tiling ? ", or use tiles.algorithm = \"hash\" (a complete set: 1 byte a tile)" : ""));
   field->placement.tile_size = tile_size;
   field->placement.algorithm = config.tiles.algorithm;
   field->placement.seed = config.tiles.seed;

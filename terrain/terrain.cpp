@@ -54,6 +54,12 @@ LatLon default_origin(const DemRaster& dem, const CrsToWgs84& crs, const Terrain
   if (options.origin) return *options.origin;
   auto center = dem.crs_of((dem.width - 1) / 2.0, (dem.height - 1) / 2.0);
   crs.to_wgs84(std::span(&center[0], 1), std::span(&center[1], 1));
+  // EnuFrame refuses such an origin too, but without the file: here the DEM is at fault.
+  if (!(std::abs(center[1]) <= 90) || !(std::abs(center[0]) <= 180))
+    throw Error(dem.path, "",
+                "its center lies at latitude " + fixed_text(center[1], 6) + ", longitude " + fixed_text(center[0], 6) +
+                    " (WGS 84 degrees); expected latitude in [-90, 90] and longitude in [-180, 180]: check the DEM's "
+                    "georeference (its corner coordinates and CRS)");
   return {center[1], center[0]};
 }
 

@@ -151,8 +151,9 @@ void read_suns(Table& sun, BatchConfig& config) {
   if ((from != nullptr) != (to != nullptr))
     sun.fail(from ? *from : *to, from ? "from" : "to", "needs both from and to");
   if (from) {
-    const double step = sun.number("step_minutes", 60);
-    if (!(step >= 1)) sun.fail(*from, "step_minutes", "must be at least 1");
+    // Bounded above too: a step of 1e18 minutes overflowed the seconds of the second sun, which
+    // then came before 'to' again and again until memory ran out.
+    const double step = sun.number("step_minutes", 60, 1, kMaxSunStepMinutes, "minutes");
     const auto t0 = unix_seconds(*from, sun, "from"), t1 = unix_seconds(*to, sun, "to");
     if (t1 < t0) sun.fail(*to, "to", "is before 'from'");
     const int offset = from->as_date_time()->get().offset->minutes;
@@ -161,8 +162,11 @@ void read_suns(Table& sun, BatchConfig& config) {
       sun.fail(*from, "from",
                "to 'to' every " + number_text(step) + " minutes is " + number_text(count) + " suns; at most " +
                    std::to_string(kMaxBatchSuns) + " are planned: raise step_minutes or shorten the span");
-    for (std::int64_t t = t0, k = 0; t <= t1; ++k, t = t0 + static_cast<std::int64_t>(k * step * 60))
+    for (std::int64_t k = 0; k < static_cast<std::int64_t>(count); ++k) {
+      const std::int64_t t = t0 + static_cast<std::int64_t>(static_cast<double>(k) * step * 60);
+      if (t > t1) break;
       config.suns.push_back({t, local_time_text(t, offset)});
+    }
   }
   const auto* angles = sun.node("angles");
   for (const auto& [az, el] : sun.pairs("angles")) {

@@ -22,6 +22,8 @@ namespace wangscape {
 inline constexpr std::uintmax_t kMaxBatchFileBytes = 1 << 20;  // the batch file, as a scene file
 inline constexpr int kMaxBatchTasks = 100000;                  // stills of one batch (plan.json ~80 MB)
 inline constexpr int kMaxBatchSuns = 10000;                    // suns of [sun] from/to/step_minutes
+inline constexpr int kMaxBatchRetries = 100;                   // batch run --retries (Slurm resubmissions)
+inline constexpr double kMaxSunStepMinutes = 1e9;              // [sun] step_minutes (about 1,900 years)
 inline constexpr double kMaxEyeHeight = 20000;                 // viewpoints' eye_height, meters above ground
 inline constexpr double kMaxGroundHeight = 12000;              // |min_height| of summits, meters
 

@@ -43,27 +43,60 @@ namespace {
 
 // ---- plan.json ----------------------------------------------------------------------------------
 
+// A path of the plan: its text under `key` (U+FFFD where it is not UTF-8, as JSON output writes
+// it) and, when it is not UTF-8 (a DEM folder's Latin-1 file name), its bytes in hex under
+// `key`_bytes, which the workers read instead: they open the file the plan found.
+void put_path(json& j, const std::string& key, const fs::path& path) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  const std::string& bytes = path.native();
+  j[key] = bytes;
+  if (valid_utf8(bytes) == bytes) return;
+  std::string hex;
+  for (const char c : bytes) {
+    hex += kHex[static_cast<unsigned char>(c) >> 4];
+    hex += kHex[static_cast<unsigned char>(c) & 15];
+  }
+  j[key + "_bytes"] = hex;
+}
+
+// The path put_path wrote; a `key`_bytes that is not hex throws as a field of the wrong type.
+fs::path get_path(const json& j, const std::string& key) {
+  const auto bytes = j.find(key + "_bytes");
+  if (bytes == j.end()) return j.at(key).get<std::string>();
+  const std::string hex = bytes->get<std::string>();
+  const auto digit = [&](char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    throw json::type_error::create(302, "not hex", &*bytes);
+  };
+  if (hex.size() % 2 != 0) throw json::type_error::create(302, "not hex", &*bytes);
+  std::string native;
+  for (std::size_t k = 0; k < hex.size(); k += 2) native += static_cast<char>(digit(hex[k]) * 16 + digit(hex[k + 1]));
+  return native;
+}
+
 json task_json(const BatchTask& t) {
-  return {{"index", t.index},
-          {"id", t.id},
-          {"dem", t.dem.string()},
-          {"viewpoint", t.viewpoint},
-          {"camera",
-           {{"position_enu", t.camera.position},
-            {"target_enu", t.camera.target},
-            {"fov", t.camera.fov_degrees},
-            {"latitude", t.camera_latlon[0]},
-            {"longitude", t.camera_latlon[1]}}},
-          {"sun",
-           {{"label", t.sun.label},
-            {"azimuth", t.sun.azimuth},
-            {"elevation", t.sun.elevation},
-            {"time_unix", t.sun.time_unix ? json(*t.sun.time_unix) : json(nullptr)}}},
-          {"engine", to_string(t.engine)},
-          {"width", t.width},
-          {"height", t.height},
-          {"scene_key", t.scene_key},
-          {"input_hash", t.input_hash}};
+  json j = {{"index", t.index},
+            {"id", t.id},
+            {"viewpoint", t.viewpoint},
+            {"camera",
+             {{"position_enu", t.camera.position},
+              {"target_enu", t.camera.target},
+              {"fov", t.camera.fov_degrees},
+              {"latitude", t.camera_latlon[0]},
+              {"longitude", t.camera_latlon[1]}}},
+            {"sun",
+             {{"label", t.sun.label},
+              {"azimuth", t.sun.azimuth},
+              {"elevation", t.sun.elevation},
+              {"time_unix", t.sun.time_unix ? json(*t.sun.time_unix) : json(nullptr)}}},
+            {"engine", to_string(t.engine)},
+            {"width", t.width},
+            {"height", t.height},
+            {"scene_key", t.scene_key},
+            {"input_hash", t.input_hash}};
+  put_path(j, "dem", t.dem);
+  return j;
 }
 
 // An integer field of at most 2^31 - 1 (a float or a larger number throws, as a missing field does).
@@ -78,7 +111,7 @@ BatchTask task_from_json(const json& j) {
   BatchTask t;
   t.index = int_field(j, "index");
   t.id = j.at("id");
-  t.dem = j.at("dem").get<std::string>();
+  t.dem = get_path(j, "dem");
   t.viewpoint = j.at("viewpoint");
   const auto& c = j.at("camera");
   t.camera.position = c.at("position_enu");
@@ -137,10 +170,10 @@ Plan load_plan(const fs::path& dir) {
 void write_plan(const fs::path& dir, const BatchConfig& config, const std::vector<BatchTask>& tasks) {
   json j;
   j["batch_file"] = config.source.string();
-  j["scene"] = {{"text", config.scene.text},
-                {"source", config.scene.source.string()},
-                {"base_dir", config.scene.base_dir.string()},
-                {"dem", config.scene.terrain.dem.string()}};
+  j["scene"] = {{"text", config.scene.text}};
+  put_path(j["scene"], "source", config.scene.source);
+  put_path(j["scene"], "base_dir", config.scene.base_dir);
+  put_path(j["scene"], "dem", config.scene.terrain.dem);
   j["tasks"] = json::array();
   for (const auto& t : tasks) j["tasks"].push_back(task_json(t));
   write_file_atomically(dir / "plan.json", json_text(j, 1) + "\n");
@@ -521,9 +554,8 @@ BatchPlan parse_batch_plan(std::string_view text, const fs::path& file) {
   BatchPlan plan;
   try {
     const auto& s = j.at("scene");
-    plan.scene = parse_scene_config(s.at("text").get<std::string>(), s.at("source").get<std::string>(),
-                                    s.at("base_dir").get<std::string>());
-    plan.scene.terrain.dem = s.at("dem").get<std::string>();
+    plan.scene = parse_scene_config(s.at("text").get<std::string>(), get_path(s, "source"), get_path(s, "base_dir"));
+    plan.scene.terrain.dem = get_path(s, "dem");
   } catch (const json::exception&) {
     throw bad("scene", "is not a batch plan's scene: expected 'text', 'source', 'base_dir' and 'dem' strings");
   }
@@ -661,20 +693,20 @@ void assemble_batch(const fs::path& dir) {
     if (s == State::failed)
       failed = "<p class=\"failed\">failed: " +
                html_escape(failure.is_object() ? failure.value("error", std::string("?")) : std::string("?")) + "</p>";
-    html += "<figure>" +
-            (s == State::done ? "<a href=\"stills/" + t.id + ".png\"><img src=\"stills/" + t.id +
-                                    ".png\" alt=\"still " + t.id + "\"></a>"
-             : failed.empty() ? "<p>" + std::string(state_name(s)) + "</p>"
-                              : failed) +
-            "<figcaption>" + t.id + " " + html_escape(t.viewpoint) +
-            "<br>DEM: " + html_escape(t.dem.empty() ? std::string("flat ground") : t.dem.filename().string()) +
-            "<br>camera ENU (" + fixed_text(p[0], 1) + ", " + fixed_text(p[1], 1) + ", " + fixed_text(p[2], 1) +
-            ") m, lat/lon " + fixed_text(t.camera_latlon[0], 6) + ", " + fixed_text(t.camera_latlon[1], 6) +
-            "<br>sun " + html_escape(t.sun.label) + " (az " + fixed_text(t.sun.azimuth, 1) + ", el " +
-            fixed_text(t.sun.elevation, 1) + ")<br>" + std::string(to_string(t.engine)) + ", " +
-            fixed_text(seconds, 2) + " s<br><a href=\"" + links.scene + "\">scene folder</a> · <a href=\"" + links.log +
-            "\">" + std::string(to_string(t.engine)) + " log</a> · <a href=\"" + links.inputs +
-            "\">inputs</a></figcaption></figure>\n";
+    html +=
+        "<figure>" +
+        (s == State::done ? "<a href=\"stills/" + t.id + ".png\"><img src=\"stills/" + t.id + ".png\" alt=\"still " +
+                                t.id + "\"></a>"
+         : failed.empty() ? "<p>" + std::string(state_name(s)) + "</p>"
+                          : failed) +
+        "<figcaption>" + t.id + " " + html_escape(t.viewpoint) +
+        "<br>DEM: " + html_escape(valid_utf8(t.dem.empty() ? std::string("flat ground") : t.dem.filename().string())) +
+        "<br>camera ENU (" + fixed_text(p[0], 1) + ", " + fixed_text(p[1], 1) + ", " + fixed_text(p[2], 1) +
+        ") m, lat/lon " + fixed_text(t.camera_latlon[0], 6) + ", " + fixed_text(t.camera_latlon[1], 6) + "<br>sun " +
+        html_escape(t.sun.label) + " (az " + fixed_text(t.sun.azimuth, 1) + ", el " + fixed_text(t.sun.elevation, 1) +
+        ")<br>" + std::string(to_string(t.engine)) + ", " + fixed_text(seconds, 2) + " s<br><a href=\"" + links.scene +
+        "\">scene folder</a> · <a href=\"" + links.log + "\">" + std::string(to_string(t.engine)) +
+        " log</a> · <a href=\"" + links.inputs + "\">inputs</a></figcaption></figure>\n";
     all.push_back(j);
   }
   html += "</body></html>\n";
@@ -744,6 +776,15 @@ BatchCounts run_batch(const BatchRunSettings& s) {
   if (s.out_dir.empty()) throw Error("batch run: --out is empty; name the output folder");
   const auto config = load_batch_config(s.batch_file);
   const auto tasks = expand_batch(config);
+  // POV-Ray's stills are rendered in folders under --out, named to POV-Ray in double quotes: a
+  // name it cannot take is refused before any folder is made, as `build` refuses its --out.
+  if (std::any_of(tasks.begin(), tasks.end(), [](const BatchTask& t) { return t.engine == RenderEngine::povray; })) {
+    try {
+      povray_quoted_path(fs::absolute(s.out_dir));
+    } catch (const Error& e) {
+      throw Error("batch run --out " + printable(s.out_dir.string()) + ": " + e.message());
+    }
+  }
   make_output_folders(s.out_dir);
   const RunLock lock(s.out_dir);
   write_plan(s.out_dir, config, tasks);

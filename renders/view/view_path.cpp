@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/number_text.h"
 #include "core/text_file.h"
+#include "core/vecmath.h"
 
 namespace wangscape {
 
@@ -123,6 +124,11 @@ ViewPath parse_view_path(std::string_view text, const fs::path& file) {
     key.time = number_in(j["time"], file, where + ".time", -kMaxPathSeconds * 1000, kMaxPathSeconds * 1000, "seconds");
     key.position = read_point(j, "position", "height_above_ground", path.position_above_ground, file, where);
     key.look_at = read_point(j, "look_at", "look_at_height_above_ground", path.look_at_above_ground, file, where);
+    // The camera must see a horizon (camera_basis): the point looked at at least 1 mm sideways.
+    if (!(std::hypot(key.look_at[0] - key.position[0], key.look_at[1] - key.position[1]) >= kMinPathLookSideways))
+      throw Error(file, where + ".look_at",
+                  "is straight above, below or at the position (E, N less than 1 mm apart); expected a point "
+                  "sideways of the eye");
     if (!path.keys.empty() && !(key.time > path.keys.back().time))
       throw Error(file, where + ".time", "is " + number_text(key.time) + "; times must be ascending");
     path.keys.push_back(key);
@@ -176,6 +182,13 @@ Camera camera_along(const ViewPath& path, double time, double fov_degrees, const
   };
   if (path.position_above_ground) over_ground(camera.position, "eye");
   if (path.look_at_above_ground) over_ground(camera.target, "look-at point");
+  // Keyframes that look sideways can still meet between them, where the spline bends.
+  if (!camera_basis(camera.position, camera.target))
+    throw Error(file, "",
+                "at " + fixed_text(time, 3) + " s the look-at point (" + number_text(camera.target[0]) + ", " +
+                    number_text(camera.target[1]) + ") is straight above, below or at the eye (" +
+                    number_text(camera.position[0]) + ", " + number_text(camera.position[1]) +
+                    "); move the keyframes' look_at points sideways of their positions");
   return camera;
 }
 

@@ -19,10 +19,11 @@ namespace wangscape {
 inline constexpr std::uintmax_t kMaxPathFileBytes = 16u << 20;  // about 200,000 keyframes as written
 inline constexpr std::size_t kMaxPathKeyframes = 100000;
 inline constexpr double kMaxPathSeconds = 3600;
-inline constexpr int kMaxPathFrames = 100000;      // an hour at 24 frames/s is 86,401
-inline constexpr double kMaxPathCoordinate = 1e7;  // meters east or north of the scene's origin
-inline constexpr double kMinPathHeight = -12000;   // below the deepest ground on Earth
-inline constexpr double kMaxPathHeight = 100000;   // meters, absolute or above the ground
+inline constexpr int kMaxPathFrames = 100000;         // an hour at 24 frames/s is 86,401
+inline constexpr double kMaxPathCoordinate = 1e7;     // meters east or north of the scene's origin
+inline constexpr double kMinPathHeight = -12000;      // below the deepest ground on Earth
+inline constexpr double kMaxPathHeight = 100000;      // meters, absolute or above the ground
+inline constexpr double kMinPathLookSideways = 1e-3;  // meters between a keyframe's eye and look_at (E, N)
 
 struct PathKeyframe {
   double time = 0;

@@ -59,6 +59,19 @@ million_tasks)
   refuse 1 "suns.toml:.*: 'sun.from' to 'to' every 1 minutes is .* suns; at most 10000" "$bin" batch plan suns.toml
   refuse 2 "--workers: Value 100000 not in range 1 to 256" "$bin" batch run million.toml --out million --workers 100000
   ;;
+sun_step)
+  # Issue 41: a step of 1e18 minutes overflowed the second sun's time, which then came before 'to'
+  # again and again until memory ran out (15-26 s, then a generic out-of-memory line).
+  for step in 1e18 1e17 0.5; do
+    batch step '[[viewpoints]]' 'count = 1' '[sun]' 'from = 2024-07-15T09:00:00-07:00' \
+      'to = 2024-07-15T17:00:00-07:00' "step_minutes = $step"
+    refuse 1 "^wangscape: error: step.toml:9: 'sun.step_minutes' is .*; expected minutes from 1 to 1e\+09$" \
+      "$bin" batch plan step.toml
+  done
+  rm -rf step_out
+  refuse 1 "step.toml:9: 'sun.step_minutes'" "$bin" batch run step.toml --out step_out
+  [ -e step_out ] && fail "a refused batch made its output folder"
+  ;;
 numbers)
   for fov in 0 -10 180 1e300; do
     batch "fov" '[[viewpoints]]' "fov = $fov"
@@ -87,6 +100,17 @@ out)
   refuse 1 "a-file: the batch output folder exists and is not a folder" "$bin" batch run one.toml --out a-file
   refuse 1 "a-file/x: cannot create the batch output folder: Not a directory" "$bin" batch run one.toml --out a-file/x
   refuse 1 "/proc/wangscape-batch: cannot create the batch output folder" "$bin" batch run one.toml --out /proc/wangscape-batch
+  ;;
+out_povray)
+  # Issue 41: a quote or a newline in --out made the whole output folder, then failed every
+  # POV-Ray still (POV-Ray takes its folders in double quotes) and exited 1. Refused first now.
+  batch one '[[viewpoints]]' 'count = 1'
+  for out in 'q"out' "$(printf 'n\nout')"; do
+    rm -rf "$out"
+    refuse 1 '^wangscape: error: batch run --out (q"out|n\\nout): POV-Ray cannot use this path: it holds a control character .* or a double quote' \
+      "$bin" batch run one.toml --out "$out"
+    [ -e "$out" ] && fail "a refused batch made its output folder"
+  done
   ;;
 plan_ids)
   plan_folder ids
@@ -119,6 +143,18 @@ utf8)
   batch utf8 'dem_folder = "dems"' '[[viewpoints]]' 'count = 1'
   refuse 0 "$(printf 'b\357\277\275[.]asc')" "$bin" batch plan utf8.toml --json
   refuse 0 "$(printf 'b\357\277\275[.]asc')" "$bin" terrain info --json "dems/$name.asc"
+  ;;
+utf8_run)
+  # Issue 41: the plan kept such a name as U+FFFD, so the task then failed with "does not exist".
+  # plan.json keeps its bytes (dem_bytes, in hex) and the still is rendered (POV-Ray, 48 x 36).
+  rm -rf dems utf8_out && mkdir dems || fail "mkdir"
+  name=$(printf 'b\377')
+  cp "$source/tests/data/dem/SRTMGL3_boulder_CO_240x144.asc" "dems/$name.asc" || fail "cp"
+  cp "$source/tests/data/dem/SRTMGL3_boulder_CO_240x144.prj" "dems/$name.prj" || fail "cp"
+  batch utf8 'dem_folder = "dems"' '[[viewpoints]]' 'count = 1'
+  refuse 0 "wrote utf8_out \(1 stills, 0 failed" "$bin" batch run utf8.toml --out utf8_out --workers 1
+  [ -s utf8_out/stills/0000.png ] || fail "no still"
+  grep -q '"dem_bytes": "64656d732f62ff2e617363"' utf8_out/plan.json || fail "plan.json lost the name's bytes"
   ;;
 lock)
   batch one '[[viewpoints]]' 'count = 1'

@@ -118,6 +118,38 @@ TEST(ViewPath, RefusesWhatItCannotUseNamingThePlace) {
   }
 }
 
+// Issue 41: a keyframe looking at its own eye (or straight down on it) reached the renderer, which
+// said "the camera must look somewhere sideways" without the file or the keyframe.
+TEST(ViewPath, ALookAtStraightAboveBelowOrAtTheEyeIsRefusedNamingTheKeyframe) {
+  const std::string key = R"({"time": 0, "position": [0, 0, 10], "look_at": [0, 1, 10]})";
+  for (const char* look_at : {"[0, 0, 10]", "[0, 0, 0]", "[0.0001, 0, 50]"}) {
+    const std::string message =
+        refusal(R"({"keyframes": [)" + key + R"(, {"time": 1, "position": [0, 0, 10], "look_at": )" + look_at + "}]}");
+    EXPECT_NE(message.find("walk.json:keyframes[1].look_at: is straight above, below or at the position"),
+              std::string::npos)
+        << look_at << ": " << message;
+  }
+  EXPECT_NE(refusal(R"({"keyframes": [{"time": 0, "position": [5, 5], "height_above_ground": 2, "look_at": [5, 5],
+                      "look_at_height_above_ground": 1}, 2]})")
+                .find("walk.json:keyframes[0].look_at: is straight above"),
+            std::string::npos);
+  // Keyframes that look sideways, whose eye and look-at point meet between them: named with the time.
+  const ViewPath crossing = parse_view_path(
+      R"({"keyframes": [{"time": 0, "position": [0, -16, 2.2], "look_at": [0, 0, 1.2]},
+                        {"time": 1, "position": [0, 0, 2.2], "look_at": [0, -16, 1.2]}]})",
+      "cross.json");
+  EXPECT_NO_THROW(camera_along(crossing, 0.25, 50, sloped_ground, "cross.json"));
+  try {
+    camera_along(crossing, 0.5, 50, sloped_ground, "cross.json");
+    ADD_FAILURE() << "the crossing was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cross.json: at 0.500 s the look-at point (0, -8) is straight above, below or "
+                                         "at the eye (0, -8)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(ViewPath, TooManyKeyframesAreRefusedBeforeTheyAreKept) {
   std::string text = R"({"keyframes": [)";
   for (std::size_t k = 0; k <= kMaxPathKeyframes; ++k) {

@@ -1,0 +1,60 @@
+# What the third hostile probe still found (issue 41, "What the probe still finds"): each case is
+# refused at once with exit 1 (2 for flags), a message naming the file and line, or the flag, and
+# what was expected, and leaves nothing behind. Uses hostile_test() of hostile.cmake and the view's
+# folder of view.cmake (CMake globs the *.cmake files in sorted order: hostile.cmake comes first).
+set(probe_dir "${CLI_SCRATCH}/hostile_probe")
+file(MAKE_DIRECTORY "${probe_dir}")
+set(probe_view_folder "${CLI_SCRATCH}/view/field")  # built by cli_view_build (fixture view_folder)
+set(cli_refuse sh "${CMAKE_CURRENT_SOURCE_DIR}/refuse.sh")
+
+# probe_test(NAME CODE REGEX COMMAND...): refuse.sh (exit CODE, REGEX, no library text, 30 s).
+function(probe_test name code regex)
+  add_test(NAME hostile_probe_${name} COMMAND ${cli_refuse} ${code} "${regex}" ${ARGN})
+  set_tests_properties(hostile_probe_${name} PROPERTIES LABELS "cli;hostile" TIMEOUT 60)
+endfunction()
+
+# Kind 2: memory estimated before it is allocated, naming the key or the flag and the limit. A flat
+# field of 10^6 m a side held its scanline tiling whole (125 GB); a view frame of 16384 x 16384
+# pixels under a 4 GB address-space limit failed after 26 s with a generic out-of-memory line.
+file(WRITE "${probe_dir}/flat_1e6.toml" "[terrain]\nflat_size = 1000000.0\n[models]\nvariants = 1\ntriangle_budget = 400\n")
+probe_test(flat_field_memory 0 "flat_1e6.toml:2: 'terrain.flat_size' gives a field of 250001 x 250001 tiles of 4 m, whose placed-tile grid and scanline tiling \\(3 bytes a tile\\) would need about 187.50 GB of memory. the limit is [0-9.]+ GB .*tiles.algorithm = \"hash\""
+           sh -c "rm -rf \"$1\" && ! \"$0\" build \"$2\" --out \"$1\" && test ! -e \"$1\" && ! ls -a \"$(dirname \"$1\")\" | grep -q '^[.]flat_out[.]'"
+           "${WANGSCAPE_BIN}" "${probe_dir}/flat_out" "${probe_dir}/flat_1e6.toml")
+probe_test(view_size_memory 0 "--size 16384x16384: frames of 268435456 pixels at about [0-9]+ bytes a pixel .* would need about [0-9.]+ GB of memory. the limit is 2.00 GB .*lower --size"
+           sh -c "rm -f \"$1\" && ! prlimit --as=4000000000 \"$0\" view \"$2\" --size 16384x16384 --out \"$1\" && test ! -e \"$1\""
+           "${WANGSCAPE_BIN}" "${probe_dir}/big_frame.png" "${probe_view_folder}")
+probe_test(view_compare_memory 1 "--size 16384x16384: frames of 268435456 pixels at about [0-9]+ bytes a pixel \\([0-9]+ threads, the comparison\\) would need about [0-9.]+ GB of memory"
+           "${WANGSCAPE_BIN}" view "${probe_view_folder}" --size 16384x16384 --compare)
+set_tests_properties(hostile_probe_view_size_memory hostile_probe_view_compare_memory PROPERTIES FIXTURES_REQUIRED view_folder)
+set_property(TEST hostile_probe_view_size_memory APPEND PROPERTY LABELS address-space-limit)
+
+# Kind 5: messages that name the file or flag and what was expected.
+# A GeoTIFF whose center lies at latitude 99.97: the DEM is named (it was only "origin latitude ...").
+probe_test(dem_latitude_out_of_range 1 "^wangscape: error: .*lat_99.tif: its center lies at latitude 99.970000, longitude 10.040000 \\(WGS 84 degrees\\). expected latitude in \\[-90, 90\\]"
+           sh -c "rm -f \"$1\" && gdal_create -q -of GTiff -outsize 8 6 -ot Float32 -a_srs EPSG:4326 -a_ullr 10 100 10.08 99.94 \"$1\" && exec \"$0\" terrain info \"$1\""
+           "${WANGSCAPE_BIN}" "${probe_dir}/lat_99.tif")
+# A path keyframe looking at its own eye: the file and the keyframe (it was the renderer's "the
+# camera must look somewhere sideways").
+file(WRITE "${probe_dir}/look_at_eye.json"
+  "{\"keyframes\": [{\"time\": 0, \"position\": [0, -16, 2.2], \"look_at\": [0, -16, 2.2]},\n"
+  "                {\"time\": 0.3, \"position\": [2, -10, 2.0], \"look_at\": [0, 4, 1.0]}]}\n")
+probe_test(path_look_at_eye 1 "look_at_eye.json:keyframes\\[0\\].look_at: is straight above, below or at the position"
+           "${WANGSCAPE_BIN}" view "${probe_view_folder}" --path "${probe_dir}/look_at_eye.json" --stats --size 32x24)
+# An output file that is a folder: refused as a flag before the work (it was "rename failed" after).
+file(MAKE_DIRECTORY "${probe_dir}/a_folder.png")
+probe_test(view_out_is_folder 2 "--out: '.*a_folder.png' is a folder. name a file to write"
+           "${WANGSCAPE_BIN}" view "${probe_view_folder}" --size 32x24 --out "${probe_dir}/a_folder.png")
+probe_test(tiling_out_is_folder 2 "--out: '.*a_folder.png' is a folder. name a file to write"
+           "${WANGSCAPE_BIN}" tiling --set cohen8 --size 4x4 --out "${probe_dir}/a_folder.png")
+probe_test(tileset_sheet_is_folder 2 "--sheet: '.*a_folder.png' is a folder. name a file to write"
+           "${WANGSCAPE_BIN}" tileset --set cohen8 --sheet "${probe_dir}/a_folder.png")
+# --fps below 1 frame/s: refused before the frames (ffmpeg failed afterwards while the range was (0, 240]).
+probe_test(view_fps_tiny 1 "--fps 1e-300: expected 1 .. 240 frames per second"
+           "${WANGSCAPE_BIN}" view "${probe_view_folder}" --path "${CLI_SCRATCH}/view/path.json" --frames "${probe_dir}/fps_frames" --fps 1e-300)
+# --chunk 0: the range's real bounds (CLI11's PositiveNumber printed the largest double, 309 digits).
+probe_test(batch_chunk_zero 2 "^--chunk: Value 0 not in range 1 to 100000$"
+           "${WANGSCAPE_BIN}" batch run "${probe_dir}/none.toml" --out "${probe_dir}/chunk" --chunk 0)
+probe_test(scatter_max_instances_zero 2 "^--max-instances: Value 0 not in range 1 to 1000000000000000$"
+           "${WANGSCAPE_BIN}" scatter --tileset "${probe_dir}/none.json" --max-instances 0)
+set_tests_properties(hostile_probe_path_look_at_eye hostile_probe_view_out_is_folder hostile_probe_view_fps_tiny
+                     PROPERTIES FIXTURES_REQUIRED view_folder)
