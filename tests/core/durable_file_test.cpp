@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "tests/generator/test_support.h"
 
 namespace wangscape {
 namespace {
@@ -26,14 +27,7 @@ fs::path fresh_folder(const std::string& name) {
   return dir;
 }
 
-std::string message_of(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using wangscape::testing::error_of;
 
 TEST(DurableFile, FlushesFilesFoldersAndTrees) {
   const fs::path dir = fresh_folder("tree");
@@ -49,13 +43,13 @@ TEST(DurableFile, FlushesFilesFoldersAndTrees) {
 
 TEST(DurableFile, ErrorsNameTheFileOrFolder) {
   const fs::path dir = fresh_folder("errors");
-  EXPECT_EQ(message_of([&] { sync_file(dir / "missing.bin"); }),
+  EXPECT_EQ(error_of([&] { sync_file(dir / "missing.bin"); }),
             (dir / "missing.bin").string() + ": cannot open the file to flush it to disk: No such file or directory");
-  EXPECT_EQ(message_of([&] { sync_folder(dir / "missing"); }),
+  EXPECT_EQ(error_of([&] { sync_folder(dir / "missing"); }),
             (dir / "missing").string() + ": cannot open the folder to flush it to disk: No such file or directory");
-  EXPECT_EQ(message_of([&] { sync_file(-1, dir / "x.bin"); }),
+  EXPECT_EQ(error_of([&] { sync_file(-1, dir / "x.bin"); }),
             (dir / "x.bin").string() + ": cannot flush the file to disk: Bad file descriptor");
-  EXPECT_NE(message_of([&] { sync_tree(dir / "missing"); }).find((dir / "missing").string()), std::string::npos);
+  EXPECT_NE(error_of([&] { sync_tree(dir / "missing"); }).find((dir / "missing").string()), std::string::npos);
   fs::remove_all(dir);
 }
 

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "renders/view/view_frames.h"
+#include "tests/generator/test_support.h"
 #include "tests/renders/view_test_world.h"
 
 namespace wangscape {
@@ -36,16 +37,7 @@ PathPlayback small_playback() {
   return playback;
 }
 
-// The message of what `f` throws, or "" when it throws nothing.
-template <class F>
-std::string refusal(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using wangscape::testing::error_of;
 
 TEST(ldi_view_frames, APathIsPlayedFrameByFrameInOrder) {
   PathPlayback playback = small_playback();
@@ -103,8 +95,8 @@ TEST(ldi_view_frames, APathOffTheGroundIsRefusedBeforeTheFirstFrame) {
                         {"time": 1, "position": [5000, -10], "height_above_ground": 2, "look_at": [0, 0, 1]}]})",
       "off.json");
   int frames = 0;
-  const std::string message =
-      refusal([&] { play_view_path(field(), off, "off.json", small_playback(), [&](const PathFrame&) { ++frames; }); });
+  const std::string message = error_of(
+      [&] { play_view_path(field(), off, "off.json", small_playback(), [&](const PathFrame&) { ++frames; }); });
   EXPECT_NE(message.find("off.json: at 1.000 s the eye"), std::string::npos) << message;
   EXPECT_EQ(frames, 0);
 }
@@ -113,12 +105,12 @@ TEST(ldi_view_frames, TooManyFramesAreRefusedNamingWhatSetsTheRate) {
   ViewPath hour = walk();
   hour.keys.back().time = 3600;
   EXPECT_EQ(path_frame_count(hour, 24, "hour.json"), 86401);
-  const std::string library = refusal([&] { path_frame_count(hour, 240, "hour.json"); });
+  const std::string library = error_of([&] { path_frame_count(hour, 240, "hour.json"); });
   EXPECT_NE(library.find("hour.json: lasts 3600 s: 864001 frames at 240 frames/s; at most 100000 are rendered "
                          "(lower the frame rate or cut the path in parts)"),
             std::string::npos)
       << library;
-  EXPECT_NE(refusal([&] { path_frame_count(hour, 240, "hour.json", "--fps"); }).find("(lower --fps or"),
+  EXPECT_NE(error_of([&] { path_frame_count(hour, 240, "hour.json", "--fps"); }).find("(lower --fps or"),
             std::string::npos);
 }
 
@@ -150,7 +142,7 @@ TEST(ldi_view_frames, TheCamerasRefusalsNameNoFlag) {
   for (const auto& [choice, words] :
        {std::pair{wide, "field of view 200: expected degrees in (0, 179]"},
         std::pair{off, "eye at 5000,0: not over the ground"}, std::pair{above, "must lie sideways of the eye"}}) {
-    const std::string message = refusal([&] { view_camera(*field(), choice); });
+    const std::string message = error_of([&] { view_camera(*field(), choice); });
     EXPECT_NE(message.find(words), std::string::npos) << message;
     EXPECT_EQ(message.find("--"), std::string::npos) << message;
   }
