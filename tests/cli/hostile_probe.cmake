@@ -85,3 +85,16 @@ probe_test(view_ldi_frame_right_zero 1 "^wangscape: error: .*frame_view/tiles.ld
              \"$0\" view \"$1\" --size 32x24 --out \"$1/x.png\" || (code=$? && test ! -e \"$1/x.png\" || exit 9 && exit $code)"
            "${WANGSCAPE_BIN}" "${probe_dir}/frame_view" "${probe_view_folder}" "${CMAKE_CURRENT_SOURCE_DIR}/ldi_frame.py")
 set_tests_properties(hostile_probe_view_ldi_frame_right_zero PROPERTIES FIXTURES_REQUIRED view_folder)
+
+# Kind 7: --camera and --look-at beyond +-1e7 m, as the scene and path files refuse them (the
+# view drew empty sky and exited 0): exit 1 as the view's other range checks, naming the flag, the
+# value and the range, before the folder loads, and no frame written.
+foreach(flag camera look-at)
+  probe_test(view_${flag}_far 1 "^wangscape: error: --${flag} 1e\\+15,1e\\+15,1400: expected each of E, N, H within -1e\\+07 .. 1e\\+07 meters of the scene's origin$"
+             sh -c "rm -f \"$1\" && \"$0\" view \"$2\" --${flag} 1e15,1e15,1400 --size 32x24 --out \"$1\" || (code=$? && test ! -e \"$1\" || exit 9 && exit $code)"
+             "${WANGSCAPE_BIN}" "${probe_dir}/far_${flag}.png" "${probe_view_folder}")
+endforeach()
+probe_test(view_camera_far_ground 1 "^wangscape: error: --camera 0,-1e\\+08: expected each of E, N, H within"
+           "${WANGSCAPE_BIN}" view "${probe_view_folder}" --camera 0,-1e8 --size 32x24 --stats --repeat 1)
+set_tests_properties(hostile_probe_view_camera_far hostile_probe_view_look-at_far hostile_probe_view_camera_far_ground
+                     PROPERTIES FIXTURES_REQUIRED view_folder)
