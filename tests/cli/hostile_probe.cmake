@@ -98,3 +98,23 @@ probe_test(view_camera_far_ground 1 "^wangscape: error: --camera 0,-1e\\+08: exp
            "${WANGSCAPE_BIN}" view "${probe_view_folder}" --camera 0,-1e8 --size 32x24 --stats --repeat 1)
 set_tests_properties(hostile_probe_view_camera_far hostile_probe_view_look-at_far hostile_probe_view_camera_far_ground
                      PROPERTIES FIXTURES_REQUIRED view_folder)
+
+# Kind 8: tiles that cannot be written (a file-size limit of 1 KB) leave no folder, not even an
+# empty one, and no staging folder beside it (noise tiles left an empty folder): exit 1, the file
+# named. The tiles are staged beside the folder and published by a rename (core/staged_folder.h).
+foreach(kind noise texture)
+  set(exemplar "")
+  if(kind STREQUAL "texture")
+    set(exemplar "--exemplar meadow --size 32")
+  endif()
+  probe_test(${kind}_tiles_unwritable 1 "^wangscape: error: cannot write '[^']*/${kind}_unwritable/${kind}_tile_0.png': write failed"
+             bash -c "rm -rf \"$1\" && ulimit -f 1 && \"$0\" ${kind} tiles ${exemplar} --out \"$1\" || (code=$? && test ! -e \"$1\" && ! ls -a \"$(dirname \"$1\")\" | grep -q '^[.]${kind}_unwritable[.]' || exit 9 && exit $code)"
+             "${WANGSCAPE_BIN}" "${probe_dir}/${kind}_unwritable")
+endforeach()
+probe_test(tiling_unwritable 1 "^wangscape: error: cannot write '[^']*/tiling_unwritable.png': write failed"
+           bash -c "rm -f \"$1\" && ulimit -f 1 && \"$0\" tiling --set cohen8 --size 64x64 --out \"$1\" || (code=$? && test ! -e \"$1\" && ! ls -a \"$(dirname \"$1\")\" | grep -q '^[.]tiling_unwritable[.]' || exit 9 && exit $code)"
+           "${WANGSCAPE_BIN}" "${probe_dir}/tiling_unwritable.png")
+# An existing folder that holds other files is refused before the work (the tiles replace the folder whole).
+probe_test(noise_tiles_other_folder 1 "^wangscape: error: .*/other_folder: exists and is not a folder of tiles \\(it has no noise_tiles.json\\). give a new or empty folder, or an earlier run's$"
+           sh -c "rm -rf \"$1\" && mkdir -p \"$1\" && touch \"$1/keep\" && \"$0\" noise tiles --out \"$1\" || (code=$? && test -e \"$1/keep\" || exit 9 && exit $code)"
+           "${WANGSCAPE_BIN}" "${probe_dir}/other_folder")
