@@ -11,6 +11,7 @@
 #include "core/memory_budget.h"
 #include "core/number_text.h"
 #include "core/vecmath.h"
+#include "scene/scene_file.h"
 
 namespace wangscape::cli {
 
@@ -29,6 +30,20 @@ void check_range(T value, T low, T high, const char* flag, const std::string& un
                 number_text(high) + " " + unit);
 }
 
+// "--FLAG E,N,H: expected each of E, N, H within -1e+07 .. 1e+07 meters" unless each part is, as
+// the scene file's camera (NaN fails; a NaN height is --camera's height not given).
+void check_position(const std::optional<std::array<double, 3>>& position, const char* flag) {
+  if (!position) return;
+  const auto& p = *position;
+  const bool no_height = std::isnan(p[2]);
+  const auto in_range = [](double v) { return std::abs(v) <= kMaxCameraMeters; };
+  if (in_range(p[0]) && in_range(p[1]) && (no_height || in_range(p[2]))) return;
+  std::string given = number_text(p[0]) + "," + number_text(p[1]);
+  if (!no_height) given += "," + number_text(p[2]);
+  throw Error(std::string(flag) + " " + given + ": expected each of E, N, H within " + number_text(-kMaxCameraMeters) +
+              " .. " + number_text(kMaxCameraMeters) + " meters of the scene's origin");
+}
+
 }  // namespace
 
 void check_view_request(const ViewRequest& request) {
@@ -36,6 +51,8 @@ void check_view_request(const ViewRequest& request) {
       (request.width < 1 || request.height < 1 || request.width > 16384 || request.height > 16384))
     throw Error("--size " + std::to_string(request.width) + "x" + std::to_string(request.height) +
                 ": expected WIDTHxHEIGHT, each 1 .. 16384 pixels");
+  check_position(request.camera, "--camera");
+  check_position(request.look_at, "--look-at");
   if (request.fov_degrees) check_field_of_view(*request.fov_degrees, "--fov");
   if (!request.path.empty() && request.frames_dir.empty() && !request.stats && request.compare_every == 0)
     throw Error("--path: needs --frames OUTDIR (or --stats, or --compare-every K)");

@@ -38,9 +38,9 @@ struct ViewRequest {
   bool quiet = false;
 };
 
-// Refuses flags out of range (sizes, --fov, --fps, --repeat, --detail, --near, --spp,
-// --truth-spp) and flags that need another (--path without --frames, --diff without --compare),
-// before anything is read. Throws Error naming the flag.
+// Refuses flags out of range (--camera and --look-at beyond kMaxCameraMeters, sizes, --fov, --fps,
+// --repeat, --detail, --near, --spp, --truth-spp) and flags that need another (--path without
+// --frames, --diff without --compare), before anything is read. Throws Error naming the flag.
 void check_view_request(const ViewRequest& request);
 
 // Refuses frames of width x height pixels whose buffers would pass the memory limit

@@ -2,20 +2,13 @@
 
 #include "exporters/folder_state.h"
 
-#include <fcntl.h>  // AT_FDCWD; renameat2 and RENAME_EXCHANGE come from <cstdio> (glibc 2.28+, _GNU_SOURCE)
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
-#include <cstdio>
-#include <cstring>
 #include <memory>
 #include <vector>
 
 #include "core/atomic_file.h"
-#include "core/durable_file.h"
-#include "core/run_cleanup.h"
+#include "core/staged_folder.h"
 #include "core/text_file.h"
 #include "exporters/blender_export.h"
 #include "exporters/export_support.h"
@@ -37,66 +30,6 @@ void say(const SceneFolderObserver& observer, const std::string& message) {
   if (observer.stage) observer.stage(message);
 }
 
-// The folder a build stages into and the one an old build is moved to during the swap.
-fs::path sibling(const fs::path& out_dir, const char* role) {
-  std::string name(1, '.');  // appended piecewise: GCC 12 warns falsely on "." + ...
-  name += out_dir.filename().string();
-  name += '.';
-  name += role;
-  name += '-';
-  name += std::to_string(::getpid());
-  return out_dir.parent_path() / name;
-}
-
-// Replaces out_dir by staging: with one rename when out_dir does not exist, else with one
-// exchange of the two folders (renameat2 RENAME_EXCHANGE), so a reader, or a kill at any moment,
-// finds the old folder or the new one, never none; the old build, now at the staging name, is
-// removed after. Where the filesystem cannot exchange (EINVAL: not supported there), out_dir is
-// renamed aside first and the new one renamed in, which the observer is told: in between, for a
-// moment, there is no folder (a run killed there puts the old one back on the next write).
-// Durably (core/durable_file.h): every file and folder of staging is flushed to disk before the
-// swap, the folder holding out_dir after it, so a power cut leaves the old build or the new one.
-void publish(const fs::path& staging, const fs::path& out_dir, const SceneFolderObserver& observer) {
-  sync_tree(staging);
-  auto uninterrupted = hold_run_cleanup();  // an interrupt waits until the swap is done
-  std::error_code ec;
-  if (fs::exists(out_dir, ec)) {
-    if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, out_dir.c_str(), RENAME_EXCHANGE) == 0) {
-      uninterrupted.unlock();  // staging (still a registered temporary) now holds the old build
-      sync_folder(out_dir.parent_path());
-      fs::remove_all(staging, ec);
-      unregister_temporary(staging);
-      return;
-    }
-    if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP)
-      throw Error(out_dir, "", std::string("cannot swap the new build in: ") + std::strerror(errno));
-    if (observer.warning)
-      observer.warning("this filesystem cannot exchange two folders at once (" + std::string(std::strerror(errno)) +
-                       "); replacing " + out_dir.string() + " with two renames");
-    const fs::path old = sibling(out_dir, "old");
-    fs::remove_all(old, ec);
-    fs::rename(out_dir, old, ec);
-    if (ec) throw Error(out_dir, "", "cannot move the earlier build aside: " + ec.message());
-    fs::rename(staging, out_dir, ec);
-    if (ec) {
-      std::error_code restore;
-      fs::rename(old, out_dir, restore);
-      throw Error(out_dir, "", "cannot move the new build into place: " + ec.message());
-    }
-    unregister_temporary(staging);
-    register_temporary(old);
-    uninterrupted.unlock();
-    sync_folder(out_dir.parent_path());
-    fs::remove_all(old, ec);
-    unregister_temporary(old);
-    return;
-  }
-  fs::rename(staging, out_dir, ec);
-  if (ec) throw Error(out_dir, "", "cannot create the scene folder: " + ec.message());
-  unregister_temporary(staging);
-  sync_folder(out_dir.parent_path());
-}
-
 }  // namespace
 
 void check_scene_folder_target(const fs::path& out_dir_in) {
@@ -116,33 +49,12 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
                                       const fs::path& scene_base_dir, const StagedWriter& also_write) {
   const auto start = std::chrono::steady_clock::now();
   check_scene_folder_target(out_dir_in);
-  auto out_dir = fs::absolute(out_dir_in).lexically_normal();
-  if (out_dir.filename().empty()) out_dir = out_dir.parent_path();
-
-  std::error_code ec;
-  // The parent folders this build makes, nearest first: a build that fails removes them again.
-  std::vector<fs::path> made;
-  for (fs::path p = out_dir.parent_path(); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
-    made.push_back(p);
-    if (p == p.parent_path()) break;
-  }
-  const auto remove_made = [&] {
-    for (const fs::path& p : made) fs::remove(p, ec);  // only while empty
-  };
-  fs::create_directories(out_dir.parent_path(), ec);
-  remove_stale_temporaries(out_dir.parent_path());
-  const fs::path staging = sibling(out_dir, "partial");
-  fs::remove_all(staging, ec);
-  register_temporary(staging);
-  if (!fs::create_directory(staging, ec) || ec) {
-    unregister_temporary(staging);
-    const std::string why = ec.message();
-    remove_made();
-    throw Error(staging, "", "cannot create the staging folder beside the output folder: " + why);
-  }
+  StagedFolder staged(out_dir_in);
+  const fs::path& out_dir = staged.target();
+  const fs::path& staging = staged.path();
 
   SceneFolderSummary summary;
-  try {
+  {  // the writers live until the folder is published
     std::unique_ptr<PovrayWriter> povray;
     std::unique_ptr<BlenderWriter> blender;
     std::unique_ptr<GltfWriter> gltf;
@@ -201,15 +113,7 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
     write_file_atomically(staging / "scene.toml", scene_text);
     if (!scene_base_dir.empty())
       write_file_atomically(staging / kSceneBaseFile, fs::absolute(scene_base_dir).lexically_normal().string() + "\n");
-    publish(staging, out_dir, observer);
-    // The folders this build made hold their entries durably too (the nearest is out_dir's
-    // parent, flushed by publish).
-    for (const fs::path& p : made) sync_folder(p.parent_path());
-  } catch (...) {
-    fs::remove_all(staging, ec);
-    unregister_temporary(staging);
-    remove_made();
-    throw;
+    staged.publish(observer.warning);
   }
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;

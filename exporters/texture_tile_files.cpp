@@ -9,6 +9,7 @@
 
 #include "core/atomic_file.h"
 #include "core/json_text.h"
+#include "core/staged_folder.h"
 #include "exporters/image_io.h"
 #include "scene/ground_look.h"
 #include "scene/tileset_file.h"
@@ -17,10 +18,38 @@ namespace wangscape {
 
 namespace {
 
-void make_folder(const std::filesystem::path& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error) throw Error("cannot create folder '" + dir.string() + "': " + error.message());
+constexpr const char* kNoiseTilesFile = "noise_tiles.json";
+constexpr const char* kTextureTilesFile = "texture_tiles.json";
+
+// Throws Error naming `dir` unless it is missing, empty or an earlier folder of these tiles (it
+// holds `json_name`): the folder is replaced whole, so nothing else may be in it.
+void check_tile_folder_target(const std::filesystem::path& dir, const char* json_name) {
+  std::error_code ec;
+  if (!std::filesystem::exists(dir, ec)) return;
+  if (!std::filesystem::is_directory(dir, ec)) throw Error(dir, "", "exists and is not a folder");
+  if (std::filesystem::is_empty(dir, ec) || std::filesystem::is_regular_file(dir / json_name, ec)) return;
+  throw Error(dir, "",
+              std::string("exists and is not a folder of tiles (it has no ") + json_name +
+                  "); give a new or empty folder, or an earlier run's");
+}
+
+// A folder of tiles written whole or not at all (core/staged_folder.h): `write` fills the
+// staging folder, which then replaces `dir`; a failed write leaves `dir` as it was, or none. Its
+// errors name a file where it was to be, not under the staging folder's name.
+template <class Write>
+void write_tile_folder(const std::filesystem::path& dir, const char* json_name, Write&& write) {
+  check_tile_folder_target(dir, json_name);
+  StagedFolder staged(dir);
+  try {
+    write(staged.path());
+  } catch (const Error& e) {
+    std::string message = e.what();
+    const std::string staging = staged.path().string(), target = staged.target().string();
+    for (auto at = message.find(staging); at != std::string::npos; at = message.find(staging, at + target.size()))
+      message.replace(at, staging.size(), target);
+    throw Error(message);
+  }
+  staged.publish();
 }
 
 // The tile entries: file name plus the tile's colors, in set order.
@@ -67,12 +96,52 @@ void write_tiles_after_preview(const std::filesystem::path& preview, bool no_pre
   }
 }
 
+// The files of write_noise_tile_files into `dir`.
+void fill_noise_tile_folder(const std::filesystem::path& dir, const NoiseTileSet& tiles, int pixels,
+                            NoisePattern pattern) {
+  for (std::uint32_t t = 0; t < tiles.size(); ++t)
+    write_image_gray16(dir / ("noise_tile_" + std::to_string(t) + ".png"),
+                       rasterize_noise_tile(tiles, t, pixels, pattern));
+  const bool is_signed = pattern == NoisePattern::noise || pattern == NoisePattern::fbm;
+  Json doc;
+  doc["kind"] = "noise";
+  doc["set"] = tileset_to_json(tiles.set());
+  doc["lattice"] = tiles.lattice();
+  doc["octaves"] = tiles.levels();
+  doc["seed"] = tiles.seed();
+  doc["pattern"] = to_string(pattern);
+  doc["pixels"] = pixels;
+  doc["gray"] = {{"min", is_signed ? -1 : 0}, {"max", 1}};
+  doc["tiles"] = tile_entries(tiles.set(), "noise_tile_");
+  write_file_atomically(dir / kNoiseTilesFile, json_text(doc, 2) + "\n");
+}
+
+// The files of write_texture_tile_files into `dir`.
+void fill_texture_tile_folder(const std::filesystem::path& dir, const TextureTileSet& tiles) {
+  for (std::size_t t = 0; t < tiles.tiles.size(); ++t)
+    write_image(dir / ("texture_tile_" + std::to_string(t) + ".png"), tiles.tiles[t].image);
+  Json doc;
+  doc["kind"] = "texture";
+  doc["set"] = tileset_to_json(tiles.set);
+  doc["tile_size"] = tiles.tile_size;
+  doc["marks"] = tiles.marks;
+  doc["total_error"] = tiles.total_error();
+  Json windows = Json::array();
+  for (const TextureWindow& w : tiles.windows) windows.push_back({{"exemplar", w.exemplar}, {"x", w.x}, {"y", w.y}});
+  doc["windows"] = std::move(windows);
+  Json entries = tile_entries(tiles.set, "texture_tile_");
+  for (std::size_t t = 0; t < tiles.tiles.size(); ++t) entries[t]["error"] = tiles.tiles[t].error;
+  doc["tiles"] = std::move(entries);
+  write_file_atomically(dir / kTextureTilesFile, json_text(doc, 2) + "\n");
+}
+
 }  // namespace
 
 std::string run_tiles_job(const NoiseTilesJob& job) {
   const auto start = std::chrono::steady_clock::now();
   const std::array<int, 2> size =
       job.preview_size.empty() ? std::array<int, 2>{} : parse_preview_size(job.preview_size);
+  check_tile_folder_target(job.out, kNoiseTilesFile);  // before the work
   const NoiseTileSet tiles(load_tileset(job.set), job.options);
   // The preview first: a preview that cannot be written leaves no tiles folder behind.
   if (!job.preview_size.empty()) {
@@ -100,6 +169,7 @@ std::string run_tiles_job(const TextureTilesJob& job) {
   const auto start = std::chrono::steady_clock::now();
   const std::array<int, 2> size =
       job.preview_size.empty() ? std::array<int, 2>{} : parse_preview_size(job.preview_size);
+  check_tile_folder_target(job.out, kTextureTilesFile);  // before the work
   std::vector<ImageRgb8> exemplars;
   for (const auto& name : job.exemplars) {
     const auto shipped = shipped_exemplar(name);
@@ -127,41 +197,14 @@ std::string run_tiles_job(const TextureTilesJob& job) {
 
 void write_noise_tile_files(const std::filesystem::path& dir, const NoiseTileSet& tiles, int pixels,
                             NoisePattern pattern) {
-  make_folder(dir);
-  for (std::uint32_t t = 0; t < tiles.size(); ++t)
-    write_image_gray16(dir / ("noise_tile_" + std::to_string(t) + ".png"),
-                       rasterize_noise_tile(tiles, t, pixels, pattern));
-  const bool is_signed = pattern == NoisePattern::noise || pattern == NoisePattern::fbm;
-  Json doc;
-  doc["kind"] = "noise";
-  doc["set"] = tileset_to_json(tiles.set());
-  doc["lattice"] = tiles.lattice();
-  doc["octaves"] = tiles.levels();
-  doc["seed"] = tiles.seed();
-  doc["pattern"] = to_string(pattern);
-  doc["pixels"] = pixels;
-  doc["gray"] = {{"min", is_signed ? -1 : 0}, {"max", 1}};
-  doc["tiles"] = tile_entries(tiles.set(), "noise_tile_");
-  write_file_atomically(dir / "noise_tiles.json", json_text(doc, 2) + "\n");
+  write_tile_folder(dir, kNoiseTilesFile, [&](const std::filesystem::path& staging) {
+    fill_noise_tile_folder(staging, tiles, pixels, pattern);
+  });
 }
 
 void write_texture_tile_files(const std::filesystem::path& dir, const TextureTileSet& tiles) {
-  make_folder(dir);
-  for (std::size_t t = 0; t < tiles.tiles.size(); ++t)
-    write_image(dir / ("texture_tile_" + std::to_string(t) + ".png"), tiles.tiles[t].image);
-  Json doc;
-  doc["kind"] = "texture";
-  doc["set"] = tileset_to_json(tiles.set);
-  doc["tile_size"] = tiles.tile_size;
-  doc["marks"] = tiles.marks;
-  doc["total_error"] = tiles.total_error();
-  Json windows = Json::array();
-  for (const TextureWindow& w : tiles.windows) windows.push_back({{"exemplar", w.exemplar}, {"x", w.x}, {"y", w.y}});
-  doc["windows"] = std::move(windows);
-  Json entries = tile_entries(tiles.set, "texture_tile_");
-  for (std::size_t t = 0; t < tiles.tiles.size(); ++t) entries[t]["error"] = tiles.tiles[t].error;
-  doc["tiles"] = std::move(entries);
-  write_file_atomically(dir / "texture_tiles.json", json_text(doc, 2) + "\n");
+  write_tile_folder(dir, kTextureTilesFile,
+                    [&](const std::filesystem::path& staging) { fill_texture_tile_folder(staging, tiles); });
 }
 
 }  // namespace wangscape

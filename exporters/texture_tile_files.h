@@ -18,7 +18,8 @@ namespace wangscape {
 // and DIR/noise_tiles.json:
 //   {"kind": "noise", "set": {tile-set JSON}, "lattice", "octaves", "seed", "pattern", "pixels",
 //    "gray": {"min": -1 or 0, "max": 1}, "tiles": [{"file": "noise_tile_0.png", "n": 0, ...}, ...]}
-// Creates DIR if needed.
+// DIR is staged beside it and replaces it whole (core/staged_folder.h): it must be missing, empty
+// or an earlier folder of the same tiles, and a failed write leaves it as it was.
 void write_noise_tile_files(const std::filesystem::path& dir, const NoiseTileSet& tiles, int pixels,
                             NoisePattern pattern = NoisePattern::fbm);
 
@@ -26,7 +27,8 @@ void write_noise_tile_files(const std::filesystem::path& dir, const NoiseTileSet
 //   {"kind": "texture", "set": {tile-set JSON}, "tile_size", "marks", "total_error",
 //    "windows": [{"exemplar", "x", "y"}, ...],
 //    "tiles": [{"file": "texture_tile_0.png", "error": 123, "n": 0, ...}, ...]}
-// Creates DIR if needed.
+// DIR is staged beside it and replaces it whole (core/staged_folder.h): it must be missing, empty
+// or an earlier folder of the same tiles, and a failed write leaves it as it was.
 void write_texture_tile_files(const std::filesystem::path& dir, const TextureTileSet& tiles);
 
 // `wangscape noise tiles` and `wangscape texture tiles`: make a set's tiles, write them to

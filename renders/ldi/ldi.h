@@ -58,6 +58,10 @@ struct LdiSpan {
 };
 static_assert(sizeof(LdiSpan) == 12);
 
+// Every tile's prism: [0, tile size] x [0, tile size] x [kLdiPrismBottom, the pack's prism top],
+// tile-local meters; its bottom just below the ground plane, so the ground is inside.
+inline constexpr float kLdiPrismBottom = -1e-3f;
+
 // Where an LDI sits and how to decode it (96 bytes). Positions are tile-local meters (x east from
 // the tile's west edge, y north from its south edge, z up from the ground). Pixel (x, y), row 0
 // at the top, depth d meters: origin + (x + 0.5) p right - (y + 0.5) p up + d forward.

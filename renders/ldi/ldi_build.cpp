@@ -30,7 +30,6 @@ using V3 = Vector3d;
 std::array<float, 3> to_float(const V3& a) { return {float(a[0]), float(a[1]), float(a[2])}; }
 
 constexpr double kPi = std::numbers::pi;
-constexpr float kPrismBottom = -1e-3f;  // meters: just below the ground plane, so the ground is inside
 
 // ---- Embree: the device, one prototype scene per model, one context scene per tile ----------
 
@@ -160,7 +159,7 @@ Frame make_frame(const LdiLevels& levels, double tile_size, int level, int direc
   // The prism's extent on the image axes and along the rays.
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
   for (int c = 0; c < 8; ++c) {
-    const V3 p{(c & 1) ? tile_size : 0.0, (c & 2) ? tile_size : 0.0, (c & 4) ? levels.prism_top : kPrismBottom};
+    const V3 p{(c & 1) ? tile_size : 0.0, (c & 2) ? tile_size : 0.0, (c & 4) ? levels.prism_top : kLdiPrismBottom};
     const double q[3] = {dot(p, f.right), dot(p, f.up), dot(p, f.forward)};
     for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
   }
@@ -260,7 +259,7 @@ class LdiSampler {
     r.org = to_float(o);
     // Slab clip against the prism [0, s] x [0, s] x [bottom, top].
     double t0 = 0, t1 = 1e30;
-    const double lo[3] = {0, 0, kPrismBottom}, hi[3] = {double(s_), double(s_), double(top_)};
+    const double lo[3] = {0, 0, kLdiPrismBottom}, hi[3] = {double(s_), double(s_), double(top_)};
     for (int k = 0; k < 3; ++k) {
       const double d = f_.forward[std::size_t(k)];
       if (std::abs(d) < 1e-12) {
@@ -346,7 +345,8 @@ class LdiSampler {
 
   bool inside(const std::array<float, 3>& p) const {
     const float e = 1e-4f * s_;
-    return p[0] >= -e && p[0] <= s_ + e && p[1] >= -e && p[1] <= s_ + e && p[2] >= kPrismBottom - e && p[2] <= top_ + e;
+    return p[0] >= -e && p[0] <= s_ + e && p[1] >= -e && p[1] <= s_ + e && p[2] >= kLdiPrismBottom - e &&
+           p[2] <= top_ + e;
   }
 
   // De-duplicates, drops hits outside the prism, merges close ones, shades the rest.

@@ -9,6 +9,8 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <numbers>
+#include <utility>
 
 #include "core/atomic_file.h"
 #include "core/number_text.h"
@@ -236,10 +238,77 @@ void write_ldi_pack(const std::filesystem::path& path, const LdiPackInfo& info, 
 
 namespace {
 
+// A frame's geometry against the pack's header: what the builder writes (make_frame in
+// ldi_build.cpp), within float rounding. Checked for finiteness only, a frame with a zero right
+// axis, a pixel of 1e30 m, an origin 1e30 m away or 65,535 pixels at a level of 429 passed, and
+// the view drew from it (issue 41).
+constexpr double kFrameTolerance = 1e-3;  // float rounding is about 1e-7
+
+Vector3d wide(const std::array<float, 3>& v) { return Vector3d{v[0], v[1], v[2]}; }
+
+std::string vector_text(const Vector3d& v) {
+  std::string out(1, '(');  // appended piecewise: GCC 12 warns falsely (-Wrestrict) on "(" + ...
+  for (std::size_t c = 0; c < 3; ++c) {
+    out += number_text(float(v[c]));
+    out += c < 2 ? ", " : ")";
+  }
+  return out;
+}
+
+// Unit axes at right angles (up = right x forward), the rays along the pack's azimuth of the
+// frame's direction and elevation of its level.
+template <class Fail>
+void check_frame_axes(const LdiFrame& f, const LdiPackInfo& info, Fail&& fail) {
+  const Vector3d right = wide(f.right), up = wide(f.up), forward = wide(f.forward);
+  for (const auto& [name, axis] : {std::pair{"right", right}, std::pair{"up", up}, std::pair{"forward", forward}})
+    if (!(std::abs(length(axis) - 1) <= kFrameTolerance))
+      fail(std::string("its frame's ") + name + " axis " + vector_text(axis) + " has length " +
+           number_text(length(axis)) + "; expected a unit vector");
+  if (!(std::abs(dot(right, up)) <= kFrameTolerance && std::abs(dot(right, forward)) <= kFrameTolerance &&
+        std::abs(dot(up, forward)) <= kFrameTolerance && dot(cross(right, forward), up) > 0))
+    fail("its frame's axes right " + vector_text(right) + ", up " + vector_text(up) + ", forward " +
+         vector_text(forward) + " are not at right angles with up = right x forward");
+  const float azimuth = info.azimuths[f.direction], elevation = info.elevations[f.level];
+  const double a = double(azimuth) * std::numbers::pi / 180, e = double(elevation) * std::numbers::pi / 180;
+  const Vector3d along{std::sin(a) * std::cos(e), std::cos(a) * std::cos(e), -std::sin(e)};
+  if (!(length(forward - along) <= kFrameTolerance && std::abs(f.azimuth_degrees - azimuth) <= kFrameTolerance &&
+        std::abs(f.elevation_degrees - elevation) <= kFrameTolerance))
+    fail("its frame looks along azimuth " + number_text(f.azimuth_degrees) + ", elevation " +
+         number_text(f.elevation_degrees) + " (forward " + vector_text(forward) +
+         "); its direction and level are azimuth " + number_text(azimuth) + ", elevation " + number_text(elevation) +
+         " degrees");
+}
+
+// The level's pixel size; an image and a depth that cover the tile's prism, no more: no side
+// and no depth beyond the prism's diagonal, the origin (the image's corner) within it of the
+// prism's centre.
+template <class Fail>
+void check_frame_extent(const LdiFrame& f, const LdiPackInfo& info, Fail&& fail) {
+  const double tile = info.tile_size, pixel = tile / info.resolutions[f.level];
+  if (!(std::abs(f.pixel_size / pixel - 1) <= kFrameTolerance))
+    fail("its pixel size " + number_text(f.pixel_size) + " m is not the level's " + number_text(float(pixel)) + " m (" +
+         number_text(info.tile_size) + " m / " + std::to_string(info.resolutions[f.level]) + " pixels)");
+  const double height = double(info.prism_top) - kLdiPrismBottom;
+  const double diagonal = std::sqrt(2 * tile * tile + height * height);
+  const double most_pixels = std::floor(diagonal / pixel * (1 + kFrameTolerance)) + 2;
+  if (f.width > most_pixels || f.height > most_pixels)
+    fail("its size " + std::to_string(f.width) + " x " + std::to_string(f.height) + " pixels is more than the tile's " +
+         "prism spans at " + std::to_string(info.resolutions[f.level]) + " pixels a tile side (at most " +
+         fixed_text(most_pixels, 0) + " a side)");
+  if (!(f.depth_range <= diagonal * (1 + kFrameTolerance)))
+    fail("its depth range " + number_text(f.depth_range) + " m is more than the tile's prism spans (" +
+         fixed_text(diagonal, 3) + " m)");
+  const Vector3d centre{tile / 2, tile / 2, (double(info.prism_top) + kLdiPrismBottom) / 2};
+  const double away = length(wide(f.origin) - centre), most_away = diagonal + 2 * pixel;
+  if (!(away <= most_away))
+    fail("its origin " + vector_text(wide(f.origin)) + " lies " + significant_text(away, 6) +
+         " m from the centre of the tile's prism; expected within " + fixed_text(most_away, 3) + " m");
+}
+
 // Checks of one block, in the order a reader needs them; `fail` throws.
 template <class Fail>
 LdiView validate_block(const std::uint8_t* block, std::uint64_t bytes, std::uint32_t tile, std::uint32_t level,
-                       std::uint32_t direction, Fail&& fail) {
+                       std::uint32_t direction, const LdiPackInfo& info, Fail&& fail) {
   if (bytes < sizeof(LdiFrame)) fail("its block is " + std::to_string(bytes) + " bytes, shorter than its frame");
   const auto* f = reinterpret_cast<const LdiFrame*>(block);
   if (f->tile != tile || f->level != level || f->direction != direction)
@@ -256,6 +325,8 @@ LdiView validate_block(const std::uint8_t* block, std::uint64_t bytes, std::uint
       if (!std::isfinite(c)) fail("its frame's origin or axes hold a number that is not finite");
   if (!std::isfinite(f->azimuth_degrees) || !(f->elevation_degrees >= -90 && f->elevation_degrees <= 90))
     fail("its frame's azimuth is not finite or its elevation is not in [-90, 90] degrees");
+  check_frame_axes(*f, info, fail);
+  check_frame_extent(*f, info, fail);
   const BlockLayout layout(*f);
   if (layout.total > bytes)
     fail("its sections need " + std::to_string(layout.total) + " bytes, its block has " + std::to_string(bytes));
@@ -401,7 +472,7 @@ LdiPack::LdiPack(const std::filesystem::path& path) : path_(path) {
             block_fail("offset " + std::to_string(entry.offset) + " + " + std::to_string(entry.bytes) +
                        " bytes is outside the data (" + std::to_string(data_start) + " .. " + std::to_string(size_) +
                        ")");
-          views_[e] = validate_block(data_ + entry.offset, entry.bytes, t, l, d, block_fail);
+          views_[e] = validate_block(data_ + entry.offset, entry.bytes, t, l, d, info_, block_fail);
           block_bytes_[e] = entry.bytes;
         }
   } catch (...) {
