@@ -16,6 +16,9 @@
 // --path P --fps 60 --compare-every K --json` (docs/viewer.md, "The sample cache").
 // BM_CachedPath/PATH/W/H/0 draws every frame whole instead (LdiRenderer::render, the default
 // engine): the frames before the cache.
+// BM_WarmStep/W/H: the cost of a warm frame's passes, steadier than a path's medians on a busy
+// machine: two cameras of the walk 1/60 s apart (frames 120 and 121) drawn in turn, so that each
+// frame is the same small move; the minimum and median of each phase over 120 frames.
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
@@ -24,7 +27,9 @@
 #include <vector>
 
 #include "bench/default_view_world.h"
+#include "renders/view/frame_cache.h"
 #include "renders/view/view_frames.h"
+#include "renders/view/view_path.h"
 
 namespace {
 
@@ -95,6 +100,47 @@ void paths(benchmark::internal::Benchmark* b) {
     }
 }
 BENCHMARK(BM_CachedPath)->Apply(paths)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_WarmStep(benchmark::State& state) {
+  const auto world = default_world();
+  const std::filesystem::path file = std::filesystem::path(WANGSCAPE_SOURCE_DIR) / "bench/paths" / kPaths[0];
+  const ViewPath path = read_view_path(file);
+  const GroundHeightAt ground = [&](double e, double n) { return world->scene().field->ground.height(e, n); };
+  const double fov = world->scene().camera.fov_degrees, start = path.keys.front().time;
+  const Camera cameras[2] = {camera_along(path, start + 120.0 / kDefaultViewFps, fov, ground, file),
+                             camera_along(path, start + 121.0 / kDefaultViewFps, fov, ground, file)};
+  LdiRenderer renderer(world, int(state.range(0)), int(state.range(1)));
+  FrameCache cache(renderer);
+  renderer.apply(ViewSettings{});                            // the view's defaults, as play_view_path draws
+  for (int f = 0; f < 8; ++f) cache.render(cameras[f % 2]);  // cold, then warm
+  for (auto _ : state) {
+    std::vector<double> frame_ms;
+    std::array<std::vector<double>, 4> phases;
+    double cold = 0, fresh = 0;
+    for (int f = 0; f < 120; ++f) {
+      const CachedFrameStats& stats = cache.render(cameras[f % 2]);
+      cold += stats.cold;
+      fresh += stats.fresh_share();
+      frame_ms.push_back(stats.frame_ms);
+      for (std::size_t p = 0; p < phases.size(); ++p) phases[p].push_back(stats.phase_ms[p]);
+    }
+    state.counters["cold_frames"] = cold;
+    state.counters["fresh_share"] = fresh / 120;
+    state.counters["min_ms"] = at(frame_ms, 0);
+    state.counters["median_ms"] = at(frame_ms, 0.5);
+    const char* names[4] = {"reproject", "choose", "trace", "resolve"};
+    for (std::size_t p = 0; p < phases.size(); ++p) {
+      state.counters[std::string(names[p]) + "_min_ms"] = at(phases[p], 0);
+      state.counters[std::string(names[p]) + "_median_ms"] = at(phases[p], 0.5);
+    }
+  }
+}
+BENCHMARK(BM_WarmStep)
+    ->Args({640, 360})
+    ->Args({1280, 720})
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 

@@ -211,103 +211,135 @@ struct FrameCache::Impl {
 
 // ---- reprojection: each kept sample to where the new camera sees it ------------------------
 
-void FrameCache::Impl::reproject(const ViewProjection& to) {
-  const ViewProjection& from = projection;
-  // New camera coordinates = M * old camera coordinates + t (M = R_new^T R_old).
-  const Vector3d* old_axes[3] = {&from.right, &from.up, &from.forward};
-  const Vector3d* new_axes[3] = {&to.right, &to.up, &to.forward};
-  float M[3][3], t[3];
-  const Vector3d shift{from.eye[0] - to.eye[0], from.eye[1] - to.eye[1], from.eye[2] - to.eye[2]};
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) M[i][j] = float(dot(*new_axes[i], *old_axes[j]));
-    t[i] = float(dot(*new_axes[i], shift));
-  }
-  const KeptSamples& old = now();
-  std::fill(keys.begin(), keys.end(), kNoKey);
-  const float inv_focal = 1.0f / from.focal, inv_sub = 1.0f / kSubScale;
-  const float stretch = kSplatScale * to.focal / from.focal;
-  // Where the new camera sees old sample p of pixel (x, y): screen (px, py), the footprint's
-  // side (pixels) and the new depth (+inf: the sky; NaN: behind the eye).
+namespace {
+
+// Where the new camera sees a kept sample: the change of camera in floats. Each worker copies it
+// into its own registers: the keys' atomic writes (and the byte stores of the needs) otherwise make
+// the compiler reload every constant through memory once a write (a third of reproject()).
+struct Reprojection {
+  float M[3][3], t[3];  // new camera coordinates = M * old camera coordinates + t (M = R_new^T R_old)
+  float from_cx, from_cy, inv_focal, to_cx, to_cy, to_focal, stretch;
+  // Where the new camera sees sample s of old pixel (x, y): screen (px, py), the footprint's side
+  // (pixels) and the new depth (+inf: the sky; NaN: behind the eye).
   struct Seen {
     float px, py, side, depth;
   };
-  const auto project = [&](std::size_t p, int x, int y) -> Seen {
-    const float depth = old[p].depth;
-    const float u = (float(x) + 0.5f - from.cx + float(old[p].sub_x) * inv_sub) * inv_focal;
-    const float v = (from.cy - float(y) - 0.5f - float(old[p].sub_y) * inv_sub) * inv_focal;
+  Seen operator()(const Sample& s, int x, int y) const {
+    constexpr float inv_sub = 1.0f / kSubScale;
+    const float depth = s.depth;
+    const float u = (float(x) + 0.5f - from_cx + float(s.sub_x) * inv_sub) * inv_focal;
+    const float v = (from_cy - float(y) - 0.5f - float(s.sub_y) * inv_sub) * inv_focal;
     if (std::isinf(depth)) {  // a direction: turned, not moved
       const float n0 = M[0][0] * u + M[0][1] * v + M[0][2], n1 = M[1][0] * u + M[1][1] * v + M[1][2];
       const float n2 = M[2][0] * u + M[2][1] * v + M[2][2];
       if (!(n2 > 1e-6f)) return {0, 0, 0, kNone};
-      const float inv = to.focal / n2;
-      return {to.cx + n0 * inv, to.cy - n1 * inv, 1.0f, kInf};
+      const float inv = to_focal / n2;
+      return {to_cx + n0 * inv, to_cy - n1 * inv, 1.0f, kInf};
     }
     const float c0 = u * depth, c1 = v * depth;
     const float n0 = M[0][0] * c0 + M[0][1] * c1 + M[0][2] * depth + t[0];
     const float n1 = M[1][0] * c0 + M[1][1] * c1 + M[1][2] * depth + t[1];
     const float n2 = M[2][0] * c0 + M[2][1] * c1 + M[2][2] * depth + t[2];
     if (!(n2 > kNearest)) return {0, 0, 0, kNone};
-    const float inv = to.focal / n2;
-    return {to.cx + n0 * inv, to.cy - n1 * inv, std::min(kMaxStretch, stretch * depth / n2), n2};
-  };
-  const auto write = [&](int qx, int qy, std::uint64_t k) {
-    std::atomic_ref<std::uint64_t> slot(keys[std::size_t(qy) * std::size_t(width) + std::size_t(qx)]);
-    std::uint64_t seen = slot.load(std::memory_order_relaxed);
-    while (k < seen && !slot.compare_exchange_weak(seen, k, std::memory_order_relaxed)) {
-    }
-  };
-  tbb::parallel_for(tbb::blocked_range<int>(0, height, 4), [&](const tbb::blocked_range<int>& r) {
+    const float inv = to_focal / n2;
+    return {to_cx + n0 * inv, to_cy - n1 * inv, std::min(kMaxStretch, stretch * depth / n2), n2};
+  }
+};
+
+Reprojection reprojection(const ViewProjection& from, const ViewProjection& to) {
+  Reprojection r;
+  const Vector3d* old_axes[3] = {&from.right, &from.up, &from.forward};
+  const Vector3d* new_axes[3] = {&to.right, &to.up, &to.forward};
+  const Vector3d shift{from.eye[0] - to.eye[0], from.eye[1] - to.eye[1], from.eye[2] - to.eye[2]};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) r.M[i][j] = float(dot(*new_axes[i], *old_axes[j]));
+    r.t[i] = float(dot(*new_axes[i], shift));
+  }
+  r.from_cx = from.cx;
+  r.from_cy = from.cy;
+  r.inv_focal = 1.0f / from.focal;
+  r.to_cx = to.cx;
+  r.to_cy = to.cy;
+  r.to_focal = to.focal;
+  r.stretch = kSplatScale * to.focal / from.focal;
+  return r;
+}
+
+// key = min(key, k), whichever thread comes first.
+inline void keep_smaller(std::uint64_t& key, std::uint64_t k) {
+  std::atomic_ref<std::uint64_t> slot(key);
+  std::uint64_t seen = slot.load(std::memory_order_relaxed);
+  while (k < seen && !slot.compare_exchange_weak(seen, k, std::memory_order_relaxed)) {
+  }
+}
+
+}  // namespace
+
+void FrameCache::Impl::reproject(const ViewProjection& to) {
+  const Reprojection shared = reprojection(projection, to);
+  const Sample* const old = now().data();
+  Sample* const next = kept[1 - current].data();
+  std::uint64_t* const key = keys.data();
+  std::uint8_t* const needs = need.data();
+  const int w = width, h = height;
+  std::fill(keys.begin(), keys.end(), kNoKey);
+  tbb::parallel_for(tbb::blocked_range<int>(0, h, 4), [&](const tbb::blocked_range<int>& r) {
+    const Reprojection project = shared;
+    const float right_edge = float(w) + kMaxStretch, bottom_edge = float(h) + kMaxStretch;
     for (int y = r.begin(); y != r.end(); ++y)
-      for (int x = 0; x < width; ++x) {
-        const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+      for (int x = 0; x < w; ++x) {
+        const std::size_t p = std::size_t(y) * std::size_t(w) + std::size_t(x);
         if (is_none(old[p].depth)) continue;
-        const Seen s = project(p, x, y);
-        if (is_none(s.depth) || !(s.px > -kMaxStretch && s.py > -kMaxStretch && s.px < float(width) + kMaxStretch &&
-                                  s.py < float(height) + kMaxStretch))
+        const Reprojection::Seen s = project(old[p], x, y);
+        if (is_none(s.depth) ||
+            !(s.px > -kMaxStretch && s.py > -kMaxStretch && s.px < right_edge && s.py < bottom_edge))
           continue;
-        const std::uint64_t key = std::uint64_t(std::bit_cast<std::uint32_t>(s.depth)) << 32 | std::uint64_t(p);
-        const std::uint64_t copy_key = key | kCopyBit;
+        const std::uint64_t own_key = std::uint64_t(std::bit_cast<std::uint32_t>(s.depth)) << 32 | std::uint64_t(p);
+        const std::uint64_t copy_key = own_key | kCopyBit;
         // The pixels whose centres the footprint holds: the own pixel's key, the others' a copy's.
         const int home_x = floor_above(s.px), home_y = floor_above(s.py);
         const float half = s.side * 0.5f;
         const int x0 = std::max(0, ceil_above(s.px - half - 0.5f)),
-                  x1 = std::min(width - 1, floor_above(s.px + half - 0.5f));
+                  x1 = std::min(w - 1, floor_above(s.px + half - 0.5f));
         const int y0 = std::max(0, ceil_above(s.py - half - 0.5f)),
-                  y1 = std::min(height - 1, floor_above(s.py + half - 0.5f));
-        if (home_x >= 0 && home_y >= 0 && home_x < width && home_y < height) write(home_x, home_y, key);
+                  y1 = std::min(h - 1, floor_above(s.py + half - 0.5f));
+        if (home_x >= 0 && home_y >= 0 && home_x < w && home_y < h)
+          keep_smaller(key[std::size_t(home_y) * std::size_t(w) + std::size_t(home_x)], own_key);
         for (int qy = y0; qy <= y1; ++qy)
           for (int qx = x0; qx <= x1; ++qx)
-            if (qx != home_x || qy != home_y) write(qx, qy, copy_key);
+            if (qx != home_x || qy != home_y)
+              keep_smaller(key[std::size_t(qy) * std::size_t(w) + std::size_t(qx)], copy_key);
       }
   });
-  KeptSamples& next = kept[1 - current];
-  tbb::parallel_for(tbb::blocked_range<int>(0, height, 4), [&](const tbb::blocked_range<int>& r) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, h, 4), [&](const tbb::blocked_range<int>& r) {
+    const Reprojection project = shared;
     for (int y = r.begin(); y != r.end(); ++y)
-      for (int x = 0; x < width; ++x) {
-        const std::size_t q = std::size_t(y) * std::size_t(width) + std::size_t(x);
-        need[q] = kKeep;
-        if (keys[q] == kNoKey) {
+      for (int x = 0; x < w; ++x) {
+        const std::size_t q = std::size_t(y) * std::size_t(w) + std::size_t(x);
+        needs[q] = kKeep;
+        const std::uint64_t won = key[q];
+        if (won == kNoKey) {
           next[q].depth = kNone;
           continue;
         }
-        const std::uint32_t p = std::uint32_t(keys[q]);
-        const std::uint32_t py_old = p / std::uint32_t(width);
-        const Seen s = project(p, int(p - py_old * std::uint32_t(width)), int(py_old));
-        Sample& to_sample = next[q];
-        to_sample = old[p];
+        const std::uint32_t p = std::uint32_t(won);
+        const std::uint32_t py_old = p / std::uint32_t(w);
+        const Reprojection::Seen s = project(old[p], int(p - py_old * std::uint32_t(w)), int(py_old));
+        Sample to_sample = old[p];
         to_sample.age = std::uint8_t(std::min(255, to_sample.age + 1));
         to_sample.depth = s.depth;
         const float sx = s.px - float(x) - 0.5f, sy = s.py - float(y) - 0.5f;
         // A copy of a sample that lost its own pixel to another (two met there) is adopted: it lives
         // on here, beside its pixel, so that the samples do not thin out frame after frame.
         const int hx = floor_above(s.px), hy = floor_above(s.py);
-        const bool orphan = (keys[q] & kCopyBit) &&
-                            !(hx >= 0 && hy >= 0 && hx < width && hy < height &&
-                              keys[std::size_t(hy) * std::size_t(width) + std::size_t(hx)] == (keys[q] & ~kCopyBit));
+        const bool orphan =
+            (won & kCopyBit) && !(hx >= 0 && hy >= 0 && hx < w && hy < h &&
+                                  key[std::size_t(hy) * std::size_t(w) + std::size_t(hx)] == (won & ~kCopyBit));
         const float allowed = orphan ? kAdoptedOffset : kStretchedOffset;
-        if (std::abs(sx) > allowed || std::abs(sy) > allowed) need[q] = kStretched;
-        next[q].sub_x = sub_code(sx);
-        next[q].sub_y = sub_code(sy);
+        if (std::abs(sx) > allowed || std::abs(sy) > allowed) needs[q] = kStretched;
+        to_sample.sub_x = sub_code(sx);
+        to_sample.sub_y = sub_code(sy);
+        next[q] = to_sample;
       }
   });
   current = 1 - current;
@@ -315,17 +347,18 @@ void FrameCache::Impl::reproject(const ViewProjection& to) {
 
 // ---- what each pixel needs ------------------------------------------------------------------
 
-// Of the eight neighbours of pixel (x, y): how many show the sky, and how many lie nearer than
-// `depth` by more than kGapDepth of it (none when depth is NaN).
-std::array<int, 2> FrameCache::Impl::neighbours(int x, int y, float depth) const {
-  const KeptSamples& k = kept[current];
+namespace {
+
+// Of the eight neighbours of pixel (x, y) in samples k of a w x h frame: how many show the sky, and
+// how many lie nearer than `depth` by more than kGapDepth of it (none when depth is NaN).
+inline std::array<int, 2> neighbour_counts(const Sample* k, int w, int h, int x, int y, float depth) {
   const float gap = depth * (1 - kGapDepth);
   int nearer = 0, sky = 0;
-  const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
-  if (x > 0 && y > 0 && x + 1 < width && y + 1 < height) {
-    const Sample* above = k.data() + p - std::size_t(width);
-    const Sample* below = k.data() + p + std::size_t(width);
-    const Sample* row = k.data() + p;
+  const std::size_t p = std::size_t(y) * std::size_t(w) + std::size_t(x);
+  if (x > 0 && y > 0 && x + 1 < w && y + 1 < h) {
+    const Sample* above = k + p - std::size_t(w);
+    const Sample* below = k + p + std::size_t(w);
+    const Sample* row = k + p;
     for (const float n : {above[-1].depth, above[0].depth, above[1].depth, row[-1].depth, row[1].depth, below[-1].depth,
                           below[0].depth, below[1].depth}) {
       sky += n == kInf;
@@ -335,30 +368,40 @@ std::array<int, 2> FrameCache::Impl::neighbours(int x, int y, float depth) const
   }
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
-      if ((dx == 0 && dy == 0) || x + dx < 0 || y + dy < 0 || x + dx >= width || y + dy >= height) continue;
-      const float n = k[std::size_t(y + dy) * std::size_t(width) + std::size_t(x + dx)].depth;
+      if ((dx == 0 && dy == 0) || x + dx < 0 || y + dy < 0 || x + dx >= w || y + dy >= h) continue;
+      const float n = k[std::size_t(y + dy) * std::size_t(w) + std::size_t(x + dx)].depth;
       sky += n == kInf;
       nearer += n < gap;
     }
   return {sky, nearer};
 }
 
+}  // namespace
+
+std::array<int, 2> FrameCache::Impl::neighbours(int x, int y, float depth) const {
+  return neighbour_counts(kept[current].data(), width, height, x, y, depth);
+}
+
 void FrameCache::Impl::classify(std::uint64_t frame, bool still, const EnteringBand& band) {
-  KeptSamples& k = now();
-  tbb::parallel_for(tbb::blocked_range<int>(0, height, 4), [&](const tbb::blocked_range<int>& r) {
+  Sample* const k = now().data();
+  std::uint8_t* const needs = need.data();
+  const int w = width, h = height;
+  tbb::parallel_for(tbb::blocked_range<int>(0, h, 4), [&](const tbb::blocked_range<int>& r) {
+    const EnteringBand edges = band;
+    const bool moving = !still;
     for (int y = r.begin(); y != r.end(); ++y)
-      for (int x = 0; x < width; ++x) {
-        const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+      for (int x = 0; x < w; ++x) {
+        const std::size_t p = std::size_t(y) * std::size_t(w) + std::size_t(x);
         const float d = k[p].depth;
-        const auto [sky, nearer] = neighbours(x, y, d);
+        const auto [sky, nearer] = neighbour_counts(k, w, h, x, y, d);
         std::uint8_t judged;
         if (is_none(d))
           judged = sky == 8 ? kSkyFill : kHole;  // a hole among sky is sky: nothing stands in it
-        else if (still)                          // the same view: nothing new shows through a gap, nothing is stale
-          judged = need[p] == kStretched ? kStretched : kKeep;
+        else if (!moving)                        // the same view: nothing new shows through a gap, nothing is stale
+          judged = needs[p] == kStretched ? kStretched : kKeep;
         else if (nearer >= kGapNeighbours)
           judged = kHole;
-        else if (need[p] == kStretched)
+        else if (needs[p] == kStretched)
           judged = kStretched;
         else if (k[p].source == SampleSource::frame || k[p].source == SampleSource::lent)
           judged = kStale;
@@ -366,31 +409,33 @@ void FrameCache::Impl::classify(std::uint64_t frame, bool still, const EnteringB
           judged = kRefresh;
         else
           judged = kKeep;
-        if (judged != kHole && !still && x % kProbeSpacing == kProbeSpacing / 2 &&
-            y % kProbeSpacing == kProbeSpacing / 2 && band.holds(x, y, width, height))
+        if (judged != kHole && moving && x % kProbeSpacing == kProbeSpacing / 2 &&
+            y % kProbeSpacing == kProbeSpacing / 2 && edges.holds(x, y, w, h))
           judged = kProbe;
-        need[p] = judged;
+        needs[p] = judged;
       }
   });
   // Applied after every pixel was judged, so a judgement never sees another's outcome.
-  tbb::parallel_for(tbb::blocked_range<int>(0, height, 4), [&](const tbb::blocked_range<int>& r) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, h, 4), [&](const tbb::blocked_range<int>& r) {
     for (int y = r.begin(); y != r.end(); ++y) {
-      std::array<std::uint32_t, kNeeds>& counts = row_needs[std::size_t(y)];
-      counts = {};
-      for (int x = 0; x < width; ++x) {
-        const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
-        if (need[p] == kSkyFill) {
+      std::array<std::uint32_t, kNeeds> counts{};
+      for (int x = 0; x < w; ++x) {
+        const std::size_t p = std::size_t(y) * std::size_t(w) + std::size_t(x);
+        const std::uint8_t judged = needs[p];
+        if (judged == kSkyFill) {
           k[p].depth = kInf;
           k[p].source = SampleSource::sky;
           k[p].count = 0;
           k[p].age = 0;
           k[p].sub_x = k[p].sub_y = 0;
-          need[p] = kKeep;
-        } else if (need[p] == kHole) {
-          k[p].depth = kNone;
+          needs[p] = kKeep;
+          ++counts[kKeep];
+          continue;
         }
-        ++counts[need[p]];
+        if (judged == kHole) k[p].depth = kNone;
+        ++counts[judged];
       }
+      row_needs[std::size_t(y)] = counts;
     }
   });
 }
@@ -451,33 +496,37 @@ std::size_t FrameCache::Impl::select(const std::array<std::uint64_t, kNeeds>& ne
     return c < last || (c == last && pixel_hash(p, frame * 2 + 7) < share);
   });
   // Where each is traced: its own sample's place, or the mean place of its neighbours' own samples.
-  const KeptSamples& k = now();
+  const Sample* const k = now().data();
+  const std::uint8_t* const pixel_needs = need.data();
+  const std::uint32_t* const fresh_pixels = fresh.data();
+  std::array<std::int8_t, 2>* const places = lattice.data();
+  const int w = width, h = height;
   const int own = int(kStretchedOffset * kSubScale);
-  const auto own_sample = [&](std::size_t q) {  // a sample in its own pixel, not a hole or a copy
+  const auto own_sample = [=](std::size_t q) {  // a sample in its own pixel, not a hole or a copy
     const Sample& s = k[q];
-    return !is_none(s.depth) && need[q] >= kStale && s.source != SampleSource::lent && std::abs(s.sub_x) <= own &&
-           std::abs(s.sub_y) <= own;
+    return !is_none(s.depth) && pixel_needs[q] >= kStale && s.source != SampleSource::lent &&
+           std::abs(s.sub_x) <= own && std::abs(s.sub_y) <= own;
   };
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [=](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      const std::size_t p = fresh[i];
+      const std::size_t p = fresh_pixels[i];
       if (own_sample(p)) {
-        lattice[p] = {k[p].sub_x, k[p].sub_y};
+        places[p] = {k[p].sub_x, k[p].sub_y};
         continue;
       }
-      const int x = int(p % std::size_t(width)), y = int(p / std::size_t(width));
+      const int x = int(p % std::size_t(w)), y = int(p / std::size_t(w));
       int sum_x = 0, sum_y = 0, count = 0;
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
-          if ((dx == 0 && dy == 0) || x + dx < 0 || y + dy < 0 || x + dx >= width || y + dy >= height) continue;
-          const std::size_t q = std::size_t(y + dy) * std::size_t(width) + std::size_t(x + dx);
+          if ((dx == 0 && dy == 0) || x + dx < 0 || y + dy < 0 || x + dx >= w || y + dy >= h) continue;
+          const std::size_t q = std::size_t(y + dy) * std::size_t(w) + std::size_t(x + dx);
           if (!own_sample(q)) continue;
           sum_x += k[q].sub_x;
           sum_y += k[q].sub_y;
           ++count;
         }
-      lattice[p] = count ? std::array<std::int8_t, 2>{std::int8_t(sum_x / count), std::int8_t(sum_y / count)}
-                         : std::array<std::int8_t, 2>{0, 0};
+      places[p] = count ? std::array<std::int8_t, 2>{std::int8_t(sum_x / count), std::int8_t(sum_y / count)}
+                        : std::array<std::int8_t, 2>{0, 0};
     }
   });
   return n;
@@ -651,26 +700,35 @@ void FrameCache::Impl::drop_hidden(std::size_t n) {
 // ---- the picture ----------------------------------------------------------------------------
 
 void FrameCache::Impl::resolve(const ViewWorld& world, ImageRgb8& image) {
-  const KeptSamples& k = kept[current];
+  const Sample* const k = kept[current].data();
   const Luts& lut = luts();
   const ViewProjection& view = projection;
+  const int w = width;
   tbb::parallel_for(tbb::blocked_range<int>(0, height, 8), [&](const tbb::blocked_range<int>& r) {
+    // Locals: the image's byte stores would otherwise reload them through memory at every pixel.
+    const float cx = view.cx, cy = view.cy, focal = view.focal;
+    Vec3f forward, right, up;
+    for (std::size_t a = 0; a < 3; ++a) {
+      forward[a] = float(view.forward[a]);
+      right[a] = float(view.right[a]);
+      up[a] = float(view.up[a]);
+    }
     for (int y = r.begin(); y != r.end(); ++y) {
-      const float ray_up = -(float(y) + 0.5f - view.cy) / view.focal;
+      const float ray_up = -(float(y) + 0.5f - cy) / focal;
       std::uint8_t* out = image.pixels.data() + image.offset(0, y);
+      const Sample* row = k + std::size_t(y) * std::size_t(w);
       bool holes = false;
-      for (int x = 0; x < width; ++x, out += 3) {
-        const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
-        if (is_none(k[p].depth)) {  // a hole: fill_holes
+      for (int x = 0; x < w; ++x, out += 3) {
+        const Sample& s = row[x];
+        if (is_none(s.depth)) {  // a hole: fill_holes
           holes = true;
           continue;
         }
-        Vec3f c{k[p].color[0], k[p].color[1], k[p].color[2]};
-        if (k[p].source == SampleSource::sky) {  // the sky along the pixel's own ray, as LdiRenderer draws it
-          const float ray_right = (float(x) + 0.5f - view.cx) / view.focal;
+        Vec3f c{s.color[0], s.color[1], s.color[2]};
+        if (s.source == SampleSource::sky) {  // the sky along the pixel's own ray, as LdiRenderer draws it
+          const float ray_right = (float(x) + 0.5f - cx) / focal;
           Vec3f d;
-          for (std::size_t a = 0; a < 3; ++a)
-            d[a] = float(view.forward[a]) + ray_right * float(view.right[a]) + ray_up * float(view.up[a]);
+          for (std::size_t a = 0; a < 3; ++a) d[a] = forward[a] + ray_right * right[a] + ray_up * up[a];
           c = sky_radiance(world.shading(), d);
         }
         out[0] = lut.encode(c[0]);
@@ -687,14 +745,16 @@ void FrameCache::Impl::resolve(const ViewWorld& world, ImageRgb8& image) {
 // the farthest neighbour's, they spared later frames the holes but smeared near stems over the
 // field: 4.7 dB below the exact image in the walk at 640 x 360, against 3.3 dB.) Returns how many.
 std::uint64_t FrameCache::Impl::fill_holes(ImageRgb8& image) const {
-  const KeptSamples& k = kept[current];
+  const Sample* const k = kept[current].data();
+  const std::uint8_t* const rows_with_holes = row_has_holes.data();
   const Luts& lut = luts();
+  const int w = width, h = height;
   std::atomic<std::uint64_t> filled{0};
-  tbb::parallel_for(tbb::blocked_range<int>(0, height, 8), [&](const tbb::blocked_range<int>& r) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, h, 8), [&](const tbb::blocked_range<int>& r) {
     std::uint64_t holes = 0;
     for (int y = r.begin(); y != r.end(); ++y)
-      for (int x = 0; row_has_holes[std::size_t(y)] && x < width; ++x) {
-        if (!is_none(k[std::size_t(y) * std::size_t(width) + std::size_t(x)].depth)) continue;
+      for (int x = 0; rows_with_holes[y] && x < w; ++x) {
+        if (!is_none(k[std::size_t(y) * std::size_t(w) + std::size_t(x)].depth)) continue;
         ++holes;
         std::uint8_t* out = image.pixels.data() + image.offset(x, y);
         for (int ring = 1; ring <= 4; ++ring) {
@@ -703,8 +763,8 @@ std::uint64_t FrameCache::Impl::fill_holes(ImageRgb8& image) const {
           for (int dy = -ring; dy <= ring; ++dy)
             for (int dx = -ring; dx <= ring; ++dx) {
               const int nx = x + dx, ny = y + dy;
-              if ((std::abs(dx) != ring && std::abs(dy) != ring) || nx < 0 || ny < 0 || nx >= width || ny >= height ||
-                  is_none(k[std::size_t(ny) * std::size_t(width) + std::size_t(nx)].depth))
+              if ((std::abs(dx) != ring && std::abs(dy) != ring) || nx < 0 || ny < 0 || nx >= w || ny >= h ||
+                  is_none(k[std::size_t(ny) * std::size_t(w) + std::size_t(nx)].depth))
                 continue;
               const std::uint8_t* in = image.pixels.data() + image.offset(nx, ny);
               for (int c = 0; c < 3; ++c) sum[c] += lut.to_linear[in[c]];
