@@ -40,17 +40,19 @@ void register_render_command(CLI::App& app, const GlobalOptions& global) {
   auto dir = std::make_shared<std::string>();
   sub->add_option("dir", *dir, "Scene folder")->required();
   sub->add_option("--engine", request->engine, "Renderer: povray, blender or embree")->capture_default_str();
-  sub->add_option("--width", request->width, "Image width in pixels (default: the scene's)")
+  sub->add_option("--width", request->width, "Image width in pixels (default: the scene's; alone, the height follows)")
       ->check(CLI::Range(1, 32768));
-  sub->add_option("--height", request->height, "Image height in pixels (default: the scene's)")
+  sub->add_option("--height", request->height,
+                  "Image height in pixels (default: the scene's; alone, the width follows)")
       ->check(CLI::Range(1, 32768));
-  sub->add_option("--out", request->out, "embree: the image to write (default DIR/render_embree.png)")
+  sub->add_option("--out", request->out,
+                  "The image to write (default: DIR/render_embree.png; povray and blender: a copy of the folder's)")
       ->check(output_file_path());
   sub->add_option("--spp", request->spp, "embree: samples per pixel (default: the scene's antialias squared)")
       ->check(CLI::Range(1, kMaxReferenceSamples));
   set_help_footer(sub,
                   "into the folder: render.png and povray.log (povray); scene.blend, render_blender.png and "
-                  "blender.log (blender); render_embree.png or --out (embree)",
+                  "blender.log (blender), with --out a copy there; render_embree.png or --out (embree)",
                   {"wangscape build templates/scenes/small.toml --out small", "wangscape render small",
                    "wangscape render small --engine embree --spp 4 --out small/embree.png"});
   sub->callback([dir, request, &global] { run_render(*dir, *request, global); });

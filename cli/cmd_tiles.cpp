@@ -46,14 +46,22 @@ void register_tiles_commands(CLI::App& app, const GlobalOptions& global) {
                       noise);
   n->add_option("--lattice", noise->options.lattice, "Cells per tile side (power of two)")->capture_default_str();
   n->add_option("--octaves", noise->options.octaves, "Mip levels (0 = all)")->check(CLI::Range(0, 12));
+  n->add_option_function<std::string>(
+       "--pattern", [noise](const std::string& name) { noise->pattern = parse_noise_pattern(name.c_str()); },
+       "noise, fbm, turbulence, marble or wood: the preview's (default turbulence) and the tile files' (default fbm; "
+       "marble and wood are patterns of the whole tiling, shown in the preview, over tiles of fbm)")
+      ->check(CLI::IsMember({"noise", "fbm", "turbulence", "marble", "wood"}))
+      ->type_name("PATTERN");
   // `noise --help` and `noise tiles --help` (texture likewise) end alike.
-  const std::string writes =
-      "the folder --out: one PNG per tile and tiles.json (docs/texture-tiles.md); --preview: an image of the tiles "
-      "laid in a tiling";
+  const auto writes = [](const char* kind) {
+    return std::string("the folder --out: one PNG per tile and ") + kind +
+           "_tiles.json (docs/texture-tiles.md); --preview: an image of the tiles laid in a tiling";
+  };
   for (CLI::App* a : {n, n->get_parent()})
-    set_help_footer(a, writes,
+    set_help_footer(a, writes("noise"),
                     {"wangscape noise tiles --set corner-3 --lattice 32 --octaves 3 --out noise --preview 1024x512 "
                      "noise.png",
+                     "wangscape noise tiles --set corner-3 --pattern marble --out marble --preview 512x256 marble.png",
                      "wangscape noise tiles --set cohen8 --out noise8"});
   auto texture = std::make_shared<TextureTilesJob>();
   auto* t = add_tiles(app, global, "texture",
@@ -67,7 +75,7 @@ void register_tiles_commands(CLI::App& app, const GlobalOptions& global) {
   t->add_option_function<std::string>("--exemplar2", slot(1), "Second exemplar (corner-marked sets)");
   t->add_option("--size", texture->options.tile_size, "Pixels per tile side")->capture_default_str();
   for (CLI::App* a : {t, t->get_parent()})
-    set_help_footer(a, writes,
+    set_help_footer(a, writes("texture"),
                     {"wangscape texture tiles --exemplar meadow --exemplar2 pumice --set corner-2 --size 64 --out tex "
                      "--preview 1024x512 tex.png",
                      "wangscape texture tiles --exemplar pumice --set cohen8 --size 64 --out pumice"});

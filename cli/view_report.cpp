@@ -2,6 +2,7 @@
 #include "cli/view_report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "core/number_text.h"
@@ -15,6 +16,13 @@ std::string levels_text(const ViewFrameStats& stats) {
   for (std::uint64_t n : stats.levels) levels += (levels.empty() ? "" : ", ") + std::to_string(n);
   return levels;
 }
+
+// How far the exact image's figure lies above the frame's: 0 when both are the same, infinities
+// included (two images identical to the truth have an infinite PSNR each: no gap, not NaN).
+double gap(double exact, double frame) { return exact == frame ? 0.0 : exact - frame; }
+
+// A figure in JSON, which has no infinity: null stands for an infinite PSNR (identical images).
+std::string json_figure(double value) { return std::isfinite(value) ? number_text(value) : "null"; }
 }  // namespace
 
 std::string view_stats_json(const ViewFrameStats& stats) {
@@ -29,14 +37,14 @@ std::string view_stats_json(const ViewFrameStats& stats) {
 std::string comparison_json_members(const ViewComparison& v, int frame_samples) {
   const ImageComparison& c = v.comparison;
   const ImageComparison& e = v.exact;
-  return "\"psnr_db\": " + number_text(c.psnr_db) + ", \"ssim\": " + number_text(c.ssim) +
+  return "\"psnr_db\": " + json_figure(c.psnr_db) + ", \"ssim\": " + number_text(c.ssim) +
          ", \"hole_share\": " + number_text(c.holes.share) + ", \"holes\": " + std::to_string(c.holes.holes) +
          ", \"reference_seconds\": " + number_text(v.reference.seconds) +
          ", \"truth_samples\": " + std::to_string(v.reference.samples_per_pixel) +
-         ", \"exact_psnr_db\": " + number_text(e.psnr_db) + ", \"exact_ssim\": " + number_text(e.ssim) +
+         ", \"exact_psnr_db\": " + json_figure(e.psnr_db) + ", \"exact_ssim\": " + number_text(e.ssim) +
          ", \"exact_hole_share\": " + number_text(e.holes.share) +
-         ", \"psnr_gap_db\": " + number_text(e.psnr_db - c.psnr_db) +
-         ", \"ssim_gap\": " + number_text(e.ssim - c.ssim) +
+         ", \"psnr_gap_db\": " + json_figure(gap(e.psnr_db, c.psnr_db)) +
+         ", \"ssim_gap\": " + number_text(gap(e.ssim, c.ssim)) +
          ", \"exact_seconds\": " + number_text(v.one_sample.seconds) +
          ", \"samples\": " + std::to_string(frame_samples);
 }
@@ -81,10 +89,10 @@ void print_comparison(const ViewComparison& v, int frame_samples, const ViewFram
       "SSIM: %.4f (exact: %.4f, a gap of %.4f)\n"
       "holes: %.4f %% of the pixels (%llu; %.4f %% of the truth's covered)\n"
       "truth: %d samples per pixel, %.2f s%s%s; exact image: %.2f s; the frame: %.1f ms\n",
-      c.psnr_db, frame_samples, e.psnr_db, e.psnr_db - c.psnr_db, c.ssim, e.ssim, e.ssim - c.ssim, 100 * c.holes.share,
-      static_cast<unsigned long long>(c.holes.holes), 100 * c.holes.share_of_covered, v.reference.samples_per_pixel,
-      v.reference.seconds, truth_out.empty() ? "" : ", saved to ", truth_out.string().c_str(), v.one_sample.seconds,
-      frame.frame_ms);
+      c.psnr_db, frame_samples, e.psnr_db, gap(e.psnr_db, c.psnr_db), c.ssim, e.ssim, gap(e.ssim, c.ssim),
+      100 * c.holes.share, static_cast<unsigned long long>(c.holes.holes), 100 * c.holes.share_of_covered,
+      v.reference.samples_per_pixel, v.reference.seconds, truth_out.empty() ? "" : ", saved to ",
+      truth_out.string().c_str(), v.one_sample.seconds, frame.frame_ms);
 }
 
 void print_path_comparison(const PathFrame& frame) {

@@ -145,7 +145,8 @@ std::string run_tiles_job(const NoiseTilesJob& job) {
   const NoiseTileSet tiles(load_tileset(job.set), job.options);
   // The preview first: a preview that cannot be written leaves no tiles folder behind.
   if (!job.preview_size.empty()) {
-    // Turbulence over a window of the set's own tiling, one tile per `pixels` pixels.
+    // The pattern over a window of the set's own tiling, one tile per `pixels` pixels.
+    const NoisePattern pattern = job.pattern.value_or(NoisePattern::turbulence);
     const WindowNoise field(
         tiles, WindowTiles{preview_tiling(tiles.set(), size[0], size[1], job.pixels, job.options.seed)}, 1.0);
     ImageGray16 image(size[0], size[1]);
@@ -153,12 +154,14 @@ std::string run_tiles_job(const NoiseTilesJob& job) {
     for (int y = 0; y < size[1]; ++y)
       for (int x = 0; x < size[0]; ++x)
         image.set(x, y,
-                  noise_to_gray16(NoisePattern::turbulence,
-                                  field.turbulence((x + 0.5) * pixel, (size[1] - y - 0.5) * pixel)));
+                  noise_to_gray16(pattern, field.pattern(pattern, (x + 0.5) * pixel, (size[1] - y - 0.5) * pixel)));
     write_image_gray16(job.preview, image);
   }
+  const NoisePattern in_tiles =
+      job.pattern && *job.pattern != NoisePattern::marble && *job.pattern != NoisePattern::wood ? *job.pattern
+                                                                                                : NoisePattern::fbm;
   write_tiles_after_preview(job.preview, job.preview_size.empty(),
-                            [&] { write_noise_tile_files(job.out, tiles, job.pixels); });
+                            [&] { write_noise_tile_files(job.out, tiles, job.pixels, in_tiles); });
   char line[256];
   std::snprintf(line, sizeof line, "%s: %zu noise tiles, lattice %d, %d octaves, %.3f s", tiles.set().name.c_str(),
                 tiles.size(), tiles.lattice(), tiles.levels(), seconds_since(start));

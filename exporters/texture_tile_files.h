@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,9 @@ struct NoiseTilesJob {
   std::string set = "corner-3";
   NoiseTileOptions options;
   int pixels = 128;  // per tile side in the tile files
+  // The preview's pattern (none given: turbulence) and the tile files' (none given: fbm); the
+  // tiles hold noise, fbm or turbulence, so with marble or wood (patterns of the whole tiling) fbm.
+  std::optional<NoisePattern> pattern;
   std::filesystem::path out;
   std::string preview_size;  // "WxH"; empty = no preview
   std::filesystem::path preview;

@@ -76,7 +76,7 @@ BlenderRenderResult render_blender(const std::filesystem::path& dir_in, const Bl
   result.manifest = find_blender_manifest(dir);
   if (result.manifest.empty()) {
     throw Error("render: '" + dir_in.string() +
-                "' has no blender/manifest.json (write one with `wangscape build` and [export] blender = true)");
+                "' has no blender/manifest.json (write one with `wangscape build` and [exports] blender = true)");
   }
   const auto blender = find_blender(options.executable);
   if (blender.empty()) {

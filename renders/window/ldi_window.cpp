@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <numbers>
 #include <unordered_set>
@@ -388,10 +389,15 @@ void run_view_window(std::shared_ptr<const ViewWorld> world, const ViewWindowOpt
 
     const CachedFrameStats& stats = cache.render(walker.camera);
     if (screenshot) {
-      char name[32];
-      std::snprintf(name, sizeof name, "view-%04d.png", ++screenshots);
-      write_image(options.screenshot_dir / name, cache.image());  // the frame, without the overlay
-      if (options.on_screenshot) options.on_screenshot(options.screenshot_dir / name);
+      // The next free number: an earlier run's screenshots in the folder are kept.
+      std::filesystem::path file;
+      do {
+        char name[32];
+        std::snprintf(name, sizeof name, "view-%04d.png", ++screenshots);
+        file = options.screenshot_dir / name;
+      } while (std::filesystem::exists(file));
+      write_image(file, cache.image());  // the frame, without the overlay
+      if (options.on_screenshot) options.on_screenshot(file);
     }
     // The overlay: a smoothed frame time and share of the pixels traced anew.
     shown_ms = shown_ms == 0 ? stats.frame_ms : shown_ms * 0.9 + stats.frame_ms * 0.1;

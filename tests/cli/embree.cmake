@@ -21,7 +21,7 @@ tiny_scene("${embree_dir}/src/relative.toml" MODELS "mesh = \"stick.obj\"" EXPOR
 add_test(NAME embree_render_relative_paths
   COMMAND sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$2\" --out \"$1\" && \"$0\" --quiet render \"$1\" --engine embree --width 32 --height 24 && test -s \"$1/render_embree.png\""
           "${WANGSCAPE_BIN}" "${embree_dir}/relative" "${embree_dir}/src/relative.toml")
-# Refusals: a bad --spp names the flag; an unknown engine lists embree; --out is embree's alone.
+# Refusals: a bad --spp names the flag; an unknown engine lists embree; --spp is embree's alone.
 add_test(NAME embree_render_bad_spp
   COMMAND ${cli_expect} 2 "--spp"
           "${WANGSCAPE_BIN}" render "${embree_dir}/embree_tiny" --engine embree --spp 0)
@@ -29,10 +29,15 @@ add_test(NAME embree_render_unknown_engine
   COMMAND ${cli_expect} 1 "engine 'mitsuba' .*known: povray, blender, embree"
           "${WANGSCAPE_BIN}" render "${embree_dir}/embree_tiny" --engine mitsuba)
 add_test(NAME embree_render_out_needs_embree
-  COMMAND ${cli_expect} 1 "--out and --spp are for --engine embree"
-          "${WANGSCAPE_BIN}" render "${embree_dir}/embree_tiny" --engine povray --out "${embree_dir}/x.png")
+  COMMAND ${cli_expect} 1 "--spp is for --engine embree"
+          "${WANGSCAPE_BIN}" render "${embree_dir}/embree_tiny" --engine povray --spp 4 --out "${embree_dir}/x.png")
+# --height alone: the width keeps the scene's aspect (96 x 72: 24 high is 32 wide).
+add_test(NAME embree_render_height_alone
+  COMMAND ${cli_expect} 0 "0 +0 +0 +32 +0 +0 +0 +24"
+          sh -c "\"$0\" --quiet render \"$1\" --engine embree --spp 1 --height 24 --out \"$1_h.png\" && od -An -tu1 -j16 -N8 \"$1_h.png\""
+          "${WANGSCAPE_BIN}" "${embree_dir}/embree_tiny")
 add_test(NAME embree_render_not_a_folder
   COMMAND ${cli_expect} 1 "scene.toml.*is missing"
           "${WANGSCAPE_BIN}" render "${embree_dir}/no_such_folder" --engine embree)
 set_tests_properties(embree_render_bad_spp embree_render_unknown_engine embree_render_out_needs_embree
-  PROPERTIES DEPENDS embree_render_size)
+  embree_render_height_alone PROPERTIES DEPENDS embree_render_size)

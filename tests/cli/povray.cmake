@@ -75,6 +75,13 @@ add_test(NAME povray_render_size
           sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$1.toml\" --out \"$1\" && \"$0\" --quiet render \"$1\" --width 40 --height 30 && od -An -tu1 -j16 -N8 \"$1/render.png\""
           "${WANGSCAPE_BIN}" "${povray_dir}/povray_size")
 povray_scene(povray_size "" "")
+# One side alone keeps the scene's aspect (96 x 72: --width 48 gives 48 x 36), and --out takes
+# POV-Ray's image too (issue 40: it was refused), the folder's render.png beside it.
+add_test(NAME povray_render_one_side_out
+  COMMAND ${cli_expect} 0 "0 +0 +0 +48 +0 +0 +0 +36"
+          sh -c "rm -rf \"$1\" \"$1.png\" && \"$0\" --quiet build \"$1.toml\" --out \"$1\" && \"$0\" --quiet render \"$1\" --width 48 --out \"$1.png\" && test -s \"$1/render.png\" && od -An -tu1 -j16 -N8 \"$1.png\""
+          "${WANGSCAPE_BIN}" "${povray_dir}/povray_one_side")
+povray_scene(povray_one_side "" "")
 
 # Unknown keys are errors naming the key and its line (line 17 is `fvo` below).
 file(WRITE "${povray_dir}/unknown_key.toml" "name = \"bad\"\n[terrain]\nflat_size = 50.0\n[tiles]\ntile_size = 4.0\n[camera]\nfov = 50.0\n\n\n\n\n\n\n\n\n\nfvo = 40.0\n")

@@ -9,6 +9,15 @@ add_test(NAME tiles_texture_two_exemplars
   COMMAND ${cli_expect} 0 "corner-2: 16 texture tiles of 64 px, quilting error [0-9]+"
           sh -c "rm -rf \"$1\" && \"$0\" texture tiles --exemplar meadow --exemplar2 \"$2/templates/exemplars/pumice.png\" --set corner-2 --size 64 --out \"$1\" --preview 256x128 \"$1.png\" && test -s \"$1/texture_tiles.json\" && test -s \"$1/texture_tile_15.png\" && test -s \"$1.png\""
           "${WANGSCAPE_BIN}" "${tiles_dir}/texture" "${PROJECT_SOURCE_DIR}")
+# --pattern (issue 40): marble's preview differs from turbulence's (the default) over tile files of
+# fbm; turbulence reaches the tile files; an unknown pattern is refused naming the flag.
+add_test(NAME tiles_noise_pattern
+  COMMAND ${cli_expect} 0 "^patterns ok"
+          sh -c "rm -rf \"$1\"* && \"$0\" -q noise tiles --out \"$1t\" --preview 128x64 \"$1t.png\" >/dev/null && \"$0\" -q noise tiles --pattern marble --out \"$1m\" --preview 128x64 \"$1m.png\" >/dev/null && ! idiff -a \"$1t.png\" \"$1m.png\" >/dev/null && grep -q '\"pattern\": *\"fbm\"' \"$1m/noise_tiles.json\" && \"$0\" -q noise tiles --pattern turbulence --out \"$1u\" >/dev/null && grep -q '\"pattern\": *\"turbulence\"' \"$1u/noise_tiles.json\" && echo patterns ok"
+          "${WANGSCAPE_BIN}" "${tiles_dir}/pattern_")
+add_test(NAME tiles_noise_bad_pattern
+  COMMAND ${cli_expect} 2 "--pattern: plaid not in"
+          "${WANGSCAPE_BIN}" noise tiles --pattern plaid --out "${tiles_dir}/bad")
 add_test(NAME tiles_noise_bad_lattice
   COMMAND ${cli_expect} 1 "lattice 12; expected a power of two"
           "${WANGSCAPE_BIN}" noise tiles --lattice 12 --out "${tiles_dir}/bad")

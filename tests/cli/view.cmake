@@ -86,9 +86,10 @@ view_sh_test(compare_writes "^ok 100x32$"
 
 # The window under a real X server: scripted keys go through SDL's event queue; the first
 # screenshot (before any move) is the offline frame of the same camera, the second after a walk
-# and a turn differs from it and is not one color; Escape quits with 0.
+# and a turn differs from it and is not one color; Escape quits with 0. A second run's screenshot
+# takes the next free number (view-0003.png), the first run's kept.
 view_sh_test(window "stddev"
-  "rm -rf \"$1.win\" && mkdir -p \"$1.win\" && cd \"$1.win\" && xvfb-run -a -s '-screen 0 640x480x24' \"$0\" --quiet view \"$1\" --size 320x240 --script 'screenshot,W*20,mouse:60:0,D*5,screenshot,Escape' && \"$0\" --quiet view \"$1\" --size 320x240 --out offline.png && idiff -a view-0001.png offline.png && ! idiff -a view-0002.png offline.png >/dev/null && \"$2\" \"$3\" view-0002.png 0.5 1.0 6"
+  "rm -rf \"$1.win\" && mkdir -p \"$1.win\" && cd \"$1.win\" && xvfb-run -a -s '-screen 0 640x480x24' \"$0\" --quiet view \"$1\" --size 320x240 --script 'screenshot,W*20,mouse:60:0,D*5,screenshot,Escape' && \"$0\" --quiet view \"$1\" --size 320x240 --out offline.png && idiff -a view-0001.png offline.png && ! idiff -a view-0002.png offline.png >/dev/null && xvfb-run -a -s '-screen 0 640x480x24' \"$0\" --quiet view \"$1\" --size 320x240 --script 'W*5,screenshot,Escape' && test -f view-0003.png && idiff -a view-0001.png offline.png && \"$2\" \"$3\" view-0002.png 0.5 1.0 6"
   "${ground_variance}")
 # A walk recorded in the window (K drops a keyframe) is written as a path file on exit, with the
 # eye by its height above the ground, and replays offline; the window resized (by the X server,

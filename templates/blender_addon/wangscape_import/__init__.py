@@ -1,6 +1,6 @@
 # Wangscape scene importer for Blender: File > Import > Wangscape scene (manifest).
 #
-# Reads the folder `wangscape build` writes with `[export] blender = true` (manifest.json +
+# Reads the folder `wangscape build` writes with `[exports] blender = true` (manifest.json +
 # little-endian arrays, see docs/blender-format.md) and builds the terrain, one object per
 # model variant in a hidden collection, and the flowers as geometry-nodes instances (never
 # realized), with materials, sun, Nishita sky, camera, render settings and the
