@@ -277,7 +277,8 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_flag("--compare", o->request.compare,
                 "Also ray trace the frame with Embree (the truth, and the exact geometry at one sample per pixel) "
                 "and print PSNR, SSIM and holes of both against the truth");
-  sub->add_option("--diff", o->request.diff, "With --compare: write the frame's difference from the truth (PNG)")
+  sub->add_option("--diff", o->request.diff,
+                  "With --compare: write the frame's difference from the truth (PNG): a heat map, holes in magenta")
       ->check(output_file_path());
   sub->add_option("--truth-spp", o->request.truth_samples,
                   "With --compare: the truth's samples per pixel (default 64: converged for one-sample frames)");

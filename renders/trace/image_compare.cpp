@@ -149,9 +149,14 @@ ImageRgb8 difference_image(const ImageRgb8& candidate, const ImageRgb8& referenc
     check_same_size(reference_mask->width, reference_mask->height, reference.width, reference.height, "mask");
   }
   ImageRgb8 out(candidate.width, candidate.height);
-  for (std::size_t i = 0; i < out.pixels.size(); ++i) {
-    const double d = std::abs(double(candidate.pixels[i]) - double(reference.pixels[i])) * gain;
-    out.pixels[i] = std::uint8_t(std::min(255.0, std::round(d)));
+  for (std::size_t p = 0; p < out.pixels.size() / 3; ++p) {
+    double largest = 0;
+    for (std::size_t c = 0; c < 3; ++c)
+      largest = std::max(largest, std::abs(double(candidate.pixels[3 * p + c]) - double(reference.pixels[3 * p + c])));
+    // The hot ramp, black to red to yellow to white: never magenta, which is the holes' alone.
+    const double heat = std::min(1.0, largest * gain / 255.0);
+    for (std::size_t c = 0; c < 3; ++c)
+      out.pixels[3 * p + c] = std::uint8_t(std::round(255.0 * std::clamp(3.0 * heat - double(c), 0.0, 1.0)));
   }
   if (holes)
     for (std::size_t p = 0; p < candidate_mask->covered.size(); ++p)

@@ -44,8 +44,9 @@ struct HoleCount {
 };
 HoleCount count_holes(const CoverageMask& candidate, const CoverageMask& reference);
 
-// |candidate - reference| per channel times `gain`, clamped to 255, as an RGB image: black where
-// they agree. Holes (when both masks are given) are painted magenta so that they stand out.
+// A heat map of the difference: per pixel the largest |candidate - reference| of its channels
+// times `gain` (255: the top of the ramp), from black where they agree through red and yellow to
+// white. Holes (when both masks are given) are painted magenta, which the ramp never shows.
 ImageRgb8 difference_image(const ImageRgb8& candidate, const ImageRgb8& reference, double gain = 4.0,
                            const CoverageMask* candidate_mask = nullptr, const CoverageMask* reference_mask = nullptr);
 

@@ -93,8 +93,17 @@ TEST(image_compare, DifferenceImageScalesAndMarksHoles) {
   ImageRgb8 a(2, 1, {100, 100, 100}), b(2, 1, {100, 100, 100});
   a.set(0, 0, {110, 90, 100});
   const ImageRgb8 d = difference_image(a, b, 4.0);
-  EXPECT_EQ(d.at(0, 0), (Rgb8{40, 40, 0}));
+  EXPECT_EQ(d.at(0, 0), (Rgb8{120, 0, 0}));  // the largest channel's 10 x 4 = 40 of 255: a third up the red
   EXPECT_EQ(d.at(1, 0), (Rgb8{0, 0, 0}));
+  // Up the ramp: red, then yellow, then white; a difference of colour is never magenta.
+  for (int step = 0; step <= 255; ++step) {
+    ImageRgb8 c(1, 1, {0, 0, 0});
+    c.set(0, 0, {std::uint8_t(step), 0, std::uint8_t(step)});
+    const Rgb8 heat = difference_image(c, ImageRgb8(1, 1, {0, 0, 0}), 1.0).at(0, 0);
+    EXPECT_TRUE(heat.r >= heat.g && heat.g >= heat.b) << step;
+  }
+  EXPECT_EQ(difference_image(ImageRgb8(1, 1, {255, 0, 0}), ImageRgb8(1, 1, {0, 0, 0}), 1.0).at(0, 0),
+            (Rgb8{255, 255, 255}));
   const CoverageMask cand{2, 1, {1, 0}}, ref{2, 1, {1, 1}};
   const ImageComparison all = compare_images(random_image(12, 12, 0, 255, 6), random_image(12, 12, 0, 255, 6));
   EXPECT_TRUE(std::isinf(all.psnr_db));
