@@ -1,11 +1,18 @@
 #!/usr/bin/env bash
 # Installs every Debian package in scripts/debian-packages.txt (idempotent: installs only
-# what is missing), then the npm tools the tests use into tools/node_modules.
+# what is missing), then the npm tools the tests use into tools/node_modules. With --demo, only
+# the packages marked "demo" there (the program and POV-Ray) and no npm tools.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(dirname "$here")
+demo_only=false
+[ "${1:-}" = --demo ] && demo_only=true
 
-mapfile -t wanted < <(grep -v '^\s*#' "$here/debian-packages.txt" | awk 'NF{print $1}')
+if $demo_only; then
+  mapfile -t wanted < <(grep -v '^\s*#' "$here/debian-packages.txt" | awk 'NF && $2 == "demo" {print $1}')
+else
+  mapfile -t wanted < <(grep -v '^\s*#' "$here/debian-packages.txt" | awk 'NF{print $1}')
+fi
 missing=()
 for pkg in "${wanted[@]}"; do
   dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q 'install ok installed' || missing+=("$pkg")
@@ -20,6 +27,8 @@ if [ ${#missing[@]} -gt 0 ]; then
 else
   echo "install-deps: all ${#wanted[@]} Debian packages present"
 fi
+
+$demo_only && exit 0
 
 # Node and npm: the machine image may already carry a newer Node with npm; Debian's
 # npm package conflicts with that, so install Debian's only when npm is missing.
