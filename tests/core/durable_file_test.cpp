@@ -4,7 +4,6 @@
 #include "core/durable_file.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -19,18 +18,12 @@ namespace wangscape {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path fresh_folder(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("wangscape_durable_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using wangscape::testing::fresh_folder;
 
 using wangscape::testing::error_of;
 
 TEST(DurableFile, FlushesFilesFoldersAndTrees) {
-  const fs::path dir = fresh_folder("tree");
+  const fs::path dir = fresh_folder("durable_tree");
   fs::create_directories(dir / "a" / "b");
   std::ofstream(dir / "a" / "b" / "x.bin") << "data";
   std::ofstream(dir / "y.txt") << "text";
@@ -42,7 +35,7 @@ TEST(DurableFile, FlushesFilesFoldersAndTrees) {
 }
 
 TEST(DurableFile, ErrorsNameTheFileOrFolder) {
-  const fs::path dir = fresh_folder("errors");
+  const fs::path dir = fresh_folder("durable_errors");
   EXPECT_EQ(error_of([&] { sync_file(dir / "missing.bin"); }),
             (dir / "missing.bin").string() + ": cannot open the file to flush it to disk: No such file or directory");
   EXPECT_EQ(error_of([&] { sync_folder(dir / "missing"); }),
@@ -54,7 +47,7 @@ TEST(DurableFile, ErrorsNameTheFileOrFolder) {
 }
 
 TEST(DurableFile, AtomicFileStillPublishesIntoTheCurrentFolder) {
-  const fs::path dir = fresh_folder("atomic");
+  const fs::path dir = fresh_folder("durable_atomic");
   write_file_atomically(dir / "out.txt", "hello\n");
   std::ifstream in(dir / "out.txt");
   std::string line;

@@ -11,11 +11,13 @@
 
 #include "core/atomic_file.h"
 #include "core/printable.h"
+#include "tests/generator/test_support.h"
 
 namespace wangscape {
 namespace {
 
 namespace fs = std::filesystem;
+using wangscape::testing::fresh_folder;
 
 // A pid no process has: the highest below pid_max that kill(pid, 0) reports gone.
 pid_t dead_pid() {
@@ -26,17 +28,10 @@ pid_t dead_pid() {
   return pid;
 }
 
-fs::path fresh_folder(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("wangscape_run_cleanup_" + name + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
 void touch(const fs::path& path) { std::ofstream(path) << "x"; }
 
 TEST(RunCleanup, RemovesWhatDeadRunsLeftAndKeepsLiveOnes) {
-  const fs::path dir = fresh_folder("stale");
+  const fs::path dir = fresh_folder("run_cleanup_stale");
   const std::string dead = std::to_string(dead_pid()), live = std::to_string(::getppid()),
                     self = std::to_string(::getpid());
   touch(dir / (".tmp-" + dead + "-a.csv"));
@@ -74,7 +69,7 @@ TEST(RunCleanup, RemovesWhatDeadRunsLeftAndKeepsLiveOnes) {
 }
 
 TEST(RunCleanup, AtomicFileClearsItsFolderFirst) {
-  const fs::path dir = fresh_folder("atomic");
+  const fs::path dir = fresh_folder("run_cleanup_atomic");
   const fs::path stale = dir / (".tmp-" + std::to_string(dead_pid()) + "-old.txt");
   touch(stale);
   write_file_atomically(dir / "new.txt", "hello");

@@ -4,26 +4,21 @@
 #include "core/staged_folder.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "tests/generator/test_support.h"
+
 namespace wangscape {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path fresh_folder(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("wangscape_staged_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using wangscape::testing::fresh_folder;
 
 TEST(StagedFolder, AFolderNotPublishedLeavesNothingBehind) {
-  const fs::path dir = fresh_folder("abandoned");
+  const fs::path dir = fresh_folder("staged_abandoned");
   {
     StagedFolder staged(dir / "a" / "b" / "out");
     EXPECT_EQ(staged.target(), dir / "a" / "b" / "out");
@@ -35,7 +30,7 @@ TEST(StagedFolder, AFolderNotPublishedLeavesNothingBehind) {
 }
 
 TEST(StagedFolder, PublishingCreatesOrReplacesTheFolderWhole) {
-  const fs::path dir = fresh_folder("published");
+  const fs::path dir = fresh_folder("staged_published");
   for (const char* file : {"first", "second"}) {
     StagedFolder staged(dir / "out");
     std::ofstream(staged.path() / file) << file;

@@ -1,6 +1,9 @@
-// Helpers shared by the generator tests.
+// Helpers shared by the tests.
 #pragma once
 
+#include <unistd.h>
+
+#include <filesystem>
 #include <string>
 
 #include "generator/tileset.h"
@@ -16,6 +19,15 @@ std::string error_of(Body&& body) {
     return e.what();
   }
   return "";
+}
+
+// An empty folder of its own for a test: the temporary folder's "wangscape_<name>_<pid>", emptied.
+inline std::filesystem::path fresh_folder(const std::string& name) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("wangscape_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
 }
 
 }  // namespace wangscape::testing
