@@ -36,7 +36,7 @@ ds = None
 PY
 "$bin" -q tileset --set cohen8 --per-tile 20 --out "$work/tiles.json" > /dev/null
 "$bin" terrain info "$work/dem.tif" | grep -E "size|spacing|heights"
-cmd="$bin scatter --tileset tiles.json --dem dem.tif --tile-size 4 --max-height $max_height --out points.$format"
+cmd="$bin scatter --tileset tiles.json --dem dem.tif --tile-size 4 --max-height $max_height --out points.$format --yes"
 echo "command: (in $work) $cmd"
 echo "load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 (cd "$work" && /usr/bin/time -v -o time.txt $cmd 2> said.txt) || { cat "$work/said.txt" "$work/time.txt"; exit 1; }

@@ -35,6 +35,7 @@ struct ScatterOptions {
   std::optional<double> max_height, min_height, max_slope;
   bool fair_edges = false;
   std::optional<std::uint64_t> max_instances;
+  bool yes = false;  // --yes: a points file estimated above 1 GB is written
 };
 
 // --metrics of a set of several classes: a row per class after the union's figures.
@@ -81,6 +82,7 @@ void run(const ScatterOptions& options, const GlobalOptions& global) {
   request.out = options.out;
   request.metrics = options.metrics;
   request.max_instances = options.max_instances;
+  request.large_file_ok = options.yes;
   const WriteReport report(global.quiet);
   std::optional<Progress> progress;
   request.progress = [&](std::uint64_t placed, std::uint64_t expected) {
@@ -131,6 +133,7 @@ void register_scatter_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--max-instances", options->max_instances,
                   "Refuse to place more than N instances (default: no cap; the free disk space is checked)")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1000000000000000}));  // 1e15: readable, not 309 digits
+  sub->add_flag("--yes", options->yes, "Write a points file estimated above 1 GB (refused without it)");
   sub->add_option("--seed", options->seed, "Tiling seed")->check(seed_number())->capture_default_str();
   sub->add_option("--algorithm", options->algorithm,
                   "Tiling: scanline, bottom-left, hash (complete sets) or aperiodic (culik13)")

@@ -9,6 +9,7 @@
 #include "core/disk_space.h"
 #include "core/error.h"
 #include "core/memory_budget.h"
+#include "core/number_text.h"
 #include "exporters/point_writer.h"
 #include "scene/filled_tileset_file.h"
 #include "scene/ground.h"
@@ -58,6 +59,12 @@ ScatterResult run_scatter(const ScatterRequest& request) {
         estimate * bytes_per_point,
         "free some space, write elsewhere (--out), or scatter less (a larger --tile-size, masks, "
         "--max-instances)");
+    const double bytes = estimate * bytes_per_point;
+    if (bytes > kLargeScatterFileBytes && !request.large_file_ok)
+      throw Error(
+          fmt::format("scatter's points file '{}' would hold about {:.3g} instances, about {} ({}); add "
+                      "--yes to write it, or scatter less (a larger --tile-size, masks, a smaller area)",
+                      request.out.string(), estimate, byte_text(bytes), about));
   }
   std::vector<float> xs, ys;
   // Several classes: each point's class beside its coordinates (its variant's class, looked up

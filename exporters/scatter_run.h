@@ -20,15 +20,20 @@
 
 namespace wangscape {
 
+// A points file estimated above this is written only when asked for (--yes): a user who meant a
+// small field should not find gigabytes streaming onto the disk.
+inline constexpr double kLargeScatterFileBytes = 1e9;
+
 struct ScatterRequest {
   std::filesystem::path tileset;     // a filled tile set (wangscape tileset --per-tile N)
   Extent plane;                      // ENU meters, without a DEM
   std::optional<TerrainConfig> dem;  // over this DEM instead, with `masks`
   MasksConfig masks;
-  PlacementOptions placement;                                                  // tile size, seed, algorithm
-  std::filesystem::path out;                                                   // instances; empty: none written
-  bool metrics = false;                                                        // measure the points
-  std::optional<std::uint64_t> max_instances;                                  // refuse more than this
+  PlacementOptions placement;                  // tile size, seed, algorithm
+  std::filesystem::path out;                   // instances; empty: none written
+  bool metrics = false;                        // measure the points
+  std::optional<std::uint64_t> max_instances;  // refuse more than this
+  bool large_file_ok = false;                  // write a points file estimated above kLargeScatterFileBytes (--yes)
   std::function<void(std::uint64_t placed, std::uint64_t expected)> progress;  // from this thread
 };
 

@@ -40,6 +40,12 @@ hostile_test(scatter_tiny_tile 1 "beyond tile coordinate"
 hostile_test(scatter_huge_plane 1 "the folder has [0-9.]+ [kMGTP]?B free"
              sh -c "${hostile_fill} && exec \"$0\" scatter --tileset \"$1/filled.json\" --plane 1e9x1e9 --out \"$1/p.csv\""
              "${WANGSCAPE_BIN}" "${hostile_dir}")
+# A points file estimated above 1 GB (a README example once streamed 5 GB unasked) needs --yes;
+# refused before the first byte, no file left.
+# (0: scatter failed and left no file; CMake lists split at semicolons, so no ';' in the script.)
+hostile_test(scatter_large_file_needs_yes 0 "would hold about 2.5e.07 instances, about 1.35 GB .*add --yes"
+             sh -c "${hostile_fill} && rm -f \"$1/large.csv\" && \"$0\" scatter --tileset \"$1/filled.json\" --plane 10000x10000 --out \"$1/large.csv\" || exec test ! -e \"$1/large.csv\""
+             "${WANGSCAPE_BIN}" "${hostile_dir}")
 hostile_test(seed_negative 2 "'-1' is not a seed"
              "${WANGSCAPE_BIN}" tiling --set cohen8 --size 4x4 --seed -1)
 hostile_test(seed_too_large 2 "is not a seed"
