@@ -7,7 +7,8 @@ file(MAKE_DIRECTORY "${run_dir}")
 set(interrupt sh "${CMAKE_CURRENT_SOURCE_DIR}/interrupt.sh")
 tiny_scene("${run_dir}/pov.toml" EXPORTS "povray = true")
 
-# SIGINT / SIGTERM while writing: exit 130 / 143, no temporary left, a dead run's removed.
+# SIGINT / SIGTERM while writing: exit 130 / 143, no temporary left, a dead run's removed (the
+# scatter is estimated at 2.4 GB, hence --yes: it is stopped long before).
 tiny_scene("${run_dir}/big_field.toml" TILES "" EXPORTS "povray = true\ngltf = true")
 file(READ "${run_dir}/big_field.toml" big_field)
 # About 5.8 million flowers over flat ground of 800 m: long enough that the signal always lands
@@ -20,7 +21,7 @@ hostile_test(interrupt_tiling_sigint 0 "SIGINT -> exit 130"
              ${interrupt} INT 130 "${run_dir}/tiling" ".*tmp-*"
              "${WANGSCAPE_BIN}" --quiet tiling --set cohen8 --size 12000x12000 --out "${run_dir}/tiling/big.csv")
 hostile_test(interrupt_scatter_sigterm 0 "SIGTERM -> exit 143"
-             sh -c "\"$0\" --quiet tileset --set cohen8 --per-tile 5 --out \"$1/filled.json\" >/dev/null && exec $2 TERM 143 \"$1/scatter\" '.*tmp-*' \"$0\" --quiet scatter --tileset \"$1/filled.json\" --plane 3000x3000 --tile-size 1 --out \"$1/scatter/p.csv\""
+             sh -c "\"$0\" --quiet tileset --set cohen8 --per-tile 5 --out \"$1/filled.json\" >/dev/null && exec $2 TERM 143 \"$1/scatter\" '.*tmp-*' \"$0\" --quiet scatter --tileset \"$1/filled.json\" --plane 3000x3000 --tile-size 1 --yes --out \"$1/scatter/p.csv\""
              "${WANGSCAPE_BIN}" "${run_dir}" "sh ${CMAKE_CURRENT_SOURCE_DIR}/interrupt.sh")
 hostile_test(interrupt_build_sigterm 0 "SIGTERM -> exit 143"
              ${interrupt} TERM 143 "${run_dir}/build" ".out.partial-*"
