@@ -145,21 +145,35 @@ std::string run_tiles_job(const NoiseTilesJob& job) {
   const NoiseTileSet tiles(load_tileset(job.set), job.options);
   // The preview first: a preview that cannot be written leaves no tiles folder behind.
   if (!job.preview_size.empty()) {
-    // The pattern over a window of the set's own tiling, one tile per `pixels` pixels.
+    // The pattern over the set's own tiling, one tile per `pixels` pixels: a window of a scanline
+    // tiling, or for marble and wood, whose second layer reads tiles 7 away (beyond any window:
+    // there it drew plain stripes in whole tiles), the unbounded hashed tiling of a complete set.
     const NoisePattern pattern = job.pattern.value_or(NoisePattern::turbulence);
-    const WindowNoise field(
-        tiles, WindowTiles{preview_tiling(tiles.set(), size[0], size[1], job.pixels, job.options.seed)}, 1.0);
-    ImageGray16 image(size[0], size[1]);
     const double pixel = 1.0 / job.pixels;
-    for (int y = 0; y < size[1]; ++y)
-      for (int x = 0; x < size[0]; ++x)
-        image.set(x, y,
-                  noise_to_gray16(pattern, field.pattern(pattern, (x + 0.5) * pixel, (size[1] - y - 0.5) * pixel)));
+    ImageGray16 image(size[0], size[1]);
+    if (pattern == NoisePattern::marble || pattern == NoisePattern::wood) {
+      try {
+        image = render_noise_preview(make_noise_field(tiles.set(), job.options, job.options.seed, 1.0), pattern,
+                                     size[0], size[1], pixel);
+      } catch (const Error& e) {
+        throw Error(std::string("--pattern ") + to_string(pattern) + ": " + e.what() +
+                    " (marble and wood are drawn over the unbounded tiling of a complete set: complete-edge-K, "
+                    "corner-K)");
+      }
+    } else {
+      const WindowNoise field(
+          tiles, WindowTiles{preview_tiling(tiles.set(), size[0], size[1], job.pixels, job.options.seed)}, 1.0);
+      for (int y = 0; y < size[1]; ++y)
+        for (int x = 0; x < size[0]; ++x)
+          image.set(x, y,
+                    noise_to_gray16(pattern, field.pattern(pattern, (x + 0.5) * pixel, (size[1] - y - 0.5) * pixel)));
+    }
     write_image_gray16(job.preview, image);
   }
-  const NoisePattern in_tiles =
-      job.pattern && *job.pattern != NoisePattern::marble && *job.pattern != NoisePattern::wood ? *job.pattern
-                                                                                                : NoisePattern::fbm;
+  // The tiles hold noise, fbm or turbulence; marble and wood are patterns of the whole tiling.
+  NoisePattern in_tiles = NoisePattern::fbm;
+  if (job.pattern && *job.pattern != NoisePattern::marble && *job.pattern != NoisePattern::wood)
+    in_tiles = *job.pattern;
   write_tiles_after_preview(job.preview, job.preview_size.empty(),
                             [&] { write_noise_tile_files(job.out, tiles, job.pixels, in_tiles); });
   char line[256];

@@ -198,7 +198,6 @@ struct FrameCache::Impl {
   void reproject(const ViewProjection& to);
   void classify(std::uint64_t frame, bool still, const EnteringBand& band);
   std::array<std::uint64_t, kNeeds> count_needs() const;
-  std::array<int, 2> neighbours(int x, int y, float depth) const;
   void drop_hidden(std::size_t n);
   std::size_t select(const std::array<std::uint64_t, kNeeds>& needs, std::uint64_t budget, std::uint64_t frame);
   std::size_t select_still(std::uint64_t budget);
@@ -377,10 +376,6 @@ inline std::array<int, 2> neighbour_counts(const Sample* k, int w, int h, int x,
 }
 
 }  // namespace
-
-std::array<int, 2> FrameCache::Impl::neighbours(int x, int y, float depth) const {
-  return neighbour_counts(kept[current].data(), width, height, x, y, depth);
-}
 
 void FrameCache::Impl::classify(std::uint64_t frame, bool still, const EnteringBand& band) {
   Sample* const k = now().data();
@@ -670,7 +665,8 @@ void FrameCache::Impl::drop_hidden(std::size_t n) {
         });
       around(p, 1, [&](int qx, int qy, std::size_t q) {
         const std::uint8_t seen = mark_of(q).load(std::memory_order_relaxed);
-        if (kept_sample(seen, q) && seen < kHidden && neighbours(qx, qy, k[q].depth)[1] >= kGapNeighbours)
+        if (kept_sample(seen, q) && seen < kHidden &&
+            neighbour_counts(k.data(), width, height, qx, qy, k[q].depth)[1] >= kGapNeighbours)
           raise(q, kHidden);
       });
     }

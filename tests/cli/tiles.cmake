@@ -15,6 +15,11 @@ add_test(NAME tiles_noise_pattern
   COMMAND ${cli_expect} 0 "^patterns ok"
           sh -c "rm -rf \"$1\"* && \"$0\" -q noise tiles --out \"$1t\" --preview 128x64 \"$1t.png\" >/dev/null && \"$0\" -q noise tiles --pattern marble --out \"$1m\" --preview 128x64 \"$1m.png\" >/dev/null && ! idiff -a \"$1t.png\" \"$1m.png\" >/dev/null && grep -q '\"pattern\": *\"fbm\"' \"$1m/noise_tiles.json\" && \"$0\" -q noise tiles --pattern turbulence --out \"$1u\" >/dev/null && grep -q '\"pattern\": *\"turbulence\"' \"$1u/noise_tiles.json\" && echo patterns ok"
           "${WANGSCAPE_BIN}" "${tiles_dir}/pattern_")
+# Marble and wood read tiles beyond any window, so their preview is drawn over the hashed tiling
+# of a complete set; an incomplete one (cohen8) is refused naming the flag, no preview left.
+add_test(NAME tiles_noise_marble_needs_complete_set
+  COMMAND ${cli_expect} 1 "--pattern marble: tile set 'cohen8': hash tiling needs a complete set"
+          "${WANGSCAPE_BIN}" noise tiles --set cohen8 --pattern marble --out "${tiles_dir}/bad" --preview 64x64 "${tiles_dir}/bad_marble.png")
 add_test(NAME tiles_noise_bad_pattern
   COMMAND ${cli_expect} 2 "--pattern: plaid not in"
           "${WANGSCAPE_BIN}" noise tiles --pattern plaid --out "${tiles_dir}/bad")
