@@ -62,6 +62,7 @@ enum Need : std::uint8_t {
   kFound = 9,     // traced this frame, nearer than the sample it replaced: something came into view
   kHidden = 10,   // (transient) kept, but seen through a gap in a surface traced this frame
   kCovered = 11,  // (transient) kept, but a found surface beside it is nearer: shows that surface
+  kFarMove = 12,  // (transient, of a previous frame's pixel) its sample moved beyond its band's reach: placed last
 };
 // In motion, objects nearer than the samples at the edge the camera moves toward come into view
 // over them (a sideways step past a flower 1.5 m away moves it 9 pixels a frame at 640 x 360):
@@ -95,6 +96,13 @@ constexpr std::uint64_t kCopyBit = 1ull << 63;  // in a key: a neighbour's copy 
 // A pixel whose sample lies more than this far from its centre (pixels, either axis) is stretched.
 constexpr float kStretchedOffset = 0.5f;
 constexpr float kAdoptedOffset = 1.25f;  // an adopted sample (below) may lie this far
+// The same offsets in 1/kSubScale pixels (the keys and the samples hold them so).
+constexpr int kPixelCode = int(kSubScale), kStretchedCode = int(kStretchedOffset * kSubScale),
+              kAdoptedCode = int(kAdoptedOffset * kSubScale);
+// Reprojection scatters the rows in this many bands (reproject()), and a footprint reaches this
+// many rows above or below its sample's pixel (kMaxStretch / 2 + 0.5, rounded up).
+constexpr int kScatterBands = 16;
+constexpr int kFootprintRows = 2;
 constexpr int kBlock = 4;  // fresh samples are listed by 4 x 4 blocks: 16 of one block make a packet of rays
 
 bool is_none(float depth) { return std::isnan(depth); }
@@ -272,46 +280,123 @@ inline void keep_smaller(std::uint64_t& key, std::uint64_t k) {
   }
 }
 
+// A reprojection key: what a pixel keeps of the sample that wins it, the smallest winning. From
+// the top bit: a neighbour's copy (1), the new depth's float bits (positive floats order as
+// their bits do; all 31 up to 2^26 pixels, the high ones beyond), where the sample's own pixel
+// lies from this one (-3 .. 3 across and down, 3 bits each) and its previous pixel (as many bits
+// as the frame's pixels need). Its place within its own pixel is in its record (pass 1).
+struct KeyLayout {
+  int index_bits = 1, depth_shift = 0;
+  static KeyLayout of(std::size_t pixels) {
+    KeyLayout layout;
+    layout.index_bits = std::max(1, int(std::bit_width(pixels - 1)));
+    layout.depth_shift = std::max(0, 31 - (63 - 6 - layout.index_bits));
+    return layout;
+  }
+  // A sample's key in its own pixel (elsewhere: | from(...) | kCopyBit).
+  std::uint64_t own(float depth, std::uint32_t pixel) const {
+    return std::uint64_t(std::bit_cast<std::uint32_t>(depth) >> depth_shift) << (6 + index_bits) | home(0, 0) | pixel;
+  }
+  // The bits saying the sample's own pixel lies (dx, dy) pixels from this one.
+  std::uint64_t home(int dx, int dy) const { return std::uint64_t((dx + 4) << 3 | (dy + 4)) << index_bits; }
+  std::uint64_t from(int dx, int dy) const { return home(dx, dy) ^ home(0, 0); }  // (own | from: home(dx, dy))
+  std::uint32_t source(std::uint64_t key) const { return std::uint32_t(key & ((1ull << index_bits) - 1)); }
+  int home_x(std::uint64_t key) const { return int((key >> (index_bits + 3)) & 7) - 4; }
+  int home_y(std::uint64_t key) const { return int((key >> index_bits) & 7) - 4; }
+};
+
+// Pass 1 of reproject(), one worker's copy (its members in registers: the keys' stores would
+// otherwise reload them through memory).
+struct Scatter {
+  Reprojection project;
+  KeyLayout layout;
+  Sample* old;
+  std::uint64_t* key;
+  int w, h;
+  // Projects the sample of pixel (x, y) once: its new depth goes into its own record (read again
+  // only as a winner's, in pass 2), its place in each pixel it covers into that pixel's key, by
+  // take(key, k). Returns false, placing nothing, when its footprint would reach rows outside
+  // rows_from .. rows_to - 1.
+  template <class Take>
+  bool place(int x, int y, int rows_from, int rows_to, const Take& take) const {
+    const std::size_t p = std::size_t(y) * std::size_t(w) + std::size_t(x);
+    Sample& sample = old[p];
+    if (is_none(sample.depth)) return true;
+    const Reprojection::Seen s = project(sample, x, y);
+    if (is_none(s.depth) || !(s.px > -kMaxStretch && s.py > -kMaxStretch && s.px < float(w) + kMaxStretch &&
+                              s.py < float(h) + kMaxStretch)) {
+      sample.depth = kNone;  // (never a winner: it placed no key)
+      return true;
+    }
+    const int home_x = floor_above(s.px), home_y = floor_above(s.py);
+    if (home_y - kFootprintRows < rows_from || home_y + kFootprintRows >= rows_to) return false;
+    sample.depth = s.depth;
+    // Its place within its own pixel, for pass 2 (the projection above was the record's last use
+    // of its old place).
+    const float from_x = s.px - 0.5f, from_y = s.py - 0.5f;
+    sample.sub_x = sub_code(from_x - float(home_x));
+    sample.sub_y = sub_code(from_y - float(home_y));
+    // The pixels whose centres the footprint holds: the own pixel's key, the others' a copy's.
+    const float half = s.side * 0.5f;
+    const int x0 = std::max(0, ceil_above(from_x - half)), x1 = std::min(w - 1, floor_above(from_x + half));
+    const int y0 = std::max(0, ceil_above(from_y - half)), y1 = std::min(h - 1, floor_above(from_y + half));
+    const std::uint64_t own = layout.own(s.depth, std::uint32_t(p));
+    const std::uint64_t copy = own | kCopyBit;
+    const auto at = [&](int qx, int qy) -> std::uint64_t& {
+      return key[std::size_t(qy) * std::size_t(w) + std::size_t(qx)];
+    };
+    if (home_x >= 0 && home_y >= 0 && home_x < w && home_y < h) take(at(home_x, home_y), own);
+    for (int qy = y0; qy <= y1; ++qy)
+      for (int qx = x0; qx <= x1; ++qx)
+        if (qx != home_x || qy != home_y) take(at(qx, qy), copy ^ layout.from(home_x - qx, home_y - qy));
+    return true;
+  }
+};
+
 }  // namespace
 
 void FrameCache::Impl::reproject(const ViewProjection& to) {
   const Reprojection shared = reprojection(projection, to);
-  const Sample* const old = now().data();
+  const KeyLayout layout = KeyLayout::of(pixels());
+  Sample* const old = now().data();
   Sample* const next = kept[1 - current].data();
   std::uint64_t* const key = keys.data();
   std::uint8_t* const needs = need.data();
   const int w = width, h = height;
   std::fill(keys.begin(), keys.end(), kNoKey);
+  // The scatter without atomics: the rows in bands, the even bands at once, then the odd ones. A
+  // sample reaching no farther than half a band beyond its own takes its pixels with plain
+  // stores, as no other band of its parity reaches them; one that moves farther is marked and
+  // placed after, with compare-and-swap (the keys end the same on any thread count: the
+  // smallest wins). The atomics cost 10 ns a sample even uncontended, a third of the scatter.
+  const int band_rows = (h + kScatterBands - 1) / kScatterBands, reach = band_rows / 2;
+  const int bands = (h + band_rows - 1) / band_rows;
+  std::atomic<bool> any_far{false};
+  for (int parity = 0; parity < 2; ++parity)
+    tbb::parallel_for(0, (bands - parity + 1) / 2, [&](int i) {
+      Scatter scatter{shared, layout, old, key, w, h};
+      const int band = 2 * i + parity, first = band * band_rows, last = std::min(h, first + band_rows);
+      bool far = false;
+      for (int y = first; y < last; ++y)
+        for (int x = 0; x < w; ++x)
+          if (!scatter.place(x, y, first - reach, last + reach, [](std::uint64_t& slot, std::uint64_t k) {
+                slot = std::min(slot, k);
+              })) {
+            needs[std::size_t(y) * std::size_t(w) + std::size_t(x)] = kFarMove;
+            far = true;
+          }
+      if (far) any_far = true;
+    });
+  if (any_far)
+    tbb::parallel_for(tbb::blocked_range<int>(0, h, 4), [&](const tbb::blocked_range<int>& r) {
+      Scatter scatter{shared, layout, old, key, w, h};
+      for (int y = r.begin(); y != r.end(); ++y)
+        for (int x = 0; x < w; ++x)
+          if (needs[std::size_t(y) * std::size_t(w) + std::size_t(x)] == kFarMove)
+            scatter.place(x, y, std::numeric_limits<int>::min() / 2, std::numeric_limits<int>::max() / 2, keep_smaller);
+    });
   tbb::parallel_for(tbb::blocked_range<int>(0, h, 4), [&](const tbb::blocked_range<int>& r) {
-    const Reprojection project = shared;
-    const float right_edge = float(w) + kMaxStretch, bottom_edge = float(h) + kMaxStretch;
-    for (int y = r.begin(); y != r.end(); ++y)
-      for (int x = 0; x < w; ++x) {
-        const std::size_t p = std::size_t(y) * std::size_t(w) + std::size_t(x);
-        if (is_none(old[p].depth)) continue;
-        const Reprojection::Seen s = project(old[p], x, y);
-        if (is_none(s.depth) ||
-            !(s.px > -kMaxStretch && s.py > -kMaxStretch && s.px < right_edge && s.py < bottom_edge))
-          continue;
-        const std::uint64_t own_key = std::uint64_t(std::bit_cast<std::uint32_t>(s.depth)) << 32 | std::uint64_t(p);
-        const std::uint64_t copy_key = own_key | kCopyBit;
-        // The pixels whose centres the footprint holds: the own pixel's key, the others' a copy's.
-        const int home_x = floor_above(s.px), home_y = floor_above(s.py);
-        const float half = s.side * 0.5f;
-        const int x0 = std::max(0, ceil_above(s.px - half - 0.5f)),
-                  x1 = std::min(w - 1, floor_above(s.px + half - 0.5f));
-        const int y0 = std::max(0, ceil_above(s.py - half - 0.5f)),
-                  y1 = std::min(h - 1, floor_above(s.py + half - 0.5f));
-        if (home_x >= 0 && home_y >= 0 && home_x < w && home_y < h)
-          keep_smaller(key[std::size_t(home_y) * std::size_t(w) + std::size_t(home_x)], own_key);
-        for (int qy = y0; qy <= y1; ++qy)
-          for (int qx = x0; qx <= x1; ++qx)
-            if (qx != home_x || qy != home_y)
-              keep_smaller(key[std::size_t(qy) * std::size_t(w) + std::size_t(qx)], copy_key);
-      }
-  });
-  tbb::parallel_for(tbb::blocked_range<int>(0, h, 4), [&](const tbb::blocked_range<int>& r) {
-    const Reprojection project = shared;
+    const KeyLayout keys_of = layout;
     for (int y = r.begin(); y != r.end(); ++y)
       for (int x = 0; x < w; ++x) {
         const std::size_t q = std::size_t(y) * std::size_t(w) + std::size_t(x);
@@ -321,23 +406,22 @@ void FrameCache::Impl::reproject(const ViewProjection& to) {
           next[q].depth = kNone;
           continue;
         }
-        const std::uint32_t p = std::uint32_t(won);
-        const std::uint32_t py_old = p / std::uint32_t(w);
-        const Reprojection::Seen s = project(old[p], int(p - py_old * std::uint32_t(w)), int(py_old));
-        Sample to_sample = old[p];
+        const std::uint32_t p = keys_of.source(won);
+        const int home_x = x + keys_of.home_x(won), home_y = y + keys_of.home_y(won);
+        Sample to_sample = old[p];  // (its depth and place already the new ones, in its own pixel)
         to_sample.age = std::uint8_t(std::min(255, to_sample.age + 1));
-        to_sample.depth = s.depth;
-        const float sx = s.px - float(x) - 0.5f, sy = s.py - float(y) - 0.5f;
+        to_sample.sub_x = std::int8_t(std::clamp(to_sample.sub_x + kPixelCode * (home_x - x), -127, 127));
+        to_sample.sub_y = std::int8_t(std::clamp(to_sample.sub_y + kPixelCode * (home_y - y), -127, 127));
         // A copy of a sample that lost its own pixel to another (two met there) is adopted: it lives
         // on here, beside its pixel, so that the samples do not thin out frame after frame.
-        const int hx = floor_above(s.px), hy = floor_above(s.py);
-        const bool orphan =
-            (won & kCopyBit) && !(hx >= 0 && hy >= 0 && hx < w && hy < h &&
-                                  key[std::size_t(hy) * std::size_t(w) + std::size_t(hx)] == (won & ~kCopyBit));
-        const float allowed = orphan ? kAdoptedOffset : kStretchedOffset;
-        if (std::abs(sx) > allowed || std::abs(sy) > allowed) needs[q] = kStretched;
-        to_sample.sub_x = sub_code(sx);
-        to_sample.sub_y = sub_code(sy);
+        const auto won_its_pixel = [&] {
+          if (home_x < 0 || home_y < 0 || home_x >= w || home_y >= h) return false;
+          const std::uint64_t there = key[std::size_t(home_y) * std::size_t(w) + std::size_t(home_x)];
+          return there != kNoKey && !(there & kCopyBit) && keys_of.source(there) == p;
+        };
+        const bool orphan = (won & kCopyBit) && !won_its_pixel();
+        const int allowed = orphan ? kAdoptedCode : kStretchedCode;
+        if (std::abs(to_sample.sub_x) > allowed || std::abs(to_sample.sub_y) > allowed) needs[q] = kStretched;
         next[q] = to_sample;
       }
   });
