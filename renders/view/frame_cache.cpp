@@ -182,7 +182,9 @@ struct FrameCache::Impl {
   std::vector<std::uint8_t> row_has_holes;  // resolve(): a row fill_holes() must visit
   ViewProjection projection;                // the last frame's
   std::uint32_t still_slot = 0;
-  double measured_sample_ns = 0;  // FrameBudget::adaptive: the last moving frames' cost per fresh sample
+  // FrameBudget::adaptive: the last moving frames' costs per fresh sample and per pixel (their
+  // passes), smoothed.
+  double measured_sample_ns = 0, measured_pixel_ns = 0;
 
   std::size_t pixels() const { return std::size_t(width) * std::size_t(height); }
   KeptSamples& now() { return kept[current]; }
@@ -888,11 +890,14 @@ double FrameCache::bytes_per_pixel() const {
 
 std::uint64_t FrameCache::fresh_budget(bool still) const {
   const Impl& m = *impl_;
-  const double frame_ns = 1e9 / budget_.fps - (still ? budget_.still_pixel_ns : budget_.pixel_ns) * double(m.pixels());
+  double per_pixel = still ? budget_.still_pixel_ns : budget_.pixel_ns;
   double per_sample = still ? budget_.still_sample_ns : budget_.sample_ns;
-  // Measured in motion; a still sample costs what the nominal costs say it costs beside it.
-  if (budget_.adaptive && m.measured_sample_ns > 0)
+  // Measured in motion; still, a pixel and a sample cost what the nominal costs say beside them.
+  if (budget_.adaptive && m.measured_sample_ns > 0) {
     per_sample = m.measured_sample_ns * (still ? budget_.still_sample_ns / budget_.sample_ns : 1);
+    per_pixel = m.measured_pixel_ns * (still ? budget_.still_pixel_ns / budget_.pixel_ns : 1);
+  }
+  const double frame_ns = 1e9 / budget_.fps - per_pixel * double(m.pixels());
   return std::uint64_t(std::clamp(frame_ns / per_sample, double(m.pixels()) / 256, double(m.pixels())));
 }
 
@@ -979,14 +984,16 @@ const CachedFrameStats& FrameCache::render(const Camera& camera) {
       stats_.trace_ms = stats_.phase_ms[2] = ms_since(phase);
       phase = Clock::now();
       if (!still) m.drop_hidden(n);
-      if (n > 0 && !still) {
-        const double ns = stats_.trace_ms * 1e6 / double(n);
-        m.measured_sample_ns = m.measured_sample_ns > 0 ? 0.8 * m.measured_sample_ns + 0.2 * ns : ns;
-      }
       stats_.fresh = n;
       m.resolve(*renderer_.world(), image_);
       stats_.filled = m.fill_holes(image_);
       stats_.phase_ms[3] = ms_since(phase);
+      if (n > 0 && !still) {
+        const auto smoothed = [](double& mean, double ns) { mean = mean > 0 ? 0.8 * mean + 0.2 * ns : ns; };
+        smoothed(m.measured_sample_ns, stats_.trace_ms * 1e6 / double(n));
+        smoothed(m.measured_pixel_ns, (stats_.phase_ms[0] + stats_.phase_ms[1] + stats_.phase_ms[3]) * 1e6 /
+                                          double(m.pixels()));
+      }
     }
   }
   still_frames_ = still ? still_frames_ + 1 : 0;

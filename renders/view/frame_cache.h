@@ -41,8 +41,9 @@ enum class SampleSource : std::uint8_t {
 
 // How many samples a frame may trace anew: sized to the frame time 1000 / fps ms from nominal
 // costs measured on this machine (bench/view_cache_bench; docs/viewer.md), so that the count is
-// the same on every run and thread count. With `adaptive` the costs are measured per frame
-// instead (the window's own clock): the rate holds on any machine, the frames vary with it.
+// the same on every run and thread count. With `adaptive` both costs (a pixel's passes, a fresh
+// sample) are measured per moving frame instead (the window's own clock): the rate holds on any
+// machine, the frames vary with it.
 struct FrameBudget {
   double fps = kDefaultViewFps;
   double pixel_ns = 55;           // per pixel and frame: reprojection, tests, resolve (both threads)
