@@ -68,6 +68,25 @@ TEST(ViewPath, AbsoluteHeightsAreKeptAndTheJsonRoundTrips) {
   EXPECT_EQ(recorded_again.keys[0].position[2], 1.7);
 }
 
+// Two equal keyframes hold the camera still between them: the spline's tangents, taken from the
+// keys around, swung a walk meant to stand still at its end past the key and back (issue 40).
+TEST(ViewPath, ARepeatedKeyframeHoldsTheCameraStill) {
+  const std::string text =
+      R"({"keyframes": [{"time": 0, "position": [0, 0, 1500], "look_at": [0, 50, 1500]},
+                        {"time": 2, "position": [10, 3, 1500], "look_at": [10, 60, 1498]},
+                        {"time": 4, "position": [10, 3, 1500], "look_at": [10, 60, 1498]},
+                        {"time": 6, "position": [30, 9, 1502], "look_at": [40, 60, 1498]}]})";
+  const ViewPath path = parse_view_path(text, "stop.json");
+  for (double t = 2; t <= 4; t += 0.125) {
+    const Camera c = camera_along(path, t, 50, sloped_ground, "stop.json");
+    EXPECT_EQ(c.position, (std::array<double, 3>{10, 3, 1500})) << t;
+    EXPECT_EQ(c.target, (std::array<double, 3>{10, 60, 1498})) << t;
+  }
+  // Moving either side of the stop.
+  EXPECT_NE(camera_along(path, 1.5, 50, sloped_ground, "stop.json").position[0], 10);
+  EXPECT_NE(camera_along(path, 4.5, 50, sloped_ground, "stop.json").position[0], 10);
+}
+
 TEST(ViewPath, AHeightAboveNoGroundIsRefusedWithItsTime) {
   const ViewPath path = parse_view_path(
       R"({"keyframes": [{"time": 0, "position": [0, 0], "height_above_ground": 2, "look_at": [0, 50, 1000]},
