@@ -1,11 +1,13 @@
 #include "exporters/povray_writer.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <set>
 #include <vector>
 
 #include "core/atomic_file.h"
@@ -360,17 +362,35 @@ std::string povray_camera_and_sun(const Camera& cam, const Sun& sun) {
   return s;
 }
 
-std::string povray_model_name(std::size_t variant) { return "Sunflower_" + std::to_string(variant); }
+std::vector<std::string> povray_model_names(const std::vector<Mesh>& models) {
+  std::vector<std::string> names;
+  std::set<std::string> taken;
+  for (std::size_t v = 0; v < models.size(); ++v) {
+    std::string name;
+    for (const char c : models[v].name) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) name = "Model_" + name;
+    name[0] = char(std::toupper(static_cast<unsigned char>(name[0])));
+    if (!taken.insert(name).second) name += "_v" + std::to_string(v);
+    taken.insert(name);
+    names.push_back(std::move(name));
+  }
+  return names;
+}
 
 // ---- instances --------------------------------------------------------------------------------
 
-PovrayInstanceWriter::PovrayInstanceWriter(std::ostream& out) : out_(out) { buffer_.reserve(1 << 20); }
+PovrayInstanceWriter::PovrayInstanceWriter(std::ostream& out, std::vector<std::string> model_names) : out_(out) {
+  for (const std::string& name : model_names) object_prefixes_.push_back("object{" + name);
+  buffer_.reserve(1 << 20);
+}
 
 void PovrayInstanceWriter::write(const InstanceBatch& batch) {
   constexpr double kDegreesPerRadian = 180.0 / std::numbers::pi;
   for (std::size_t i = 0; i < batch.size(); ++i) {
-    buffer_ += "object{Sunflower_";
-    append_int(buffer_, batch.variant[i]);
+    if (batch.variant[i] >= object_prefixes_.size())
+      throw Error("POV-Ray export: an instance of model variant " + std::to_string(batch.variant[i]) + " of " +
+                  std::to_string(object_prefixes_.size()));
+    buffer_ += object_prefixes_[batch.variant[i]];
     // ENU yaw turns counter-clockwise seen from above (east towards north); POV's rotate
     // about y turns +x towards -z (east towards south) for positive angles.
     buffer_ += " rotate y*";
@@ -418,8 +438,8 @@ PovrayWriter::PovrayWriter(const Scene& scene, const std::filesystem::path& dir,
   if (!std::filesystem::is_directory(dir))
     throw Error("POV-Ray export: output folder '" + dir.string() + "' does not exist");
   if (scene.models.empty() && scene.instances) throw Error("POV-Ray export: the scene has instances but no models");
-  for (std::size_t v = 0; v < scene.models.size(); ++v)
-    check_povray_mesh(scene.models[v], "model " + povray_model_name(v));
+  const std::vector<std::string> model_names = povray_model_names(scene.models);
+  for (std::size_t v = 0; v < scene.models.size(); ++v) check_povray_mesh(scene.models[v], "model " + model_names[v]);
   Impl& impl = *impl_;
   impl.has_terrain = !scene.terrain.triangles.empty();
   if (impl.has_terrain) check_povray_mesh(scene.terrain, "the terrain");
@@ -433,7 +453,7 @@ PovrayWriter::PovrayWriter(const Scene& scene, const std::filesystem::path& dir,
     for (std::size_t v = 0; v < scene.models.size(); ++v) {
       const auto& mesh = scene.models[v];
       models += "\n// " + comment_safe(mesh.name) + ": " + std::to_string(mesh.triangle_count()) + " triangles\n";
-      models += "#declare " + povray_model_name(v) + " = ";
+      models += "#declare " + model_names[v] + " = ";
       append_mesh2(models, mesh, 5, "");
     }
     impl.write_whole("models.inc", models);
@@ -449,7 +469,7 @@ PovrayWriter::PovrayWriter(const Scene& scene, const std::filesystem::path& dir,
   }
   if (impl.has_instances) {
     impl.instances_file = std::make_unique<AtomicFile>(dir / "instances.inc");
-    impl.instances = std::make_unique<PovrayInstanceWriter>(impl.instances_file->stream());
+    impl.instances = std::make_unique<PovrayInstanceWriter>(impl.instances_file->stream(), model_names);
   }
 }
 

@@ -4,12 +4,12 @@
 //                   radiosity switch, header comment with the georeference; includes the rest
 //   scene.ini       size, antialiasing, threads, Library_Path (POV-Ray resolves includes
 //                   against the current directory and the library paths, not the .pov's folder)
-//   models.inc      each model variant declared once as `mesh2` (Sunflower_0 .. Sunflower_{V-1}):
+//   models.inc      each model variant declared once as `mesh2`, named by povray_model_names:
 //                   copies of a mesh2 share its data, so a million flowers cost little memory;
 //                   materials are one uv-mapped palette texture (a texture_list would be
 //                   copied with every instance)
 //   terrain.inc     the terrain as one mesh2 (Terrain), absent when the scene has no terrain
-//   instances.inc   one `object { Sunflower_v rotate ... scale ... translate ... }` per instance,
+//   instances.inc   one `object { Sunflower_3 rotate ... scale ... translate ... }` per instance,
 //                   closed by a comment with the count
 //   ground.png      with a [ground] look: Scene::ground_texture, an image_map over the terrain
 // Axes: ENU (x east, y north, z up) becomes POV (x east, y up, z north). Swapping y and z is a
@@ -23,6 +23,7 @@
 #include <memory>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "exporters/scene_writer.h"
 #include "scene/scene.h"
@@ -79,14 +80,18 @@ std::string povray_camera_and_sun(const Camera& camera, const Sun& sun);
 // '"', which POV-Ray cannot quote.
 std::string povray_quoted_path(const std::filesystem::path& path);
 
-// POV-Ray's name of model variant `variant` in models.inc ("Sunflower_3").
-std::string povray_model_name(std::size_t variant);
+// POV-Ray's names of the model variants in models.inc, one per model, from each model's own name
+// as an identifier, first letter capitalised ("sunflower_3" -> Sunflower_3, a species' grass
+// "meadow_grass_2" -> Meadow_grass_2, a proxy "sunflower_3 proxy" -> Sunflower_3_proxy), so a
+// user editing the scene knows which is which; a name used twice gets the variant's index.
+std::vector<std::string> povray_model_names(const std::vector<Mesh>& models);
 
 // Formats instances as POV-Ray objects into a buffer and writes it out in large blocks;
 // the hot loop of the exporter (see bench/povray_bench.cpp).
 class PovrayInstanceWriter {
  public:
-  explicit PovrayInstanceWriter(std::ostream& out);
+  // `model_names`: povray_model_names of the models the instances' variants index.
+  PovrayInstanceWriter(std::ostream& out, std::vector<std::string> model_names);
   ~PovrayInstanceWriter() { flush(); }
   PovrayInstanceWriter(const PovrayInstanceWriter&) = delete;
   PovrayInstanceWriter& operator=(const PovrayInstanceWriter&) = delete;
@@ -99,6 +104,7 @@ class PovrayInstanceWriter {
 
  private:
   std::ostream& out_;
+  std::vector<std::string> object_prefixes_;  // per variant: "object{NAME"
   std::string buffer_;
   std::uint64_t instances_ = 0;
   std::uint64_t bytes_ = 0;

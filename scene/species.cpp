@@ -37,10 +37,12 @@ std::vector<Mesh> make_species_models(const SceneConfig& config, std::size_t bud
       const auto range = triangle_budget_range(kind);
       const std::size_t budget = std::clamp(
           std::min(species.triangle_budget.value_or(range.default_budget), budget_cap), range.minimum, range.maximum);
+      std::size_t variant = 0;
       for (auto& model : make_plant_variants(kind, species.seed.value_or(config.models.seed), species.variants, budget,
                                              species.scale)) {
         radius = std::max<double>(radius, model.extent.radius);
-        model.mesh.name = species.name + "_" + model.mesh.name;
+        // Named by species and variant ("dandelion_3"): the exporters name the model so.
+        model.mesh.name = species.name + "_" + std::to_string(variant++);
         // Named by species: two kinds' "petal"s are different materials in every exporter.
         for (Material& material : model.mesh.materials) material.name = species.name + " " + material.name;
         models.push_back(std::move(model.mesh));

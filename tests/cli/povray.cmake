@@ -63,10 +63,17 @@ tiny_scene("${povray_dir}/povray_user_tileset.toml" TILES "" EXPORTS "povray = t
 file(READ "${povray_dir}/povray_user_tileset.toml" tileset_text)
 string(REPLACE "set = \"cohen8\"" "set = \"mine.json\"" tileset_text "${tileset_text}")
 file(WRITE "${povray_dir}/povray_user_tileset.toml" "${tileset_text}")
+# The instances name their model: the procedural sunflowers Sunflower_N, a user's OBJ by its file.
 foreach(variant IN ITEMS povray_tiny povray_radiosity povray_antialias povray_user_mesh povray_user_mesh_y_up)
+  set(model_name "Sunflower_0")
+  if(variant STREQUAL "povray_user_mesh")
+    set(model_name "User_flower")
+  elseif(variant STREQUAL "povray_user_mesh_y_up")
+    set(model_name "User_flower_y_up")
+  endif()
   add_test(NAME ${variant}_build_render
-    COMMAND sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$1.toml\" --out \"$1\" && \"$0\" --quiet render \"$1\" --engine povray && test -s \"$1/render.png\" && test -s \"$1/povray.log\" && grep -q 'Sunflower_0' \"$1/instances.inc\""
-            "${WANGSCAPE_BIN}" "${povray_dir}/${variant}")
+    COMMAND sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$1.toml\" --out \"$1\" && \"$0\" --quiet render \"$1\" --engine povray && test -s \"$1/render.png\" && test -s \"$1/povray.log\" && grep -q \"object{$2 \" \"$1/instances.inc\""
+            "${WANGSCAPE_BIN}" "${povray_dir}/${variant}" "${model_name}")
 endforeach()
 
 # --width/--height override the scene's size.

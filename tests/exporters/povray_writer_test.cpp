@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
+
+#include "core/error.h"
 #include "scene/scene.h"
 #include "scene/sun.h"
 
@@ -20,6 +23,30 @@ TEST(PovrayWriter, NumbersBeyondSixtyThreeBitsAreWrittenInFull) {
   EXPECT_NE(text.find("location <1000000000000000019884624838656.000,-30000000000000000.000,2.500>"), std::string::npos)
       << text;
   EXPECT_NE(text.find("look_at <0.000,0.000,0.000>"), std::string::npos) << text;
+}
+
+// Models are named by what they are (issue 40): a species' grass was `Sunflower_12` before.
+TEST(PovrayWriter, ModelsAreNamedByTheirSpecies) {
+  std::vector<Mesh> models(6);
+  models[0].name = "sunflower_0";
+  models[1].name = "meadow_grass_3";
+  models[2].name = "sunflower_0 proxy";
+  models[3].name = "2nd tulip.v2";  // a user's file stem
+  models[4].name = "";
+  models[5].name = "sunflower_0";  // used twice
+  EXPECT_EQ(povray_model_names(models), (std::vector<std::string>{"Sunflower_0", "Meadow_grass_3", "Sunflower_0_proxy",
+                                                                  "Model_2nd_tulip_v2", "Model_", "Sunflower_0_v5"}));
+  // The instances name them.
+  std::ostringstream out;
+  {
+    PovrayInstanceWriter writer(out, povray_model_names(models));
+    InstanceBatch batch;
+    batch.push_back(1, 2, 3, 0, 1, 1, 0);
+    writer.write(batch);
+    batch.variant[0] = 6;  // past the models
+    EXPECT_THROW(writer.write(batch), Error);
+  }
+  EXPECT_EQ(out.str().rfind("object{Meadow_grass_3 ", 0), 0u) << out.str();
 }
 
 }  // namespace
