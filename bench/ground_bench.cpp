@@ -5,8 +5,8 @@
 
 #include <chrono>
 
-#include "scene/ground.h"
 #include "scene/ground_look.h"
+#include "scene/scene_ground.h"
 
 namespace {
 

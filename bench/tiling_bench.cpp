@@ -48,7 +48,7 @@ void BM_MakeTilingHashCompleteEdge2(benchmark::State& state) {
 }
 
 // Random access with forbid_identical_neighbours: one HashedTiling::tile_at repairs the colors of a
-// patch around its tile (the margin in generator/tiling.cpp), so this is the cost of that patch.
+// patch around its tile (the margin in generator/tiling_hashed.cpp), so this is the cost of that patch.
 void tile_at_without_identical_neighbours(benchmark::State& state, const char* set_name) {
   const wangscape::HashedTiling hashed(wangscape::builtin_tileset(set_name), 1, true);
   std::int64_t i = -1'000'003;

@@ -1,7 +1,7 @@
 // wangscape scatter --tileset tiles.json --plane 64x64 --tile-size 4 --out points.csv
 // Lays a tiling of a filled tile set over a flat plane and writes every instance (CSV, or
 // binary PLY for .ply); --metrics measures the quality figures of the result.
-// With --dem FILE the ground is a DEM, the scene's one ground (scene/ground.h): z = ground
+// With --dem FILE the ground is a DEM, the scene's one ground (scene/scene_ground.h): z = ground
 // height, tiles only where --max-height / --min-height / --max-slope / --mask allow (Shade 2002),
 // --fair-edges for partial tiles.
 #include <fmt/core.h>

@@ -17,8 +17,8 @@
 #include "core/number_text.h"
 #include "exporters/reports.h"
 #include "exporters/scene_folder.h"
-#include "scene/ground.h"
 #include "scene/scene_file.h"
+#include "scene/scene_ground.h"
 #include "terrain/terrain.h"
 
 namespace wangscape::cli {

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "core/printable.h"
-#include "scene/ground.h"
+#include "scene/scene_ground.h"
 
 namespace wangscape::cli {
 

@@ -12,8 +12,8 @@
 #include "core/number_text.h"
 #include "exporters/point_writer.h"
 #include "scene/filled_tileset_file.h"
-#include "scene/ground.h"
 #include "scene/scene.h"
+#include "scene/scene_ground.h"
 
 namespace wangscape {
 

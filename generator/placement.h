@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "generator/ground.h"
+#include "generator/ground_concept.h"
 #include "generator/instances.h"
 #include "generator/poisson_tiles.h"
 #include "generator/tiling.h"

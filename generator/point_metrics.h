@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "generator/ground.h"
+#include "generator/ground_concept.h"
 #include "generator/image.h"
 
 namespace wangscape {

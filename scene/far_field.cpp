@@ -14,7 +14,7 @@
 #include "generator/tiling.h"
 #include "scene/camera_view.h"
 #include "scene/scene.h"
-#include "scene/shading.h"
+#include "scene/shading_light.h"
 
 namespace wangscape {
 

@@ -8,7 +8,7 @@
 #include <limits>
 #include <utility>
 
-#include "scene/ground.h"
+#include "scene/scene_ground.h"
 #include "terrain/mask.h"
 
 namespace wangscape {

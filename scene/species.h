@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "generator/poisson_tiles.h"
-#include "scene/ground.h"
 #include "scene/scene_file.h"
+#include "scene/scene_ground.h"
 #include "templates/mesh.h"
 #include "terrain/mask.h"
 

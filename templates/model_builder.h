@@ -67,6 +67,26 @@ class Random {
   std::uint64_t state_;
 };
 
+// ---- tessellation: one detail factor scales the resolution of every part ----
+
+// A part's resolution at `detail` (0: the coarsest that keeps the part; 1: its full resolution
+// `full`), never below `minimum`.
+inline int scaled_resolution(double full, int minimum, double detail) {
+  return std::max(minimum, int(std::lround(full * detail)));
+}
+
+// The largest detail in [0, 64] (to 40 halvings) at which fits(detail) holds, for a fits that holds
+// up to some detail and not beyond (a triangle count within a budget); 0 if it never holds.
+template <class Fits>
+double finest_detail(const Fits& fits) {
+  double lo = 0, hi = 64;
+  for (int i = 0; i < 40; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (fits(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
 // Triangles of MeshBuilder::sheet.
 inline std::size_t sheet_triangles(int rows, int columns) { return rows == 1 ? 2 : 2ull * rows * columns; }
 

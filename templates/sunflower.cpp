@@ -124,7 +124,7 @@ struct Tessellation {
 
 // detail 0 is the coarsest that keeps every part; detail 1 is roughly a 20,000-triangle flower.
 Tessellation tessellation_for_detail(double detail) {
-  const auto scaled = [detail](double full, int minimum) { return std::max(minimum, int(std::lround(full * detail))); };
+  const auto scaled = [detail](double full, int minimum) { return scaled_resolution(full, minimum, detail); };
   Tessellation t;
   t.stem_sides = scaled(14, 5);
   t.stem_segments = scaled(36, 3);
@@ -157,16 +157,8 @@ std::size_t non_floret_triangles(const Tessellation& t, const SunflowerShape& sh
 // The finest tessellation whose non-floret parts fit their share, then florets fill the budget.
 Tessellation plan_tessellation(const SunflowerShape& shape, std::size_t budget) {
   const double target = kNonFloretShare * double(budget);
-  double lo = 0, hi = 64;
-  for (int i = 0; i < 40; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (double(non_floret_triangles(tessellation_for_detail(mid), shape)) <= target) {
-      lo = mid;
-    } else {
-      hi = mid;
-    }
-  }
-  Tessellation t = tessellation_for_detail(lo);
+  Tessellation t = tessellation_for_detail(finest_detail(
+      [&](double detail) { return double(non_floret_triangles(tessellation_for_detail(detail), shape)) <= target; }));
   const std::size_t rest = budget - std::min(budget, non_floret_triangles(t, shape));
   t.floret_count = int(rest / kFloretSides);
   return t;

@@ -90,7 +90,7 @@ struct Tessellation {
 
 // detail 0 is the coarsest that keeps every part; detail 1 is roughly a 2,800-triangle flower.
 Tessellation tessellation_for_detail(double detail) {
-  const auto scaled = [detail](double full, int minimum) { return std::max(minimum, int(std::lround(full * detail))); };
+  const auto scaled = [detail](double full, int minimum) { return scaled_resolution(full, minimum, detail); };
   Tessellation t;
   t.stem_sides = scaled(10, 4);
   t.stem_segments = scaled(16, 3);
@@ -115,12 +115,8 @@ std::size_t triangle_count(const Tessellation& t, const WildflowerShape& shape) 
 
 // The finest tessellation that fits the budget (detail 0 always does above the minimum budget).
 Tessellation plan_tessellation(const WildflowerShape& shape, std::size_t budget) {
-  double lo = 0, hi = 64;
-  for (int i = 0; i < 40; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (triangle_count(tessellation_for_detail(mid), shape) <= budget ? lo : hi) = mid;
-  }
-  return tessellation_for_detail(lo);
+  return tessellation_for_detail(
+      finest_detail([&](double detail) { return triangle_count(tessellation_for_detail(detail), shape) <= budget; }));
 }
 
 Vec3 stem_at(const WildflowerShape& shape, double t) {

@@ -14,7 +14,7 @@
 #include "core/number_text.h"
 #include "core/text_file.h"
 #include "core/vecmath.h"
-#include "scene/ground.h"
+#include "scene/scene_ground.h"
 #include "scene/sun.h"
 #include "terrain/georef.h"
 

@@ -7,7 +7,7 @@
 //    it (Embree's next_hit pattern), so every surface along the ray is kept;
 //  - hits are de-duplicated by (instance, geometry, primitive), those outside the centre prism
 //    dropped, and hits closer than a merge distance along the ray merged into the front one;
-//  - each sample is shaded once (renders/trace/shading.h) with shadow and sky rays in the context.
+//  - each sample is shaded once (renders/trace/traced_shading.h) with shadow and sky rays in the context.
 // Units: meters; tile-local coordinates (x east from the tile's west edge, y north from its south
 // edge, z up from the ground plane at z = 0).
 #pragma once
@@ -24,7 +24,7 @@
 #include "generator/poisson_tiles.h"
 #include "renders/ldi/ldi.h"
 #include "renders/ldi/ldi_pack.h"
-#include "renders/trace/shading.h"
+#include "renders/trace/traced_shading.h"
 #include "templates/mesh.h"
 
 namespace wangscape {

@@ -33,6 +33,30 @@ struct PackHeader {
 };
 static_assert(sizeof(PackHeader) == 64);
 
+// The header's fields that are LdiPackInfo's, each with its place in LdiPackInfo: one list for the
+// writer and the reader. field(in_header, in_info) for each.
+template <class Header, class Info, class Field>
+void for_each_info_field(Header& h, Info& info, const Field& field) {
+  field(h.tiles, info.tiles);
+  field(h.levels, info.levels);
+  field(h.directions, info.directions);
+  field(h.image_width, info.image_width);
+  field(h.tile_size, info.tile_size);
+  field(h.head_height, info.head_height);
+  field(h.prism_top, info.prism_top);
+  field(h.fov_degrees, info.fov_degrees);
+}
+
+// The arrays right after the header, in file order (4 bytes an entry, arrays_bytes):
+// array(values, count) for each.
+template <class Info, class Array>
+void for_each_info_array(Info& info, const Array& array) {
+  array(info.resolutions, info.levels);
+  array(info.level_distances, info.levels);
+  array(info.elevations, info.levels);
+  array(info.azimuths, info.directions);
+}
+
 struct IndexEntry {
   std::uint64_t offset, bytes;
 };
@@ -205,23 +229,13 @@ void LdiPackWriter::commit() {
   std::memcpy(h.magic, kLdiPackMagic, sizeof(h.magic));
   h.version = kLdiPackVersion;
   h.header_bytes = sizeof(PackHeader);
-  h.tiles = info_.tiles;
-  h.levels = info_.levels;
-  h.directions = info_.directions;
-  h.image_width = info_.image_width;
-  h.tile_size = info_.tile_size;
-  h.head_height = info_.head_height;
-  h.prism_top = info_.prism_top;
-  h.fov_degrees = info_.fov_degrees;
+  for_each_info_field(h, info_, [](auto& in_header, const auto& in_info) { in_header = in_info; });
   h.file_bytes = end_;
   h.index_offset = index_offset_of(info_);
   std::ostream& out = file_->stream();
   out.seekp(0);
   put(out, h);
-  put_all(out, std::span<const std::uint32_t>(info_.resolutions));
-  put_all(out, std::span<const float>(info_.level_distances));
-  put_all(out, std::span<const float>(info_.elevations));
-  put_all(out, std::span<const float>(info_.azimuths));
+  for_each_info_array(info_, [&](const auto& values, std::uint32_t) { put_all(out, std::span(values)); });
   std::uint64_t at = sizeof(PackHeader) + arrays_bytes(info_.levels, info_.directions);
   pad_to(out, at, h.index_offset);
   for (std::size_t e = 0; e < sizes_.size(); ++e) put(out, IndexEntry{offsets_[e], sizes_[e]});
@@ -432,27 +446,18 @@ LdiPack::LdiPack(const std::filesystem::path& path) : path_(path) {
         h.directions > kMaxDirections)
       fail(std::to_string(h.tiles) + " tiles x " + std::to_string(h.levels) + " levels x " +
            std::to_string(h.directions) + " directions is out of range");
-    info_.tiles = h.tiles;
-    info_.levels = h.levels;
-    info_.directions = h.directions;
-    info_.tile_size = h.tile_size;
-    info_.head_height = h.head_height;
-    info_.prism_top = h.prism_top;
-    info_.image_width = h.image_width;
-    info_.fov_degrees = h.fov_degrees;
+    for_each_info_field(h, info_, [](const auto& in_header, auto& in_info) { in_info = in_header; });
     const std::size_t n = std::size_t{h.tiles} * h.levels * h.directions;
     if (h.index_offset != index_offset_of(info_) || h.index_offset + n * sizeof(IndexEntry) > size_)
       fail("the index (at " + std::to_string(h.index_offset) + ", " + std::to_string(n) +
            " entries) is misplaced or runs past the end of the file");
     const std::uint8_t* arrays = data_ + sizeof(PackHeader);
-    auto read_array = [&](auto& out, std::size_t count, std::size_t at) {
-      out.resize(count);
-      std::memcpy(out.data(), arrays + at, count * 4);
-    };
-    read_array(info_.resolutions, h.levels, 0);
-    read_array(info_.level_distances, h.levels, h.levels * 4u);
-    read_array(info_.elevations, h.levels, h.levels * 8u);
-    read_array(info_.azimuths, h.directions, h.levels * 12u);
+    std::size_t at = 0;
+    for_each_info_array(info_, [&](auto& values, std::uint32_t count) {
+      values.resize(count);
+      std::memcpy(values.data(), arrays + at, std::size_t{count} * 4);
+      at += std::size_t{count} * 4;
+    });
     check_header_numbers(info_, fail);
 
     const auto* index = reinterpret_cast<const IndexEntry*>(data_ + h.index_offset);

@@ -1,5 +1,5 @@
 // The Embree reference renderer: ray traces a whole Scene (the terrain mesh and every flower as
-// an Embree instance of its variant's model) with the one shading model of renders/trace/shading.h.
+// an Embree instance of its variant's model) with the one shading model of renders/trace/traced_shading.h.
 // It is the ground truth the LDI view is measured against (renders/trace/image_compare.h) and a fast
 // preview renderer of a scene folder (`wangscape render DIR --engine embree`).
 //
@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "generator/image.h"
-#include "renders/trace/shading.h"
+#include "renders/trace/traced_shading.h"
 #include "scene/scene.h"
 
 namespace wangscape {

@@ -6,7 +6,7 @@
 
 #include <array>
 
-#include "renders/trace/shading.h"
+#include "renders/trace/traced_shading.h"
 #include "scene/ground_look.h"
 
 namespace wangscape {

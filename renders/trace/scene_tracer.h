@@ -1,6 +1,6 @@
 // A Scene in Embree, built once and traced many times: the terrain mesh and every flower of the
 // scene's instance stream as an instance of its variant's model, shaded by the one shading model
-// (renders/trace/shading.h). What the reference renderer traces per sample and the real-time
+// (renders/trace/traced_shading.h). What the reference renderer traces per sample and the real-time
 // view's near field per pixel. Coordinates are ENU meters shifted by origin() (whole meters), so
 // that floats keep millimetres near it. Tracing is thread-safe once built.
 #pragma once
@@ -14,7 +14,7 @@
 #include <string_view>
 
 #include "renders/trace/ground_colors.h"
-#include "renders/trace/shading.h"
+#include "renders/trace/traced_shading.h"
 #include "scene/scene.h"
 
 namespace wangscape {

@@ -14,7 +14,7 @@
 #include "core/hash.h"
 #include "core/number_text.h"
 #include "renders/trace/scene_tracer.h"
-#include "renders/trace/shading.h"
+#include "renders/trace/traced_shading.h"
 #include "renders/view/view_projection.h"
 #include "renders/view/view_samples.h"
 

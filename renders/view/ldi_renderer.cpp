@@ -20,7 +20,7 @@
 #include "generator/placement.h"
 #include "renders/ldi/ldi_scene.h"
 #include "renders/trace/embree_device.h"
-#include "renders/trace/shading.h"
+#include "renders/trace/traced_shading.h"
 
 #include "renders/trace/scene_tracer.h"
 #include "renders/view/ldi_warp.h"

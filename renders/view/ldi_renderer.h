@@ -9,7 +9,7 @@
 //  - each LDI warped (renders/view/ldi_warp.h), sheared onto the tile's two terrain triangles,
 //    each depth pixel splatted as a square as large as its projected footprint;
 //  - the terrain mesh rasterized (perspective-correct), shaded with the sun and sky of
-//    renders/trace/shading.h and colored by Scene::ground_texture;
+//    renders/trace/traced_shading.h and colored by Scene::ground_texture;
 //  - beyond the last level, one-layer LDIs made once from the coarsest level at 1/2, 1/4, ...
 //    of its resolution, warped like the others over doubling distances, so the heads stand out
 //    to the horizon; beyond those, each tile's directional average color over the ground;

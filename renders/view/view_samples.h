@@ -9,7 +9,7 @@
 
 #include "core/color.h"
 #include "renders/ldi/ldi_pack.h"
-#include "renders/trace/shading.h"
+#include "renders/trace/traced_shading.h"
 
 namespace wangscape::view_detail {
 

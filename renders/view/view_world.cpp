@@ -14,7 +14,7 @@
 #include "generator/placement.h"
 #include "renders/ldi/ldi_scene.h"
 #include "renders/trace/embree_device.h"
-#include "renders/trace/shading.h"
+#include "renders/trace/traced_shading.h"
 #include "renders/view/view_samples.h"
 
 namespace wangscape {

@@ -17,7 +17,7 @@
 #include "generator/image.h"
 #include "renders/ldi/ldi_pack.h"
 #include "renders/trace/ground_colors.h"
-#include "renders/trace/shading.h"
+#include "renders/trace/traced_shading.h"
 #include "renders/view/terrain_chunks.h"
 #include "scene/scene.h"
 

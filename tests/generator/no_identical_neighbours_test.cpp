@@ -48,7 +48,7 @@ TEST(NoIdenticalNeighbours, AddLittleStructureToCohen8) {
   // tile uniformly among the rest raised the score at 128 x 128 from 0.015 to 0.057 (scanline);
   // each row uniform among those that may follow: 0.035, the peak at (0, 2). Five weights against
   // tiles equal to those two rows back and two columns aside: 0.018. The fitted equality tilt
-  // (kCohen8Tilt in generator/tiling.cpp): 0.0167 against 0.0153 over seeds 1-100. What is left is
+  // (kCohen8Tilt in generator/tiling_sweep.cpp): 0.0167 against 0.0153 over seeds 1-100. What is left is
   // noise, not structure (NoStructureInCohen8): the forbidden neighbours alone raise the noise of
   // every offset's autocorrelation by about 6 % with even tile frequencies (docs/tileset-format.md).
   for (const TilingAlgorithm algorithm : {TilingAlgorithm::scanline, TilingAlgorithm::bottom_left}) {

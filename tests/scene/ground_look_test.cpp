@@ -7,9 +7,9 @@
 #include <cmath>
 #include <optional>
 
-#include "scene/ground.h"
 #include "scene/ground_look.h"
 #include "scene/scene_file.h"
+#include "scene/scene_ground.h"
 
 namespace wangscape {
 namespace {

@@ -1,4 +1,4 @@
-#include "renders/trace/shading.h"
+#include "renders/trace/traced_shading.h"
 
 #include <embree3/rtcore.h>
 

@@ -1,4 +1,4 @@
-#include "scene/shading.h"
+#include "scene/shading_light.h"
 
 #include <algorithm>
 #include <cmath>

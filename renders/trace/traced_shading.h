@@ -2,14 +2,14 @@
 // reference renderer shades its pixels with it, so both show the same light. Diffuse surfaces lit
 // by the sun (with Embree shadow rays) and by the sky (ambient occlusion from N hemisphere rays);
 // thin translucent parts (petals, leaves) also pass the sun that falls on their back. The light
-// itself (settings, sun share, lit(), the sky) is scene/shading.h, which the far field uses too.
+// itself (settings, sun share, lit(), the sky) is scene/shading_light.h, which the far field uses too.
 #pragma once
 
 #include <array>
 #include <cstdint>
 
 #include "core/hash.h"
-#include "scene/shading.h"
+#include "scene/shading_light.h"
 #include "templates/mesh.h"
 
 // Embree's scene handle (embree3/rtcore_scene.h: typedef struct RTCSceneTy* RTCScene), declared

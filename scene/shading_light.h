@@ -1,5 +1,5 @@
 // The light of the one shading model: what a diffuse surface receives from the sun and from the
-// open sky, and the sky seen along a ray. renders/trace/shading.h traces its shadow and sky rays
+// open sky, and the sky seen along a ray. renders/trace/traced_shading.h traces its shadow and sky rays
 // with Embree (the LDI build and the reference renderer); the far field (far_field.h) uses it
 // with an open sky and no shadows. Pure functions: thread safe.
 #pragma once

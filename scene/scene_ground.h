@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "core/extent.h"
-#include "generator/ground.h"
+#include "generator/ground_concept.h"
 #include "generator/placement.h"
 #include "scene/scene_file.h"
 #include "templates/mesh.h"

@@ -1,4 +1,4 @@
-#include "scene/ground.h"
+#include "scene/scene_ground.h"
 
 #include <map>
 #include <tuple>
