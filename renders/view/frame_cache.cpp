@@ -381,9 +381,8 @@ void FrameCache::Impl::reproject(const ViewProjection& to) {
       bool far = false;
       for (int y = first; y < last; ++y)
         for (int x = 0; x < w; ++x)
-          if (!scatter.place(x, y, first - reach, last + reach, [](std::uint64_t& slot, std::uint64_t k) {
-                slot = std::min(slot, k);
-              })) {
+          if (!scatter.place(x, y, first - reach, last + reach,
+                             [](std::uint64_t& slot, std::uint64_t k) { slot = std::min(slot, k); })) {
             needs[std::size_t(y) * std::size_t(w) + std::size_t(x)] = kFarMove;
             far = true;
           }
@@ -991,8 +990,8 @@ const CachedFrameStats& FrameCache::render(const Camera& camera) {
       if (n > 0 && !still) {
         const auto smoothed = [](double& mean, double ns) { mean = mean > 0 ? 0.8 * mean + 0.2 * ns : ns; };
         smoothed(m.measured_sample_ns, stats_.trace_ms * 1e6 / double(n));
-        smoothed(m.measured_pixel_ns, (stats_.phase_ms[0] + stats_.phase_ms[1] + stats_.phase_ms[3]) * 1e6 /
-                                          double(m.pixels()));
+        smoothed(m.measured_pixel_ns,
+                 (stats_.phase_ms[0] + stats_.phase_ms[1] + stats_.phase_ms[3]) * 1e6 / double(m.pixels()));
       }
     }
   }
