@@ -370,7 +370,7 @@ std::vector<std::string> povray_model_names(const std::vector<Mesh>& models) {
     for (const char c : models[v].name) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
     if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) name = "Model_" + name;
     name[0] = char(std::toupper(static_cast<unsigned char>(name[0])));
-    if (!taken.insert(name).second) name += "_v" + std::to_string(v);
+    if (taken.contains(name)) name += "_v" + std::to_string(v);
     taken.insert(name);
     names.push_back(std::move(name));
   }
@@ -379,7 +379,7 @@ std::vector<std::string> povray_model_names(const std::vector<Mesh>& models) {
 
 // ---- instances --------------------------------------------------------------------------------
 
-PovrayInstanceWriter::PovrayInstanceWriter(std::ostream& out, std::vector<std::string> model_names) : out_(out) {
+PovrayInstanceWriter::PovrayInstanceWriter(std::ostream& out, const std::vector<std::string>& model_names) : out_(out) {
   for (const std::string& name : model_names) object_prefixes_.push_back("object{" + name);
   buffer_.reserve(1 << 20);
 }

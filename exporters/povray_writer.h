@@ -91,7 +91,7 @@ std::vector<std::string> povray_model_names(const std::vector<Mesh>& models);
 class PovrayInstanceWriter {
  public:
   // `model_names`: povray_model_names of the models the instances' variants index.
-  PovrayInstanceWriter(std::ostream& out, std::vector<std::string> model_names);
+  PovrayInstanceWriter(std::ostream& out, const std::vector<std::string>& model_names);
   ~PovrayInstanceWriter() { flush(); }
   PovrayInstanceWriter(const PovrayInstanceWriter&) = delete;
   PovrayInstanceWriter& operator=(const PovrayInstanceWriter&) = delete;

@@ -52,14 +52,13 @@ ScatterResult run_scatter(const ScatterRequest& request) {
                     "--max-instances, a smaller area or a larger --tile-size",
                     about, estimate, *request.max_instances));
   if (!request.out.empty()) {
-    const double bytes_per_point = point_file_bytes_per_point(point_file_format(request.out));
+    const double bytes = estimate * point_file_bytes_per_point(point_file_format(request.out));
     check_disk_estimate(
         request.out,
         fmt::format("scatter's points file '{}' (about {:.3g} instances: {})", request.out.string(), estimate, about),
-        estimate * bytes_per_point,
+        bytes,
         "free some space, write elsewhere (--out), or scatter less (a larger --tile-size, masks, "
         "--max-instances)");
-    const double bytes = estimate * bytes_per_point;
     if (bytes > kLargeScatterFileBytes && !request.large_file_ok)
       throw Error(
           fmt::format("scatter's points file '{}' would hold about {:.3g} instances, about {} ({}); add "

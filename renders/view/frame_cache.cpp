@@ -295,13 +295,12 @@ struct KeyLayout {
     layout.depth_shift = std::max(0, 31 - (63 - 6 - layout.index_bits));
     return layout;
   }
-  // A sample's key in its own pixel (elsewhere: | from(...) | kCopyBit).
-  std::uint64_t own(float depth, std::uint32_t pixel) const {
-    return std::uint64_t(std::bit_cast<std::uint32_t>(depth) >> depth_shift) << (6 + index_bits) | home(0, 0) | pixel;
+  // A sample's key without where its own pixel lies: | home(dx, dy), and | kCopyBit for a copy.
+  std::uint64_t key(float depth, std::uint32_t pixel) const {
+    return std::uint64_t(std::bit_cast<std::uint32_t>(depth) >> depth_shift) << (6 + index_bits) | pixel;
   }
-  // The bits saying the sample's own pixel lies (dx, dy) pixels from this one.
+  // The bits saying the sample's own pixel lies (dx, dy) pixels from the keyed one.
   std::uint64_t home(int dx, int dy) const { return std::uint64_t((dx + 4) << 3 | (dy + 4)) << index_bits; }
-  std::uint64_t from(int dx, int dy) const { return home(dx, dy) ^ home(0, 0); }  // (own | from: home(dx, dy))
   std::uint32_t source(std::uint64_t key) const { return std::uint32_t(key & ((1ull << index_bits) - 1)); }
   int home_x(std::uint64_t key) const { return int((key >> (index_bits + 3)) & 7) - 4; }
   int home_y(std::uint64_t key) const { return int((key >> index_bits) & 7) - 4; }
@@ -342,15 +341,16 @@ struct Scatter {
     const float half = s.side * 0.5f;
     const int x0 = std::max(0, ceil_above(from_x - half)), x1 = std::min(w - 1, floor_above(from_x + half));
     const int y0 = std::max(0, ceil_above(from_y - half)), y1 = std::min(h - 1, floor_above(from_y + half));
-    const std::uint64_t own = layout.own(s.depth, std::uint32_t(p));
-    const std::uint64_t copy = own | kCopyBit;
+    const std::uint64_t sample_key = layout.key(s.depth, std::uint32_t(p));
     const auto at = [&](int qx, int qy) -> std::uint64_t& {
       return key[std::size_t(qy) * std::size_t(w) + std::size_t(qx)];
     };
-    if (home_x >= 0 && home_y >= 0 && home_x < w && home_y < h) take(at(home_x, home_y), own);
+    if (home_x >= 0 && home_y >= 0 && home_x < w && home_y < h)
+      take(at(home_x, home_y), sample_key | layout.home(0, 0));
     for (int qy = y0; qy <= y1; ++qy)
       for (int qx = x0; qx <= x1; ++qx)
-        if (qx != home_x || qy != home_y) take(at(qx, qy), copy ^ layout.from(home_x - qx, home_y - qy));
+        if (qx != home_x || qy != home_y)
+          take(at(qx, qy), sample_key | kCopyBit | layout.home(home_x - qx, home_y - qy));
     return true;
   }
 };

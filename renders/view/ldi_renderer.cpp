@@ -50,8 +50,9 @@ constexpr double kSteepBlendBand = 0.25;
 // sampled it, and its resolution is at most kSteepFinerResolution times the steep sets': its
 // LDIs, sampled a few degrees below the horizon, show the sides of the plants, and from above
 // their samples spread into sparse leaves over bare ground (straight down from 30 m: SSIM 0.27
-// against the truth where the exact image scores 0.81; 0.39 so). The steep sets' coarser
-// resolution costs less than the wrong angle there, but more than it 5 m up (the finest levels).
+// against the truth, 0.39 from the steep sets, where the exact image scores 0.81). The steep
+// sets' coarser resolution costs less than the wrong angle there, but more than it 5 m up (the
+// finest levels).
 constexpr double kSteepFinerLevels = 2;
 constexpr double kSteepFinerResolution = 2;
 constexpr float kLevelBlendStart = 0.75f;  // of a level's range: where dithering into the next level starts
