@@ -158,6 +158,8 @@ PathRenderResult render_path(const fs::path& dir, const PathRenderRequest& reque
 
   std::error_code ec;
   FramesFolder folder(fs::absolute(request.frames, ec));  // POV-Ray runs in DIR
+  remove_stale_temporaries(folder.dir());                 // a killed run's unfinished frames
+  remove_stale_temporaries(dir);                          // and its .pov
   PathRenderResult result;
   result.frames = static_cast<long long>(cameras.size());
   result.width = width;
