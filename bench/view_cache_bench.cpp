@@ -29,7 +29,7 @@
 #include "bench/default_view_world.h"
 #include "renders/view/frame_cache.h"
 #include "renders/view/view_frames.h"
-#include "renders/view/view_path.h"
+#include "scene/view_path.h"
 
 namespace {
 

@@ -1,22 +1,86 @@
 // wangscape render DIR --engine povray|blender|embree [--width W --height H]: renders a built
 // scene folder with the real renderer (POV-Ray: DIR/render.png; Blender: DIR/render_blender.png
 // and DIR/scene.blend), keeping its log beside the image; or with the Embree reference renderer
-// (DIR/render_embree.png, or --out, with --spp samples per pixel).
+// (DIR/render_embree.png, or --out, with --spp samples per pixel). --camera/--look-at: from
+// another camera, without building the folder again. --path FILE --frames FOLDER: every frame of
+// a path file, as the view plays it (renders/render_path.h), and FOLDER/path.mp4.
+#include <fmt/core.h>
+
 #include <cstdio>
+#include <limits>
 #include <memory>
 
 #include "cli/command.h"
 #include "cli/progress.h"
 #include "cli/scene_commands.h"
+#include "core/number_text.h"
 #include "renders/render_folder.h"
+#include "renders/render_path.h"
 #include "renders/trace/embree_reference.h"
 
 namespace wangscape::cli {
 
+std::optional<std::array<double, 3>> parse_enu_triple(const std::string& text, bool third_optional) {
+  const auto v = parse_number_list(text, ',', third_optional ? 2 : 3, 3);
+  if (!v) return std::nullopt;
+  return std::array<double, 3>{(*v)[0], (*v)[1], v->size() == 3 ? (*v)[2] : std::numeric_limits<double>::quiet_NaN()};
+}
+
+namespace {
+
+// --path: the frames, a bar of frames on a terminal, the one line of what was written.
+void run_render_path(const std::filesystem::path& dir, const RenderRequest& request, const GlobalOptions& global) {
+  const WriteReport report(global.quiet);
+  if (request.camera || request.look_at)
+    throw CLI::ValidationError("--camera", "a path gives every frame's camera: give --path or --camera, not both");
+  if (!request.out.empty()) throw CLI::ValidationError("--out", "with --path the frames go to --frames FOLDER");
+  PathRenderRequest path;
+  path.engine = parse_render_engine(request.engine);
+  path.path = request.path;
+  path.frames = request.frames;
+  path.fps = request.fps.value_or(kDefaultPathRenderFps);
+  path.width = request.width;
+  path.height = request.height;
+  path.samples = request.spp;
+  std::optional<Progress> progress;
+  long long skipped = 0;
+  const auto start = std::chrono::steady_clock::now();
+  if (chatty(global))
+    std::fprintf(stderr, "wangscape: rendering %s along %s with %s\n", dir.string().c_str(),
+                 shown_path(request.path).c_str(), request.engine.c_str());
+  path.on_frame = [&](long long done, long long total, bool rendered) {
+    if (!rendered) ++skipped;
+    if (!progress) progress.emplace("frames", std::uint64_t(total), global.quiet);
+    const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const long long fresh = done - skipped;
+    progress->update(std::uint64_t(done), fresh > 0 ? fmt::format("frame {} / {}, about {:.0f} s left", done, total,
+                                                                  spent / double(fresh) * double(total - done))
+                                                    : fmt::format("frame {} / {}, done before", done, total));
+  };
+  const PathRenderResult result = render_path(dir, path);
+  progress.reset();
+  std::string details = fmt::format("{} frames of {}x{} at {} frames/s with {}", result.frames, result.width,
+                                    result.height, number_text(path.fps), request.engine);
+  if (result.skipped > 0) details += fmt::format(", {} there already", result.skipped);
+  details += result.movie.empty() ? "; no ffmpeg on PATH: PNG frames only" : " and path.mp4";
+  if (!result.blend.empty()) details += ", path.blend";
+  if (!result.log.empty()) details += "; log " + shown_path(result.log);
+  report.wrote(request.frames, details);
+}
+
+}  // namespace
+
 void run_render(const std::filesystem::path& dir, const RenderRequest& request, const GlobalOptions& global) {
+  if (!request.path.empty() || !request.frames.empty() || request.fps) {
+    if (request.path.empty()) throw CLI::ValidationError("--path", "--frames and --fps go with --path FILE");
+    if (request.frames.empty()) throw CLI::ValidationError("--frames", "--path needs --frames FOLDER for its frames");
+    return run_render_path(dir, request, global);
+  }
   const WriteReport report(global.quiet);
   FolderRenderRequest folder{
-      parse_render_engine(request.engine), request.width, request.height, request.out, request.spp, {}};
+      parse_render_engine(request.engine), request.width, request.height, request.out, request.spp, {}, {}, {}};
+  folder.eye = request.camera;
+  folder.look_at = request.look_at;
   std::unique_ptr<Progress> progress;
   if (chatty(global)) {
     std::fprintf(stderr, "wangscape: rendering %s with %s\n", dir.string().c_str(), request.engine.c_str());
@@ -38,6 +102,7 @@ void register_render_command(CLI::App& app, const GlobalOptions& global) {
   auto* sub = app.add_subcommand("render", "Render a scene folder written by `wangscape build` into DIR/render.png");
   auto request = std::make_shared<RenderRequest>();
   auto dir = std::make_shared<std::string>();
+  auto camera = std::make_shared<std::string>(), look_at = std::make_shared<std::string>();
   sub->add_option("dir", *dir, "Scene folder")->required();
   sub->add_option("--engine", request->engine, "Renderer: povray, blender or embree")->capture_default_str();
   sub->add_option("--width", request->width, "Image width in pixels (default: the scene's; alone, the height follows)")
@@ -48,14 +113,37 @@ void register_render_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--out", request->out,
                   "The image to write (default: DIR/render_embree.png; povray and blender: a copy of the folder's)")
       ->check(output_file_path());
-  sub->add_option("--spp", request->spp, "embree: samples per pixel (default: the scene's antialias squared)")
+  sub->add_option("--spp", request->spp,
+                  "embree: samples per pixel (default: the scene's antialias squared); blender with --path: Cycles "
+                  "samples (default: the scene's)")
       ->check(CLI::Range(1, kMaxReferenceSamples));
+  sub->add_option("--camera", *camera,
+                  "Render from another eye, E,N[,H] (ENU m; without H: the [ldi] head height above the ground)");
+  sub->add_option("--look-at", *look_at, "With or without --camera: the point looked at, E,N,H (ENU m)");
+  sub->add_option("--path", request->path,
+                  "Render every frame along a path file (the view's: docs/viewer.md) into --frames");
+  sub->add_option("--frames", request->frames,
+                  "With --path: the folder of frames, frame-00000.png ... and path.mp4 (ffmpeg); frames already "
+                  "there and complete are kept, not rendered again");
+  sub->add_option("--fps", request->fps, "With --path: frames per second along the path (1 .. 240, default 24)")
+      ->check(finite_number());
   set_help_footer(sub,
                   "into the folder: render.png and povray.log (povray); scene.blend, render_blender.png and "
-                  "blender.log (blender), with --out a copy there; render_embree.png or --out (embree)",
-                  {"wangscape build templates/scenes/small.toml --out small", "wangscape render small",
-                   "wangscape render small --engine embree --spp 4 --out small/embree.png"});
-  sub->callback([dir, request, &global] { run_render(*dir, *request, global); });
+                  "blender.log (blender), with --out a copy there; render_embree.png or --out (embree). With --path: "
+                  "FRAMES/frame-NNNNN.png and FRAMES/path.mp4 (blender: also FRAMES/path.blend, its camera "
+                  "keyframed)",
+                  {"wangscape build templates/scenes/small.toml --out small",
+                   "wangscape render small --engine embree --spp 4 --camera 0,6570 --look-at 0,6540,1117.2 --out "
+                   "small/close.png",
+                   "wangscape render small --engine embree --path templates/paths/small_walk.json --frames small/walk "
+                   "--fps 4 --width 160"});
+  sub->callback([dir, request, camera, look_at, &global] {
+    if (!camera->empty() && !(request->camera = parse_enu_triple(*camera, true)))
+      throw CLI::ValidationError("--camera", "'" + *camera + "' is not E,N or E,N,H in meters");
+    if (!look_at->empty() && !(request->look_at = parse_enu_triple(*look_at, false)))
+      throw CLI::ValidationError("--look-at", "'" + *look_at + "' is not E,N,H in meters");
+    run_render(*dir, *request, global);
+  });
 }
 
 }  // namespace wangscape::cli

@@ -22,7 +22,7 @@
 #include "core/number_text.h"
 #include "core/run_cleanup.h"
 #include "exporters/image_io.h"
-#include "renders/external/child_process.h"
+#include "renders/external/movie.h"
 #include "renders/window/ldi_window.h"
 
 namespace wangscape::cli {
@@ -30,13 +30,6 @@ namespace wangscape::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-// "A,B" or "A,B,C" as numbers (a missing third is NaN); empty when it is not that.
-std::optional<std::array<double, 3>> parse_triple(const std::string& text, bool third_optional) {
-  const auto v = parse_number_list(text, ',', third_optional ? 2 : 3, 3);
-  if (!v) return std::nullopt;
-  return std::array<double, 3>{(*v)[0], (*v)[1], v->size() == 3 ? (*v)[2] : std::numeric_limits<double>::quiet_NaN()};
-}
 
 // "A", "A and B", "A, B and C".
 std::string listed(const std::vector<std::string>& items) {
@@ -92,22 +85,6 @@ class FramesFolder {
   std::vector<fs::path> written_;
 };
 
-// The frames' movie through ffmpeg, when it is on PATH: FOLDER/path.mp4 at `fps`. False without
-// ffmpeg.
-bool write_movie(const fs::path& dir, double fps) {
-  const fs::path ffmpeg = find_program("ffmpeg");
-  if (ffmpeg.empty()) return false;
-  const fs::path movie = dir / "path.mp4", log = dir / "ffmpeg.log";
-  const ChildExit exit = run_logged({ffmpeg.string(), "-y", "-loglevel", "error", "-framerate", number_text(fps), "-i",
-                                     (dir / "frame-%05d.png").string(), "-pix_fmt", "yuv420p", "-vf",
-                                     "pad=ceil(iw/2)*2:ceil(ih/2)*2", movie.string()},
-                                    log);
-  if (!exit.exited || exit.status != 0) throw Error(movie, "", "ffmpeg " + exit.describe() + last_log_lines(log, 3));
-  std::error_code ec;
-  fs::remove(log, ec);
-  return true;
-}
-
 // --path: every frame along the path (play_view_path), as PNGs into --frames and path.mp4, the
 // compared frames' figures and --stats on stdout, a progress bar on a terminal.
 void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewPath& path, const ViewRequest& request,
@@ -138,7 +115,7 @@ void play_path(const std::shared_ptr<const ViewWorld>& world, const ViewPath& pa
                      request.json);
   if (!folder.wanted()) return;
   folder.open();
-  const bool movie = write_movie(folder.dir(), playback.fps);
+  const bool movie = write_frames_movie(folder.dir(), kPathFramePattern, playback.fps, folder.dir() / "path.mp4");
   folder.keep();
   report.wrote(folder.dir(), fmt::format("{} frames of {}x{}{}", frames, playback.width, playback.height,
                                          movie ? " and path.mp4" : "; no ffmpeg on PATH: PNG frames only"));
@@ -314,9 +291,9 @@ void register_view_command(CLI::App& app, const GlobalOptions& global) {
     ViewRequest& r = o->request;
     r.dir = o->dir;
     r.quiet = global.quiet;
-    if (!o->camera.empty() && !(r.camera = parse_triple(o->camera, true)))
+    if (!o->camera.empty() && !(r.camera = parse_enu_triple(o->camera, true)))
       throw CLI::ValidationError("--camera", "'" + o->camera + "' is not E,N or E,N,H in meters");
-    if (!o->look_at.empty() && !(r.look_at = parse_triple(o->look_at, false)))
+    if (!o->look_at.empty() && !(r.look_at = parse_enu_triple(o->look_at, false)))
       throw CLI::ValidationError("--look-at", "'" + o->look_at + "' is not E,N,H in meters");
     if (!o->size.empty() && !parse_number_pair(o->size, 'x', r.width, r.height))
       throw CLI::ValidationError("--size", "'" + o->size + "' is not WIDTHxHEIGHT in pixels");

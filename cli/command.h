@@ -10,6 +10,7 @@
 #include <exception>
 #include <filesystem>
 #include <initializer_list>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -120,6 +121,10 @@ CLI::Option* add_enum_option(CLI::App* sub, const std::string& name, Enum& value
 // The end of a subcommand's --help: what it writes and where, then two or three examples that
 // work from the repository root (data/SainteHelens.dem, templates/scenes/small.toml), each a
 // command a user can paste; tests/cli/help_examples.sh runs every one of them.
+// "A,B" or "A,B,C" as numbers, E,N,H in meters (a missing third is NaN); empty when it is not
+// that. For --camera and --look-at (view, render).
+std::optional<std::array<double, 3>> parse_enu_triple(const std::string& text, bool third_optional);
+
 inline void set_help_footer(CLI::App* sub, const std::string& writes, std::initializer_list<const char*> examples) {
   std::string text = "Writes: " + writes + "\n\nExamples (from the repository root):\n";
   for (const char* line : examples) text += std::string("  ") + line + "\n";

@@ -3,8 +3,10 @@
 // unless --quiet).
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "cli/command.h"
@@ -25,9 +27,12 @@ void run_build(const SceneConfig& config, const std::filesystem::path& out_dir, 
 
 struct RenderRequest {
   std::string engine = "povray";
-  int width = 0, height = 0;  // 0 = as the scene says
-  std::string out;            // embree: the image (default DIR/render_embree.png)
-  int spp = 0;                // embree: samples per pixel (0 = from the scene)
+  int width = 0, height = 0;                             // 0 = as the scene says
+  std::string out;                                       // embree: the image (default DIR/render_embree.png)
+  int spp = 0;                                           // embree: samples per pixel (0 = from the scene)
+  std::string path, frames;                              // --path FILE --frames FOLDER: an animation along the path
+  std::optional<double> fps;                             // of the path (default 24)
+  std::optional<std::array<double, 3>> camera, look_at;  // another camera (E,N[,H]; E,N,H)
 };
 // Renders a built folder into DIR/render.png (cmd_render.cpp).
 void run_render(const std::filesystem::path& dir, const RenderRequest& request, const GlobalOptions& global);

@@ -362,6 +362,39 @@ std::string povray_camera_and_sun(const Camera& cam, const Sun& sun) {
   return s;
 }
 
+std::string povray_scene_with_cameras(const std::string& scene_pov, const std::vector<Camera>& cameras,
+                                      const std::filesystem::path& file) {
+  if (cameras.empty()) throw Error(file, "", "no camera to render it from");
+  const auto begin = scene_pov.find("camera {\n");
+  const auto end = begin == std::string::npos ? begin : scene_pov.find("\n}\n", begin);
+  if (end == std::string::npos)
+    throw Error(file, "", "has no camera block to replace (write it with `wangscape build`)");
+  std::string block;
+  const auto append_points = [&](const char* name, auto point) {
+    block += "#declare " + std::string(name) + " = array[" + std::to_string(cameras.size()) + "] {\n";
+    for (std::size_t k = 0; k < cameras.size(); ++k) {
+      block += "  ";
+      append_enu_as_pov(block, point(cameras[k]), 4);
+      block += k + 1 < cameras.size() ? ",\n" : "\n";
+    }
+    block += "}\n";
+  };
+  std::string location = "Wangscape_Eyes[0]", look_at = "Wangscape_Targets[0]";
+  if (cameras.size() > 1) {
+    block += "// An animation of " + std::to_string(cameras.size()) + " frames: frame_number k (+KFI0 +KFF" +
+             std::to_string(cameras.size() - 1) + ") looks from Wangscape_Eyes[k] at Wangscape_Targets[k].\n";
+    location = "Wangscape_Eyes[frame_number]";
+    look_at = "Wangscape_Targets[frame_number]";
+  }
+  append_points("Wangscape_Eyes", [](const Camera& c) { return c.position; });
+  append_points("Wangscape_Targets", [](const Camera& c) { return c.target; });
+  block += "camera {\n  perspective\n  location " + location + "\n  look_at " + look_at +
+           "\n  right x * image_width / image_height\n  angle " + fixed(cameras.front().fov_degrees, 3) + "\n}\n";
+  std::string out = scene_pov;
+  out.replace(begin, end + 3 - begin, block);
+  return out;
+}
+
 std::vector<std::string> povray_model_names(const std::vector<Mesh>& models) {
   std::vector<std::string> names;
   std::set<std::string> taken;

@@ -74,6 +74,14 @@ PovrayExportStats write_povray_scene(const Scene& scene, const std::filesystem::
 // scene folder, so a new viewpoint or hour costs no new placement).
 std::string povray_camera_and_sun(const Camera& camera, const Sun& sun);
 
+// `scene_pov` (a folder's scene.pov, read from `file`, which errors name) with its camera block
+// replaced: one camera, or with several an animation's, frame_number k (POV-Ray's +KFI0
+// +KFF<N-1>) looking from cameras[k].position at cameras[k].target, every frame with the first
+// camera's field of view. The sun and everything else stay. Throws Error naming `file` when it
+// has no camera block, and for no camera.
+std::string povray_scene_with_cameras(const std::string& scene_pov, const std::vector<Camera>& cameras,
+                                      const std::filesystem::path& file);
+
 // `path` in double quotes for a POV-Ray ini value or command-line option (POV-Ray rejoins its
 // arguments and splits them at spaces; an unquoted ';' starts an ini comment). Throws Error
 // naming the path when it holds a control character (a newline would add an ini line) or a

@@ -1,4 +1,4 @@
-// libFuzzer target: the view's path-file reader (renders/view/view_path.h: the bounded text reader,
+// libFuzzer target: the view's path-file reader (scene/view_path.h: the bounded text reader,
 // the nesting check, nlohmann-json, the keyframes' counts, times and ranges) on arbitrary bytes,
 // through its file entry point. A path it accepts is flown along (the spline over flat ground at
 // its first, middle and last time) and must give finite cameras, and written back as JSON it must
@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "fuzz/fuzz_input.h"
-#include "renders/view/view_path.h"
+#include "scene/view_path.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace wangscape;

@@ -4,11 +4,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/number_text.h"
+#include "core/text_file.h"
 #include "exporters/folder_state.h"
 #include "exporters/image_io.h"
+#include "exporters/povray_writer.h"
 #include "exporters/scene_folder.h"
 #include "renders/external/blender_render.h"
 #include "renders/external/povray_render.h"
@@ -19,10 +23,40 @@ namespace wangscape {
 
 namespace {
 
+bool other_camera(const FolderRenderRequest& request) { return request.eye || request.look_at; }
+
+// The scene's camera with the parts `request` gives replaced.
+Camera chosen_camera(const Scene& scene, const SceneConfig& config, const FolderRenderRequest& request) {
+  Camera camera = scene.camera;
+  if (request.eye) {
+    camera.position = *request.eye;
+    if (std::isnan(camera.position[2])) {
+      const auto ground =
+          scene.field ? scene.field->ground.height(camera.position[0], camera.position[1]) : std::optional<double>();
+      if (!ground)
+        throw Error("render: eye at " + number_text(camera.position[0]) + "," + number_text(camera.position[1]) +
+                    ": not over the ground; give its height too (E,N,H)");
+      camera.position[2] = *ground + config.ldi.head_height;
+    }
+  }
+  if (request.look_at) camera.target = *request.look_at;
+  if (!(std::hypot(camera.target[0] - camera.position[0], camera.target[1] - camera.position[1]) >= 1e-6))
+    throw Error("render: the point looked at must lie sideways of the eye (not straight above, below or at it)");
+  return camera;
+}
+
+// Moves a renderer's finished image into place.
+void move_image(const std::filesystem::path& from, const std::filesystem::path& to) {
+  std::error_code ec;
+  std::filesystem::rename(from, to, ec);
+  if (ec) throw Error(to, "", "cannot move the rendered image here: " + ec.message());
+}
+
 FolderRenderResult render_embree(const std::filesystem::path& dir, const FolderRenderRequest& request) {
   const SceneConfig config = load_scene_folder_config(dir);
   const Scene scene = make_folder_scene(dir, config);
   ReferenceOptions options;
+  if (other_camera(request)) options.camera = chosen_camera(scene, config, request);
   options.width = request.width;
   options.height = request.height;
   options.samples_per_pixel = request.samples_per_pixel;
@@ -40,16 +74,19 @@ FolderRenderResult render_embree(const std::filesystem::path& dir, const FolderR
   return {image, {}, {}, s.seconds, summary};
 }
 
-// One side given: the other keeps the scene's aspect ratio (160 wide of a 640 x 360 scene: 90
-// high), at least one pixel.
+// One side given: the other keeps the scene's aspect ratio (folder_image_size).
 FolderRenderRequest with_aspect_kept(const std::filesystem::path& dir, FolderRenderRequest request) {
   if ((request.width > 0) == (request.height > 0)) return request;
-  const ImageConfig scene = load_scene_folder_config(dir).image;
-  if (request.width > 0)
-    request.height = std::max(1, int(std::lround(double(request.width) * scene.height / scene.width)));
-  else
-    request.width = std::max(1, int(std::lround(double(request.height) * scene.width / scene.height)));
+  const auto [width, height] = folder_image_size(dir, request.width, request.height);
+  request.width = width;
+  request.height = height;
   return request;
+}
+
+// The camera `request` asks, made from the folder's scene.
+Camera folder_camera(const std::filesystem::path& dir, const FolderRenderRequest& request) {
+  const SceneConfig config = load_scene_folder_config(dir);
+  return chosen_camera(make_folder_scene(dir, config), config, request);
 }
 
 // POV-Ray and Blender write into the folder; --out is a copy of that image, made atomically.
@@ -66,23 +103,71 @@ FolderRenderResult copied_to_out(FolderRenderResult result, const std::filesyste
 
 }  // namespace
 
+std::array<int, 2> folder_image_size(const std::filesystem::path& dir, int width, int height) {
+  if (width > 0 && height > 0) return {width, height};
+  const ImageConfig scene = load_scene_folder_config(dir).image;
+  if (width > 0) return {width, std::max(1, int(std::lround(double(width) * scene.height / scene.width)))};
+  if (height > 0) return {std::max(1, int(std::lround(double(height) * scene.width / scene.height))), height};
+  return {scene.width, scene.height};
+}
+
 FolderRenderResult render_scene_folder(const std::filesystem::path& dir, const FolderRenderRequest& asked) {
   const FolderRenderRequest request = with_aspect_kept(dir, asked);
   if (request.engine == RenderEngine::embree) return render_embree(dir, request);
   if (request.samples_per_pixel != 0)
-    throw Error("render: --spp is for --engine embree; " + std::string(to_string(request.engine)) +
+    throw Error("render: --spp is for --engine embree (and blender --path); " + std::string(to_string(request.engine)) +
                 " takes its samples from the scene (its antialias)");
   if (request.engine == RenderEngine::blender) {
     BlenderRenderOptions options;
     options.width = request.width;
     options.height = request.height;
-    const auto result = render_blender(dir, options);
-    return copied_to_out({result.image, result.log, result.blend, result.seconds, {}}, request.out);
+    if (!other_camera(request)) {
+      const auto result = render_blender(dir, options);
+      return copied_to_out({result.image, result.log, result.blend, result.seconds, {}}, request.out);
+    }
+    // Another camera: a one-frame run of the frames' script (renders/external/blender_render.h),
+    // its frame moved to the still's name.
+    const Camera camera = folder_camera(dir, request);
+    AtomicPath work(dir / "blender_camera");  // a folder under a temporary's name, removed when done
+    std::filesystem::create_directory(work.temp_path());
+    const nlohmann::json spec{{"fps", 1},
+                              {"cameras",
+                               {{camera.position[0], camera.position[1], camera.position[2], camera.target[0],
+                                 camera.target[1], camera.target[2]}}},
+                              {"render", {0}}};
+    write_file_atomically(work.temp_path() / "cameras.json", spec.dump());
+    options.cameras_file = work.temp_path() / "cameras.json";
+    options.frames_dir = work.temp_path();
+    const std::filesystem::path image = dir / "render_blender.png";
+    bool rendered = false;
+    options.on_frame = [&](int, const std::filesystem::path& file) {
+      move_image(file, image);
+      rendered = true;
+    };
+    BlenderRenderResult result;
+    std::error_code ec;
+    try {
+      result = render_blender(dir, options);
+    } catch (...) {
+      std::filesystem::remove_all(work.temp_path(), ec);
+      throw;
+    }
+    std::filesystem::remove_all(work.temp_path(), ec);
+    if (!rendered) throw Error(image, "", "Blender ended without rendering it; log " + result.log.string());
+    return copied_to_out({image, result.log, result.blend, result.seconds, {}}, request.out);
   }
   PovrayRenderOptions options;
   options.width = request.width;
   options.height = request.height;
   options.on_progress = request.on_progress;
+  // Another camera: the folder's scene.pov with it, in a temporary .pov beside it.
+  AtomicPath pov(dir / "scene_camera.pov");  // never committed: removed when done
+  if (other_camera(request) && std::filesystem::is_regular_file(dir / "scene.pov")) {
+    const std::string text = read_text_file(dir / "scene.pov", std::uintmax_t(1) << 30, "POV-Ray scene");
+    write_file_atomically(pov.temp_path(),
+                          povray_scene_with_cameras(text, {folder_camera(dir, request)}, dir / "scene.pov"));
+    options.input_file = pov.temp_path().filename().string();
+  }
   const auto result = render_povray(dir, options);
   return copied_to_out({result.image, result.log, {}, result.seconds, {}}, request.out);
 }

@@ -2,9 +2,11 @@
 // program and batch runs choose engines by name.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "renders/external/render_engine.h"
@@ -20,6 +22,10 @@ struct FolderRenderRequest {
   int samples_per_pixel = 0;
   // POV-Ray and Embree: pixels done of the total, now and then.
   std::function<void(std::uint64_t done, std::uint64_t total)> on_progress;
+  // Another camera than the scene's, without building the folder again: each part given replaces
+  // the scene camera's. The eye E, N, H (ENU m; H NaN: the [ldi] head height above the ground),
+  // the point looked at E, N, H.
+  std::optional<std::array<double, 3>> eye, look_at;
 };
 
 struct FolderRenderResult {
@@ -35,7 +41,12 @@ inline constexpr const char* kEmbreeRenderImage = "render_embree.png";
 // Renders DIR with the requested engine. Embree renders the Scene made again from
 // DIR/scene.toml (load_scene_folder_config), with the sky rays of its [ldi] section, so it needs
 // no export of its own. Throws Error naming a folder without that engine's export, or the
-// renderer's own failure.
+// renderer's own failure; with another camera, Error for an eye without a height that is not
+// over the ground or a point looked at that is not sideways of the eye.
+// The image size of a render of DIR asked as `width` x `height`: 0 x 0 the scene's; one side
+// given, the other keeps the scene's aspect ratio (at least one pixel).
+std::array<int, 2> folder_image_size(const std::filesystem::path& dir, int width, int height);
+
 FolderRenderResult render_scene_folder(const std::filesystem::path& dir, const FolderRenderRequest& request);
 
 }  // namespace wangscape

@@ -1,6 +1,7 @@
 #include "renders/external/blender_render.h"
 
 #include <cstdlib>
+#include <functional>
 #include <vector>
 
 #include "core/atomic_file.h"
@@ -13,7 +14,8 @@ namespace wangscape {
 namespace {
 
 // Runs inside Blender. Arguments after "--": add-on zip, manifest, .blend path ("" = do
-// not save), image path, width, height, samples, threads (0 = keep the manifest's).
+// not save), image path, width, height, samples, threads (0 = keep the manifest's), and for
+// frames the cameras file and the frames folder (BlenderRenderOptions).
 constexpr const char* kRenderScript = R"py(
 import os, sys, time
 args = sys.argv[sys.argv.index("--") + 1:]
@@ -38,12 +40,48 @@ if samples > 0: scene.cycles.samples = samples
 if threads > 0:
     scene.render.threads_mode = "FIXED"
     scene.render.threads = threads
+cameras_file, frames_dir = (args[8:10] + ["", ""])[:2]
+if cameras_file:
+    # The camera keyframed at every frame of the path (frames from 0), turned as the add-on
+    # turns it: looking down -z at the target, its y up.
+    import json
+    from mathutils import Vector
+    with open(cameras_file) as f:
+        spec = json.load(f)
+    camera = scene.camera
+    camera.rotation_mode = "QUATERNION"
+    scene.frame_start, scene.frame_end = 0, len(spec["cameras"]) - 1
+    fps = float(spec["fps"])
+    scene.render.fps = max(1, round(fps))
+    scene.render.fps_base = scene.render.fps / fps
+    for k, c in enumerate(spec["cameras"]):
+        eye, target = Vector(c[0:3]), Vector(c[3:6])
+        camera.location = eye
+        camera.rotation_quaternion = (target - eye).to_track_quat("-Z", "Y")
+        camera.keyframe_insert("location", frame=k)
+        camera.keyframe_insert("rotation_quaternion", frame=k)
+    for curve in camera.animation_data.action.fcurves:
+        for key in curve.keyframe_points:
+            key.interpolation = "LINEAR"
 if blend_path:
     bpy.ops.wm.save_as_mainfile(filepath=blend_path, check_existing=False)
 scene.render.image_settings.file_format = "PNG"
 scene.render.image_settings.color_mode = "RGB"
 scene.render.image_settings.color_depth = "8"
 scene.render.use_file_extension = False  # the temporary's name is not the image's
+if cameras_file:
+    # Each frame asked, as f<k>.png once complete (renamed from a partial file).
+    for k in spec["render"]:
+        scene.frame_set(k)
+        partial = os.path.join(frames_dir, "f%d.partial" % k)
+        scene.render.filepath = partial
+        start = time.perf_counter()
+        bpy.ops.render.render(write_still=True)
+        if not os.path.exists(partial):
+            raise RuntimeError("wangscape-blender: error: Cycles wrote no image for frame %d" % k)
+        os.replace(partial, os.path.join(frames_dir, "f%d.png" % k))
+        print("wangscape-blender: rendered frame %d in %.3f s" % (k, time.perf_counter() - start), flush=True)
+    sys.exit(0)
 scene.render.filepath = image_path
 start = time.perf_counter()
 bpy.ops.render.render(write_still=True)
@@ -90,43 +128,55 @@ BlenderRenderResult render_blender(const std::filesystem::path& dir_in, const Bl
     write_file_atomically(addon_zip, blender_addon_zip());
   }
 
+  const bool frames = !options.cameras_file.empty();
   result.image = dir / options.image_name;
-  result.log = dir / "blender.log";
+  result.log = options.log.empty() ? dir / "blender.log" : std::filesystem::absolute(options.log, ec);
   AtomicPath image(result.image);
-  AtomicPath blend(dir / "scene.blend");
+  const std::filesystem::path blend_path =
+      options.blend_path.empty() ? dir / "scene.blend" : std::filesystem::absolute(options.blend_path, ec);
+  AtomicPath blend(blend_path);
   AtomicPath log(result.log);
   std::filesystem::remove(log.temp_path(), ec);
   // A script file rather than --python-expr: on errors Blender echoes an expression whole.
   AtomicPath script(dir / "blender_render.py");
   write_file_atomically(script.temp_path(), kRenderScript);
 
-  const std::vector<std::string> argv = {blender.string(),
-                                         "-b",
-                                         "--factory-startup",
-                                         "--python-exit-code",
-                                         "1",
-                                         "--python",
-                                         script.temp_path().string(),
-                                         "--",
-                                         addon_zip.string(),
-                                         result.manifest.string(),
-                                         options.save_blend ? blend.temp_path().string() : std::string(),
-                                         image.temp_path().string(),
-                                         std::to_string(options.width),
-                                         std::to_string(options.height),
-                                         std::to_string(options.samples),
-                                         std::to_string(options.threads)};
+  std::vector<std::string> argv = {blender.string(),
+                                   "-b",
+                                   "--factory-startup",
+                                   "--python-exit-code",
+                                   "1",
+                                   "--python",
+                                   script.temp_path().string(),
+                                   "--",
+                                   addon_zip.string(),
+                                   result.manifest.string(),
+                                   options.save_blend ? blend.temp_path().string() : std::string(),
+                                   image.temp_path().string(),
+                                   std::to_string(options.width),
+                                   std::to_string(options.height),
+                                   std::to_string(options.samples),
+                                   std::to_string(options.threads)};
+  if (frames) {
+    argv.push_back(std::filesystem::absolute(options.cameras_file, ec).string());
+    argv.push_back(std::filesystem::absolute(options.frames_dir, ec).string());
+  }
+  const auto hand_over_frames = [&] {
+    for (const auto& [k, file] : numbered_frames(options.frames_dir))
+      if (options.on_frame) options.on_frame(k, file);
+  };
   ChildExit exit;
   try {
-    exit = run_logged(argv, log.temp_path());
+    exit = run_logged(argv, log.temp_path(), {}, frames ? std::function<void()>(hand_over_frames) : nullptr);
   } catch (const std::exception& e) {
     throw Error(std::string("render: ") + e.what());
   }
+  if (frames) hand_over_frames();
   result.seconds = exit.seconds;
   const bool log_written = std::filesystem::exists(log.temp_path());
   if (log_written) log.commit();
   const bool exited_ok = exit.exited && exit.status == 0;
-  if (!exited_ok || !std::filesystem::exists(image.temp_path()) ||
+  if (!exited_ok || (!frames && !std::filesystem::exists(image.temp_path())) ||
       (options.save_blend && !std::filesystem::exists(blend.temp_path()))) {
     throw Error("render: Blender " + exit.describe() + " importing and rendering '" + result.manifest.string() + "'" +
                 (exited_ok ? " without writing the image or .blend" : "") + "; log " + result.log.string() +
@@ -134,7 +184,11 @@ BlenderRenderResult render_blender(const std::filesystem::path& dir_in, const Bl
   }
   if (options.save_blend) {
     blend.commit();
-    result.blend = dir / "scene.blend";
+    result.blend = blend_path;
+  }
+  if (frames) {
+    result.image.clear();
+    return result;
   }
   image.commit();
   return result;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "core/error.h"
@@ -16,16 +17,25 @@ struct BlenderRenderOptions {
   int samples = 0;            // Cycles samples; 0 = as the manifest says
   int threads = 0;            // 0 = as the manifest says (all cores when it says 0)
   std::string image_name = "render_blender.png";
-  bool save_blend = true;  // DIR/scene.blend
+  bool save_blend = true;  // DIR/scene.blend, or blend_path
+  std::filesystem::path blend_path;
+  // Frames: the cameras of every frame of a path in a JSON file, {"fps": F, "cameras": [[E, N,
+  // H, target E, N, H], ...] (ENU m, frame k's at k), "render": [k, ...]}. The camera is
+  // keyframed at every frame of the .blend saved; the frames in "render" are rendered with
+  // Cycles in the same Blender run, each into `frames_dir` (an existing folder) and once
+  // complete handed to on_frame(k, file), which moves it away; no still is written.
+  std::filesystem::path cameras_file, frames_dir;
+  std::filesystem::path log;  // Blender's output; empty: DIR/blender.log
+  std::function<void(int frame, const std::filesystem::path& file)> on_frame;
   // The Blender program: a name looked up in PATH or a path. Empty = $WANGSCAPE_BLENDER,
   // else "blender".
   std::string executable;
 };
 
 struct BlenderRenderResult {
-  std::filesystem::path image;     // DIR/render_blender.png
+  std::filesystem::path image;     // DIR/render_blender.png (empty for frames)
   std::filesystem::path blend;     // DIR/scene.blend (empty when not saved)
-  std::filesystem::path log;       // DIR/blender.log
+  std::filesystem::path log;       // DIR/blender.log (or the log asked)
   std::filesystem::path manifest;  // the manifest imported
   double seconds = 0;              // wall-clock time of the Blender run (start, import, render)
 };

@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
@@ -125,6 +126,19 @@ std::string last_log_lines(const std::filesystem::path& path, int count) {
       lines.size() > static_cast<std::size_t>(count) ? lines.size() - static_cast<std::size_t>(count) : 0;
   for (auto i = first; i < lines.size(); ++i) quoted += "\n  | " + lines[i];
   return quoted;
+}
+
+std::map<int, std::filesystem::path> numbered_frames(const std::filesystem::path& dir) {
+  std::map<int, std::filesystem::path> frames;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() < 6 || name.size() > 14 || name[0] != 'f' || !name.ends_with(".png")) continue;
+    const std::string digits = name.substr(1, name.size() - 5);
+    if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) continue;
+    frames[std::stoi(digits)] = entry.path();
+  }
+  return frames;
 }
 
 }  // namespace wangscape

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -37,5 +38,9 @@ std::string read_log_tail(const std::filesystem::path& path, std::size_t max_byt
 // end with '\n' or '\r', as progress lines do), each prefixed with "\n  | ", for quoting a
 // tool's error in a message.
 std::string last_log_lines(const std::filesystem::path& path, int count);
+
+// The frames a renderer wrote into `dir` as f<k>.png (k in any number of digits, at most nine),
+// by k; other files are left out.
+std::map<int, std::filesystem::path> numbered_frames(const std::filesystem::path& dir);
 
 }  // namespace wangscape

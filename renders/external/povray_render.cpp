@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -58,18 +59,41 @@ PovrayRenderResult render_povray(const std::filesystem::path& dir_in, const Povr
   // succeeds: given a file name, POV-Ray appends ".png" to any name not ending in it, so a killed
   // run would leave a ".png" behind. POV-Ray rejoins its arguments and splits them at spaces:
   // paths go quoted.
-  std::vector<std::string> args{povray.string(), "scene.ini", "+O-", "+FN", "-D", "-P", "+L" + povray_quoted_path(dir)};
+  const bool animation = options.frames > 0;
+  std::vector<std::string> args{povray.string(), "scene.ini", "+FN", "-D", "-P", "+L" + povray_quoted_path(dir)};
+  if (!options.input_file.empty()) args.push_back("+I" + povray_quoted_path(options.input_file));
+  if (animation) {
+    // Frames 0 .. N - 1, into FRAMES_DIR/f<k>.png (a final frame of at least 1, so that POV-Ray
+    // numbers even a single frame's file; +EF renders only the frames asked).
+    args.push_back("+KFI0");
+    args.push_back("+KFF" + std::to_string(std::max(options.frames - 1, 1)));
+    args.push_back("+SF0");
+    args.push_back("+EF" + std::to_string(options.frames - 1));
+    args.push_back("+O" + povray_quoted_path(options.frames_dir / "f.png"));
+  } else {
+    args.push_back("+O-");
+  }
   if (options.width > 0) args.push_back("+W" + std::to_string(options.width));
   if (options.height > 0) args.push_back("+H" + std::to_string(options.height));
   if (options.threads > 0) args.push_back("+WT" + std::to_string(options.threads));
-  const auto report_progress = [&] {
+  // A frame is complete once POV-Ray has begun writing the next (or has exited).
+  const auto hand_over_frames = [&](bool all) {
+    auto frames = numbered_frames(options.frames_dir);
+    if (!all && !frames.empty()) frames.erase(std::prev(frames.end()));
+    for (const auto& [k, file] : frames)
+      if (k < options.frames && options.on_frame) options.on_frame(k, file);
+  };
+  const auto while_running = [&] {
     std::uint64_t pixels = 0, total = 0;
-    if (parse_progress(read_log_tail(log.temp_path(), 4096), pixels, total)) options.on_progress(pixels, total);
+    if (options.on_progress && parse_progress(read_log_tail(log.temp_path(), 4096), pixels, total))
+      options.on_progress(pixels, total);
+    if (animation) hand_over_frames(false);
   };
   ChildExit exit;
   try {
     exit = run_logged(args, log.temp_path(), dir,
-                      options.on_progress ? std::function<void()>(report_progress) : nullptr, image.temp_path());
+                      options.on_progress || animation ? std::function<void()>(while_running) : nullptr,
+                      animation ? std::filesystem::path() : image.temp_path());
   } catch (const std::runtime_error& e) {
     throw Error("render: POV-Ray: " + std::string(e.what()));
   }
@@ -78,12 +102,21 @@ PovrayRenderResult render_povray(const std::filesystem::path& dir_in, const Povr
   const bool log_written = std::filesystem::exists(log.temp_path());
   if (log_written) log.commit();
   const bool exited_ok = exit.exited && exit.status == 0;
+  if (animation) {
+    if (exited_ok) hand_over_frames(true);
+    const bool every_frame = numbered_frames(options.frames_dir).empty();  // all handed over
+    if (exited_ok && every_frame) {
+      result.image.clear();
+      return result;
+    }
+  }
   std::error_code size_error;
-  const bool image_written = std::filesystem::file_size(image.temp_path(), size_error) > 0 && !size_error;
+  const bool image_written = !animation && std::filesystem::file_size(image.temp_path(), size_error) > 0 && !size_error;
   if (!exited_ok || !image_written) {
     const std::string how = exit.describe();
     const std::string tail = log_written ? last_log_lines(result.log, 8) : std::string();
-    throw Error("render: POV-Ray " + how + " rendering '" + (dir / "scene.pov").string() + "'" +
+    const std::string input = options.input_file.empty() ? "scene.pov" : options.input_file;
+    throw Error("render: POV-Ray " + how + " rendering '" + (dir / input).string() + "'" +
                 (exited_ok ? " without writing an image" : "") + "; log " + result.log.string() +
                 (tail.empty() ? std::string() : ", last lines:" + tail));
   }

@@ -12,6 +12,7 @@
 #include <memory>
 #include <mutex>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "core/error.h"
@@ -127,7 +128,11 @@ int reference_samples(const RenderSettings& render, int requested) {
   return a * a;
 }
 
-ReferenceImage render_reference(const Scene& scene, const ReferenceOptions& options) {
+namespace {
+
+// A frame of `scene` (render_reference, ReferenceFrames::render): traced over `traced_already`,
+// or over the scene built into Embree here about the frame's eye when that is null.
+ReferenceImage trace_frame(const Scene& scene, const SceneTracer* traced_already, const ReferenceOptions& options) {
   const auto start = Clock::now();
   if (options.width < 0 || options.height < 0)
     throw Error("reference render: image " + std::to_string(options.width) + " x " + std::to_string(options.height) +
@@ -144,7 +149,9 @@ ReferenceImage render_reference(const Scene& scene, const ReferenceOptions& opti
   if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
 
   ReferenceImage out;
-  const SceneTracer traced(scene, frame.origin);
+  std::optional<SceneTracer> built;
+  if (!traced_already) built.emplace(scene, frame.origin);
+  const SceneTracer& traced = traced_already ? *traced_already : *built;
   for (std::size_t c = 0; c < 3; ++c) frame.origin[c] -= traced.origin()[c];
   out.stats.build_seconds = seconds_since(start);
   out.stats.instances = traced.instances();
@@ -196,6 +203,26 @@ ReferenceImage render_reference(const Scene& scene, const ReferenceOptions& opti
   out.stats.threads = int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
   out.stats.seconds = seconds_since(start);
   return out;
+}
+
+}  // namespace
+
+ReferenceImage render_reference(const Scene& scene, const ReferenceOptions& options) {
+  return trace_frame(scene, nullptr, options);
+}
+
+struct ReferenceFrames::Impl {
+  Impl(const Scene& scene, const std::array<double, 3>& origin) : traced(scene, origin) {}
+  SceneTracer traced;
+};
+
+ReferenceFrames::ReferenceFrames(const Scene& scene, const std::array<double, 3>& origin)
+    : scene_(scene), impl_(std::make_unique<Impl>(scene, origin)) {}
+
+ReferenceFrames::~ReferenceFrames() = default;
+
+ReferenceImage ReferenceFrames::render(const ReferenceOptions& options) const {
+  return trace_frame(scene_, &impl_->traced, options);
 }
 
 }  // namespace wangscape

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -85,6 +86,24 @@ CameraFrame reference_camera_frame(const Camera& camera, int width, int height);
 // options.shading.ground_color. Throws Error for sizes, samples or a camera out of range, and
 // for Embree's own errors.
 ReferenceImage render_reference(const Scene& scene, const ReferenceOptions& options = {});
+
+// Many frames of one scene (the frames of a path): the scene built into Embree once, about
+// `origin` (ENU m: the first frame's eye keeps floats precise near it), then each frame traced
+// as render_reference traces it (its stats' build_seconds then near 0). The scene must outlive
+// it; render() is not to be called from several threads at once.
+class ReferenceFrames {
+ public:
+  ReferenceFrames(const Scene& scene, const std::array<double, 3>& origin);
+  ~ReferenceFrames();
+  ReferenceFrames(const ReferenceFrames&) = delete;
+  ReferenceFrames& operator=(const ReferenceFrames&) = delete;
+  ReferenceImage render(const ReferenceOptions& options) const;
+
+ private:
+  struct Impl;
+  const Scene& scene_;
+  std::unique_ptr<Impl> impl_;
+};
 
 // The samples per pixel render_reference uses for `requested` (0 = from the scene) on `scene`.
 int reference_samples(const RenderSettings& render, int requested);

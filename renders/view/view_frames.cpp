@@ -13,7 +13,7 @@
 #include "core/vecmath.h"
 #include "renders/trace/embree_reference.h"
 #include "renders/trace/image_compare.h"
-#include "renders/view/view_path.h"
+#include "scene/view_path.h"
 
 namespace wangscape {
 
@@ -44,25 +44,13 @@ Camera view_camera(const ViewWorld& world, const CameraChoice& choice) {
   return camera;
 }
 
-long long path_frame_count(const ViewPath& path, double fps, const std::filesystem::path& file, std::string_view rate) {
-  const long long frames = path.frame_count(fps);
-  if (frames > kMaxPathFrames)
-    throw Error(file, "",
-                "lasts " + number_text(path.duration()) + " s: " + std::to_string(frames) + " frames at " +
-                    number_text(fps) + " frames/s; at most " + std::to_string(kMaxPathFrames) +
-                    " are rendered (lower " + std::string(rate) + " or cut the path in parts)");
-  return frames;
-}
-
 void play_view_path(const std::shared_ptr<const ViewWorld>& world, const ViewPath& path,
                     const std::filesystem::path& file, const PathPlayback& playback,
                     const std::function<void(const PathFrame&)>& on_frame) {
   const double fps = playback.fps;
   const long long frames = path_frame_count(path, fps, file);
   const GroundHeightAt ground = [&](double e, double n) { return world->scene().field->ground.height(e, n); };
-  const auto camera_at = [&](long long k) {
-    return camera_along(path, path.keys.front().time + double(k) / fps, playback.fov_degrees, ground, file);
-  };
+  const auto camera_at = [&](long long k) { return camera_at_frame(path, k, fps, playback.fov_degrees, ground, file); };
   // A path whose ends leave the ground is refused before the first frame.
   for (double t : {path.keys.front().time, path.keys.back().time})
     camera_along(path, t, playback.fov_degrees, ground, file);

@@ -17,7 +17,7 @@
 #include "renders/trace/image_compare.h"
 #include "renders/view/frame_cache.h"
 #include "renders/view/ldi_renderer.h"
-#include "renders/view/view_path.h"
+#include "scene/view_path.h"
 
 namespace wangscape {
 
@@ -77,11 +77,6 @@ struct PathFrame {
   const CachedFrameStats* cached = nullptr;    // the cache's figures (null: drawn whole)
   const ViewComparison* comparison = nullptr;  // the frames compare_every picks: against the truth
 };
-
-// The path's frames at `fps`. Throws Error naming `file` when they are more than kMaxPathFrames;
-// the message asks to lower `rate` (what sets the frame rate) or to cut the path in parts.
-long long path_frame_count(const ViewPath& path, double fps, const std::filesystem::path& file,
-                           std::string_view rate = "the frame rate");
 
 // Plays `path` (read from `file`, which errors name): checks its frame count and that its first
 // and last cameras are over the ground before the first frame, then draws every frame in order

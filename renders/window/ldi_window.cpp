@@ -16,7 +16,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "exporters/image_io.h"
-#include "renders/view/view_path.h"
+#include "renders/view/view_frames.h"  // the path files (scene/view_path.h) the view plays
 
 namespace wangscape {
 

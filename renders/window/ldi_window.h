@@ -42,7 +42,7 @@ struct ViewWindowOptions {
   std::string script;
   std::filesystem::path screenshot_dir = ".";  // F12 writes view-0001.png, view-0002.png, ...
   // K drops a keyframe of the walk (the eye by its height above the ground); on exit, two or more
-  // are written here as a path file (renders/view/view_path.h) that a path playback replays.
+  // are written here as a path file (scene/view_path.h) that a path playback replays.
   std::filesystem::path record = "path.json";
   // What the window wrote, for the program to report: each screenshot as it is written, and on
   // exit the walk K recorded (when K was pressed at all).

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "renders/view/view_path.h"
+#include "scene/view_path.h"
 
 namespace wangscape {
 namespace {

@@ -1,4 +1,4 @@
-#include "renders/view/view_path.h"
+#include "scene/view_path.h"
 
 #include <algorithm>
 #include <cmath>
@@ -190,6 +190,27 @@ Camera camera_along(const ViewPath& path, double time, double fov_degrees, const
                     number_text(camera.position[0]) + ", " + number_text(camera.position[1]) +
                     "); move the keyframes' look_at points sideways of their positions");
   return camera;
+}
+
+long long path_frame_count(const ViewPath& path, double fps, const fs::path& file, std::string_view rate) {
+  const long long frames = path.frame_count(fps);
+  if (frames > kMaxPathFrames)
+    throw Error(file, "",
+                "lasts " + number_text(path.duration()) + " s: " + std::to_string(frames) + " frames at " +
+                    number_text(fps) + " frames/s; at most " + std::to_string(kMaxPathFrames) +
+                    " are rendered (lower " + std::string(rate) + " or cut the path in parts)");
+  return frames;
+}
+
+Camera camera_at_frame(const ViewPath& path, long long frame, double fps, double fov_degrees,
+                       const GroundHeightAt& ground, const fs::path& file) {
+  return camera_along(path, path.keys.front().time + double(frame) / fps, fov_degrees, ground, file);
+}
+
+std::string path_frame_name(long long frame) {
+  std::string digits = std::to_string(frame);
+  if (digits.size() < 5) digits.insert(0, 5 - digits.size(), '0');
+  return "frame-" + digits + ".png";
 }
 
 }  // namespace wangscape

@@ -1,7 +1,10 @@
 // A flythrough's path file (docs/viewer.md, "A path file"): keyframes of time, eye and look-at
 // point, each given in ENU meters either with an absolute height or with a height above the
 // ground, and the camera at any time along a Catmull-Rom spline through them. Read defensively
-// (core/text_file.h): size, nesting, counts and every number are checked before use.
+// (core/text_file.h): size, nesting, counts and every number are checked before use. The one
+// evaluation of a path for every renderer: the view's frames (renders/view/view_frames.h) and
+// `wangscape render --path` (renders/render_path.h) take frame k's camera from camera_at_frame,
+// and name its file path_frame_name(k).
 #pragma once
 
 #include <array>
@@ -9,6 +12,7 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -59,5 +63,20 @@ using GroundHeightAt = std::function<std::optional<double>(double east, double n
 // point has no ground under it.
 Camera camera_along(const ViewPath& path, double time, double fov_degrees, const GroundHeightAt& ground,
                     const std::filesystem::path& file);
+
+// The path's frames at `fps` (ViewPath::frame_count). Throws Error naming `file` when they are
+// more than kMaxPathFrames; the message asks to lower `rate` (what sets the frame rate) or to cut
+// the path in parts.
+long long path_frame_count(const ViewPath& path, double fps, const std::filesystem::path& file,
+                           std::string_view rate = "the frame rate");
+
+// Frame k's camera at `fps`: camera_along at the first key's time plus k / fps seconds.
+Camera camera_at_frame(const ViewPath& path, long long frame, double fps, double fov_degrees,
+                       const GroundHeightAt& ground, const std::filesystem::path& file);
+
+// The file of frame k in a folder of a path's frames: "frame-00042.png" (five digits, as many as
+// kMaxPathFrames needs); kPathFramePattern is the same for ffmpeg's -i.
+std::string path_frame_name(long long frame);
+inline constexpr const char* kPathFramePattern = "frame-%05d.png";
 
 }  // namespace wangscape
