@@ -358,7 +358,8 @@ FieldReport SceneField::place_window(const std::optional<Extent>& window, const 
         if (d > view->options().near && proxy_offset) variant = static_cast<std::uint16_t>(variant + proxy_offset);
       }
       ++(variant >= proxy_offset && proxy_offset ? report.proxies : report.models);
-      out.push_back(batch.x[k], batch.y[k], batch.z[k], yaw_of(batch.yaw[k]), batch.scale[k], variant, batch.tile[k]);
+      out.push_back(batch.x[k], batch.y[k], batch.z[k], yaw_of(batch.yaw[k]), batch.scale[k], variant, batch.tile[k],
+                    batch.rank[k]);
     }
     if (!out.empty()) sink(out);
   };

@@ -548,6 +548,14 @@ void read_exports(Section s, SceneConfig& config) {
   s.read("blender", config.exports.blender);
   s.read("gltf", config.exports.gltf);
   s.read("ldi", config.exports.ldi);
+  if (s.read("gis", config.exports.gis) && config.exports.gis && config.terrain.dem.empty())
+    s.fail(*s.node("gis"), "gis",
+           "needs [terrain] dem: plants.gpkg and cover.tif stand in the DEM's coordinate reference system, and a flat "
+           "ground has none");
+  if (std::string crs; s.read("gis_crs", crs)) {
+    if (crs != "dem" && crs != "wgs84") s.fail(*s.node("gis_crs"), "gis_crs", "must be \"dem\" or \"wgs84\"");
+    config.exports.gis_crs = crs == "dem" ? GisCrsChoice::dem : GisCrsChoice::wgs84;
+  }
   s.reject_unknown();
 }
 

@@ -153,12 +153,17 @@ struct CameraAwareConfig {
   bool far_texture = true;            // the flowers beyond `far` as a texture in the ground bake
 };
 
+// Where the plants of a GIS file stand: in the DEM's CRS, or in WGS 84 longitude and latitude.
+enum class GisCrsChoice { dem, wgs84 };
+
 // [exports]
 struct ExportsConfig {
   bool povray = true;
   bool blender = false;
   bool gltf = false;
   bool ldi = false;  // DIR/tiles.ldi: the tiles as pre-shaded LDIs (renders/, docs/ldi-pack-format.md)
+  bool gis = false;  // DIR/plants.gpkg (a point layer) and DIR/cover.tif (plants per m2); needs a DEM
+  GisCrsChoice gis_crs = GisCrsChoice::dem;  // the CRS of plants.gpkg (cover.tif is on the DEM's grid)
 };
 
 // [ldi]: the view the tiles' LDIs are sampled for.
