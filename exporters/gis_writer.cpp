@@ -135,16 +135,7 @@ void PlantPointWriter::write(const InstanceBatch& b) {
       y_[k] = crs[1];
     }
   }
-  PlantColumns columns;
-  columns.x = x_;
-  columns.y = y_;
-  columns.species = species_;
-  columns.variant = variant_;
-  columns.scale = b.scale;
-  columns.yaw = b.yaw;
-  columns.height = b.z;
-  columns.rank = b.rank;
-  file_.append(columns);
+  file_.append(PlantColumns{x_, y_, species_, variant_, b.scale, b.yaw, b.z, b.rank});
 }
 
 void PlantPointWriter::commit() { file_.commit(); }

@@ -26,12 +26,12 @@ double point_file_bytes_per_point(PointFileFormat format) {
       return 26.0;
     case PointFileFormat::csv:
       return 54.0;
-    case PointFileFormat::geopackage:
-      return 120.0;
-    case PointFileFormat::geojson:
-      return 200.0;
+    case PointFileFormat::geopackage:  // 800,288 plants over St. Helens: 106 MB with the spatial index
+      return 133.0;
+    case PointFileFormat::geojson:  // the same: 181 MB
+      return 226.0;
   }
-  return 200.0;
+  return 226.0;
 }
 
 ScatterResult run_scatter(const ScatterRequest& request) {
@@ -45,6 +45,10 @@ ScatterResult run_scatter(const ScatterRequest& request) {
     throw Error(request.out, "",
                 "a GIS layer needs --dem: its points stand in the DEM's coordinate reference system (or WGS 84), and "
                 "a plane has neither; write .csv or .ply for a plane");
+  if (!gis && request.gis_crs != GisCrsChoice::dem)
+    throw Error(
+        "--crs wgs84: only a GIS layer (--out FILE.gpkg or .geojson) has a CRS to choose; CSV and PLY points "
+        "are in the scene's ENU meters");
   // Over a DEM: loaded and checked before any output is opened.
   std::optional<SceneGround> dem;
   if (request.dem) {

@@ -7,5 +7,5 @@ foreach(mode IN ITEMS scatter_gpkg scatter_geojson scatter_wgs84 build bad_exten
   add_test(NAME cli_gis_${mode}
     COMMAND ${gis_python3} ${CMAKE_CURRENT_LIST_DIR}/gis_check.py ${WANGSCAPE_BIN} ${CLI_SCRATCH}/gis_${mode} ${mode}
             ${PROJECT_SOURCE_DIR})
-  set_tests_properties(cli_gis_${mode} PROPERTIES LABELS cli TIMEOUT 300)
+  set_tests_properties(cli_gis_${mode} PROPERTIES LABELS cli TIMEOUT 900)
 endforeach()

@@ -71,7 +71,7 @@ def scatter(out, *extra, code=0):
     tiles = os.path.join(scratch, "tiles.json")
     if not os.path.exists(tiles):
         run([wangscape, "--quiet", "tileset", "--set", "cohen8", "--per-tile", "20", "--out", tiles])
-    done = run([wangscape, "scatter", "--tileset", tiles, "--dem", DEM, "--tile-size", "8", "--max-height", "900",
+    done = run([wangscape, "scatter", "--tileset", tiles, "--dem", DEM, "--tile-size", "16", "--max-height", "800",
                 "--out", out, *extra], code)
     if code != 0:
         return done, None
@@ -79,6 +79,16 @@ def scatter(out, *extra, code=0):
     if not found:
         fail(f"no count in scatter's line: {done.stderr}")
     return done, int(found.group(1))
+
+
+def refused(done, words, kept):
+    """One line on stderr holding every word of `words`; nothing in SCRATCH but `kept`."""
+    line = done.stderr.strip()
+    if not all(w in line for w in words) or len(line.splitlines()) != 1:
+        fail(f"message: {line!r}")
+    if os.listdir(scratch) != kept:
+        fail(f"left behind: {os.listdir(scratch)}")
+    print(line)
 
 
 def inside(box, outer, slack=0.0):
@@ -168,33 +178,18 @@ elif mode == "build":
 elif mode == "bad_extension":
     path = os.path.join(scratch, "p.shp")
     done, _ = scatter(path, code=1)
-    line = done.stderr.strip()
-    if "p.shp" not in line or ".gpkg" not in line or ".geojson" not in line or len(line.splitlines()) != 1:
-        fail(f"message: {line!r}")
-    if os.listdir(scratch) != ["tiles.json"]:
-        fail(f"left behind: {os.listdir(scratch)}")
-    print(line)
+    refused(done, ["p.shp", ".csv", ".ply", ".gpkg", ".geojson"], ["tiles.json"])
 elif mode == "needs_dem":
     tiles = os.path.join(scratch, "tiles.json")
     run([wangscape, "--quiet", "tileset", "--set", "cohen8", "--per-tile", "10", "--out", tiles])
     done = run([wangscape, "scatter", "--tileset", tiles, "--plane", "64x64", "--out",
                 os.path.join(scratch, "p.gpkg")], 1)
-    line = done.stderr.strip()
-    if "p.gpkg" not in line or "--dem" not in line or len(line.splitlines()) != 1:
-        fail(f"message: {line!r}")
-    if os.listdir(scratch) != ["tiles.json"]:
-        fail(f"left behind: {os.listdir(scratch)}")
-    print(line)
+    refused(done, ["p.gpkg", "--dem"], ["tiles.json"])
 elif mode == "scene_needs_dem":
     scene = os.path.join(scratch, "flat.toml")
     with open(scene, "w", encoding="utf-8") as f:
         f.write("[exports]\npovray = false\ngis = true\n")
     done = run([wangscape, "build", scene, "--out", os.path.join(scratch, "flat")], 1)
-    line = done.stderr.strip()
-    if "flat.toml:3: 'exports.gis' needs [terrain] dem" not in line or len(line.splitlines()) != 1:
-        fail(f"message: {line!r}")
-    if os.listdir(scratch) != ["flat.toml"]:
-        fail(f"left behind: {os.listdir(scratch)}")
-    print(line)
+    refused(done, ["flat.toml:3: 'exports.gis' needs [terrain] dem"], ["flat.toml"])
 else:
     fail("unknown mode")

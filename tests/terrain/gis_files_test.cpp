@@ -61,7 +61,7 @@ TEST(PlantLayerFile, GeoPackageReadsBackWithFieldsCrsAndShortestNumbers) {
   for (std::size_t i = 0; i < kPlantFields.size(); ++i)
     EXPECT_STREQ(defn->GetFieldDefn(int(i))->GetNameRef(), kPlantFields[i]);
   layer->ResetReading();
-  layer->GetNextFeature();  // the second one
+  OGRFeature::DestroyFeature(layer->GetNextFeature());  // the second one
   OGRFeature* second = layer->GetNextFeature();
   ASSERT_NE(second, nullptr);
   EXPECT_STREQ(second->GetFieldAsString("species"), "sunflower");
