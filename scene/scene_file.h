@@ -35,7 +35,10 @@ struct TilesConfig {
   std::uint64_t seed = 1;      // tiling, points and flower yaw/scale
   TilingAlgorithm algorithm = TilingAlgorithm::scanline;
   std::optional<std::array<double, 4>> area;  // where flowers grow, ENU m; default: the ground's extent
-  bool interior_variation = false;            // variant, yaw, scale from the world tile and index, not the tile's point
+  // Where flowers grow as [min_lat, min_lon, max_lat, max_lon], WGS 84 degrees (instead of area):
+  // the tiling covers its ENU box, a mask on the ground keeps the rectangle itself.
+  std::optional<std::array<double, 4>> area_latlon;
+  bool interior_variation = false;  // variant, yaw, scale from the world tile and index, not the tile's point
 };
 
 // [masks]
@@ -44,6 +47,10 @@ struct MasksConfig {
   std::optional<double> min_height;  // meters; no flowers below
   std::optional<double> max_slope;   // degrees; no flowers on steeper ground
   std::filesystem::path mask;        // painted mask image over the ground (white = flowers); empty = none
+  std::filesystem::path raster;      // georeferenced raster in any CRS, warped onto the DEM (non-zero = flowers)
+  std::filesystem::path polygons;    // OGR layer of polygons (GeoPackage, Shapefile, GeoJSON); empty = none
+  bool polygons_outside = false;     // polygons_keep = "outside": flowers outside the polygons, not inside
+  double polygons_buffer_m = 0;      // meters the polygons grow by before the test (negative: shrink)
   bool fair_edges = true;            // thin the field out towards mask borders instead of a hard cut
 };
 
