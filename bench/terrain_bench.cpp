@@ -75,7 +75,8 @@ void BM_ScatterWithHeight(benchmark::State& state) {
   const TerrainFilter filter(terrain, {.max_height_m = threshold ? std::optional(1500.0) : std::nullopt,
                                        .min_height_m = {},
                                        .max_slope_deg = {},
-                                       .mask_image = {}});
+                                       .mask_image = {},
+                                       .masks = {}});
   PlacementOptions options;
   options.tile_size = 4.0;
   options.algorithm = TilingAlgorithm::hash;

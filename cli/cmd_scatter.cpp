@@ -1,13 +1,17 @@
 // wangscape scatter --tileset tiles.json --plane 64x64 --tile-size 4 --out points.csv
-// Lays a tiling of a filled tile set over a flat plane and writes every instance (CSV, or
-// binary PLY for .ply); --metrics measures the quality figures of the result.
+// Lays a tiling of a filled tile set over a flat plane and writes every instance (CSV, binary
+// PLY, or with --dem a GeoPackage or GeoJSON layer, by the extension); --metrics measures the
+// quality figures of the result.
 // With --dem FILE the ground is a DEM, the scene's one ground (scene/scene_ground.h): z = ground
 // height, tiles only where --max-height / --min-height / --max-slope / --mask allow (Shade 2002),
 // --fair-edges for partial tiles.
 #include <fmt/core.h>
 
+#include <array>
 #include <memory>
 #include <optional>
+#include <string_view>
+#include <utility>
 
 #include "cli/command.h"
 #include "cli/progress.h"
@@ -35,8 +39,12 @@ struct ScatterOptions {
   std::optional<double> max_height, min_height, max_slope;
   bool fair_edges = false;
   std::optional<std::uint64_t> max_instances;
-  bool yes = false;  // --yes: a points file estimated above 1 GB is written
+  bool yes = false;                      // --yes: a points file estimated above 1 GB is written
+  GisCrsChoice crs = GisCrsChoice::dem;  // --crs: a GIS layer's coordinates
 };
+
+constexpr std::array<std::pair<GisCrsChoice, std::string_view>, 2> kGisCrsNames = {
+    {{GisCrsChoice::dem, "dem"}, {GisCrsChoice::wgs84, "wgs84"}}};
 
 // --metrics of a set of several classes: a row per class after the union's figures.
 std::string class_metrics_text(const std::vector<ClassMetrics>& classes) {
@@ -80,6 +88,7 @@ void run(const ScatterOptions& options, const GlobalOptions& global) {
   request.placement.seed = options.seed;
   request.placement.algorithm = parse_tiling_algorithm(options.algorithm);
   request.out = options.out;
+  request.gis_crs = options.crs;
   request.metrics = options.metrics;
   request.max_instances = options.max_instances;
   request.large_file_ok = options.yes;
@@ -128,8 +137,11 @@ void register_scatter_command(CLI::App& app, const GlobalOptions& global) {
   auto* plane = sub->add_option("--plane", options->plane, "Plane size WIDTHxHEIGHT in meters (east x north)")
                     ->capture_default_str();
   sub->add_option("--tile-size", options->tile_size, "Tile side in meters")->capture_default_str();
-  sub->add_option("--out", options->out, "Instances: CSV (x,y,z,variant,yaw,scale,tile), or binary PLY for .ply")
-      ->check(output_file_path());
+  auto* out = sub->add_option("--out", options->out,
+                              "Instances by the extension: .csv (x,y,z,variant,yaw,scale,tile), .ply (binary), or with "
+                              "--dem .gpkg (GeoPackage) or .geojson: points with species, variant, scale, yaw, height, "
+                              "rank")
+                  ->check(output_file_path());
   sub->add_option("--max-instances", options->max_instances,
                   "Refuse to place more than N instances (default: no cap; the free disk space is checked)")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1000000000000000}));  // 1e15: readable, not 309 digits
@@ -164,13 +176,18 @@ void register_scatter_command(CLI::App& app, const GlobalOptions& global) {
                   "With --dem: scene origin LAT,LON in WGS 84 degrees (default: DEM center)")
       ->check(lat_lon_validator())
       ->needs(dem);
+  add_enum_option(sub, "--crs", options->crs, kGisCrsNames,
+                  "With --out .gpkg or .geojson: the points in the DEM's CRS (dem) or in WGS 84 longitude, latitude")
+      ->needs(out)
+      ->needs(dem);
   set_help_footer(sub,
-                  "--out FILE: every instance as CSV or binary PLY (streamed: any count the disk holds); --metrics: "
-                  "figures on stdout (--json), --spectrum-png a plot",
+                  "--out FILE: every instance as CSV or binary PLY in the scene's ENU meters, or over a DEM as a "
+                  "GeoPackage or GeoJSON point layer in the DEM's CRS (streamed: any count the disk holds); "
+                  "--metrics: figures on stdout (--json), --spectrum-png a plot",
                   {"wangscape tileset --set cohen8 --per-tile 20 --out tiles.json",
                    "wangscape scatter --tileset tiles.json --plane 64x64 --tile-size 4 --out points.csv --metrics",
                    "wangscape scatter --tileset tiles.json --dem data/SainteHelens.dem --tile-size 8 --max-height 800 "
-                   "--out points.ply"});
+                   "--out points.gpkg"});
   sub->callback([options, &global] { run(*options, global); });
 }
 

@@ -27,10 +27,19 @@ void append_le(std::string& out, T value) {
 PointFileFormat point_file_format(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext == ".ply" ? PointFileFormat::ply : PointFileFormat::csv;
+  if (ext == ".csv") return PointFileFormat::csv;
+  if (ext == ".ply") return PointFileFormat::ply;
+  if (ext == ".gpkg") return PointFileFormat::geopackage;
+  if (ext == ".geojson") return PointFileFormat::geojson;
+  throw Error(
+      path, "",
+      (ext.empty() ? std::string("has no extension") : "has the extension '" + path.extension().string() + "'") +
+          ": expected .csv, .ply (points in the scene's ENU frame), .gpkg (GeoPackage) or .geojson (GeoJSON)");
 }
 
 PointWriter::PointWriter(const std::filesystem::path& path) : file_(path), format_(point_file_format(path)) {
+  if (format_ != PointFileFormat::csv && format_ != PointFileFormat::ply)
+    throw Error(path, "", "is a GIS layer: write it with exporters/gis_writer.h");
   std::ofstream& out = file_.stream();
   if (format_ == PointFileFormat::csv) {
     out << "x,y,z,variant,yaw,scale,tile\n";

@@ -1,9 +1,9 @@
 // What `wangscape scatter` runs: a filled tile set laid over a flat plane or over a DEM (the
-// scene's one ground, with every mask), every instance written (CSV, or binary PLY for .ply)
-// and/or measured (generator/point_metrics). The points are streamed, never held, so no count
-// caps them: the work is estimated after the masks and refused, before anything is placed or
-// opened, only where it would not fit: the file against the free disk space, the measured points
-// against the memory limit, and the count against --max-instances when one is given.
+// scene's one ground, with every mask), every instance written (CSV, binary PLY, or over a DEM a
+// GeoPackage or GeoJSON layer: exporters/gis_writer.h) and/or measured (generator/point_metrics). The points are
+// streamed, never held, so no count caps them: the work is estimated after the masks and refused, before anything is
+// placed or opened, only where it would not fit: the file against the free disk space, the measured points against the
+// memory limit, and the count against --max-instances when one is given.
 #pragma once
 
 #include <cstdint>
@@ -30,7 +30,8 @@ struct ScatterRequest {
   std::optional<TerrainConfig> dem;  // over this DEM instead, with `masks`
   MasksConfig masks;
   PlacementOptions placement;                  // tile size, seed, algorithm
-  std::filesystem::path out;                   // instances; empty: none written
+  std::filesystem::path out;                   // instances (.csv, .ply, .gpkg, .geojson); empty: none written
+  GisCrsChoice gis_crs = GisCrsChoice::dem;    // .gpkg and .geojson: the DEM's CRS or WGS 84
   bool metrics = false;                        // measure the points
   std::optional<std::uint64_t> max_instances;  // refuse more than this
   bool large_file_ok = false;                  // write a points file estimated above kLargeScatterFileBytes (--yes)
@@ -59,7 +60,8 @@ struct ScatterResult {
 // file is published whole or not at all.
 ScatterResult run_scatter(const ScatterRequest& request);
 
-// About how many bytes a point takes in a file of `format`: 26 in PLY, 54 in CSV (a mean line).
+// About how many bytes a point takes in a file of `format`: 26 in PLY, 54 in CSV (a mean line),
+// and in the GIS layers as measured over St. Helens (docs/limits.md).
 double point_file_bytes_per_point(PointFileFormat format);
 
 }  // namespace wangscape

@@ -13,6 +13,7 @@
 #include "exporters/blender_export.h"
 #include "exporters/export_support.h"
 #include "exporters/folder_state.h"
+#include "exporters/gis_writer.h"
 #include "exporters/gltf_writer.h"
 #include "exporters/povray_writer.h"
 #include "exporters/scene_writer.h"
@@ -25,6 +26,9 @@ namespace {
 
 // One line: the absolute folder the relative paths of scene.toml resolve against.
 constexpr const char* kSceneBaseFile = "scene_base.txt";
+// [exports] gis: the plants as a GeoPackage point layer, and their cover as a GeoTIFF.
+constexpr const char* kGisPlantsFile = "plants.gpkg";
+constexpr const char* kGisCoverFile = "cover.tif";
 
 void say(const SceneFolderObserver& observer, const std::string& message) {
   if (observer.stage) observer.stage(message);
@@ -58,6 +62,7 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
     std::unique_ptr<PovrayWriter> povray;
     std::unique_ptr<BlenderWriter> blender;
     std::unique_ptr<GltfWriter> gltf;
+    std::unique_ptr<GisWriter> gis;
     std::vector<SceneWriter*> writers;
     std::vector<std::string> names;
     // The ground is encoded once, here, for every writer that writes or embeds it.
@@ -83,6 +88,11 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
       gltf = std::make_unique<GltfWriter>(scene, staging / "scene.glb", options);
       writers.push_back(gltf.get());
       names.emplace_back("glTF");
+    }
+    if (exports.gis) {
+      gis = std::make_unique<GisWriter>(scene, staging / kGisPlantsFile, staging / kGisCoverFile, exports.gis_crs);
+      writers.push_back(gis.get());
+      names.emplace_back("GIS");
     }
     // The tiles that receive flowers, for the folder's readers (folder_state.h): collected from
     // the writers' pass, or from a pass of their own when nothing else places the field.

@@ -1,5 +1,5 @@
 // Writing a scene folder: the scene's instance stream is run once and every batch is fanned
-// out to each enabled writer (POV-Ray, Blender arrays, glTF); the folder is built beside the
+// out to each enabled writer (POV-Ray, Blender arrays, glTF, the GIS layer and cover); the folder is built beside the
 // target and swapped in with renames, so a reader sees the old folder or the new one.
 #pragma once
 

@@ -12,7 +12,7 @@ StreamTotals run_scene_stream(const Scene& scene, std::span<SceneWriter* const> 
     scene.instances([&](const InstanceBatch& batch) {
       const std::size_t n = batch.size();
       if (batch.y.size() != n || batch.z.size() != n || batch.yaw.size() != n || batch.scale.size() != n ||
-          batch.variant.size() != n)
+          batch.variant.size() != n || batch.tile.size() != n || batch.rank.size() != n)
         throw Error("scene '" + scene.name + "': an instance batch has arrays of different lengths");
       for (const std::uint16_t variant : batch.variant) {
         if (variant >= scene.models.size())

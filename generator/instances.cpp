@@ -10,6 +10,7 @@ void InstanceBatch::clear() {
   scale.clear();
   variant.clear();
   tile.clear();
+  rank.clear();
 }
 
 void InstanceBatch::reserve(std::size_t n) {
@@ -20,10 +21,11 @@ void InstanceBatch::reserve(std::size_t n) {
   scale.reserve(n);
   variant.reserve(n);
   tile.reserve(n);
+  rank.reserve(n);
 }
 
 void InstanceBatch::push_back(float px, float py, float pz, float pyaw, float pscale, std::uint16_t pvariant,
-                              std::uint32_t ptile) {
+                              std::uint32_t ptile, float prank) {
   x.push_back(px);
   y.push_back(py);
   z.push_back(pz);
@@ -31,6 +33,7 @@ void InstanceBatch::push_back(float px, float py, float pz, float pyaw, float ps
   scale.push_back(pscale);
   variant.push_back(pvariant);
   tile.push_back(ptile);
+  rank.push_back(prank);
 }
 
 }  // namespace wangscape

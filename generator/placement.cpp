@@ -36,6 +36,7 @@ void resize_batch(InstanceBatch& batch, std::size_t n) {
   batch.scale.resize(n);
   batch.variant.resize(n);
   batch.tile.resize(n);
+  batch.rank.resize(n);
 }
 
 TileRange tile_range(const Extent& area, double tile_size) {

@@ -171,6 +171,7 @@ PlacementStats place_instances(const FilledTileSet& filled, const G& ground, con
               *oscale = out.scale.data();
         std::uint16_t* ovariant = out.variant.data();
         std::uint32_t* otile = out.tile.data();
+        float* orank = out.rank.data();
         std::size_t n = 0;
         for (int r = r_begin; r < r_end; ++r) {
           rows.row(static_cast<int>(range.j0 - whole.j0) + r, slot.row_tiles, static_cast<int>(range.i0 - whole.i0));
@@ -210,6 +211,7 @@ PlacementStats place_instances(const FilledTileSet& filled, const G& ground, con
                 ovariant[n] = table.variant[k];
               }
               otile[n] = t;
+              orank[n] = table.rank[k];
               ++n;
             }
           }

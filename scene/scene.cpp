@@ -57,7 +57,9 @@ std::vector<Mesh> make_models(const ModelsConfig& config) {
 // ---- the field: tiles laid over the ground, flowers where the masks allow -------------------
 
 // Camera-aware export is on by default for a field over the whole ground (no [tiles] area).
-bool camera_aware(const SceneConfig& config) { return config.camera_aware.enabled.value_or(!config.tiles.area); }
+bool camera_aware(const SceneConfig& config) {
+  return config.camera_aware.enabled.value_or(!config.tiles.area && !config.tiles.area_latlon);
+}
 
 // The Poisson fill of the field's tile set (its cost told first: it can take a minute).
 void fill_field_tiles(SceneField& field, const SceneConfig& config, const TileSet& set, const PoissonFillOptions& fill,
@@ -73,17 +75,29 @@ void fill_field_tiles(SceneField& field, const SceneConfig& config, const TileSe
   }
 }
 
+}  // namespace
+
+Extent field_area(const SceneConfig& config, const SceneGround& ground) {
+  Extent area = ground.extent();
+  if (config.tiles.area) {
+    const auto& a = *config.tiles.area;
+    area = area.intersected({a[0], a[1], a[2], a[3]});
+  } else if (config.tiles.area_latlon) {
+    area = area.intersected(ground.lat_lon_box_extent(*config.tiles.area_latlon));
+  }
+  return area;
+}
+
+namespace {
+
 std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGround& ground, std::size_t model_count,
                                        const std::vector<double>& species_radii, const StageObserver& stage,
                                        const FilledTileSet* prefilled) {
   auto field = std::make_shared<SceneField>();
   field->ground = ground;
-  Extent area = ground.extent();
-  if (config.tiles.area) {
-    const auto& a = *config.tiles.area;
-    area = area.intersected({a[0], a[1], a[2], a[3]});
-    if (area.empty()) throw config.error_at("tiles.area", "does not overlap the ground (" + ground.description() + ")");
-  }
+  const char* area_key = config.tiles.area_latlon ? "tiles.area_latlon" : "tiles.area";
+  const Extent area = field_area(config, ground);
+  if (area.empty()) throw config.error_at(area_key, "does not overlap the ground (" + ground.description() + ")");
   const double tile_size = config.tiles.tile_size;
   const double tiles_x = std::ceil(area.width() / tile_size) + 1, tiles_y = std::ceil(area.height() / tile_size) + 1;
   const double estimate = tiles_x * tiles_y * config.tiles.points_per_tile;
@@ -108,9 +122,9 @@ std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGro
                                      " tiles of " + number_text(tile_size) + " m, whose " + held,
                                  tiles_x * tiles_y * (held_tiling ? 3.0 : 1.0)))
     throw config.error_at(
-        config.tiles.area            ? "tiles.area"
-        : config.terrain.dem.empty() ? "terrain.flat_size"
-                                     : "terrain.dem",
+        config.tiles.area || config.tiles.area_latlon ? area_key
+        : config.terrain.dem.empty()                  ? "terrain.flat_size"
+                                                      : "terrain.dem",
         *excess + "; limit it with tiles.area or a larger tiles.tile_size" +
             (held_tiling ? ", or use tiles.algorithm = \"hash\" (a complete set: 1 byte a tile)" : ""));
   field->placement.tile_size = tile_size;
@@ -358,7 +372,8 @@ FieldReport SceneField::place_window(const std::optional<Extent>& window, const 
         if (d > view->options().near && proxy_offset) variant = static_cast<std::uint16_t>(variant + proxy_offset);
       }
       ++(variant >= proxy_offset && proxy_offset ? report.proxies : report.models);
-      out.push_back(batch.x[k], batch.y[k], batch.z[k], yaw_of(batch.yaw[k]), batch.scale[k], variant, batch.tile[k]);
+      out.push_back(batch.x[k], batch.y[k], batch.z[k], yaw_of(batch.yaw[k]), batch.scale[k], variant, batch.tile[k],
+                    batch.rank[k]);
     }
     if (!out.empty()) sink(out);
   };
@@ -393,10 +408,10 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage, const Sc
   say(stage, config.terrain.dem.empty() ? "making flat ground" : "loading terrain " + config.terrain.dem.string());
   SceneGround ground;
   try {
-    ground = SceneGround::load(config.terrain, config.masks);
+    ground = SceneGround::load(config.terrain, config.masks, config.tiles.area_latlon);
   } catch (const Error& e) {
     // Name the scene file: the DEM or a mask limit came from it.
-    if (!e.file().empty() && e.file() != config.source) throw;
+    if (!e.file().empty()) throw;
     throw Error(config.source, "", e.message());
   }
   scene.terrain = ground.mesh();
@@ -423,7 +438,7 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage, const Sc
   // up to 2.5 m (3.7 % of the sunflowers more than 0.2 m under the drawn ground, some hidden
   // whole), and plants a few centimetres tall were buried. A field sown over the whole DEM
   // (camera-aware, no area) is not cut unless it has species: its mesh would grow many times.
-  if (!config.species.empty() || config.tiles.area)
+  if (!config.species.empty() || config.tiles.area || config.tiles.area_latlon)
     ground.refine_mesh(scene.terrain, scene.field_area, kFieldGroundSubdivisions);
   scene.camera = make_camera(config, ground, scene.field_area);
   scene.sun = make_sun(config, ground);

@@ -117,6 +117,11 @@ struct Scene {
 // (about 1.4 GB per million flowers) and the disk.
 inline constexpr double kMaxFieldInstances = 50e6;
 
+// Where the field is planted, ENU meters: the ground's extent, cut to [tiles] area or to the ENU
+// box of [tiles] area_latlon (whose mask, on the ground, keeps the rectangle itself); empty when
+// they miss the ground.
+Extent field_area(const SceneConfig& config, const SceneGround& ground);
+
 // Stage messages while a scene is assembled (a program shows them, e.g. on a terminal).
 using StageObserver = std::function<void(const std::string& message)>;
 

@@ -259,11 +259,20 @@ void read_tiles(Section s, SceneConfig& config) {
     if (!(c[2] > c[0] && c[3] > c[1]))
       s.fail(*s.node("area"), "area", "must be [min_east, min_north, max_east, max_north] with max > min");
   }
+  if (s.read("area_latlon", config.tiles.area_latlon)) {
+    const auto& c = *config.tiles.area_latlon;
+    if (config.tiles.area) s.fail(*s.node("area_latlon"), "area_latlon", "cannot be given with tiles.area: give one");
+    if (!(c[0] >= -90 && c[2] <= 90 && c[1] >= -180 && c[3] <= 180 && c[2] > c[0] && c[3] > c[1]))
+      s.fail(*s.node("area_latlon"), "area_latlon",
+             "must be [min_lat, min_lon, max_lat, max_lon] in WGS 84 degrees, latitudes in [-90, 90], longitudes in "
+             "[-180, 180], max > min");
+  }
   s.read("interior_variation", config.tiles.interior_variation);
   s.reject_unknown();
 }
 
-// [masks]: where flowers may grow (heights, slope, a mask image, fair edges).
+// [masks]: where flowers may grow (heights, slope, a mask image, a georeferenced raster, polygons,
+// fair edges).
 void read_masks(Section s, SceneConfig& config) {
   s.read("max_height", config.masks.max_height);
   s.read("min_height", config.masks.min_height);
@@ -272,6 +281,18 @@ void read_masks(Section s, SceneConfig& config) {
     s.fail(*s.node("min_height"), "min_height", "must not be above max_height");
   std::string mask;
   if (s.read("mask", mask)) config.masks.mask = resolve(config.base_dir, mask);
+  std::string file;
+  if (s.read("raster", file)) config.masks.raster = resolve(config.base_dir, file);
+  if (s.read("polygons", file)) config.masks.polygons = resolve(config.base_dir, file);
+  if (std::string keep; s.read("polygons_keep", keep)) {
+    if (keep != "inside" && keep != "outside")
+      s.fail(*s.node("polygons_keep"), "polygons_keep", "must be \"inside\" or \"outside\"");
+    config.masks.polygons_outside = keep == "outside";
+  }
+  if (s.read("polygons_buffer_m", config.masks.polygons_buffer_m))
+    s.check_range("polygons_buffer_m", config.masks.polygons_buffer_m, -1e5, 1e5);
+  for (const char* key : {"polygons_keep", "polygons_buffer_m"})
+    if (s.node(key) && config.masks.polygons.empty()) s.fail(*s.node(key), key, "needs masks.polygons");
   s.read("fair_edges", config.masks.fair_edges);
   s.reject_unknown();
 }
@@ -548,6 +569,14 @@ void read_exports(Section s, SceneConfig& config) {
   s.read("blender", config.exports.blender);
   s.read("gltf", config.exports.gltf);
   s.read("ldi", config.exports.ldi);
+  if (s.read("gis", config.exports.gis) && config.exports.gis && config.terrain.dem.empty())
+    s.fail(*s.node("gis"), "gis",
+           "needs [terrain] dem: plants.gpkg and cover.tif stand in the DEM's coordinate reference system, and a flat "
+           "ground has none");
+  if (std::string crs; s.read("gis_crs", crs)) {
+    if (crs != "dem" && crs != "wgs84") s.fail(*s.node("gis_crs"), "gis_crs", "must be \"dem\" or \"wgs84\"");
+    config.exports.gis_crs = crs == "dem" ? GisCrsChoice::dem : GisCrsChoice::wgs84;
+  }
   s.reject_unknown();
 }
 

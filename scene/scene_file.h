@@ -35,7 +35,10 @@ struct TilesConfig {
   std::uint64_t seed = 1;      // tiling, points and flower yaw/scale
   TilingAlgorithm algorithm = TilingAlgorithm::scanline;
   std::optional<std::array<double, 4>> area;  // where flowers grow, ENU m; default: the ground's extent
-  bool interior_variation = false;            // variant, yaw, scale from the world tile and index, not the tile's point
+  // Where flowers grow as [min_lat, min_lon, max_lat, max_lon], WGS 84 degrees (instead of area):
+  // the tiling covers its ENU box, a mask on the ground keeps the rectangle itself.
+  std::optional<std::array<double, 4>> area_latlon;
+  bool interior_variation = false;  // variant, yaw, scale from the world tile and index, not the tile's point
 };
 
 // [masks]
@@ -44,6 +47,10 @@ struct MasksConfig {
   std::optional<double> min_height;  // meters; no flowers below
   std::optional<double> max_slope;   // degrees; no flowers on steeper ground
   std::filesystem::path mask;        // painted mask image over the ground (white = flowers); empty = none
+  std::filesystem::path raster;      // georeferenced raster in any CRS, warped onto the DEM (non-zero = flowers)
+  std::filesystem::path polygons;    // OGR layer of polygons (GeoPackage, Shapefile, GeoJSON); empty = none
+  bool polygons_outside = false;     // polygons_keep = "outside": flowers outside the polygons, not inside
+  double polygons_buffer_m = 0;      // meters the polygons grow by before the test (negative: shrink)
   bool fair_edges = true;            // thin the field out towards mask borders instead of a hard cut
 };
 
@@ -153,12 +160,17 @@ struct CameraAwareConfig {
   bool far_texture = true;            // the flowers beyond `far` as a texture in the ground bake
 };
 
+// Where the plants of a GIS file stand: in the DEM's CRS, or in WGS 84 longitude and latitude.
+enum class GisCrsChoice { dem, wgs84 };
+
 // [exports]
 struct ExportsConfig {
   bool povray = true;
   bool blender = false;
   bool gltf = false;
   bool ldi = false;  // DIR/tiles.ldi: the tiles as pre-shaded LDIs (renders/, docs/ldi-pack-format.md)
+  bool gis = false;  // DIR/plants.gpkg (a point layer) and DIR/cover.tif (plants per m2); needs a DEM
+  GisCrsChoice gis_crs = GisCrsChoice::dem;  // the CRS of plants.gpkg (cover.tif is on the DEM's grid)
 };
 
 // [ldi]: the view the tiles' LDIs are sampled for.

@@ -72,7 +72,8 @@ Extent parse_plane(const std::string& text) {
   return {0, 0, w, h};
 }
 
-SceneGround SceneGround::load(const TerrainConfig& config, const MasksConfig& masks) {
+SceneGround SceneGround::load(const TerrainConfig& config, const MasksConfig& masks,
+                              const std::optional<std::array<double, 4>>& area_latlon) {
   auto impl = std::make_shared<Impl>();
   impl->masks = masks;
   const Extent crop = config.crop ? Extent{(*config.crop)[0], (*config.crop)[1], (*config.crop)[2], (*config.crop)[3]}
@@ -105,6 +106,30 @@ SceneGround SceneGround::load(const TerrainConfig& config, const MasksConfig& ma
     filter.min_height_m = masks.min_height;
     filter.max_slope_deg = masks.max_slope;
     if (!masks.mask.empty()) filter.mask_image = masks.mask;
+    // Each file's errors name its key; terrain/ knows files, not keys.
+    const auto keyed = [](const std::string& key, const auto& make) {
+      try {
+        return make();
+      } catch (const Error& e) {
+        throw Error(e.file(), e.place(), "'" + key + "' " + e.message());
+      }
+    };
+    const Terrain& terrain = *impl->terrain;
+    if (!masks.raster.empty())
+      filter.masks.push_back(keyed("masks.raster", [&] { return GroundMask::raster(masks.raster, terrain); }));
+    if (!masks.polygons.empty())
+      filter.masks.push_back(keyed("masks.polygons", [&] {
+        return GroundMask::polygons(masks.polygons, terrain,
+                                    masks.polygons_outside ? PolygonSide::outside : PolygonSide::inside,
+                                    masks.polygons_buffer_m);
+      }));
+    if (area_latlon) {
+      filter.masks.push_back(
+          keyed("tiles.area_latlon", [&] { return GroundMask::lat_lon_box(*area_latlon, terrain); }));
+      if (filter.masks.back().allowed_count() == 0)
+        throw Error("'tiles.area_latlon' misses DEM '" + config.dem.string() +
+                    "': expected a latitude/longitude rectangle over its ground");
+    }
     impl->filter.emplace(*impl->terrain, filter);
     impl->filter->check_satisfiable();
   } else {
@@ -112,6 +137,13 @@ SceneGround SceneGround::load(const TerrainConfig& config, const MasksConfig& ma
       throw Error("masks: the flat ground (height 0 m) is outside the height limits");
     if (!masks.mask.empty())
       throw Error(masks.mask, "", "a painted mask needs a DEM (terrain.dem) to be stretched over");
+    for (const auto& [key, file] :
+         {std::pair{"masks.raster", masks.raster}, std::pair{"masks.polygons", masks.polygons}})
+      if (!file.empty())
+        throw Error(file, "",
+                    std::string("'") + key + "' needs a DEM (terrain.dem): flat ground has no CRS to place it in");
+    if (area_latlon)
+      throw Error("'tiles.area_latlon' needs a DEM (terrain.dem): flat ground has no CRS to place it in");
   }
   SceneGround ground;
   ground.impl_ = std::move(impl);
@@ -163,6 +195,27 @@ double SceneGround::height_or_error(double x, double y) const {
 std::array<double, 2> SceneGround::to_enu(double latitude, double longitude) const {
   const auto& frame = impl_->terrain ? impl_->terrain->frame() : *impl_->frame;
   return frame.to_enu({latitude, longitude});
+}
+
+Extent SceneGround::lat_lon_box_extent(const std::array<double, 4>& box) const {
+  // The box's edges sampled densely: in the tangent plane a parallel bows, so the corners alone
+  // would miss its middle.
+  constexpr int kSteps = 256;
+  Extent e{INFINITY, INFINITY, -INFINITY, -INFINITY};
+  const auto add = [&](double lat, double lon) {
+    const auto p = to_enu(lat, lon);
+    e = {std::min(e.min_x, p[0]), std::min(e.min_y, p[1]), std::max(e.max_x, p[0]), std::max(e.max_y, p[1])};
+  };
+  for (int k = 0; k <= kSteps; ++k) {
+    const double t = double(k) / kSteps;
+    const double lat = box[0] + t * (box[2] - box[0]), lon = box[1] + t * (box[3] - box[1]);
+    add(lat, box[1]);
+    add(lat, box[3]);
+    add(box[0], lon);
+    add(box[2], lon);
+  }
+  // A metre of margin for what bows between the samples; the mask keeps the rectangle exactly.
+  return {e.min_x - 1, e.min_y - 1, e.max_x + 1, e.max_y + 1};
 }
 
 std::array<double, 2> SceneGround::origin() const {

@@ -1,5 +1,6 @@
 // The one ground a scene stands on, a DEM (terrain/) or a flat plane, with every mask of the
-// scene file (min/max height, max slope, painted mask, fair edges). `wangscape build` and
+// scene file (min/max height, max slope, painted mask, georeferenced raster, polygons, the
+// lat/lon area, fair edges). `wangscape build` and
 // `wangscape scatter --dem` both place through it, so both accept every mask. It models
 // generator's Ground concept (ENU meters, thread-safe).
 #pragma once
@@ -30,7 +31,11 @@ class SceneGround {
   // Loads the DEM of `terrain` (or makes a flat plane without one), crops it and builds the
   // masks, which are checked once here: a limit no ground can meet (a max_height below every
   // height of the DEM, a min_height above all of them, an all-black mask) is an Error naming it.
-  static SceneGround load(const TerrainConfig& terrain, const MasksConfig& masks = {});
+  // `area_latlon` ([tiles] area_latlon: [min_lat, min_lon, max_lat, max_lon], WGS 84 degrees) is a
+  // mask too. A mask file that cannot be used is an Error naming the file, its key and what was
+  // expected.
+  static SceneGround load(const TerrainConfig& terrain, const MasksConfig& masks = {},
+                          const std::optional<std::array<double, 4>>& area_latlon = {});
 
   // --- Ground concept (ENU meters; thread-safe).
   Extent extent() const;
@@ -48,6 +53,8 @@ class SceneGround {
 
   // ENU x, y (meters) of a WGS 84 latitude/longitude (degrees).
   std::array<double, 2> to_enu(double latitude, double longitude) const;
+  // The ENU box (meters) of a WGS 84 rectangle [min_lat, min_lon, max_lat, max_lon] (degrees).
+  Extent lat_lon_box_extent(const std::array<double, 4>& box) const;
   // WGS 84 latitude, longitude (degrees) of the ENU origin.
   std::array<double, 2> origin() const;
   // The DEM, or nullptr for flat ground.

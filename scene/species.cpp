@@ -150,7 +150,7 @@ SpeciesRules::SpeciesRules(const SceneConfig& config, const SceneGround& ground)
       if (!ground.terrain())
         throw config.error_at("species." + species.name + ".mask", "needs a DEM (terrain.dem) to be stretched over");
       try {
-        rule.mask = PaintedMask::load(species.mask, ground.terrain()->extent());
+        rule.mask = GroundMask::painted(species.mask, ground.terrain()->extent());
       } catch (const Error& e) {
         throw config.error_at("species." + species.name + ".mask", e.message());
       }

@@ -66,7 +66,7 @@ class SpeciesRules {
  private:
   struct Rule {
     SpeciesConfig config;
-    std::optional<PaintedMask> mask;
+    std::optional<GroundMask> mask;
     bool needs_slope = false;
   };
   class GroundAt;  // the ground's slope and normal at one place, each read at most once

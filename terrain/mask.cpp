@@ -80,13 +80,14 @@ RgbRaster read_rgb_raster(const std::filesystem::path& image) {
 }
 
 // ---------------------------------------------------------------------------------------
-// PaintedMask
+// GroundMask
 
-PaintedMask PaintedMask::load(const std::filesystem::path& image, const Extent& over) {
+GroundMask GroundMask::painted(const std::filesystem::path& image, const Extent& over) {
   const std::string path = image.string();
   const auto dataset = open_image(image, "mask image");
 
-  PaintedMask mask;
+  GroundMask mask;
+  mask.file_ = image;
   mask.width_ = dataset->GetRasterXSize();
   mask.height_ = dataset->GetRasterYSize();
   mask.area_ = over;
@@ -104,26 +105,67 @@ PaintedMask PaintedMask::load(const std::filesystem::path& image, const Extent& 
   }
   std::vector<float> alpha;
   if (alpha_band > 0) alpha = read_unit_band(*dataset, alpha_band, path);
-  mask.allowed_.resize(luminance.size());
+  mask.pixels_.resize(luminance.size());
   for (std::size_t k = 0; k < luminance.size(); ++k)
-    mask.allowed_[k] = luminance[k] >= 0.5f && (alpha.empty() || alpha[k] >= 0.5f);
+    mask.pixels_[k] = luminance[k] >= 0.5f && (alpha.empty() || alpha[k] >= 0.5f) ? kAllowed : kRefused;
   return mask;
 }
 
-bool PaintedMask::allows(double x, double y) const {
-  if (!area_.contains(x, y)) return false;
-  const int px = std::min(int((x - area_.min_x) / area_.width() * width_), width_ - 1);
-  const int py = std::min(int((area_.max_y - y) / area_.height() * height_), height_ - 1);
-  return allowed_[std::size_t(py) * std::size_t(width_) + std::size_t(px)] != 0;
+bool GroundMask::pixel_of(double x, double y, double& px, double& py) const {
+  if (terrain_ == nullptr) {
+    px = (x - area_.min_x) / area_.width() * width_;
+    py = (area_.max_y - y) / area_.height() * height_;
+    return true;
+  }
+  // Sample (col, row) stands at the centre of DEM pixel (col, row).
+  double col = 0, row = 0;
+  if (!terrain_->map_to_sample(x, y, col, row)) return false;
+  px = (col + 0.5) * refine_;
+  py = (row + 0.5) * refine_;
+  return true;
 }
 
-bool PaintedMask::pixel_range(const Extent& r, int& x0, int& y0, int& x1, int& y1, bool& clamped) const {
-  const double fx0 = (r.min_x - area_.min_x) / area_.width() * width_;
-  const double fx1 = (r.max_x - area_.min_x) / area_.width() * width_;
-  const double fy0 = (area_.max_y - r.max_y) / area_.height() * height_;
-  const double fy1 = (area_.max_y - r.min_y) / area_.height() * height_;
+bool GroundMask::allows(double x, double y) const {
+  if (terrain_ == nullptr && !area_.contains(x, y)) return false;
+  double fx = 0, fy = 0;
+  if (!pixel_of(x, y, fx, fy) || !(fx >= 0 && fy >= 0)) return false;
+  const int px = std::min(int(fx), width_ - 1), py = std::min(int(fy), height_ - 1);
+  if (terrain_ != nullptr && (fx > width_ || fy > height_)) return false;
+  const std::uint8_t pixel = at(px, py);
+  if (pixel != kBoundary) return pixel == kAllowed;
+  // Tested where the instance will stand: its coordinates are stored as floats, and a GIS reads
+  // those, so a point a hair inside must not be written a hair outside.
+  return (*exact_)(double(float(x)), double(float(y)));
+}
+
+bool GroundMask::pixel_range(const Extent& r, int& x0, int& y0, int& x1, int& y1, bool& clamped) const {
+  double fx0 = 0, fx1 = 0, fy0 = 0, fy1 = 0;
+  if (terrain_ == nullptr) {
+    fx0 = (r.min_x - area_.min_x) / area_.width() * width_;
+    fx1 = (r.max_x - area_.min_x) / area_.width() * width_;
+    fy0 = (area_.max_y - r.max_y) / area_.height() * height_;
+    fy1 = (area_.max_y - r.min_y) / area_.height() * height_;
+  } else {
+    // The box of the rectangle's corners on the grid (its image is a slightly bent quadrilateral
+    // inside it), cut to the terrain's extent first; a corner off the lattice counts as clamped.
+    const Extent e = terrain_->extent();
+    const Extent cut = r.intersected(e);
+    if (cut.empty()) return false;
+    clamped = !(cut.min_x == r.min_x && cut.min_y == r.min_y && cut.max_x == r.max_x && cut.max_y == r.max_y);
+    fx0 = fy0 = std::numeric_limits<double>::infinity();
+    fx1 = fy1 = -fx0;
+    for (double x : {cut.min_x, cut.max_x})
+      for (double y : {cut.min_y, cut.max_y}) {
+        double px = 0, py = 0;
+        if (!pixel_of(x, y, px, py)) return false;
+        fx0 = std::min(fx0, px), fx1 = std::max(fx1, px);
+        fy0 = std::min(fy0, py), fy1 = std::max(fy1, py);
+      }
+    constexpr double kPad = 1e-6;
+    fx0 -= kPad, fy0 -= kPad, fx1 += kPad, fy1 += kPad;
+  }
   if (fx1 < 0 || fy1 < 0 || fx0 > width_ || fy0 > height_) return false;
-  clamped = fx0 < 0 || fy0 < 0 || fx1 > width_ || fy1 > height_;
+  clamped = clamped || fx0 < 0 || fy0 < 0 || fx1 > width_ || fy1 > height_;
   x0 = std::clamp(int(std::floor(fx0)), 0, width_ - 1);
   x1 = std::clamp(int(std::floor(fx1)), 0, width_ - 1);
   y0 = std::clamp(int(std::floor(fy0)), 0, height_ - 1);
@@ -131,27 +173,31 @@ bool PaintedMask::pixel_range(const Extent& r, int& x0, int& y0, int& x1, int& y
   return true;
 }
 
-bool PaintedMask::allows_all(const Extent& r) const {
+bool GroundMask::allows_all(const Extent& r) const {
   int x0, y0, x1, y1;
   bool clamped = false;
   if (!pixel_range(r, x0, y0, x1, y1, clamped) || clamped) return false;
   for (int py = y0; py <= y1; ++py)
     for (int px = x0; px <= x1; ++px)
-      if (!allowed_[std::size_t(py) * std::size_t(width_) + std::size_t(px)]) return false;
+      if (at(px, py) != kAllowed) return false;
   return true;
 }
 
-bool PaintedMask::allows_any(const Extent& r) const {
+bool GroundMask::allows_any(const Extent& r) const {
   int x0, y0, x1, y1;
   bool clamped = false;
   if (!pixel_range(r, x0, y0, x1, y1, clamped)) return false;
   for (int py = y0; py <= y1; ++py)
     for (int px = x0; px <= x1; ++px)
-      if (allowed_[std::size_t(py) * std::size_t(width_) + std::size_t(px)]) return true;
+      if (at(px, py) != kRefused) return true;
   return false;
 }
 
-std::size_t PaintedMask::allowed_count() const { return std::size_t(std::count(allowed_.begin(), allowed_.end(), 1)); }
+double GroundMask::allowed_count() const {
+  double count = 0;
+  for (const std::uint8_t p : pixels_) count += p == kAllowed ? 1.0 : p == kBoundary ? 0.5 : 0.0;
+  return count;
+}
 
 // ---------------------------------------------------------------------------------------
 // TerrainFilter
@@ -168,7 +214,13 @@ TerrainFilter::TerrainFilter(const Terrain& terrain, TerrainFilterOptions option
   if (options_.min_height_m && options_.max_height_m && *options_.min_height_m > *options_.max_height_m)
     throw Error("minimum height " + significant_text(*options_.min_height_m, 6) + " m is above the maximum height " +
                 significant_text(*options_.max_height_m, 6) + " m");
-  if (options_.mask_image) mask_ = PaintedMask::load(*options_.mask_image, terrain.extent());
+  if (options_.mask_image) {
+    masks_.push_back(GroundMask::painted(*options_.mask_image, terrain.extent()));
+    mask_image_ = true;
+  }
+  // Moved, not copied: a mask's grid may be large.
+  for (GroundMask& mask : options_.masks) masks_.push_back(std::move(mask));
+  options_.masks.clear();
 
   const DemRaster& dem = terrain.dem();
   cells_x_ = dem.width - 1;
@@ -303,7 +355,7 @@ bool TerrainFilter::tile_passes(const Extent& tile) const {
   if (!all_in_range &&
       !box_within(box, options_.min_height_m.value_or(-kInfinity), options_.max_height_m.value_or(kInfinity)))
     return false;
-  return !mask_ || mask_->allows_all(tile);
+  return std::all_of(masks_.begin(), masks_.end(), [&](const GroundMask& m) { return m.allows_all(tile); });
 }
 
 bool TerrainFilter::tile_may_pass(const Extent& tile) const {
@@ -313,7 +365,7 @@ bool TerrainFilter::tile_may_pass(const Extent& tile) const {
   for (int row = box.r0; row <= box.r1 && !some; ++row)
     for (int col = box.c0; col <= box.c1 && !some; ++col)
       some = (cell_flags_[std::size_t(row) * std::size_t(cells_x_) + std::size_t(col)] & kSomeInRange) != 0;
-  return some && (!mask_ || mask_->allows_any(tile));
+  return some && std::all_of(masks_.begin(), masks_.end(), [&](const GroundMask& m) { return m.allows_any(tile); });
 }
 
 bool TerrainFilter::point_passes(double x, double y) const {
@@ -325,7 +377,7 @@ bool TerrainFilter::point_passes(double x, double y) const {
     if (!s || !height_in_range(s->height)) return false;
     if (s->slope_degrees() > *options_.max_slope_deg) return false;
   }
-  return !mask_ || mask_->allows(x, y);
+  return masks_allow(x, y);
 }
 
 bool TerrainFilter::point_passes(double x, double y, double z) const {
@@ -334,14 +386,14 @@ bool TerrainFilter::point_passes(double x, double y, double z) const {
     const auto slope = terrain_->slope_degrees(x, y);
     if (!slope || *slope > *options_.max_slope_deg) return false;
   }
-  return !mask_ || mask_->allows(x, y);
+  return masks_allow(x, y);
 }
 
 double TerrainFilter::passing_share(bool partial) const {
   const double cells = double(cells_x_) * double(cells_y_);
   if (!(cells > 0)) return 0;
   double share = double(partial ? maybe_cells_ : passing_cells_) / cells;
-  if (mask_) share *= double(mask_->allowed_count()) / (double(mask_->width()) * double(mask_->height()));
+  for (const GroundMask& m : masks_) share *= m.allowed_count() / (double(m.width()) * double(m.height()));
   return share;
 }
 
@@ -358,9 +410,16 @@ void TerrainFilter::check_satisfiable() const {
   if (options_.min_height_m && *options_.min_height_m > dem.max_height)
     throw Error("minimum height " + significant_text(*options_.min_height_m, 6) + " m is above every height of DEM '" +
                 dem.path.string() + "' " + range + ": no tile would be instantiated");
-  if (mask_ && mask_->allowed_count() == 0)
-    throw Error("mask image '" + options_.mask_image->string() +
-                "' allows flowers nowhere (no pixel is white): no tile would be instantiated");
+  for (const GroundMask& m : masks_) {
+    if (m.allowed_count() > 0) continue;
+    if (&m == mask())
+      throw Error("mask image '" + m.file().string() +
+                  "' allows flowers nowhere (no pixel is white): no tile would be instantiated");
+    if (m.file().empty())
+      throw Error("the latitude/longitude area misses DEM '" + dem.path.string() + "': no tile would be instantiated");
+    throw Error(m.file(), "",
+                "allows flowers nowhere over DEM '" + dem.path.string() + "': no tile would be instantiated");
+  }
   if (maybe_cells_ == 0) throw Error("no ground of DEM '" + dem.path.string() + "' passes the height test " + range);
   if (options_.max_slope_deg && passing_cells_ == 0 && *options_.max_slope_deg < min_cell_slope_deg_)
     throw Error("maximum slope " + significant_text(*options_.max_slope_deg, 6) +

@@ -14,6 +14,7 @@
 #include "core/number_text.h"
 #include "core/text_file.h"
 #include "core/vecmath.h"
+#include "scene/scene.h"
 #include "scene/scene_ground.h"
 #include "scene/sun.h"
 #include "terrain/georef.h"
@@ -518,12 +519,8 @@ std::vector<BatchTask> expand_batch(const BatchConfig& config) {
   for (const auto& dem : dems) {
     SceneConfig scene = config.scene;
     scene.terrain.dem = dem;
-    const auto ground = SceneGround::load(scene.terrain, scene.masks);
-    Site site{scene, ground,
-              scene.tiles.area ? Extent{(*scene.tiles.area)[0], (*scene.tiles.area)[1], (*scene.tiles.area)[2],
-                                        (*scene.tiles.area)[3]}
-                               : ground.extent()};
-    site.field = site.field.intersected(ground.extent());
+    const auto ground = SceneGround::load(scene.terrain, scene.masks, scene.tiles.area_latlon);
+    Site site{scene, ground, field_area(scene, ground)};
     const EnuFrame frame(LatLon{ground.origin()[0], ground.origin()[1]});
     std::vector<BatchSun> suns = config.suns;
     if (suns.empty()) {

@@ -23,8 +23,8 @@ Extent random_tile(const Extent& e, double size, std::mt19937& rng) {
 
 TEST(Mask, PassingTilesLieWhollyBelowTheThresholdAndFlatEnough) {
   const Terrain& terrain = helens();
-  const TerrainFilter filter(terrain,
-                             {.max_height_m = 1500.0, .min_height_m = {}, .max_slope_deg = 25.0, .mask_image = {}});
+  const TerrainFilter filter(
+      terrain, {.max_height_m = 1500.0, .min_height_m = {}, .max_slope_deg = 25.0, .mask_image = {}, .masks = {}});
   std::mt19937 rng(1);
   int passing = 0, maybe = 0;
   for (int k = 0; k < 4000; ++k) {
@@ -55,8 +55,8 @@ TEST(Mask, TileTestIsExactNotAStaircaseOfCells) {
   // A 4 m tile whose own ground is below the threshold passes even when a corner of its
   // 30 m DEM cell is above it: the strict border follows the contour at the tile size.
   const Terrain& terrain = helens();
-  const TerrainFilter filter(terrain,
-                             {.max_height_m = 1500.0, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}});
+  const TerrainFilter filter(
+      terrain, {.max_height_m = 1500.0, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}, .masks = {}});
   std::mt19937 rng(8);
   int near_contour = 0;
   for (int k = 0; k < 20000 && near_contour < 300; ++k) {
@@ -83,8 +83,8 @@ TEST(Mask, TileTestIsExactNotAStaircaseOfCells) {
 
 TEST(Mask, PointTestFollowsTheGround) {
   const Terrain& terrain = helens();
-  const TerrainFilter filter(terrain,
-                             {.max_height_m = 1200.0, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}});
+  const TerrainFilter filter(
+      terrain, {.max_height_m = 1200.0, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}, .masks = {}});
   std::mt19937 rng(2);
   const Extent e = terrain.extent();
   int yes = 0, no = 0;
@@ -100,8 +100,8 @@ TEST(Mask, PointTestFollowsTheGround) {
 }
 
 TEST(Mask, ThresholdBelowEveryHeightIsExplained) {
-  const TerrainFilter filter(helens(),
-                             {.max_height_m = 500.0, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}});
+  const TerrainFilter filter(
+      helens(), {.max_height_m = 500.0, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}, .masks = {}});
   try {
     filter.check_satisfiable();
     ADD_FAILURE() << "a 500 m threshold is below Mount St. Helens' lowest point (682 m)";
@@ -110,10 +110,12 @@ TEST(Mask, ThresholdBelowEveryHeightIsExplained) {
     EXPECT_NE(std::string(e.what()).find("682"), std::string::npos) << e.what();
   }
   EXPECT_NO_THROW(
-      TerrainFilter(helens(), {.max_height_m = 700.0, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}})
+      TerrainFilter(helens(),
+                    {.max_height_m = 700.0, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}, .masks = {}})
           .check_satisfiable());
   EXPECT_THROW(
-      TerrainFilter(helens(), {.max_height_m = {}, .min_height_m = {}, .max_slope_deg = 120.0, .mask_image = {}}),
+      TerrainFilter(helens(),
+                    {.max_height_m = {}, .min_height_m = {}, .max_slope_deg = 120.0, .mask_image = {}, .masks = {}}),
       Error);
 }
 
@@ -126,7 +128,8 @@ TEST(Mask, PaintedMaskWhiteWestBlackEast) {
   const Extent e = terrain.extent();
   const double middle = (e.min_x + e.max_x) / 2;
   const TerrainFilter filter(
-      terrain, {.max_height_m = {}, .min_height_m = {}, .max_slope_deg = {}, .mask_image = dir / "west.png"});
+      terrain,
+      {.max_height_m = {}, .min_height_m = {}, .max_slope_deg = {}, .mask_image = dir / "west.png", .masks = {}});
   ASSERT_NE(filter.mask(), nullptr);
   EXPECT_EQ(filter.mask()->allowed_count(), 32u * 32u);
   std::mt19937 rng(4);
@@ -146,13 +149,15 @@ TEST(Mask, PaintedMaskWhiteWestBlackEast) {
   // An all-black mask is explained, a missing one names the file.
   test::write_raster(dir / "black.png", "PNG", GDT_Byte, 8, 8, {}, nullptr, [](int, int) { return 0.0; });
   EXPECT_THROW(
-      TerrainFilter(terrain,
-                    {.max_height_m = {}, .min_height_m = {}, .max_slope_deg = {}, .mask_image = dir / "black.png"})
+      TerrainFilter(
+          terrain,
+          {.max_height_m = {}, .min_height_m = {}, .max_slope_deg = {}, .mask_image = dir / "black.png", .masks = {}})
           .check_satisfiable(),
       Error);
   try {
-    TerrainFilter(terrain,
-                  {.max_height_m = {}, .min_height_m = {}, .max_slope_deg = {}, .mask_image = dir / "nothing.png"});
+    TerrainFilter(
+        terrain,
+        {.max_height_m = {}, .min_height_m = {}, .max_slope_deg = {}, .mask_image = dir / "nothing.png", .masks = {}});
     ADD_FAILURE();
   } catch (const Error& error) {
     EXPECT_NE(std::string(error.what()).find("nothing.png"), std::string::npos);

@@ -52,8 +52,8 @@ std::vector<Instance> scatter(const Extent& area, double tile_size, const Terrai
 const Extent kWindow{-2000, -2500, 1500, 1000};
 
 TEST(PlacementOnDem, EveryInstanceStandsOnTheGroundBelowTheThreshold) {
-  const TerrainFilter filter(helens(),
-                             {.max_height_m = 1500.0, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}});
+  const TerrainFilter filter(
+      helens(), {.max_height_m = 1500.0, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}, .masks = {}});
   for (const bool fair : {false, true}) {
     const auto instances = scatter(kWindow, 8.0, filter, fair);
     ASSERT_GT(instances.size(), 1000u);
@@ -70,10 +70,10 @@ TEST(PlacementOnDem, EveryInstanceStandsOnTheGroundBelowTheThreshold) {
 // times the share of cells that pass comes within 15 % of the count placed, with and without
 // fair edges, and a lower limit gives a smaller share.
 TEST(PlacementOnDem, ThePassingShareEstimatesTheCountAfterTheMasks) {
-  const TerrainFilter filter(helens(),
-                             {.max_height_m = 1500.0, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}});
-  const TerrainFilter lower(helens(),
-                            {.max_height_m = 1000.0, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}});
+  const TerrainFilter filter(
+      helens(), {.max_height_m = 1500.0, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}, .masks = {}});
+  const TerrainFilter lower(
+      helens(), {.max_height_m = 1000.0, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}, .masks = {}});
   const Extent whole = helens().extent();
   const double tile_size = 30.0;
   const TileRange range = tile_range(whole, tile_size);
@@ -92,8 +92,8 @@ TEST(PlacementOnDem, ThePassingShareEstimatesTheCountAfterTheMasks) {
 }
 
 TEST(PlacementOnDem, FairEdgesKeepEveryStrictFlowerAndFollowTheContour) {
-  const TerrainFilter filter(helens(),
-                             {.max_height_m = 1500.0, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}});
+  const TerrainFilter filter(
+      helens(), {.max_height_m = 1500.0, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}, .masks = {}});
   auto strict = scatter(kWindow, 8.0, filter, false);
   auto fair = scatter(kWindow, 8.0, filter, true);
   EXPECT_GT(fair.size(), strict.size());  // partial tiles along the contour are kept
@@ -109,8 +109,8 @@ TEST(PlacementOnDem, FairEdgesKeepEveryStrictFlowerAndFollowTheContour) {
 }
 
 TEST(PlacementOnDem, HashedSubAreaEqualsThatPartOfTheWhole) {
-  const TerrainFilter filter(helens(),
-                             {.max_height_m = 1800.0, .min_height_m = {}, .max_slope_deg = 35.0, .mask_image = {}});
+  const TerrainFilter filter(
+      helens(), {.max_height_m = 1800.0, .min_height_m = {}, .max_slope_deg = 35.0, .mask_image = {}, .masks = {}});
   const double s = 8.0;
   for (const bool fair : {false, true}) {
     auto whole = scatter(kWindow, s, filter, fair);
@@ -141,7 +141,8 @@ TEST(PlacementOnDem, HashedSubAreaEqualsThatPartOfTheWhole) {
 
 TEST(PlacementOnDem, NodataIsNeverPlanted) {
   // The quadrangle's no-data corners: a window over the north-west corner of the raster.
-  const TerrainFilter filter(helens(), {.max_height_m = {}, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}});
+  const TerrainFilter filter(
+      helens(), {.max_height_m = {}, .min_height_m = {}, .max_slope_deg = {}, .mask_image = {}, .masks = {}});
   const Extent e = helens().extent();
   const Extent corner{e.min_x, e.max_y - 600, e.min_x + 600, e.max_y};
   for (const bool fair : {false, true})
