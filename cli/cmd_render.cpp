@@ -50,7 +50,7 @@ void run_render_path(const std::filesystem::path& dir, const RenderRequest& requ
                  shown_path(request.path).c_str(), request.engine.c_str());
   path.on_frame = [&](long long done, long long total, bool rendered) {
     if (!rendered) ++skipped;
-    if (!progress) progress.emplace("frames", std::uint64_t(total), global.quiet);
+    if (!progress) progress.emplace("frames", std::uint64_t(total), global.quiet, false);
     const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const long long fresh = done - skipped;
     progress->update(std::uint64_t(done), fresh > 0 ? fmt::format("frame {} / {}, about {:.0f} s left", done, total,

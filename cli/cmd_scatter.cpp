@@ -15,7 +15,9 @@
 
 #include "cli/command.h"
 #include "cli/progress.h"
+#include "core/number_text.h"
 #include "exporters/image_io.h"
+#include "exporters/point_writer.h"
 #include "exporters/reports.h"
 #include "exporters/scatter_run.h"
 #include "generator/point_metrics.h"
@@ -94,9 +96,20 @@ void run(const ScatterOptions& options, const GlobalOptions& global) {
   request.large_file_ok = options.yes;
   const WriteReport report(global.quiet);
   std::optional<Progress> progress;
+  // The bar says what the points file will hold, as estimated before its first byte (the file's
+  // name was checked by then).
+  std::string expected_file;
   request.progress = [&](std::uint64_t placed, std::uint64_t expected) {
-    if (!progress) progress.emplace("scatter", expected, global.quiet);
-    progress->update(placed);
+    if (!progress) {
+      progress.emplace("scatter", expected, global.quiet);
+      if (!options.out.empty())
+        expected_file =
+            fmt::format("of about {}, {}",
+                        expected >= 1000000 ? fmt::format("{:.3g} million instances", double(expected) / 1e6)
+                                            : fmt::format("{} instances", expected),
+                        byte_text(double(expected) * point_file_bytes_per_point(point_file_format(options.out))));
+    }
+    progress->update(placed, expected_file);
   };
   const ScatterResult result = run_scatter(request);
   if (progress) progress->finish();

@@ -18,10 +18,29 @@ std::int64_t now_ms() {
   using namespace std::chrono;
   return duration_cast<milliseconds>(steady_clock::now().time_since_epoch()).count();
 }
+
+// "  12 s left", "  4 min 05 s left", "  2 h 10 min left" at the rate so far; empty until a
+// second has passed and 1 % is done, and once all is.
+std::string time_left_text(double elapsed_seconds, double fraction) {
+  if (elapsed_seconds < 1 || fraction < 0.01 || fraction >= 1) return {};
+  const auto left = static_cast<long long>(std::ceil(elapsed_seconds * (1 - fraction) / fraction));
+  char text[48];
+  if (left < 60)
+    std::snprintf(text, sizeof text, "  %lld s left", left);
+  else if (left < 3600)
+    std::snprintf(text, sizeof text, "  %lld min %02lld s left", left / 60, left % 60);
+  else
+    std::snprintf(text, sizeof text, "  %lld h %02lld min left", left / 3600, left / 60 % 60);
+  return text;
+}
 }  // namespace
 
-Progress::Progress(std::string label, std::uint64_t total, bool quiet)
-    : label_(std::move(label)), total_(std::max<std::uint64_t>(total, 1)), enabled_(!quiet && isatty(STDERR_FILENO)) {}
+Progress::Progress(std::string label, std::uint64_t total, bool quiet, bool time_left)
+    : label_(std::move(label)),
+      total_(std::max<std::uint64_t>(total, 1)),
+      enabled_(!quiet && isatty(STDERR_FILENO)),
+      time_left_(time_left),
+      start_ms_(now_ms()) {}
 
 Progress::~Progress() { finish(); }
 
@@ -36,8 +55,9 @@ void Progress::update(std::uint64_t done, const std::string& note) {
   const double fraction = std::min(1.0, static_cast<double>(done) / static_cast<double>(total_));
   const int filled = static_cast<int>(fraction * kWidth);
   // "\x1b[K" clears what a longer note drew before.
-  std::fprintf(stderr, "\r%s [%.*s%*s] %3d%%%s%s\x1b[K", label_.c_str(), filled, "##############################",
-               kWidth - filled, "", static_cast<int>(fraction * 100.0), last_note_.empty() ? "" : "  ",
+  const std::string left = time_left_ ? time_left_text(double(t - start_ms_) / 1000, fraction) : std::string();
+  std::fprintf(stderr, "\r%s [%.*s%*s] %3d%%%s%s%s\x1b[K", label_.c_str(), filled, "##############################",
+               kWidth - filled, "", static_cast<int>(fraction * 100.0), left.c_str(), last_note_.empty() ? "" : "  ",
                last_note_.c_str());
   std::fflush(stderr);
 }

@@ -12,7 +12,9 @@ namespace wangscape::cli {
 
 class Progress {
  public:
-  Progress(std::string label, std::uint64_t total, bool quiet);
+  // With `time_left`, the bar says how long the rest will take at the rate so far (from a
+  // second in and 1 % done); a caller whose work is uneven (frames already there) says it itself.
+  Progress(std::string label, std::uint64_t total, bool quiet, bool time_left = true);
   ~Progress();
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
@@ -26,6 +28,8 @@ class Progress {
   std::string label_;
   std::uint64_t total_;
   bool enabled_;
+  bool time_left_;
+  std::int64_t start_ms_;
   bool finished_ = false;
   std::int64_t last_draw_ms_ = -1;
   std::uint64_t last_drawn_ = 0;
