@@ -81,7 +81,7 @@ struct EnteringBand {
   }
 };
 // A reprojected sample covers the pixels whose centres lie in a square of its footprint's size
-// (one pixel at its old depth) times kSplatScale, up to kMaxStretch pixels. Without such copies,
+// (one pixel at its old depth) times kCopySplatScale, up to kMaxStretch pixels. Without such copies,
 // samples that met in one pixel were lost and the holes they left grew frame after frame (in the
 // field at 640 x 360: 5,000 in the first frame, 35,000 by the tenth, every one traced). A pixel
 // prefers a sample of its own (whose position lies in it) to any neighbour's copy: copies only
@@ -89,7 +89,7 @@ struct EnteringBand {
 // or leaf grew by a copy in a quarter of its pixels each frame, 15,000 pixels to trace after a
 // pure turn). A copy keeps its true position, so nothing drifts. Background seen where a nearer
 // surface has a gap is found by the gap test, before tracing and again after it.
-constexpr float kSplatScale = 1.25f;
+constexpr float kCopySplatScale = 1.25f;
 constexpr float kMaxStretch = 3.0f;
 constexpr std::uint64_t kCopyBit = 1ull << 63;  // in a key: a neighbour's copy (above every depth)
 // A pixel whose sample lies more than this far from its centre (pixels, either axis) is stretched.

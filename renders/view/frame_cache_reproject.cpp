@@ -61,7 +61,7 @@ Reprojection reprojection(const ViewProjection& from, const ViewProjection& to) 
   r.to_cx = to.cx;
   r.to_cy = to.cy;
   r.to_focal = to.focal;
-  r.stretch = kSplatScale * to.focal / from.focal;
+  r.stretch = kCopySplatScale * to.focal / from.focal;
   return r;
 }
 
