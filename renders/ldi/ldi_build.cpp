@@ -756,9 +756,20 @@ std::vector<LdiImage> build_tile_ldis(const FilledTileSet& filled, std::span<con
 
 LdiBuildReport build_ldi_pack(const FilledTileSet& filled, std::span<const Mesh> models, const LdiBuildOptions& options,
                               const std::filesystem::path& path) {
+  return build_ldi_pack(filled, models, options,
+                        ldi_levels(options.view, options.tile_size, ldi_prism_top(filled, models)),
+                        ldi_pack_info(filled, models, options), path);
+}
+
+LdiBuildReport build_ldi_pack(const FilledTileSet& filled, std::span<const Mesh> models, LdiBuildOptions options,
+                              const LdiLevels& levels, const LdiPackInfo& info, const std::filesystem::path& path) {
   const auto start = std::chrono::steady_clock::now();
-  const LdiPackInfo info = ldi_pack_info(filled, models, options);
-  const LdiLevels levels = ldi_levels(options.view, options.tile_size, ldi_prism_top(filled, models));
+  if (levels.resolutions.size() != info.levels || levels.elevations.size() != info.levels ||
+      levels.distances.size() != info.levels || int(info.directions) != options.view.directions ||
+      info.tiles != filled.tiles.size())
+    throw Error(path, "", "LDI build: the pack's header does not describe the levels, directions and tiles built");
+  options.view.levels = int(levels.resolutions.size());
+  check_inputs(filled, models, options);
   Device device;
   const std::vector<Scene> prototypes = prototype_scenes(device, models);
   LdiPackWriter writer(path, info);

@@ -130,5 +130,10 @@ LdiPackInfo ldi_pack_info(const FilledTileSet& filled, std::span<const Mesh> mod
 // not depend on the thread count.
 LdiBuildReport build_ldi_pack(const FilledTileSet& filled, std::span<const Mesh> models, const LdiBuildOptions& options,
                               const std::filesystem::path& path);
+// The same at levels of the caller's (the steep sets), the pack's header `info` describing them
+// (one level per entry of `levels`, options' directions, the set's tiles); options.view.levels is
+// taken from `levels`.
+LdiBuildReport build_ldi_pack(const FilledTileSet& filled, std::span<const Mesh> models, LdiBuildOptions options,
+                              const LdiLevels& levels, const LdiPackInfo& info, const std::filesystem::path& path);
 
 }  // namespace wangscape

@@ -396,9 +396,9 @@ void check_header_numbers(const LdiPackInfo& info, Fail&& fail) {
     if (info.resolutions[l] == 0 || info.resolutions[l] > 65535)
       fail(level + "resolution " + std::to_string(info.resolutions[l]) + ": expected 1 .. 65535 pixels");
     if (!in(info.level_distances[l], 0, 1e9f) || info.level_distances[l] <= 0 ||
-        (l > 0 && !(info.level_distances[l] > info.level_distances[l - 1])))
+        (l > 0 && !(info.level_distances[l] >= info.level_distances[l - 1])))
       fail(level + "distance " + number_text(info.level_distances[l]) +
-           ": expected positive meters, each level farther than the one before");
+           ": expected positive meters, each level as far as the one before or farther");
     if (!in(info.elevations[l], -90, 90) || (l > 0 && info.elevations[l] > info.elevations[l - 1]))
       fail(level + "elevation " + number_text(info.elevations[l]) +
            ": expected degrees in [-90, 90], each level no higher than the one before");

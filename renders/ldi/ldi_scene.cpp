@@ -55,6 +55,76 @@ std::vector<LdiImage> build_scene_tile_ldis(const Scene& scene, LdiBuildOptions 
   return build_tile_ldis(inputs.filled, inputs.models, options, tile, levels);
 }
 
+std::uint32_t steep_resolution(const LdiPackInfo& pack) {
+  return pack.resolutions[pack.levels - std::min(pack.levels, kSteepLevels)];
+}
+
+LdiPackInfo steep_pack_info(const LdiPackInfo& pack) {
+  LdiPackInfo steep = pack;
+  steep.levels = std::uint32_t(kSteepElevations.size());
+  steep.resolutions.assign(kSteepElevations.size(), steep_resolution(pack));
+  steep.level_distances.assign(kSteepElevations.size(), pack.level_distances.back());
+  steep.elevations.assign(kSteepElevations.rbegin(), kSteepElevations.rend());  // steep_pack_level()
+  return steep;
+}
+
+namespace {
+// The steep sets as levels of a build, and the options they are sampled with: the tiles' pack's
+// head height as the pack holds it (a float), so that a folder's steep pack and the view's own
+// sampling give the same bytes.
+LdiLevels steep_levels(const LdiPackInfo& steep) {
+  LdiLevels levels;
+  levels.prism_top = steep.prism_top;
+  for (std::uint32_t k = 0; k < steep.levels; ++k) {
+    levels.resolutions.push_back(steep.resolutions[k]);
+    levels.distances.push_back(steep.level_distances[k]);
+    levels.elevations.push_back(steep.elevations[k]);
+  }
+  return levels;
+}
+
+LdiBuildOptions steep_options(const LdiPackInfo& steep, const ShadingSettings& shading) {
+  LdiBuildOptions options;
+  options.shading = shading;
+  options.view.head_height = steep.head_height;
+  options.view.directions = int(steep.directions);
+  return options;
+}
+}  // namespace
+
+std::vector<LdiImage> build_scene_steep_ldis(const Scene& scene, const LdiPackInfo& pack,
+                                             const ShadingSettings& shading, std::size_t tile) {
+  const LdiPackInfo steep = steep_pack_info(pack);
+  return build_scene_tile_ldis(scene, steep_options(steep, shading), tile, steep_levels(steep));
+}
+
+void build_scene_ldi_packs(const Scene& scene, const std::filesystem::path& folder, const LdiBuildOptions& options,
+                           const LdiSceneObserver& observer) {
+  const std::filesystem::path pack_file = folder / kFolderPackFile, steep_file = folder / kFolderSteepPackFile;
+  LdiBuildOptions tiles_options = options;
+  const SceneLdiInputs inputs = scene_ldi_inputs(scene, tiles_options);
+  const LdiPackInfo pack = ldi_pack_info(inputs.filled, inputs.models, tiles_options);
+  const LdiPackInfo steep = steep_pack_info(pack);
+  // One progress over both packs: the steep sets' LDIs and rays follow the tiles'.
+  const std::uint64_t tiles_total = std::uint64_t(pack.tiles) * pack.levels * pack.directions;
+  const std::uint64_t total = tiles_total + std::uint64_t(steep.tiles) * steep.levels * steep.directions;
+  const auto report = [&](std::uint64_t before, std::uint64_t rays_before) {
+    return [&observer, &total, before, rays_before](std::uint64_t done, std::uint64_t, std::uint64_t rays) {
+      if (observer.progress) observer.progress(before + done, total, rays_before + rays);
+    };
+  };
+  if (observer.stage)
+    observer.stage("sampling " + std::to_string(pack.tiles) + " tiles x " + std::to_string(pack.levels) + " levels x " +
+                   std::to_string(pack.directions) + " directions into " + pack_file.string() + ", and " +
+                   std::to_string(steep.levels) + " steep sets into " + steep_file.string());
+  tiles_options.progress = report(0, 0);
+  const LdiBuildReport tiles = build_ldi_pack(inputs.filled, inputs.models, tiles_options, pack_file);
+  LdiBuildOptions steep_build = steep_options(steep, tiles_options.shading);  // (the sun already applied)
+  steep_build.tile_size = tiles_options.tile_size;
+  steep_build.progress = report(tiles_total, tiles.primary_rays + tiles.secondary_rays);
+  build_ldi_pack(inputs.filled, inputs.models, steep_build, steep_levels(steep), steep, steep_file);
+}
+
 LdiBuildOptions ldi_options(const SceneConfig& config) {
   LdiBuildOptions options;
   options.view.head_height = config.ldi.head_height;

@@ -148,7 +148,7 @@ void LdiRenderer::choose_tiles() {
     m.steep_low_weight[t] = 0;
     // (The pack's own elevation for the level drawn: from head height, never steeper.)
     const double pack_elevation = double(info.elevations[std::min(a, levels - 1)]);
-    const bool coarse = a + ViewWorld::kSteepLevels >= levels;
+    const bool coarse = a + kSteepLevels >= levels;
     const bool finer_from_steep = a < levels && view_elevation > kSteepFinerLevels * pack_elevation &&
                                   info.resolutions[a] <= kSteepFinerResolution * world.steep_resolution();
     if ((coarse || finer_from_steep) && view_elevation > pack_elevation) {

@@ -173,7 +173,7 @@ std::vector<float> terrain_sun_visibility(const Mesh& mesh, const std::array<flo
 std::shared_ptr<const ViewWorld> ViewWorld::load(const fs::path& dir, const StageObserver& stage) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw Error(dir, "", "no such scene folder (make one with wangscape build)");
-  const fs::path scene_file = dir / "scene.toml", pack_file = dir / "tiles.ldi";
+  const fs::path scene_file = dir / "scene.toml", pack_file = dir / kFolderPackFile;
   if (!fs::is_regular_file(scene_file, ec))
     throw Error(scene_file, "", "missing: the folder was not written by wangscape build");
   if (!fs::is_regular_file(pack_file, ec))
@@ -188,13 +188,17 @@ std::shared_ptr<const ViewWorld> ViewWorld::load(const fs::path& dir, const Stag
   }
   PlacedTiles placed;
   Scene scene = make_folder_scene(dir, config, stage, &placed);
-  return std::make_shared<const ViewWorld>(std::move(scene), pack_file, ldi_options(config).shading, &placed);
+  // A folder built before the steep sets had their pack samples them on its first frame from above.
+  const fs::path steep_file = dir / kFolderSteepPackFile;
+  return std::make_shared<const ViewWorld>(std::move(scene), pack_file, ldi_options(config).shading, &placed,
+                                           fs::is_regular_file(steep_file, ec) ? steep_file : fs::path{});
 }
 
 ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettings& shading_settings,
-                     const PlacedTiles* placed_tiles)
+                     const PlacedTiles* placed_tiles, const fs::path& steep_pack_path)
     : scene_(std::move(scene)),
       pack_(std::make_unique<LdiPack>(pack_path)),
+      steep_pack_(steep_pack_path.empty() ? nullptr : std::make_unique<LdiPack>(steep_pack_path)),
       shading_(shading_settings),
       sun_shading_(with_sun(shading_settings, scene_.sun)),
       ground_colors_(scene_.ground_texture.get(), shading_.ground_color) {
@@ -207,6 +211,8 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
                 "was built for another tile set (" + std::to_string(info.tiles) + " tiles of " +
                     std::to_string(info.tile_size) + " m; the scene has " + std::to_string(field.filled.tiles.size()) +
                     " of " + std::to_string(tile_size_) + " m)");
+  if (steep_pack_ && !(steep_pack_->info() == steep_pack_info(info)))
+    throw Error(steep_pack_path, "", "does not hold the steep sets of " + pack_path.string() + ": rebuild the folder");
 
   // The tiles placement keeps: the tiling's cells over the area that received a flower, as the
   // build found them (or by a placement pass of our own).
@@ -323,29 +329,25 @@ LdiView ViewWorld::far_ldi(std::uint32_t tile, std::uint32_t direction, std::uin
 void ViewWorld::prepare_steep() const {
   std::call_once(steep_once_, [this] {
     const LdiPackInfo& info = pack_->info();
-    LdiBuildOptions options;
-    options.shading = shading_;
-    options.view.head_height = info.head_height;
-    options.view.directions = int(info.directions);
-    LdiLevels steep;  // one level per steep set, each at steep_resolution()
-    steep.prism_top = info.prism_top;
-    for (const float elevation : steep_elevations()) {
-      steep.resolutions.push_back(steep_resolution());
-      steep.distances.push_back(info.level_distances.back());
-      steep.elevations.push_back(elevation);
+    const std::size_t sets = steep_elevations().size(), per_set = std::size_t(info.tiles) * info.directions;
+    if (!steep_pack_) {
+      std::vector<LdiImage> sampled(sets * per_set);
+      for (std::uint32_t t = 0; t < info.tiles; ++t)
+        for (LdiImage& ldi : build_scene_steep_ldis(scene_, info, shading_, t)) {
+          const std::uint32_t set = steep_pack_level(ldi.frame.level);  // (its own inverse)
+          sampled[(std::size_t(set) * info.tiles + t) * info.directions + ldi.frame.direction] = std::move(ldi);
+        }
+      steep_sampled_ = std::move(sampled);
     }
-    const std::size_t per_set = std::size_t(info.tiles) * info.directions * (far_steps_ + 1);
-    std::vector<LdiImage> built(steep_elevations().size() * per_set);
-    for (std::uint32_t t = 0; t < info.tiles; ++t) {
-      std::vector<LdiImage> tile = build_scene_tile_ldis(scene_, options, t, steep);  // level-major
-      for (LdiImage& ldi : tile) {
-        const std::size_t at = (std::size_t(ldi.frame.level) * info.tiles + t) * info.directions + ldi.frame.direction;
-        LdiImage* slots = &built[at * (far_steps_ + 1)];
-        slots[0] = std::move(ldi);
-        for (std::uint32_t k = 0; k < far_steps_; ++k) slots[k + 1] = one_layer_ldi(slots[0].view(), 2 << k);
-      }
-    }
-    steep_ldis_ = std::move(built);
+    std::vector<LdiImage> far(sets * per_set * far_steps_);
+    for (std::uint32_t set = 0; set < sets; ++set)
+      for (std::uint32_t t = 0; t < info.tiles; ++t)
+        for (std::uint32_t d = 0; d < info.directions; ++d) {
+          const std::size_t at = (std::size_t(set) * info.tiles + t) * info.directions + d;
+          for (std::uint32_t k = 0; k < far_steps_; ++k)
+            far[at * far_steps_ + k] = one_layer_ldi(steep_ldi(set, t, d, 0), 2 << k);
+        }
+    steep_far_ = std::move(far);
   });
 }
 
@@ -353,17 +355,12 @@ void ViewWorld::prepare_steep() const {
 // stood in for finer levels and broke the heads into blocks (25 m up, SSIM against the truth at
 // 1280 x 720: 0.498 at the coarsest level's 64 pixels per tile, 0.519 at the finest stood-in
 // level's 89, where the exact one-sample image scores 0.585; finer still, 0.531 at 111 and 0.550
-// at 148; at 640 x 360 0.444 and 0.470, exact 0.454). The steep sets' first frame: 4.1 -> 5.0 s
-// wall.
-std::uint32_t ViewWorld::steep_resolution() const {
-  const LdiPackInfo& info = pack_->info();
-  return info.resolutions[info.levels - std::min(info.levels, kSteepLevels)];
-}
-
+// at 148; at 640 x 360 0.444 and 0.470, exact 0.454): steep_resolution() (renders/ldi/ldi_scene.h).
 LdiView ViewWorld::steep_ldi(std::uint32_t set, std::uint32_t tile, std::uint32_t direction, std::uint32_t step) const {
   const LdiPackInfo& info = pack_->info();
   const std::size_t at = (std::size_t(set) * info.tiles + tile) * info.directions + direction;
-  return steep_ldis_[at * (far_steps_ + 1) + step].view();
+  if (step > 0) return steep_far_[at * far_steps_ + step - 1].view();
+  return steep_pack_ ? steep_pack_->ldi(tile, steep_pack_level(set), direction) : steep_sampled_[at].view();
 }
 
 double ViewWorld::ground_height(double x, double y, double fallback) const {

@@ -16,6 +16,7 @@
 #include "exporters/folder_state.h"
 #include "generator/image.h"
 #include "renders/ldi/ldi_pack.h"
+#include "renders/ldi/ldi_scene.h"
 #include "renders/trace/ground_colors.h"
 #include "renders/trace/traced_shading.h"
 #include "renders/view/terrain_chunks.h"
@@ -28,14 +29,15 @@ namespace wangscape {
 class ViewWorld {
  public:
   // Reads DIR/scene.toml (load_scene_folder_config; where its files are not found, relative
-  // paths resolve against the data folder, data_root(), as for the default scene) and
-  // DIR/tiles.ldi. Throws Error naming the file
+  // paths resolve against the data folder, data_root(), as for the default scene), DIR/tiles.ldi
+  // and, where the folder has it, DIR/steep.ldi. Throws Error naming the file
   // at fault: a missing folder, scene or pack, a corrupt pack, a pack of another tile set.
   static std::shared_ptr<const ViewWorld> load(const std::filesystem::path& dir, const StageObserver& stage = {});
   // The same from a Scene already made and a pack file (tests), with the field's placed tiles
-  // as its folder keeps them (exporters/folder_state.h) or, without them, found by a placement pass.
+  // as its folder keeps them (exporters/folder_state.h) or, without them, found by a placement pass,
+  // and the steep sets' pack if there is one (empty: sampled on first use).
   ViewWorld(Scene scene, const std::filesystem::path& pack_path, const ShadingSettings& shading = {},
-            const PlacedTiles* placed = nullptr);
+            const PlacedTiles* placed = nullptr, const std::filesystem::path& steep_pack_path = {});
 
   struct Tiles {                          // structure of arrays, one entry per placed tile, rows south to north
     std::vector<double> x0, y0;           // the tile's south-west corner, meters
@@ -72,23 +74,17 @@ class ViewWorld {
   // and is drawn over twice the distance of step k - 1; beyond the last step, the far colors.
   std::uint32_t far_steps() const { return far_steps_; }
   LdiView far_ldi(std::uint32_t tile, std::uint32_t direction, std::uint32_t step) const;
-  // Seen from above, the pack's LDIs (sampled from head height, a few degrees below the horizon)
-  // and the one-layer far steps made from them show their columns: a far step holds each
-  // column's front sample, on the tile's near side, so from higher up every tile shows a band of
-  // flowers and a gap behind it, rows along the tile grid converging on the vanishing point. The
-  // steep sets: per elevation of steep_elevations() (degrees below the horizon), per (set tile,
-  // direction), one LDI sampled at that elevation (step 0) and its one-layer far steps (step k + 1
-  // as far step k). They stand in for the pack's kSteepLevels coarsest levels, at the resolution
-  // of the finest of those (steep_resolution()), and for finer levels seen far steeper than the
-  // pack sampled them (LdiRenderer). The 60-degree set is for views looking down: straight down
-  // from 30 m it took SSIM 0.27 -> 0.39 against the truth (45, 65 and 85 degrees instead: 0.394).
-  // Sampled on first use (prepare_steep(); the default scene's first frame from above 5.0 s ->
-  // 5.6 s wall with the sixth set), then immutable; thread-safe.
-  static constexpr std::array<float, 6> steep_elevations() { return {6.5f, 9.0f, 13.0f, 19.0f, 30.0f, 60.0f}; }
-  static constexpr std::uint32_t kSteepLevels = 3;
-  std::uint32_t steep_resolution() const;
+  // Seen from above: the steep sets (renders/ldi/ldi_scene.h, kSteepElevations), per set, (set
+  // tile, direction), one LDI (step 0) and its one-layer far steps (step k + 1 as far step k). The
+  // LDIs are the folder's steep pack where it has one, else sampled on first use (prepare_steep();
+  // the default scene's first frame from above 6.4 s); the far steps are made on first use (0.19 s).
+  // Then immutable; thread-safe.
+  static constexpr std::array<float, 6> steep_elevations() { return kSteepElevations; }
+  std::uint32_t steep_resolution() const { return wangscape::steep_resolution(pack_->info()); }
   void prepare_steep() const;
   LdiView steep_ldi(std::uint32_t set, std::uint32_t tile, std::uint32_t direction, std::uint32_t step) const;
+  // Whether the steep sets come from a pack (the folder's), not sampled by the view.
+  bool steep_from_pack() const { return steep_pack_ != nullptr; }
   // The ground's height (meters) at (x, y), or `fallback` off the ground.
   double ground_height(double x, double y, double fallback) const;
   // Linear base color of the ground at (x, y): the baked ground texture (bilinear), or the
@@ -115,9 +111,11 @@ class ViewWorld {
   std::vector<std::array<float, 4>> far_;
   std::uint32_t far_steps_ = 0;
   std::vector<LdiImage> far_ldis_;  // (tile * directions + direction) * far_steps_ + step
+  std::unique_ptr<LdiPack> steep_pack_;
   mutable std::once_flag steep_once_;
-  // ((set * tiles + tile) * directions + direction) * (far_steps_ + 1) + step
-  mutable std::vector<LdiImage> steep_ldis_;
+  // Index (set * tiles + tile) * directions + direction: the sets' LDIs when sampled here (no
+  // steep pack), and their far steps (far_steps_ each).
+  mutable std::vector<LdiImage> steep_sampled_, steep_far_;
   std::array<float, 3> sun_{0, 0, 1};
   ShadingSettings shading_;
   ShadingSettings sun_shading_;

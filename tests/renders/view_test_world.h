@@ -27,8 +27,10 @@ inline fs::path scratch(const std::string& name) {
 // resolution, and the view's world over both.
 // With `full_pack`, the pack has the scene file's defaults (7 levels x 8 directions, 512 pixels).
 // The view's world of the scene file `text`, with its pack (see tiny_world).
+// With `steep_pack`, the steep sets' pack too, built beside it as `wangscape build` does (the
+// view's world reads them instead of sampling them).
 inline std::shared_ptr<const ViewWorld> world_of(const std::string& text, const std::string& name,
-                                                 bool full_pack = false) {
+                                                 bool full_pack = false, bool steep_pack = false) {
   const SceneConfig config = parse_scene_config(text, name + ".toml", fs::temp_directory_path());
   Scene scene = make_scene(config);
   LdiBuildOptions options;
@@ -38,20 +40,32 @@ inline std::shared_ptr<const ViewWorld> world_of(const std::string& text, const 
     options.view.image_width = 128;
   }
   options.shading.ao_rays = 0;
-  const fs::path pack = scratch(name + ".ldi");
-  build_scene_ldi_pack(scene, pack, options);
-  return std::make_shared<const ViewWorld>(std::move(scene), pack);
+  if (!steep_pack) {
+    const fs::path pack = scratch(name + ".ldi");
+    build_scene_ldi_pack(scene, pack, options);
+    return std::make_shared<const ViewWorld>(std::move(scene), pack);
+  }
+  const fs::path folder = scratch(name);
+  fs::create_directories(folder);
+  build_scene_ldi_packs(scene, folder, options);
+  return std::make_shared<const ViewWorld>(std::move(scene), folder / kFolderPackFile, options.shading, nullptr,
+                                           folder / kFolderSteepPackFile);
+}
+
+// The scene file of tiny_world.
+inline std::string tiny_scene(const std::string& area, const std::string& flat_size = "60.0",
+                              const std::string& points_per_tile = "10") {
+  return "name = \"view test\"\n[terrain]\nflat_size = " + flat_size +
+         "\n[tiles]\nset = \"cohen8\"\n"
+         "tile_size = 4.0\npoints_per_tile = " +
+         points_per_tile + "\nseed = 5\narea = " + area +
+         "\n[models]\nvariants = 2\ntriangle_budget = 400\n[sun]\nazimuth = 200.0\nelevation = 40.0\n";
 }
 
 inline std::shared_ptr<const ViewWorld> tiny_world(const std::string& area, const std::string& name,
                                                    const std::string& flat_size = "60.0", bool full_pack = false,
                                                    const std::string& points_per_tile = "10") {
-  return world_of("name = \"view test\"\n[terrain]\nflat_size = " + flat_size +
-                      "\n[tiles]\nset = \"cohen8\"\n"
-                      "tile_size = 4.0\npoints_per_tile = " +
-                      points_per_tile + "\nseed = 5\narea = " + area +
-                      "\n[models]\nvariants = 2\ntriangle_budget = 400\n[sun]\nazimuth = 200.0\nelevation = 40.0\n",
-                  name, full_pack);
+  return world_of(tiny_scene(area, flat_size, points_per_tile), name, full_pack);
 }
 
 inline const std::shared_ptr<const ViewWorld>& field() {
