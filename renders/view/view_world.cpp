@@ -201,7 +201,8 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
       steep_pack_(steep_pack_path.empty() ? nullptr : std::make_unique<LdiPack>(steep_pack_path)),
       shading_(shading_settings),
       sun_shading_(with_sun(shading_settings, scene_.sun)),
-      ground_colors_(scene_.ground_texture.get(), shading_.ground_color) {
+      ground_colors_(scene_.ground_texture.get(), shading_.ground_color),
+      stems_(scene_.models) {
   if (!scene_.field) throw Error("scene '" + scene_.name + "': no field of flowers to view");
   const SceneField& field = *scene_.field;
   const LdiPackInfo& info = pack_->info();

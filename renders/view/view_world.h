@@ -19,6 +19,7 @@
 #include "renders/ldi/ldi_scene.h"
 #include "renders/trace/ground_colors.h"
 #include "renders/trace/traced_shading.h"
+#include "renders/view/stem_clearance.h"
 #include "renders/view/terrain_chunks.h"
 #include "scene/scene.h"
 
@@ -85,6 +86,8 @@ class ViewWorld {
   LdiView steep_ldi(std::uint32_t set, std::uint32_t tile, std::uint32_t direction, std::uint32_t step) const;
   // Whether the steep sets come from a pack (the folder's), not sampled by the view.
   bool steep_from_pack() const { return steep_pack_ != nullptr; }
+  // Where an eye at `eye` stands kept out of the plants' stems (StemClearance): the walk's.
+  Vector3d clear_of_stems(const Vector3d& eye) const { return stems_.keep_out(*scene_.field, eye); }
   // The ground's height (meters) at (x, y), or `fallback` off the ground.
   double ground_height(double x, double y, double fallback) const;
   // Linear base color of the ground at (x, y): the baked ground texture (bilinear), or the
@@ -120,6 +123,7 @@ class ViewWorld {
   ShadingSettings shading_;
   ShadingSettings sun_shading_;
   GroundColors ground_colors_;  // of scene_'s bake, shading_'s plain ground
+  StemClearance stems_;         // of scene_'s models
 };
 
 }  // namespace wangscape

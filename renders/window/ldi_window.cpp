@@ -207,6 +207,7 @@ struct Walker {
     const double ground = world.ground_height(p[0], p[1], p[2] - world.pack().info().head_height);
     const double eye = ground + world.pack().info().head_height;
     if (!fly || p[2] < eye) p[2] = eye;  // walking stays on the ground, flying stays above it
+    p = world.clear_of_stems(p);         // and out of the stems, sliding along them
     camera.target = {p[0] + 100 * c * std::cos(pitch), p[1] + 100 * s * std::cos(pitch), p[2] + 100 * std::sin(pitch)};
   }
 };
