@@ -57,14 +57,14 @@ void register_build_command(CLI::App& app, const GlobalOptions& global) {
   auto options = std::make_shared<Options>();
   sub->add_option("scene", options->scene, "Scene file (TOML, see docs/scene-file.md)")->required();
   sub->add_option("--out,-o", options->out, "Output folder")->required();
-  set_help_footer(
-      sub,
-      "the folder --out, replaced whole: scene.pov, scene.ini and their includes for POV-Ray, scene.toml, "
-      "tiles.json, scene.cache (what render and view read back); blender/, scene.glb, tiles.ldi with steep.ldi, and "
-      "plants.gpkg with cover.tif (for a GIS) when the scene's [exports] ask for them. One line on stderr "
-      "says what was written",
-      {"wangscape build templates/scenes/small.toml --out small", "wangscape demo --print-scene > field.toml",
-       "wangscape build field.toml --out field"});
+  set_help_footer(sub,
+                  "the folder --out, replaced whole: scene.pov, scene.ini and their includes for POV-Ray, scene.toml, "
+                  "tiles.json, scene.cache (what render and view read back); blender/, scene.glb, tiles.ldi with "
+                  "steep.ldi and sky.bin, and "
+                  "plants.gpkg with cover.tif (for a GIS) when the scene's [exports] ask for them. One line on stderr "
+                  "says what was written",
+                  {"wangscape build templates/scenes/small.toml --out small",
+                   "wangscape demo --print-scene > field.toml", "wangscape build field.toml --out field"});
   sub->callback([options, &global] { run_build(load_scene_config(options->scene), options->out, global); });
 }
 

@@ -43,6 +43,8 @@ std::vector<LdiImage> build_scene_tile_ldis(const Scene& scene, LdiBuildOptions 
 // A scene folder's packs: the tiles at the view's levels, and the steep sets beside them.
 inline constexpr char kFolderPackFile[] = "tiles.ldi";
 inline constexpr char kFolderSteepPackFile[] = "steep.ldi";
+// And the flowers' share of the sky the view shades with (renders/trace/field_sky.h).
+inline constexpr char kFolderSkyFile[] = "sky.bin";
 
 // The steep sets. Seen from above, the pack's LDIs (sampled from head height, a few degrees below
 // the horizon) and the one-layer far steps made from them show their columns: a far step holds

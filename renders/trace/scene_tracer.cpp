@@ -36,6 +36,20 @@ struct SceneTracer::Impl {
   std::vector<std::vector<Vec3f>> model_faces;
   V3 origin{};
 
+  // Per model, per triangle, its normal by winding: which side of it a ray sees.
+  void set_faces(const Scene& scene) {
+    model_faces.assign(scene.models.size(), {});
+    for (std::size_t v = 0; v < scene.models.size(); ++v) {
+      const Mesh& mesh = scene.models[v];
+      std::vector<Vec3f>& faces = model_faces[v];
+      faces.resize(mesh.triangles.size());
+      for (std::size_t p = 0; p < faces.size(); ++p) {
+        const auto& tri = mesh.triangles[p];
+        faces[p] = face_normal(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
+      }
+    }
+  }
+
   void add_flowers(const Scene& scene, const InstanceBatch& batch) {
     for (std::size_t i = 0; i < batch.size(); ++i) {
       const std::uint16_t v = batch.variant[i];
@@ -139,15 +153,10 @@ void SceneTracer::bake_sky(const ShadingSettings& shading, int rays, int instanc
       if (chosen[v].empty() || chosen[v].back() != pick) chosen[v].push_back(pick);
     }
   t.model_sky.assign(models, {});
-  t.model_faces.assign(models, {});
+  t.set_faces(scene_);
   for (std::size_t v = 0; v < models; ++v) {
     const Mesh& mesh = scene_.models[v];
-    std::vector<Vec3f>& faces = t.model_faces[v];
-    faces.resize(mesh.triangles.size());
-    for (std::size_t p = 0; p < faces.size(); ++p) {
-      const auto& tri = mesh.triangles[p];
-      faces[p] = face_normal(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
-    }
+    const std::vector<Vec3f>& faces = t.model_faces[v];
     std::vector<std::array<float, 2>> sky(mesh.triangles.size(), {1.0f, 1.0f});  // per triangle
     t.model_sky[v].assign(mesh.positions.size(), {1.0f, 1.0f});
     if (chosen[v].empty()) continue;
@@ -195,6 +204,22 @@ void SceneTracer::bake_sky(const ShadingSettings& shading, int rays, int instanc
       if (sum[i][2] > 0) t.model_sky[v][i] = {float(sum[i][0] / sum[i][2]), float(sum[i][1] / sum[i][2])};
   }
   t.device.check("estimating the flowers' share of the sky");
+}
+
+const SceneTracer::SkyShares& SceneTracer::sky_shares() const { return impl_->model_sky; }
+
+void SceneTracer::set_sky_shares(SkyShares shares) {
+  Impl& t = *impl_;
+  if (!shares.empty()) {
+    bool fits = shares.size() == scene_.models.size();
+    for (std::size_t v = 0; fits && v < shares.size(); ++v)
+      fits = shares[v].size() == scene_.models[v].positions.size();
+    if (!fits)
+      throw Error("the flowers' sky shares do not hold every vertex of the scene's " +
+                  std::to_string(scene_.models.size()) + " models");
+    t.set_faces(scene_);
+  }
+  t.model_sky = std::move(shares);
 }
 
 SceneTracer::~SceneTracer() = default;

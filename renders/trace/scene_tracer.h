@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "renders/trace/ground_colors.h"
 #include "renders/trace/traced_shading.h"
@@ -38,6 +39,13 @@ class SceneTracer {
   // (SurfaceSample::sky; 1 before, on the ground, and when `shading` has no sky rays).
   // Self-shadowing and the neighbours' average are in it; one flower's own neighbours are not.
   void bake_sky(const ShadingSettings& shading, int rays = 32, int instances = 4);
+  // That estimate, per model of the scene and per vertex: the share of the sky its front (the
+  // triangles' winding) and its back see. Empty before bake_sky, or after it without sky rays.
+  using SkyShares = std::vector<std::vector<std::array<float, 2>>>;
+  const SkyShares& sky_shares() const;
+  // Shades with an estimate made beforehand (another tracer's, or a scene folder's; empty: the
+  // open sky). Throws Error when it does not hold every vertex of every model of the scene.
+  void set_sky_shares(SkyShares shares);
   ~SceneTracer();
   SceneTracer(const SceneTracer&) = delete;
   SceneTracer& operator=(const SceneTracer&) = delete;

@@ -78,24 +78,9 @@ double LdiRenderer::place_near_field() {
     const double cx = (area.min_x + area.max_x) / 2, cy = (area.min_y + area.max_y) / 2;
     m.near_tracer = std::make_unique<SceneTracer>(world.scene(), std::array<double, 3>{cx, cy, m.view.eye[2]},
                                                   SceneTracer::Layout::part);
-    // The models' sky share among the flowers of one fixed place (the placed tile nearest the
-    // field's centre), so that a frame does not depend on where the view started.
-    std::optional<std::array<double, 2>> sample_at;
-    double best = std::numeric_limits<double>::infinity();
-    for (std::int64_t j = 0; j < world.grid_height(); ++j)
-      for (std::int64_t i = 0; i < world.grid_width(); ++i) {
-        if (world.grid()[std::size_t(j * world.grid_width() + i)] < 0) continue;
-        const double x = (double(world.grid_i0() + i) + 0.5) * s, y = (double(world.grid_j0() + j) + 0.5) * s;
-        const double d2 = (x - cx) * (x - cx) + (y - cy) * (y - cy);
-        if (d2 < best) best = d2, sample_at = std::array<double, 2>{x, y};
-      }
-    if (sample_at) {
-      const auto [x, y] = *sample_at;
-      const Extent sample_window{std::floor((x - margin) / s) * s, std::floor((y - margin) / s) * s,
-                                 std::ceil((x + margin) / s) * s, std::ceil((y + margin) / s) * s};
-      m.near_tracer->set_flowers([&](const InstanceSink& sink) { field.place_in(sample_window, sink); });
-      m.near_tracer->bake_sky(world.sun_shading());
-    }
+    // The models' sky share among the flowers of one fixed place, so that a frame does not depend
+    // on where the view started: the world's (renders/trace/field_sky.h).
+    m.near_tracer->set_sky_shares(world.sky_shares());
   }
   if (m.near_window != window) {
     m.near_tracer->set_flowers([&](const InstanceSink& sink) { field.place_in(window, sink); });
@@ -118,7 +103,7 @@ const SceneTracer& LdiRenderer::whole_scene() {
         world_->scene(),
         std::array<double, 3>{(area.min_x + area.max_x) / 2, (area.min_y + area.max_y) / 2, m.view.eye[2]},
         SceneTracer::Layout::whole);
-    m.whole_tracer->bake_sky(world_->sun_shading());
+    m.whole_tracer->set_sky_shares(world_->sky_shares());  // the near field's: one look
   }
   return *m.whole_tracer;
 }

@@ -14,6 +14,7 @@
 #include "generator/placement.h"
 #include "renders/ldi/ldi_scene.h"
 #include "renders/trace/embree_device.h"
+#include "renders/trace/field_sky.h"
 #include "renders/trace/traced_shading.h"
 #include "renders/view/view_samples.h"
 
@@ -188,17 +189,18 @@ std::shared_ptr<const ViewWorld> ViewWorld::load(const fs::path& dir, const Stag
   }
   PlacedTiles placed;
   Scene scene = make_folder_scene(dir, config, stage, &placed);
-  // A folder built before the steep sets had their pack samples them on its first frame from above.
-  const fs::path steep_file = dir / kFolderSteepPackFile;
-  return std::make_shared<const ViewWorld>(std::move(scene), pack_file, ldi_options(config).shading, &placed,
-                                           fs::is_regular_file(steep_file, ec) ? steep_file : fs::path{});
+  // A folder built before the steep sets and the sky shares had their files makes them on first use.
+  const auto if_there = [&](const fs::path& file) { return fs::is_regular_file(file, ec) ? file : fs::path{}; };
+  return std::make_shared<const ViewWorld>(
+      std::move(scene), pack_file, ldi_options(config).shading, &placed,
+      Prepared{if_there(dir / kFolderSteepPackFile), if_there(dir / kFolderSkyFile)});
 }
 
 ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettings& shading_settings,
-                     const PlacedTiles* placed_tiles, const fs::path& steep_pack_path)
+                     const PlacedTiles* placed_tiles, const Prepared& prepared)
     : scene_(std::move(scene)),
       pack_(std::make_unique<LdiPack>(pack_path)),
-      steep_pack_(steep_pack_path.empty() ? nullptr : std::make_unique<LdiPack>(steep_pack_path)),
+      steep_pack_(prepared.steep_pack.empty() ? nullptr : std::make_unique<LdiPack>(prepared.steep_pack)),
       shading_(shading_settings),
       sun_shading_(with_sun(shading_settings, scene_.sun)),
       ground_colors_(scene_.ground_texture.get(), shading_.ground_color),
@@ -213,7 +215,12 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
                     std::to_string(info.tile_size) + " m; the scene has " + std::to_string(field.filled.tiles.size()) +
                     " of " + std::to_string(tile_size_) + " m)");
   if (steep_pack_ && !(steep_pack_->info() == steep_pack_info(info)))
-    throw Error(steep_pack_path, "", "does not hold the steep sets of " + pack_path.string() + ": rebuild the folder");
+    throw Error(prepared.steep_pack, "",
+                "does not hold the steep sets of " + pack_path.string() + ": rebuild the folder");
+  if (!prepared.sky_shares.empty()) {
+    sky_ = read_sky_shares(prepared.sky_shares, scene_);
+    std::call_once(sky_once_, [] {});
+  }
 
   // The tiles placement keeps: the tiling's cells over the area that received a flower, as the
   // build found them (or by a placement pass of our own).
@@ -362,6 +369,11 @@ LdiView ViewWorld::steep_ldi(std::uint32_t set, std::uint32_t tile, std::uint32_
   const std::size_t at = (std::size_t(set) * info.tiles + tile) * info.directions + direction;
   if (step > 0) return steep_far_[at * far_steps_ + step - 1].view();
   return steep_pack_ ? steep_pack_->ldi(tile, steep_pack_level(set), direction) : steep_sampled_[at].view();
+}
+
+const SceneTracer::SkyShares& ViewWorld::sky_shares() const {
+  std::call_once(sky_once_, [this] { sky_ = bake_field_sky(scene_, sun_shading_); });
+  return sky_;
 }
 
 double ViewWorld::ground_height(double x, double y, double fallback) const {

@@ -18,6 +18,7 @@
 #include "renders/ldi/ldi_pack.h"
 #include "renders/ldi/ldi_scene.h"
 #include "renders/trace/ground_colors.h"
+#include "renders/trace/scene_tracer.h"
 #include "renders/trace/traced_shading.h"
 #include "renders/view/stem_clearance.h"
 #include "renders/view/terrain_chunks.h"
@@ -34,11 +35,15 @@ class ViewWorld {
   // and, where the folder has it, DIR/steep.ldi. Throws Error naming the file
   // at fault: a missing folder, scene or pack, a corrupt pack, a pack of another tile set.
   static std::shared_ptr<const ViewWorld> load(const std::filesystem::path& dir, const StageObserver& stage = {});
+  // What a folder holds beside the pack that the view would otherwise make on first use: the
+  // steep sets' pack (kFolderSteepPackFile) and the flowers' sky shares (kFolderSkyFile).
+  struct Prepared {
+    std::filesystem::path steep_pack, sky_shares;  // empty: made on first use
+  };
   // The same from a Scene already made and a pack file (tests), with the field's placed tiles
-  // as its folder keeps them (exporters/folder_state.h) or, without them, found by a placement pass,
-  // and the steep sets' pack if there is one (empty: sampled on first use).
+  // as its folder keeps them (exporters/folder_state.h) or, without them, found by a placement pass.
   ViewWorld(Scene scene, const std::filesystem::path& pack_path, const ShadingSettings& shading = {},
-            const PlacedTiles* placed = nullptr, const std::filesystem::path& steep_pack_path = {});
+            const PlacedTiles* placed = nullptr, const Prepared& prepared = {});
 
   struct Tiles {                          // structure of arrays, one entry per placed tile, rows south to north
     std::vector<double> x0, y0;           // the tile's south-west corner, meters
@@ -86,6 +91,9 @@ class ViewWorld {
   LdiView steep_ldi(std::uint32_t set, std::uint32_t tile, std::uint32_t direction, std::uint32_t step) const;
   // Whether the steep sets come from a pack (the folder's), not sampled by the view.
   bool steep_from_pack() const { return steep_pack_ != nullptr; }
+  // The flowers' share of the sky the view shades them with (renders/trace/field_sky.h): the
+  // folder's, or estimated on first use (0.8 s for the default scene). Thread-safe.
+  const SceneTracer::SkyShares& sky_shares() const;
   // Where an eye at `eye` stands kept out of the plants' stems (StemClearance): the walk's.
   Vector3d clear_of_stems(const Vector3d& eye) const { return stems_.keep_out(*scene_.field, eye); }
   // The ground's height (meters) at (x, y), or `fallback` off the ground.
@@ -115,6 +123,8 @@ class ViewWorld {
   std::uint32_t far_steps_ = 0;
   std::vector<LdiImage> far_ldis_;  // (tile * directions + direction) * far_steps_ + step
   std::unique_ptr<LdiPack> steep_pack_;
+  mutable std::once_flag sky_once_;
+  mutable SceneTracer::SkyShares sky_;
   mutable std::once_flag steep_once_;
   // Index (set * tiles + tile) * directions + direction: the sets' LDIs when sampled here (no
   // steep pack), and their far steps (far_steps_ each).

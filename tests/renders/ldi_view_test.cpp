@@ -444,7 +444,7 @@ TEST(ldi_view_above, TheSteepPackDrawsTheBytesTheViewWouldSample) {
   Scene again = make_scene(parse_scene_config(scene, "again.toml", fs::temp_directory_path()));
   try {
     ViewWorld world(std::move(again), scratch("above_packed") / kFolderPackFile, {}, nullptr,
-                    scratch("other_packed") / kFolderSteepPackFile);
+                    {scratch("other_packed") / kFolderSteepPackFile, {}});
     ADD_FAILURE() << "a steep pack of another field was accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("other_packed/steep.ldi"), std::string::npos) << e.what();

@@ -49,7 +49,7 @@ inline std::shared_ptr<const ViewWorld> world_of(const std::string& text, const 
   fs::create_directories(folder);
   build_scene_ldi_packs(scene, folder, options);
   return std::make_shared<const ViewWorld>(std::move(scene), folder / kFolderPackFile, options.shading, nullptr,
-                                           folder / kFolderSteepPackFile);
+                                           ViewWorld::Prepared{folder / kFolderSteepPackFile, {}});
 }
 
 // The scene file of tiny_world.
