@@ -509,6 +509,11 @@ TaskLinks task_links(const BatchTask& t) {
   return {"scenes/" + t.scene_key + "/", work + "povray.log", work + "scene.pov"};
 }
 
+// The labels' font: Debian's DejaVu Sans (fonts-dejavu-core); without it the sheet has no labels
+// (index.html still names every still's viewpoint, sun and engine).
+constexpr char kLabelFont[] = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+constexpr int kLabelSize = 11, kLabelLines = 2;  // pixels per line; viewpoint, then sun and engine
+
 void write_contact_sheet(const fs::path& dir, const Plan& plan) {
   constexpr int kThumb = 160;
   const int n = static_cast<int>(plan.tasks.size());
@@ -517,16 +522,28 @@ void write_contact_sheet(const fs::path& dir, const Plan& plan) {
   int thumb_h = kThumb * 9 / 16;
   if (!plan.tasks.empty() && plan.tasks[0].width > 0)
     thumb_h = std::max(1, kThumb * plan.tasks[0].height / plan.tasks[0].width);
-  const float grey[3] = {0.2f, 0.2f, 0.2f};
-  OIIO::ImageBuf sheet(OIIO::ImageSpec(columns * (kThumb + 4) + 4, rows * (thumb_h + 4) + 4, 3, OIIO::TypeDesc::UINT8));
+  std::error_code ec;
+  const bool labelled = fs::is_regular_file(kLabelFont, ec);
+  const int label_h = labelled ? kLabelLines * (kLabelSize + 2) + 2 : 0;
+  const int cell_h = thumb_h + label_h + 4;
+  const float grey[3] = {0.2f, 0.2f, 0.2f}, white[3] = {0.92f, 0.92f, 0.92f};
+  OIIO::ImageBuf sheet(OIIO::ImageSpec(columns * (kThumb + 4) + 4, rows * cell_h + 4, 3, OIIO::TypeDesc::UINT8));
   OIIO::ImageBufAlgo::fill(sheet, grey);
   for (int k = 0; k < n; ++k) {
-    const fs::path still = still_of(dir, plan.tasks[k]);
-    if (!task_done(dir, plan.tasks[k])) continue;
-    OIIO::ImageBuf image(still.string());
-    const int x = 4 + (k % columns) * (kThumb + 4), y = 4 + (k / columns) * (thumb_h + 4);
-    OIIO::ImageBuf thumb = OIIO::ImageBufAlgo::resize(image, "", 0, OIIO::ROI(0, kThumb, 0, thumb_h, 0, 1, 0, 3));
-    OIIO::ImageBufAlgo::paste(sheet, x, y, 0, 0, thumb);
+    const BatchTask& task = plan.tasks[std::size_t(k)];
+    const int x = 4 + (k % columns) * (kThumb + 4), y = 4 + (k / columns) * cell_h;
+    if (task_done(dir, task)) {
+      OIIO::ImageBuf image(still_of(dir, task).string());
+      OIIO::ImageBuf thumb = OIIO::ImageBufAlgo::resize(image, "", 0, OIIO::ROI(0, kThumb, 0, thumb_h, 0, 1, 0, 3));
+      OIIO::ImageBufAlgo::paste(sheet, x, y, 0, 0, thumb);
+    }
+    if (!labelled) continue;
+    // Under each still (or its empty place): what it shows, as the batch file names it.
+    const std::string lines[kLabelLines] = {task.id + "  " + task.viewpoint,
+                                            task.sun.label + "  " + std::string(to_string(task.engine))};
+    for (int line = 0; line < kLabelLines; ++line)
+      OIIO::ImageBufAlgo::render_text(sheet, x + 1, y + thumb_h + (line + 1) * (kLabelSize + 2), lines[line],
+                                      kLabelSize, kLabelFont, white);
   }
   AtomicPath out(dir / "contact-sheet.png");
   if (!sheet.write(out.temp_path().string(), OIIO::TypeDesc::UINT8, "png"))

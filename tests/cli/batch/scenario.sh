@@ -65,6 +65,15 @@ local)
     [ -s "local/$f" ] || fail "local/$f missing"
   done
   grep -c '<img src="stills/' local/index.html | grep -q '^4$' || fail "gallery does not show 4 stills"
+  # Under each thumbnail two lines of text (issue 40): light pixels in the grey strip (28 pixels)
+  # below the last row's first still, which a sheet without labels does not reach (its grey is
+  # 0.2; the text is drawn at 0.92).
+  thumb_h=$(oiiotool --info local/stills/0000.png |
+    awk '{ for (i = 2; i < NF; ++i) if ($i == "x") { w = $(i - 1); h = $(i + 1); sub(",", "", h) } }
+         END { print int(160 * h / w) }')
+  oiiotool local/contact-sheet.png --cut "160x24+4+$((4 + thumb_h + 32 + thumb_h))" --printstats 2>/dev/null |
+    awk '/Max:/ { found = 1; if ($3 + 0 < 0.6) exit 1 } END { if (!found) exit 1 }' ||
+    fail "the contact sheet has no label under its first still"
   # Each still links to its scene folder, its engine's log and its inputs, which exist (issue 24).
   check_links local
   check_once local 4
