@@ -142,10 +142,12 @@ void FrameCache::set_budget(const FrameBudget& budget) {
 }
 
 float FrameCache::depth_at(int x, int y) const {
+  if (cold_samples_pending_) return renderer_.sky_at(x, y) ? kInf : renderer_.depth_at(x, y);
   return impl_->now()[std::size_t(y) * std::size_t(impl_->width) + std::size_t(x)].depth;
 }
 
 SampleSource FrameCache::source_at(int x, int y) const {
+  if (cold_samples_pending_) return renderer_.sky_at(x, y) ? SampleSource::sky : cold_source_;
   return impl_->now()[std::size_t(y) * std::size_t(impl_->width) + std::size_t(x)].source;
 }
 
@@ -170,11 +172,24 @@ void FrameCache::draw_cold(const Camera& camera) {
   Impl& m = *impl_;
   const ViewFrameStats& drawn = renderer_.render(camera);
   m.projection = ViewProjection::of(camera, m.width, m.height);
+  cold_source_ = drawn.ray_cast ? SampleSource::ray : SampleSource::frame;
+  cold_samples_pending_ = true;
+  whole_is_cheaper_ = !drawn.ray_cast && drawn.near_tiles == 0;
+  std::fill(m.need.begin(), m.need.end(), std::uint8_t(kKeep));
+  image_.pixels = renderer_.image().pixels;
+  stats_.cold = true;
+  stats_.fresh = m.pixels();
+  stats_.holes = stats_.filled = 0;
+  stats_.budget = m.pixels();
+  stats_.trace_ms = drawn.frame_ms;
+}
+
+void FrameCache::take_cold_samples() {
+  Impl& m = *impl_;
   KeptSamples& k = m.now();
   const Luts& lut = luts();
   const ImageRgb8& frame = renderer_.image();
-  const SampleSource source = drawn.ray_cast ? SampleSource::ray : SampleSource::frame;
-  whole_is_cheaper_ = !drawn.ray_cast && drawn.near_tiles == 0;
+  const SampleSource source = cold_source_;
   tbb::parallel_for(tbb::blocked_range<int>(0, m.height, 8), [&](const tbb::blocked_range<int>& r) {
     for (int y = r.begin(); y != r.end(); ++y)
       for (int x = 0; x < m.width; ++x) {
@@ -189,13 +204,7 @@ void FrameCache::draw_cold(const Camera& camera) {
         k[p].source = sky ? SampleSource::sky : source;
       }
   });
-  std::fill(m.need.begin(), m.need.end(), std::uint8_t(kKeep));
-  image_.pixels = frame.pixels;
-  stats_.cold = true;
-  stats_.fresh = m.pixels();
-  stats_.holes = stats_.filled = 0;
-  stats_.budget = m.pixels();
-  stats_.trace_ms = drawn.frame_ms;
+  cold_samples_pending_ = false;
 }
 
 const CachedFrameStats& FrameCache::render(const Camera& camera) {
@@ -227,6 +236,7 @@ const CachedFrameStats& FrameCache::render(const Camera& camera) {
       return std::chrono::duration<double, std::milli>(Clock::now() - from).count();
     };
     auto phase = Clock::now();
+    if (cold_samples_pending_) take_cold_samples();
     const EnteringBand band = entering_band(m.projection, view, m.width, m.height);
     if (!still) m.reproject(view);
     stats_.phase_ms[0] = ms_since(phase);
