@@ -255,11 +255,13 @@ struct Site {
       }
     return out;
   }
-  // True when the straight line from `eye` to `p` stays above the ground.
-  bool visible(const std::array<double, 3>& eye, const std::array<double, 3>& p) const {
-    constexpr int kSteps = 24;
-    for (int s = 1; s < kSteps; ++s) {
-      const double t = static_cast<double>(s) / kSteps;
+  // True when the straight line from `eye` to `p` stays above the ground, tested at 24 points, or
+  // every `step` meters when that is finer (a summit's own shoulder lies within the first of 24).
+  bool visible(const std::array<double, 3>& eye, const std::array<double, 3>& p, double step = 0) const {
+    const double length = std::hypot(p[0] - eye[0], p[1] - eye[1]);
+    const int steps = step > 0 ? std::clamp(static_cast<int>(std::ceil(length / step)), 24, 100000) : 24;
+    for (int s = 1; s < steps; ++s) {
+      const double t = static_cast<double>(s) / steps;
       const double x = eye[0] + (p[0] - eye[0]) * t, y = eye[1] + (p[1] - eye[1]) * t;
       const auto h = ground.height(x, y);
       if (h && *h > eye[2] + (p[2] - eye[2]) * t + 0.01) return false;
@@ -334,9 +336,13 @@ std::vector<View> expand_viewpoint(const ViewpointRule& rule, const Site& site, 
     }
     std::stable_sort(peaks.begin(), peaks.end(), [](const auto& a, const auto& b) { return a[2] > b[2]; });
     const std::array<double, 3> center = site.eye_at((f.min_x + f.max_x) / 2, (f.min_y + f.max_y) / 2, 0);
+    // A summit whose own shoulder hides the field's centre gave a still of near ground and sky
+    // (issue 40): only summits that see it (at the flowers' height, 1 m) look at it.
+    const std::array<double, 3> flowers{center[0], center[1], center[2] + 1.0};
     for (const auto& p : peaks) {
       if (static_cast<int>(views.size()) >= rule.count) break;
-      add("summit " + std::to_string(views.size() + 1), {p[0], p[1], p[2] + rule.eye_height}, center);
+      const std::array<double, 3> eye{p[0], p[1], p[2] + rule.eye_height};
+      if (site.visible(eye, flowers, 5.0)) add("summit " + std::to_string(views.size() + 1), eye, center);
     }
   } else if (rule.kind == ViewpointKind::grid) {
     for (int j = 0; j < rule.grid[1]; ++j)

@@ -1,6 +1,8 @@
 // The batch file and its expansion (renders/batch/batch_file.h): viewpoints from the ground, suns,
 // input hashes, errors with file and line. The CLI runs are in tests/cli/batch.cmake.
 #include "renders/batch/batch_file.h"
+#include "scene/scene.h"
+#include "scene/scene_ground.h"
 
 #include <gtest/gtest.h>
 
@@ -52,6 +54,30 @@ TEST(BatchFile, ExpandsViewpointsTimesSunsTimesEnginesWithDistinctHashesAndOneSc
   EXPECT_DOUBLE_EQ(tasks[2].sun.azimuth, 200.0);
   const std::string grid = "[[viewpoints]]\nkind = \"grid\"\ngrid = [2, 1]\n";
   EXPECT_EQ(expand_batch(batch(grid))[0].input_hash, expand_batch(batch(grid))[0].input_hash);  // deterministic
+}
+
+// Summits see the field (issue 40): on the default scene's DEM the crater rim's highest summit
+// gave a still of near ground and sky, its own shoulder hiding the field 6 km away. Every summit
+// kept sees the field's centre (1 m above the ground there), checked every metre along the line.
+TEST(BatchFile, SummitsSeeTheField) {
+  const BatchConfig config =
+      parse_batch_config("scene = \"default\"\n[[viewpoints]]\nkind = \"summits\"\ncount = 4\n", "b.toml", ".");
+  const auto tasks = expand_batch(config);
+  ASSERT_EQ(tasks.size(), 4u);
+  const SceneGround ground =
+      SceneGround::load(config.scene.terrain, config.scene.masks, config.scene.tiles.area_latlon);
+  const Extent field = field_area(config.scene, ground);
+  const double cx = (field.min_x + field.max_x) / 2, cy = (field.min_y + field.max_y) / 2;
+  const std::array<double, 3> flowers{cx, cy, *ground.height(cx, cy) + 1.0};
+  for (const auto& t : tasks) {
+    const auto& eye = t.camera.position;
+    const double length = std::hypot(flowers[0] - eye[0], flowers[1] - eye[1]);
+    for (double d = 1; d < length; d += 1) {
+      const double k = d / length;
+      const auto h = ground.height(eye[0] + k * (flowers[0] - eye[0]), eye[1] + k * (flowers[1] - eye[1]));
+      ASSERT_TRUE(!h || *h <= eye[2] + k * (flowers[2] - eye[2]) + 0.5) << t.viewpoint << " at " << d << " m";
+    }
+  }
 }
 
 TEST(BatchFile, PathLooksAlongThePath) {
