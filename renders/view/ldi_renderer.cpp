@@ -2,6 +2,8 @@
 
 #include "renders/view/ldi_renderer_impl.h"
 
+#include <tbb/parallel_sort.h>
+
 namespace wangscape {
 
 LdiRenderer::LdiRenderer(std::shared_ptr<const ViewWorld> world, int width, int height)
@@ -12,7 +14,7 @@ LdiRenderer::LdiRenderer(std::shared_ptr<const ViewWorld> world, int width, int 
   for (auto* v : {&m.distance, &m.far_from, &m.far_r, &m.far_g, &m.far_b, &m.far_cover, &m.level_b_weight,
                   &m.dir_b_weight, &m.steep_low_weight})
     v->assign(n, 0);
-  for (auto* v : {&m.level_a, &m.level_b, &m.dir_a, &m.dir_b, &m.steep, &m.steep_low}) v->assign(n, 0);
+  for (auto* v : {&m.level_a, &m.level_b, &m.dir_a, &m.dir_b, &m.steep, &m.steep_low, &m.tile_flags}) v->assign(n, 0);
   order_.reserve(n);
   const std::size_t vertices = world_->terrain().x.size();
   m.vx.assign(vertices, 0);
@@ -110,7 +112,9 @@ void LdiRenderer::choose_tiles() {
       m.direction_east.push_back(std::sin(az));
       m.direction_north.push_back(std::cos(az));
     }
-  for (std::size_t t = 0; t < tiles.size(); ++t) {
+  // Each tile's choice alone, in parallel (from above, 15,000 tiles took 1.8 ms on one thread);
+  // then, in order, the counts and the tiles to draw.
+  const auto choose = [&](std::size_t t) {
     const double x0 = tiles.x0[t], y0 = tiles.y0[t];
     const double dx = std::max({x0 - m.view.eye[0], m.view.eye[0] - (x0 + s), 0.0});
     const double dy = std::max({y0 - m.view.eye[1], m.view.eye[1] - (y0 + s), 0.0});
@@ -204,14 +208,24 @@ void LdiRenderer::choose_tiles() {
     m.far_cover[t] = fa[3] * (1 - w2) + fb[3] * w2;
 
     // The frustum: culled when all eight corners of the tile's box are outside one plane.
-    if (m.box_outside_frustum({x0, y0, double(tiles.z_min[t]) - 0.01},
-                              {x0 + s, y0 + s, double(tiles.z_max[t]) + top})) {
+    const bool in_view =
+        !m.box_outside_frustum({x0, y0, double(tiles.z_min[t]) - 0.01}, {x0 + s, y0 + s, double(tiles.z_max[t]) + top});
+    // Near: ray traced from the real flowers instead (trace_near_field).
+    m.tile_flags[t] = std::uint8_t((in_view ? kTileInView : 0) | (d < near_field_ ? kTileNear : 0));
+  };
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size(), 512),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t t = r.begin(); t != r.end(); ++t) choose(t);
+                    });
+  for (std::size_t t = 0; t < tiles.size(); ++t) {
+    if (!(m.tile_flags[t] & kTileInView)) {
       ++stats_.tiles_culled;
       continue;
     }
+    const std::uint32_t a = m.level_a[t];
     ++stats_.tiles_drawn;
     ++stats_.levels[std::min(a, levels)];
-    const bool near = d < near_field_;  // ray traced from the real flowers instead (trace_near_field)
+    const bool near = m.tile_flags[t] & kTileNear;
     stats_.near_tiles += near;
     stats_.steep_tiles += m.steep[t] != 0;
     if (a < drawn_levels && !near && (mask_.empty() || (t < mask_.size() && mask_[t])))
@@ -219,8 +233,8 @@ void LdiRenderer::choose_tiles() {
   }
   if (std::any_of(order_.begin(), order_.end(), [&](std::uint32_t t) { return m.steep[t] != 0; }))
     world.prepare_steep();
-  // Back to front (the farthest first; ties by index).
-  std::sort(order_.begin(), order_.end(), [&](std::uint32_t p, std::uint32_t q) {
+  // Back to front (the farthest first; ties by index: the same order on any thread count).
+  tbb::parallel_sort(order_.begin(), order_.end(), [&](std::uint32_t p, std::uint32_t q) {
     return m.distance[p] != m.distance[q] ? m.distance[p] > m.distance[q] : p < q;
   });
 }

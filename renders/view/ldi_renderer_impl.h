@@ -91,6 +91,8 @@ using V3 = Vector3d;
 // (Included only by the renderer's own sources, which use these names throughout.)
 using namespace ldi_renderer_detail;
 
+constexpr std::uint8_t kTileInView = 1, kTileNear = 2;  // Impl::tile_flags
+
 struct LdiRenderer::Impl {
   int width = 0, height = 0;
   std::vector<std::uint64_t> zbuffer;
@@ -99,6 +101,7 @@ struct LdiRenderer::Impl {
   // Per placed tile, this frame (structure of arrays).
   std::vector<float> distance, far_from, far_r, far_g, far_b, far_cover;
   std::vector<std::uint8_t> level_a, level_b, dir_a, dir_b;
+  std::vector<std::uint8_t> tile_flags;  // kTileInView (not culled by the frustum), kTileNear
   // Seen from above: 0 the pack, k the world's steep set k - 1; the tile's samples are drawn
   // from `steep` and, a share steep_low_weight of them, from the next lower one, steep_low.
   std::vector<std::uint8_t> steep, steep_low;
