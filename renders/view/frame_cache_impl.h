@@ -143,12 +143,9 @@ using KeptSamples = std::vector<Sample>;
 
 }  // namespace frame_cache_detail
 
-// (Included only by the cache's own sources, which use these names throughout.)
-using namespace frame_cache_detail;
-
 struct FrameCache::Impl {
   int width = 0, height = 0;
-  KeptSamples kept[2];
+  frame_cache_detail::KeptSamples kept[2];
   int current = 0;                   // kept[current]: the last frame's samples
   std::vector<std::uint64_t> keys;   // reprojection: (depth bits, previous pixel), the smallest wins
   std::vector<std::uint8_t> need;    // per pixel, Need
@@ -159,7 +156,7 @@ struct FrameCache::Impl {
   // out: in a pure turn 15,000 pixels of 230,400 showed a neighbour's sample after one frame,
   // 60,000 after thirty).
   std::vector<std::array<std::int8_t, 2>> lattice;
-  std::vector<std::array<std::uint32_t, kNeeds>> row_needs;
+  std::vector<std::array<std::uint32_t, frame_cache_detail::kNeeds>> row_needs;
   std::vector<std::uint32_t> row_fresh;
   std::vector<std::uint8_t> row_has_holes;  // resolve(): a row fill_holes() must visit
   ViewProjection projection;                // the last frame's
@@ -169,13 +166,13 @@ struct FrameCache::Impl {
   double measured_sample_ns = 0, measured_pixel_ns = 0;
 
   std::size_t pixels() const { return std::size_t(width) * std::size_t(height); }
-  KeptSamples& now() { return kept[current]; }
+  frame_cache_detail::KeptSamples& now() { return kept[current]; }
   void resize(int w, int h) {
     width = w;
     height = h;
-    for (KeptSamples& k : kept) k.assign(pixels(), Sample{});
-    keys.assign(pixels(), kNoKey);
-    need.assign(pixels(), kKeep);
+    for (frame_cache_detail::KeptSamples& k : kept) k.assign(pixels(), frame_cache_detail::Sample{});
+    keys.assign(pixels(), frame_cache_detail::kNoKey);
+    need.assign(pixels(), frame_cache_detail::kKeep);
     fresh.assign(pixels(), 0);
     lattice.assign(pixels(), {0, 0});
     row_needs.assign(std::size_t(h), {});
@@ -183,15 +180,17 @@ struct FrameCache::Impl {
     row_has_holes.assign(std::size_t(h), 0);
   }
   std::size_t bytes() const {
-    return (kept[0].size() + kept[1].size()) * sizeof(Sample) + keys.size() * 8 + need.size() + fresh.size() * 4 +
-           lattice.size() * 2 + row_needs.size() * sizeof(row_needs[0]) + row_fresh.size() * 4 + row_has_holes.size();
+    return (kept[0].size() + kept[1].size()) * sizeof(frame_cache_detail::Sample) + keys.size() * 8 + need.size() +
+           fresh.size() * 4 + lattice.size() * 2 + row_needs.size() * sizeof(row_needs[0]) + row_fresh.size() * 4 +
+           row_has_holes.size();
   }
 
   void reproject(const ViewProjection& to);
-  void classify(std::uint64_t frame, bool still, const EnteringBand& band);
-  std::array<std::uint64_t, kNeeds> count_needs() const;
+  void classify(std::uint64_t frame, bool still, const frame_cache_detail::EnteringBand& band);
+  std::array<std::uint64_t, frame_cache_detail::kNeeds> count_needs() const;
   void drop_hidden(std::size_t n);
-  std::size_t select(const std::array<std::uint64_t, kNeeds>& needs, std::uint64_t budget, std::uint64_t frame);
+  std::size_t select(const std::array<std::uint64_t, frame_cache_detail::kNeeds>& needs, std::uint64_t budget,
+                     std::uint64_t frame);
   std::size_t select_still(std::uint64_t budget);
   template <class Take>
   std::size_t gather_fresh(const Take& take);

@@ -14,6 +14,8 @@
 
 namespace wangscape {
 
+using namespace frame_cache_detail;  // the cache's inner parts (frame_cache_impl.h)
+
 using namespace view_detail;
 
 // ---- what each pixel needs ------------------------------------------------------------------

@@ -9,6 +9,8 @@
 
 namespace wangscape {
 
+using namespace frame_cache_detail;  // the cache's inner parts (frame_cache_impl.h)
+
 // ---- reprojection: each kept sample to where the new camera sees it ------------------------
 
 namespace {
