@@ -11,10 +11,12 @@ LdiRenderer::LdiRenderer(std::shared_ptr<const ViewWorld> world, int width, int 
   resize(width, height);
   Impl& m = *impl_;
   const std::size_t n = world_->tiles().size();
-  for (auto* v : {&m.distance, &m.far_from, &m.far_r, &m.far_g, &m.far_b, &m.far_cover, &m.level_b_weight,
-                  &m.dir_b_weight, &m.steep_low_weight})
+  for (auto* v : {&m.plan.distance, &m.plan.far_from, &m.plan.far_r, &m.plan.far_g, &m.plan.far_b, &m.plan.far_cover,
+                  &m.plan.level_b_weight, &m.plan.dir_b_weight, &m.plan.steep_low_weight})
     v->assign(n, 0);
-  for (auto* v : {&m.level_a, &m.level_b, &m.dir_a, &m.dir_b, &m.steep, &m.steep_low, &m.tile_flags}) v->assign(n, 0);
+  for (auto* v : {&m.plan.level_a, &m.plan.level_b, &m.plan.dir_a, &m.plan.dir_b, &m.plan.steep, &m.plan.steep_low,
+                  &m.plan.flags})
+    v->assign(n, 0);
   order_.reserve(n);
   const std::size_t vertices = world_->terrain().x.size();
   m.vx.assign(vertices, 0);
@@ -37,9 +39,11 @@ float LdiRenderer::depth_at(int x, int y) const {
   return e == kEmpty ? std::numeric_limits<float>::infinity() : std::bit_cast<float>(std::uint32_t(e >> 32));
 }
 
-double LdiRenderer::tile_distance(std::uint32_t t) const { return impl_->distance[t]; }
+double LdiRenderer::tile_distance(std::uint32_t t) const { return impl_->plan.distance[t]; }
 
-LdiRenderer::TileChoice LdiRenderer::tile_choice(std::uint32_t t) const { return {impl_->level_a[t], impl_->steep[t]}; }
+LdiRenderer::TileChoice LdiRenderer::tile_choice(std::uint32_t t) const {
+  return {impl_->plan.level_a[t], impl_->plan.steep[t]};
+}
 
 void LdiRenderer::set_detail(double detail) {
   if (!(detail >= kMinViewDetail && detail <= kMaxViewDetail))
@@ -75,168 +79,18 @@ void LdiRenderer::begin_frame(const Camera& camera) {
   order_.clear();
 }
 
-// Steps 1-4 of docs/viewer.md: per placed tile its distance, level, direction and frustum test;
+// Steps 1-4 of docs/viewer-design.md: the tiles' plan (renders/view/tile_plan.h), its counts, and
 // the tiles to warp, back to front, into order_.
 void LdiRenderer::choose_tiles() {
   Impl& m = *impl_;
-  const ViewWorld& world = *world_;
-  const LdiPackInfo& info = world.pack().info();
-  const ViewWorld::Tiles& tiles = world.tiles();
-  const double s = world.tile_size();
-  // ---- tiles: distance, level, direction, frustum ----
-  const std::uint32_t levels = info.levels, directions = info.directions;
-  // The pack's levels were sized for its own view; this view's pixels per radian rescale the distances.
-  const double pack_focal = double(info.image_width) / 2 / std::tan(double(info.fov_degrees) * std::numbers::pi / 360);
-  const double distance_scale = pack_focal / double(m.view.focal);
-  const double far_start = double(info.level_distances[levels - 1]) + s;
-  // The pack's levels, then the far steps: where (in the pack view's distances) level a starts.
-  const std::uint32_t drawn_levels = levels + world.far_steps();
-  // Far step k averages blocks of 2^(k+1) of its LDI's depth pixels and starts at far_start 2^k,
-  // where a block of the coarsest level's is about two pixels of the pack's view. Seen from above
-  // the lowest steep set, where a block shows the tops of a few flowers, a far step starts no
-  // sooner than where its block is one pixel: two pixels averaged a head into the leaves around
-  // it (25 m up, 640 x 360, steep sets at the coarsest level's resolution: SSIM 0.418 against the
-  // exact image's 0.454, 0.444 with this start). Seen lower, at grazing angles, the same start
-  // gained nothing: the close-up 0.8765 either way at 28 % more depth pixels; from head height (the
-  // scene's camera) 0.7735 -> 0.7732 at 37 % more.
-  const double steep_far_start = std::max(far_start, pack_focal * s * 2 / double(world.steep_resolution()));
-  const auto level_start_from = [&](std::uint32_t a, double far_begin) {
-    if (a == 0) return 0.0;
-    if (a < levels) return double(info.level_distances[a]);
-    return far_begin * double(1u << (a - levels));
-  };
-  const float top = info.prism_top;
-  if (m.direction_east.size() != directions)
-    for (std::uint32_t k = 0; k < directions; ++k) {
-      const double az = double(info.azimuths[k]) * std::numbers::pi / 180;
-      m.direction_east.push_back(std::sin(az));
-      m.direction_north.push_back(std::cos(az));
-    }
-  // Each tile's choice alone, in parallel (from above, 15,000 tiles took 1.8 ms on one thread);
-  // then, in order, the counts and the tiles to draw.
-  const auto choose = [&](std::size_t t) {
-    const double x0 = tiles.x0[t], y0 = tiles.y0[t];
-    const double dx = std::max({x0 - m.view.eye[0], m.view.eye[0] - (x0 + s), 0.0});
-    const double dy = std::max({y0 - m.view.eye[1], m.view.eye[1] - (y0 + s), 0.0});
-    const double ground = 0.25 * (tiles.h[0][t] + tiles.h[1][t] + tiles.h[2][t] + tiles.h[3][t]);
-    const double dz = std::max(0.0, m.view.eye[2] - ground - info.head_height);
-    const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
-    m.distance[t] = float(d);
-    const double e = d * distance_scale / detail_;  // the distance at which the pack's view sees the tile this large
-
-    // Level: the finest whose near distance the tile has passed; the last half of its range
-    // dithers into the next (or into the far field after the last).
-    const auto level_at = [&](double far_begin, float& wb) {
-      std::uint32_t a = 0;
-      while (a < drawn_levels && e >= level_start_from(a + 1, far_begin)) ++a;
-      wb = 0;
-      if (a < drawn_levels) {
-        const double lo = level_start_from(a, far_begin), hi = level_start_from(a + 1, far_begin);
-        const double f = (e - lo) / (hi - lo);
-        wb = float(std::clamp((f - kLevelBlendStart) / (1 - kLevelBlendStart), 0.0, 1.0));
-      }
-      return a;
-    };
-    float wb = 0;
-    std::uint32_t a = level_at(far_start, wb);
-    // Seen from above, for the coarsest levels and the far steps: the LDIs (the pack's or a steep
-    // set's) of the lowest elevation not below the view's to the tile, dithered with the next
-    // lower steep set just above that set's elevation (a hard switch showed as a seam). Sampled from higher than the
-    // eye, a one-layer LDI's samples cover the tile's top; from lower, they stand on its near side with a gap behind
-    // (the streaks along the tile grid).
-    const double rise = m.view.eye[2] - ground - 0.5 * top;
-    const double hx = x0 + s / 2 - m.view.eye[0], hy = y0 + s / 2 - m.view.eye[1];
-    const double horizontal = std::sqrt(hx * hx + hy * hy);
-    const double view_elevation = std::atan2(rise, horizontal) * 180 / std::numbers::pi;
-    m.steep[t] = m.steep_low[t] = 0;
-    m.steep_low_weight[t] = 0;
-    // (The pack's own elevation for the level drawn: from head height, never steeper.)
-    const double pack_elevation = double(info.elevations[std::min(a, levels - 1)]);
-    const bool coarse = a + kSteepLevels >= levels;
-    const bool finer_from_steep = a < levels && view_elevation > kSteepFinerLevels * pack_elevation &&
-                                  info.resolutions[a] <= kSteepFinerResolution * world.steep_resolution();
-    if ((coarse || finer_from_steep) && view_elevation > pack_elevation) {
-      const auto& sets = ViewWorld::steep_elevations();  // ascending
-      if (coarse && view_elevation > double(sets[0])) a = level_at(steep_far_start, wb);
-      std::size_t k = 0;
-      while (k + 1 < sets.size() && view_elevation > double(sets[k])) ++k;
-      m.steep[t] = std::uint8_t(k + 1);
-      m.steep_low[t] = std::uint8_t(k);
-      // (Not with the pack's: its far steps, sampled lower, would bring their rows back.)
-      if (k > 0) {
-        const double low = double(sets[k - 1]), high = double(sets[k]);
-        const double into = (view_elevation - low) / (kSteepBlendBand * (high - low));
-        m.steep_low_weight[t] = float(std::clamp(1 - into, 0.0, 1.0));
-      }
-    }
-    m.level_a[t] = std::uint8_t(a);
-    m.level_b[t] = std::uint8_t(std::min(a + 1, drawn_levels));
-    m.level_b_weight[t] = wb;
-    m.far_from[t] = a >= drawn_levels ? 0.0f : (a + 1 == drawn_levels ? 1.0f - wb : 2.0f);
-
-    // Direction: the two whose rays are closest to the view ray (largest dot products).
-    const double vx = x0 + s / 2 - m.view.eye[0], vy = y0 + s / 2 - m.view.eye[1], vn = std::sqrt(vx * vx + vy * vy);
-    const double ux = vn > 1e-9 ? vx / vn : m.view.forward[0], uy = vn > 1e-9 ? vy / vn : m.view.forward[1];
-    std::uint32_t best = 0, second = 0;
-    double best_dot = -2, second_dot = -2;
-    for (std::uint32_t k = 0; k < directions; ++k) {
-      const double c = m.direction_east[k] * ux + m.direction_north[k] * uy;
-      if (c > best_dot) {
-        second = best;
-        second_dot = best_dot;
-        best = k;
-        best_dot = c;
-      } else if (c > second_dot) {
-        second = k;
-        second_dot = c;
-      }
-    }
-    float w2 = 0;
-    if (directions > 1) {
-      const double a1 = std::acos(std::clamp(best_dot, -1.0, 1.0)), a2 = std::acos(std::clamp(second_dot, -1.0, 1.0));
-      const double f = a1 + a2 > 0 ? a1 / (a1 + a2) : 0;  // 0 on the best direction, 0.5 on the bisector
-      w2 = float(0.5 * std::clamp((f - (0.5 - kDirectionBand)) / kDirectionBand, 0.0, 1.0));
-    }
-    m.dir_a[t] = std::uint8_t(best);
-    m.dir_b[t] = std::uint8_t(second);
-    m.dir_b_weight[t] = w2;
-    const auto& fa = world.far_colors()[std::size_t(tiles.tile[t]) * directions + best];
-    const auto& fb = world.far_colors()[std::size_t(tiles.tile[t]) * directions + second];
-    m.far_r[t] = fa[0] * (1 - w2) + fb[0] * w2;
-    m.far_g[t] = fa[1] * (1 - w2) + fb[1] * w2;
-    m.far_b[t] = fa[2] * (1 - w2) + fb[2] * w2;
-    m.far_cover[t] = fa[3] * (1 - w2) + fb[3] * w2;
-
-    // The frustum: culled when all eight corners of the tile's box are outside one plane.
-    const bool in_view =
-        !m.box_outside_frustum({x0, y0, double(tiles.z_min[t]) - 0.01}, {x0 + s, y0 + s, double(tiles.z_max[t]) + top});
-    // Near: ray traced from the real flowers instead (trace_near_field).
-    m.tile_flags[t] = std::uint8_t((in_view ? kTileInView : 0) | (d < near_field_ ? kTileNear : 0));
-  };
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size(), 512),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t t = r.begin(); t != r.end(); ++t) choose(t);
-                    });
-  for (std::size_t t = 0; t < tiles.size(); ++t) {
-    if (!(m.tile_flags[t] & kTileInView)) {
-      ++stats_.tiles_culled;
-      continue;
-    }
-    const std::uint32_t a = m.level_a[t];
-    ++stats_.tiles_drawn;
-    ++stats_.levels[std::min(a, levels)];
-    const bool near = m.tile_flags[t] & kTileNear;
-    stats_.near_tiles += near;
-    stats_.steep_tiles += m.steep[t] != 0;
-    if (a < drawn_levels && !near && (mask_.empty() || (t < mask_.size() && mask_[t])))
-      order_.push_back(std::uint32_t(t));
-  }
-  if (std::any_of(order_.begin(), order_.end(), [&](std::uint32_t t) { return m.steep[t] != 0; }))
-    world.prepare_steep();
-  // Back to front (the farthest first; ties by index: the same order on any thread count).
-  tbb::parallel_sort(order_.begin(), order_.end(), [&](std::uint32_t p, std::uint32_t q) {
-    return m.distance[p] != m.distance[q] ? m.distance[p] > m.distance[q] : p < q;
-  });
+  plan_tiles(*world_, m.view, {detail_, near_field_, &mask_}, m.plan);
+  if (m.plan.any_steep) world_->prepare_steep();
+  stats_.tiles_drawn = m.plan.drawn;
+  stats_.tiles_culled = m.plan.culled;
+  stats_.near_tiles = m.plan.near;
+  stats_.steep_tiles = m.plan.steep_tiles;
+  stats_.levels = m.plan.levels;
+  order_.swap(m.plan.order);
 }
 
 // Steps 5, 6 and 8: the chosen LDIs warped in parallel, each thread into a z-buffer of its
@@ -260,19 +114,19 @@ void LdiRenderer::warp_tiles() {
         for (std::size_t o = r.begin(); o != r.end(); ++o) {
           const std::uint32_t t = order_[o];
           // Up to two levels x two directions, each owning a slice of the dither thresholds.
-          const float wl = m.level_b_weight[t], wd = m.dir_b_weight[t];
+          const float wl = m.plan.level_b_weight[t], wd = m.plan.dir_b_weight[t];
           struct Part {
             std::uint32_t level, direction;
             float from, to;
           };
-          const std::uint32_t la = m.level_a[t], lb = m.level_b[t];
+          const std::uint32_t la = m.plan.level_a[t], lb = m.plan.level_b[t];
           const float split = 1 - wl;
-          const Part parts[4] = {{la, m.dir_a[t], 0, split * (1 - wd)},
-                                 {la, m.dir_b[t], split * (1 - wd), split},
-                                 {lb, m.dir_a[t], split, split + wl * (1 - wd)},
-                                 {lb, m.dir_b[t], split + wl * (1 - wd), 1}};
+          const Part parts[4] = {{la, m.plan.dir_a[t], 0, split * (1 - wd)},
+                                 {la, m.plan.dir_b[t], split * (1 - wd), split},
+                                 {lb, m.plan.dir_a[t], split, split + wl * (1 - wd)},
+                                 {lb, m.plan.dir_b[t], split + wl * (1 - wd), 1}};
           // Each part's slice split again between the tile's two elevation sets.
-          const float low_share = m.steep_low_weight[t];
+          const float low_share = m.plan.steep_low_weight[t];
           for (int slice = 0; slice < 8; ++slice) {
             const Part& whole = parts[slice / 2];
             const float cut = whole.from + (whole.to - whole.from) * (1 - low_share);
@@ -280,7 +134,7 @@ void LdiRenderer::warp_tiles() {
             const Part part{whole.level, whole.direction, lower ? cut : whole.from, lower ? whole.to : cut};
             if (!(part.to > part.from) || part.level >= drawn_levels) continue;
             const bool far = part.level >= levels;
-            const std::uint8_t set = lower ? m.steep_low[t] : m.steep[t];
+            const std::uint8_t set = lower ? m.plan.steep_low[t] : m.plan.steep[t];
             const LdiView v =
                 set   ? world.steep_ldi(set - 1u, tiles.tile[t], part.direction, far ? part.level - levels + 1 : 0)
                 : far ? world.far_ldi(tiles.tile[t], part.direction, part.level - levels)

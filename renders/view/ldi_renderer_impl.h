@@ -29,6 +29,7 @@
 
 #include "renders/trace/scene_tracer.h"
 #include "renders/view/ldi_warp.h"
+#include "renders/view/tile_plan.h"
 #include "renders/view/view_projection.h"
 #include "renders/view/view_samples.h"
 
@@ -47,21 +48,6 @@ constexpr float kSplatScale = 1.5f;  // splat side over the projected depth-pixe
 // block would add its excess to the cover (1.5^2 = 2.25 times: a sparse field drawn dense).
 constexpr float kFarSplatScale = 1.0f;
 constexpr int kMaxSplat = 24;  // pixels
-// Of the span between two steep sets' elevations, the lower part over which the lower set fades
-// out (a dithered blend warps both sets' LDIs: in all the span it cost 58 -> 92 ms a frame from
-// 25 m up at 1280 x 720).
-constexpr double kSteepBlendBand = 0.25;
-// A finer level is drawn from the steep sets too when seen this many times steeper than the pack
-// sampled it, and its resolution is at most kSteepFinerResolution times the steep sets': its
-// LDIs, sampled a few degrees below the horizon, show the sides of the plants, and from above
-// their samples spread into sparse leaves over bare ground (straight down from 30 m: SSIM 0.27
-// against the truth, 0.39 from the steep sets, where the exact image scores 0.81). The steep
-// sets' coarser resolution costs less than the wrong angle there, but more than it 5 m up (the
-// finest levels).
-constexpr double kSteepFinerLevels = 2;
-constexpr double kSteepFinerResolution = 2;
-constexpr float kLevelBlendStart = 0.75f;  // of a level's range: where dithering into the next level starts
-constexpr float kDirectionBand = 0.08f;    // of the angle between two directions: dithered either side of the bisector
 // ViewEngine::automatic samples the near field with a grid of this many rays across and down.
 constexpr int kShareGridX = 32, kShareGridY = 18;
 // The near field: how far a flower reaches from its stem (meters), and how much further out the
@@ -91,23 +77,12 @@ using V3 = Vector3d;
 // (Included only by the renderer's own sources, which use these names throughout.)
 using namespace ldi_renderer_detail;
 
-constexpr std::uint8_t kTileInView = 1, kTileNear = 2;  // Impl::tile_flags
-
 struct LdiRenderer::Impl {
   int width = 0, height = 0;
   std::vector<std::uint64_t> zbuffer;
   // The frame's camera: eye, axes (ENU), pixels per unit of tan, screen centre.
   ViewProjection view;
-  // Per placed tile, this frame (structure of arrays).
-  std::vector<float> distance, far_from, far_r, far_g, far_b, far_cover;
-  std::vector<std::uint8_t> level_a, level_b, dir_a, dir_b;
-  std::vector<std::uint8_t> tile_flags;  // kTileInView (not culled by the frustum), kTileNear
-  // Seen from above: 0 the pack, k the world's steep set k - 1; the tile's samples are drawn
-  // from `steep` and, a share steep_low_weight of them, from the next lower one, steep_low.
-  std::vector<std::uint8_t> steep, steep_low;
-  std::vector<float> steep_low_weight;
-  std::vector<float> level_b_weight, dir_b_weight;
-  std::vector<double> direction_east, direction_north;  // the pack's ray directions, horizontal unit
+  TilePlan plan;  // which LDIs draw each placed tile this frame (choose_tiles)
   // Terrain vertices in camera space; the chunks drawn, nearest first, their distances, their
   // levels of detail (0 for those not drawn) and those levels' vertical errors (meters).
   std::vector<float> vx, vy, vz;
@@ -126,10 +101,7 @@ struct LdiRenderer::Impl {
   std::vector<float> accumulated;  // set_samples: the samples' sum, linear light
   std::vector<float> block_far;    // the occlusion test's blocks: the farthest depth in each
 
-  std::array<float, 3> to_camera(double x, double y, double z) const {
-    const V3 d{x - view.eye[0], y - view.eye[1], z - view.eye[2]};
-    return {float(dot(d, view.right)), float(dot(d, view.up)), float(dot(d, view.forward))};
-  }
+  std::array<float, 3> to_camera(double x, double y, double z) const { return view.to_camera(x, y, z); }
   // The unit direction (ENU) of the ray through the screen point (x, y) (pixel centres at +0.5).
   V3 ray_through(double x, double y) const { return view.ray_through(x, y); }
   std::array<float, 3> direction_to_camera(double x, double y, double z) const {
@@ -185,16 +157,7 @@ struct LdiRenderer::Impl {
   }
   // True when all eight corners of the box lie outside one plane of the view frustum.
   bool box_outside_frustum(const std::array<double, 3>& low, const std::array<double, 3>& high) const {
-    int outside[5] = {0, 0, 0, 0, 0};
-    for (int k = 0; k < 8; ++k) {
-      const auto c = to_camera(k & 1 ? high[0] : low[0], k & 2 ? high[1] : low[1], k & 4 ? high[2] : low[2]);
-      outside[0] += c[2] < kNear;
-      outside[1] += c[0] > c[2] * view.tan_x;
-      outside[2] += c[0] < -c[2] * view.tan_x;
-      outside[3] += c[1] > c[2] * view.tan_y;
-      outside[4] += c[1] < -c[2] * view.tan_y;
-    }
-    return std::any_of(std::begin(outside), std::end(outside), [](int n) { return n == 8; });
+    return view.box_outside_frustum(low, high, kNear);
   }
 };
 

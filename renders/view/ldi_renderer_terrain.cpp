@@ -29,11 +29,11 @@ void LdiRenderer::draw_terrain() {
     const std::int64_t cj = std::int64_t(std::floor(gy * inv_s)) - world.grid_j0();
     if (ci >= 0 && cj >= 0 && ci < world.grid_width() && cj < world.grid_height()) {
       const std::int32_t t = world.grid()[std::size_t(cj * world.grid_width() + ci)];
-      if (t >= 0 && threshold(px, py) >= m.far_from[std::size_t(t)]) {
-        const float k = m.far_cover[std::size_t(t)];
-        r += (m.far_r[std::size_t(t)] - r) * k;
-        g += (m.far_g[std::size_t(t)] - g) * k;
-        b += (m.far_b[std::size_t(t)] - b) * k;
+      if (t >= 0 && threshold(px, py) >= m.plan.far_from[std::size_t(t)]) {
+        const float k = m.plan.far_cover[std::size_t(t)];
+        r += (m.plan.far_r[std::size_t(t)] - r) * k;
+        g += (m.plan.far_g[std::size_t(t)] - g) * k;
+        b += (m.plan.far_b[std::size_t(t)] - b) * k;
       }
     }
     depth_write(m.zbuffer[std::size_t(py) * std::size_t(m.width) + std::size_t(px)],

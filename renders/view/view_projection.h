@@ -39,6 +39,27 @@ struct ViewProjection {
     p.cy = float(height) / 2 + subpixel[1];
     return p;
   }
+  // An ENU point in camera space (right, up, forward), in floats as the rasterizers use it.
+  std::array<float, 3> to_camera(double x, double y, double z) const {
+    const Vector3d d{x - eye[0], y - eye[1], z - eye[2]};
+    return {float(dot(d, right)), float(dot(d, up)), float(dot(d, forward))};
+  }
+  // True when all eight corners of the ENU box lie outside one plane of the frustum: nearer than
+  // `near` meters, or beyond one side.
+  bool box_outside_frustum(const Vector3d& low, const Vector3d& high, float near) const {
+    int outside[5] = {0, 0, 0, 0, 0};
+    for (int k = 0; k < 8; ++k) {
+      const auto c = to_camera(k & 1 ? high[0] : low[0], k & 2 ? high[1] : low[1], k & 4 ? high[2] : low[2]);
+      outside[0] += c[2] < near;
+      outside[1] += c[0] > c[2] * tan_x;
+      outside[2] += c[0] < -c[2] * tan_x;
+      outside[3] += c[1] > c[2] * tan_y;
+      outside[4] += c[1] < -c[2] * tan_y;
+    }
+    for (const int n : outside)
+      if (n == 8) return true;
+    return false;
+  }
   // The unit direction (ENU) of the ray through the screen point (x, y).
   Vector3d ray_through(double x, double y) const {
     const double ray_right = (x - double(cx)) / double(focal), ray_up = -(y - double(cy)) / double(focal);
