@@ -56,9 +56,6 @@ constexpr double kNearFlowerRadius = 0.5;
 constexpr double kNearShadowMargin = 4.0;
 constexpr int kOcclusionBlock = 8;            // pixels: the side of a block of the occlusion test
 constexpr std::uint32_t kTerrainPiece = 512;  // triangles: the terrain's unit of parallel work
-// The sign of the screen area of a terrain triangle (counter-clockwise seen from above) when its
-// upper side faces the eye.
-constexpr float kUpperSide = -1;
 // Meters a terrain skirt reaches below the errors it bridges (float rounding at the terrain's heights).
 constexpr float kSkirtMargin = 0.01f;
 

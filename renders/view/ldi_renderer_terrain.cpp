@@ -1,11 +1,12 @@
 // The LDI renderer's terrain: its chunks in the frustum rasterized into the z-buffer.
 #include "renders/view/ldi_renderer_impl.h"
+#include "renders/view/terrain_raster.h"
 
 namespace wangscape {
 
-// Step 7: the terrain's chunks in the frustum rasterized, nearest first. Longer than the other
-// steps because it holds its three short stages as lambdas over the frame's camera and buffers:
-// shade a pixel, rasterize a triangle, clip a triangle at the near plane and draw it.
+// Step 7: the terrain's chunks in the frustum rasterized (renders/view/terrain_raster.h), nearest
+// first, each pixel shaded with the ground's colour and light and, beyond the LDIs, the tile's
+// far-field colour.
 void LdiRenderer::draw_terrain() {
   Impl& m = *impl_;
   const ViewWorld& world = *world_;
@@ -16,10 +17,6 @@ void LdiRenderer::draw_terrain() {
   const Luts& lut = luts();
   const float ex = float(m.view.eye[0]), ey = float(m.view.eye[1]);
   const float inv_s = float(1 / s);
-  // A vertex of a clipped triangle: camera space, world x, y relative to the eye, light.
-  struct Vertex {
-    float x, y, z, wx, wy, lr, lg, lb;
-  };
   auto shade_pixel = [&](int px, int py, float depth, float wx, float wy, float lr, float lg, float lb) {
     const double gx = double(wx) + m.view.eye[0], gy = double(wy) + m.view.eye[1];
     const auto base = world.ground_color(gx, gy);
@@ -39,88 +36,12 @@ void LdiRenderer::draw_terrain() {
     depth_write(m.zbuffer[std::size_t(py) * std::size_t(m.width) + std::size_t(px)],
                 pack_entry(depth, lut.encode(r), lut.encode(g), lut.encode(b)));
   };
-  // Counts the pixels it tests into `tests`. With `one_sided`, a triangle seen from below is
-  // skipped: the terrain is a height field and the eye above it, so where a ray meets the
-  // underside it has met the upper side first (only the skirts are seen from either side).
-  auto raster = [&](const Vertex& a, const Vertex& b, const Vertex& c, bool one_sided, std::uint64_t& tests) {
-    const float ax = m.view.cx + m.view.focal * a.x / a.z, ay = m.view.cy - m.view.focal * a.y / a.z;
-    const float bx = m.view.cx + m.view.focal * b.x / b.z, by = m.view.cy - m.view.focal * b.y / b.z;
-    const float cx = m.view.cx + m.view.focal * c.x / c.z, cy = m.view.cy - m.view.focal * c.y / c.z;
-    const float area = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
-    if (!(std::abs(area) > 1e-12f) || (one_sided && area * kUpperSide < 0)) return;
-    const int x0 = std::max(0, int(std::floor(std::min({ax, bx, cx})))),
-              x1 = std::min(m.width - 1, int(std::ceil(std::max({ax, bx, cx}))));
-    const int y0 = std::max(0, int(std::floor(std::min({ay, by, cy})))),
-              y1 = std::min(m.height - 1, int(std::ceil(std::max({ay, by, cy}))));
-    if (x0 > x1 || y0 > y1) return;
-    // Ground wholly behind what the LDIs and the near field drew (most of it, inside the field).
-    const float nearest = std::min({a.z, b.z, c.z}) * (1 + kTerrainDepthBias);
-    if (m.screen_box_hidden(x0, y0, x1, y1, nearest)) return;
-    const float inv_area = 1.0f / area;
-    const float iza = 1 / a.z, izb = 1 / b.z, izc = 1 / c.z;
-    // Per row, the span where the three weights are >= 0 (each is linear in x), widened by a
-    // pixel: the exact test below decides, the span only skips what surely fails (thin far
-    // triangles have bounding boxes many times their area).
-    const float slope_a = (by - cy) * inv_area, slope_b = (cy - ay) * inv_area, slope_c = -slope_a - slope_b;
-    // Their inverses (0 for 0, the sign kept), divided once here, not per row: the span is widened
-    // by a pixel anyway.
-    const auto inverse = [](float slope) { return slope != 0 ? 1 / slope : 0.0f; };
-    const float inverse_a = inverse(slope_a), inverse_b = inverse(slope_b), inverse_c = inverse(slope_c);
-    for (int py = y0; py <= y1; ++py) {
-      // A large triangle: its rows a block row at a time, skipped where that row is hidden.
-      if ((py == y0 || py % kOcclusionBlock == 0) && y1 - y0 >= kOcclusionBlock &&
-          m.screen_box_hidden(x0, py, x1, py, nearest)) {
-        py = (py / kOcclusionBlock + 1) * kOcclusionBlock - 1;
-        continue;
-      }
-      const float fy = float(py) + 0.5f;
-      const float wa0 = (bx * (cy - fy) - (by - fy) * cx) * inv_area,
-                  wb0 = (cx * (ay - fy) - (cy - fy) * ax) * inv_area;
-      float lo = float(x0) + 0.5f, hi = float(x1) + 0.5f;
-      bool empty = false;
-      for (const auto& [w0, inverse_slope] :
-           {std::pair{wa0, inverse_a}, std::pair{wb0, inverse_b}, std::pair{1 - wa0 - wb0, inverse_c}}) {
-        if (inverse_slope > 0)
-          lo = std::max(lo, -w0 * inverse_slope);
-        else if (inverse_slope < 0)
-          hi = std::min(hi, -w0 * inverse_slope);
-        else
-          empty |= w0 < 0;
-      }
-      if (empty || !(lo <= hi + 2)) continue;
-      const int span_x0 = std::max(x0, int(std::ceil(lo - 0.5f)) - 1),
-                span_x1 = std::min(x1, int(std::floor(hi - 0.5f)) + 1);
-      tests += std::uint64_t(std::max(0, span_x1 - span_x0 + 1));
-      for (int px = span_x0; px <= span_x1; ++px) {
-        const float fx = float(px) + 0.5f;
-        // Barycentric weights (either winding), a pixel on a shared edge goes to one side only.
-        float wa = ((bx - fx) * (cy - fy) - (by - fy) * (cx - fx)) * inv_area;
-        float wb = ((cx - fx) * (ay - fy) - (cy - fy) * (ax - fx)) * inv_area;
-        // The third edge by its own function too (not 1 - wa - wb), so that two triangles meeting
-        // on an edge agree exactly on which side of it a pixel lies: a silhouette's pixels then
-        // belong to its upper side whenever to its underside, which may be skipped.
-        if (wa < 0 || wb < 0 || ((ax - fx) * (by - fy) - (ay - fy) * (bx - fx)) * inv_area < 0) continue;
-        float wc = 1 - wa - wb;
-        const float iz = wa * iza + wb * izb + wc * izc;
-        const float z = 1 / iz;
-        const float drawn_depth = z * (1 + kTerrainDepthBias);
-        // Early depth test: most ground under the field is hidden by flowers drawn before it.
-        const std::uint64_t drawn =
-            std::atomic_ref<std::uint64_t>(m.zbuffer[std::size_t(py) * std::size_t(m.width) + std::size_t(px)])
-                .load(std::memory_order_relaxed);
-        if (pack_entry(drawn_depth, 0, 0, 0) > drawn) continue;
-        wa *= iza * z;
-        wb *= izb * z;
-        wc *= izc * z;
-        shade_pixel(px, py, drawn_depth, wa * a.wx + wb * b.wx + wc * c.wx, wa * a.wy + wb * b.wy + wc * c.wy,
-                    wa * a.lr + wb * b.lr + wc * c.lr, wa * a.lg + wb * b.lg + wc * c.lg,
-                    wa * a.lb + wb * b.lb + wc * c.lb);
-      }
-    }
+  const RasterTarget target{&m.view, m.width, m.height, m.zbuffer.data(), kTerrainDepthBias, kOcclusionBlock};
+  const auto hidden = [&](int x0, int y0, int x1, int y1, float nearest) {
+    return m.screen_box_hidden(x0, y0, x1, y1, nearest);
   };
-  auto draw_triangle = [&](const std::array<std::uint32_t, 3>& ids, bool one_sided, std::uint64_t& tests) {
-    Vertex v[3];
-    int behind = 0;
+  auto draw_mesh_triangle = [&](const std::array<std::uint32_t, 3>& ids, bool one_sided, std::uint64_t& tests) {
+    RasterVertex v[3];
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t i = ids[std::size_t(k)];
       v[k] = {m.vx[i],
@@ -131,36 +52,8 @@ void LdiRenderer::draw_terrain() {
               terrain.light_r[i],
               terrain.light_g[i],
               terrain.light_b[i]};
-      behind += v[k].z < kNear;
     }
-    if (behind == 3) return;
-    // A quick reject: all three beyond one side plane.
-    auto out = [&](auto&& side) { return side(v[0]) && side(v[1]) && side(v[2]); };
-    if (out([&](const Vertex& q) { return q.x > q.z * m.view.tan_x; }) ||
-        out([&](const Vertex& q) { return q.x < -q.z * m.view.tan_x; }) ||
-        out([&](const Vertex& q) { return q.y > q.z * m.view.tan_y; }) ||
-        out([&](const Vertex& q) { return q.y < -q.z * m.view.tan_y; }))
-      return;
-    if (behind == 0) {
-      raster(v[0], v[1], v[2], one_sided, tests);
-      return;
-    }
-    // Clip against the near plane (Sutherland-Hodgman): 3 or 4 vertices, drawn as a fan.
-    Vertex poly[4];
-    int n = 0;
-    for (int k = 0; k < 3; ++k) {
-      const Vertex& p = v[k];
-      const Vertex& q = v[(k + 1) % 3];
-      const bool pin = p.z >= kNear, qin = q.z >= kNear;
-      if (pin) poly[n++] = p;
-      if (pin != qin) {
-        const float f = (kNear - p.z) / (q.z - p.z);
-        auto lerp = [f](float a, float b) { return a + (b - a) * f; };
-        poly[n++] = {lerp(p.x, q.x),   lerp(p.y, q.y),   kNear,           lerp(p.wx, q.wx), lerp(p.wy, q.wy),
-                     lerp(p.lr, q.lr), lerp(p.lg, q.lg), lerp(p.lb, q.lb)};
-      }
-    }
-    for (int k = 1; k + 1 < n; ++k) raster(poly[0], poly[k], poly[k + 1], one_sided, tests);
+    draw_triangle(target, v, one_sided, shade_pixel, hidden, tests);
   };
   // The chunks in the frustum, nearest first: the early depth test then skips the shading of
   // ground that nearer ground hides. Each at the coarsest level whose error projects to at most
@@ -234,14 +127,14 @@ void LdiRenderer::draw_terrain() {
       const std::uint32_t skirts = level.first_triangle + level.triangle_count - level.skirt_triangles;
       const std::uint32_t begin = level.first_triangle + first;
       const std::uint32_t end = level.first_triangle + std::min(level.triangle_count, first + kTerrainPiece);
-      for (std::uint32_t t = begin; t < end; ++t) draw_triangle(terrain.triangles[t], t < skirts, tested);
+      for (std::uint32_t t = begin; t < end; ++t) draw_mesh_triangle(terrain.triangles[t], t < skirts, tested);
       drawn += end - begin;
       // The fine mesh's triangles that its coarser neighbours' grids leave out (with the chunk's
       // first piece).
       if (m.chunk_level[k] == 0 && first == 0)
         for (std::uint32_t b = chunk.first_borrowed; b < chunk.first_borrowed + chunk.borrowed_count; ++b)
           if (m.chunk_level[terrain.borrowed[b].owner] != 0) {
-            draw_triangle(terrain.borrowed[b].ids, true, tested);
+            draw_mesh_triangle(terrain.borrowed[b].ids, true, tested);
             ++drawn;
           }
     }
