@@ -173,6 +173,7 @@ class LdiRenderer {
   void begin_frame(const Camera& camera);
   void choose_tiles();
   void warp_tiles();
+  void choose_chunks();
   void draw_terrain();
   void resolve();
   std::uint64_t trace_near_field();

@@ -4,6 +4,39 @@
 
 namespace wangscape {
 
+// The terrain's chunks to draw and their levels (step 7's first part): into chunk_order and chunk_level.
+void LdiRenderer::choose_chunks() {
+  Impl& m = *impl_;
+  const ViewWorld::Terrain& terrain = world_->terrain();
+  // The chunks in the frustum, nearest first: the early depth test then skips the shading of
+  // ground that nearer ground hides. Each at the coarsest level whose error projects to at most
+  // terrain_error_ pixels at its nearest point.
+  m.chunk_order.clear();
+  std::fill(m.chunk_level.begin(), m.chunk_level.end(), 0);
+  for (std::uint32_t k = 0; k < terrain.chunks.size(); ++k) {
+    const ViewWorld::Terrain::Chunk& chunk = terrain.chunks[k];
+    const V3 low{chunk.low[0], chunk.low[1], chunk.low[2]}, high{chunk.high[0], chunk.high[1], chunk.high[2]};
+    if (m.box_outside_frustum(low, high) || m.box_hidden(low, high, 0)) continue;
+    double squared = 0;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double d = std::max({low[c] - m.view.eye[c], m.view.eye[c] - high[c], 0.0});
+      squared += d * d;
+    }
+    m.chunk_distance[k] = float(squared);
+    m.chunk_order.push_back(k);
+    if (terrain_error_ <= 0) continue;
+    const double allowed = terrain_error_ * std::sqrt(squared) / double(m.view.focal);  // meters at that distance
+    for (std::uint32_t level = chunk.level_count; level-- > 1;)
+      if (terrain.levels[chunk.first_level + level].error <= allowed) {
+        m.chunk_level[k] = std::uint8_t(level);
+        break;
+      }
+  }
+  std::sort(m.chunk_order.begin(), m.chunk_order.end(), [&](std::uint32_t p, std::uint32_t q) {
+    return m.chunk_distance[p] != m.chunk_distance[q] ? m.chunk_distance[p] < m.chunk_distance[q] : p < q;
+  });
+}
+
 // Step 7: the terrain's chunks in the frustum rasterized (renders/view/terrain_raster.h), nearest
 // first, each pixel shaded with the ground's colour and light and, beyond the LDIs, the tile's
 // far-field colour.
@@ -55,37 +88,11 @@ void LdiRenderer::draw_terrain() {
     }
     draw_triangle(target, v, one_sided, shade_pixel, hidden, tests);
   };
-  // The chunks in the frustum, nearest first: the early depth test then skips the shading of
-  // ground that nearer ground hides. Each at the coarsest level whose error projects to at most
-  // terrain_error_ pixels at its nearest point.
-  m.chunk_order.clear();
-  std::fill(m.chunk_level.begin(), m.chunk_level.end(), 0);
-  for (std::uint32_t k = 0; k < terrain.chunks.size(); ++k) {
-    const ViewWorld::Terrain::Chunk& chunk = terrain.chunks[k];
-    const V3 low{chunk.low[0], chunk.low[1], chunk.low[2]}, high{chunk.high[0], chunk.high[1], chunk.high[2]};
-    if (m.box_outside_frustum(low, high) || m.box_hidden(low, high, 0)) continue;
-    double squared = 0;
-    for (std::size_t c = 0; c < 3; ++c) {
-      const double d = std::max({low[c] - m.view.eye[c], m.view.eye[c] - high[c], 0.0});
-      squared += d * d;
-    }
-    m.chunk_distance[k] = float(squared);
-    m.chunk_order.push_back(k);
-    if (terrain_error_ <= 0) continue;
-    const double allowed = terrain_error_ * std::sqrt(squared) / double(m.view.focal);  // meters at that distance
-    for (std::uint32_t level = chunk.level_count; level-- > 1;)
-      if (terrain.levels[chunk.first_level + level].error <= allowed) {
-        m.chunk_level[k] = std::uint8_t(level);
-        break;
-      }
-  }
+  choose_chunks();
   // The level chunk k is drawn at this frame (0, the fine mesh, where not drawn).
   const auto level_of = [&](std::size_t k) -> const ViewWorld::Terrain::Level& {
     return terrain.levels[terrain.chunks[k].first_level + m.chunk_level[k]];
   };
-  std::sort(m.chunk_order.begin(), m.chunk_order.end(), [&](std::uint32_t p, std::uint32_t q) {
-    return m.chunk_distance[p] != m.chunk_distance[q] ? m.chunk_distance[p] < m.chunk_distance[q] : p < q;
-  });
   // The chunks' vertices to camera space, then their triangles in pieces of at most
   // kTerrainPiece, nearest chunk first: under the field the mesh is refined, so one chunk there
   // can hold many times the others' triangles, and drawn whole it kept one thread busy while the
