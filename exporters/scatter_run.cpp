@@ -34,6 +34,61 @@ double point_file_bytes_per_point(PointFileFormat format) {
   return 226.0;
 }
 
+namespace {
+
+// Refuses a scatter whose estimate passes --max-instances, the free disk, or (without --yes) the
+// size a user should confirm, before anything is written.
+void refuse_too_large(const ScatterRequest& request, const std::optional<PointFileFormat>& format, double estimate,
+                      const std::string& about) {
+  if (request.max_instances && estimate > double(*request.max_instances))
+    throw Error(
+        fmt::format("scatter: {} would place about {:.3g} instances; --max-instances is {}: a larger "
+                    "--max-instances, a smaller area or a larger --tile-size",
+                    about, estimate, *request.max_instances));
+  if (!request.out.empty()) {
+    const double bytes = estimate * point_file_bytes_per_point(*format);
+    check_disk_estimate(
+        request.out,
+        fmt::format("scatter's points file '{}' (about {:.3g} instances: {})", request.out.string(), estimate, about),
+        bytes,
+        "free some space, write elsewhere (--out), or scatter less (a larger --tile-size, masks, "
+        "--max-instances)");
+    if (bytes > kLargeScatterFileBytes && !request.large_file_ok)
+      throw Error(
+          fmt::format("scatter's points file '{}' would hold about {:.3g} instances, about {} ({}); add "
+                      "--yes to write it, or scatter less (a larger --tile-size, masks, a smaller area)",
+                      request.out.string(), estimate, byte_text(bytes), about));
+  }
+}
+
+// Each class of a multi-class set measured on its own: its points copied out of the union.
+void measure_classes(const FilledTileSet& filled, double tile_size, const std::vector<float>& xs,
+                     const std::vector<float>& ys, const std::vector<std::uint8_t>& point_class,
+                     const std::vector<std::size_t>& class_sizes, const PointMetricsOptions& metric_options,
+                     std::vector<ClassMetrics>& classes) {
+  std::vector<float> class_xs, class_ys;
+  for (std::size_t c = 0; c < class_sizes.size(); ++c) {
+    class_xs.clear();
+    class_ys.clear();
+    class_xs.reserve(class_sizes[c]);
+    class_ys.reserve(class_sizes[c]);
+    for (std::size_t i = 0; i < point_class.size(); ++i)
+      if (point_class[i] == c) {
+        class_xs.push_back(xs[i]);
+        class_ys.push_back(ys[i]);
+      }
+    ClassMetrics& m = classes.emplace_back();
+    m.spacing = filled.classes[c].spacing * tile_size;
+    m.edge_objects = filled.classes[c].edge_objects;
+    PointMetricsOptions class_options = metric_options;
+    class_options.packing_diameter = m.spacing;
+    class_options.zone_width = std::min(filled.classes[c].spacing, 0.3) * tile_size;  // leaves an interior
+    m.metrics = measure_points(class_xs, class_ys, class_options);
+  }
+}
+
+}  // namespace
+
 ScatterResult run_scatter(const ScatterRequest& request) {
   const double tile_size = request.placement.tile_size;
   if (!(tile_size > 0)) throw Error("--tile-size " + std::to_string(tile_size) + ": expected meters > 0");
@@ -69,25 +124,7 @@ ScatterResult run_scatter(const ScatterRequest& request) {
                           double(std::max<std::size_t>(filled.tiles.size(), 1)) * (dem ? dem->growing_share() : 1.0);
   const std::string about = fmt::format("{:.0f} x {:.0f} m in {:g} m tiles{}", plane.width(), plane.height(), tile_size,
                                         dem ? " (after the masks)" : "");
-  if (request.max_instances && estimate > double(*request.max_instances))
-    throw Error(
-        fmt::format("scatter: {} would place about {:.3g} instances; --max-instances is {}: a larger "
-                    "--max-instances, a smaller area or a larger --tile-size",
-                    about, estimate, *request.max_instances));
-  if (!request.out.empty()) {
-    const double bytes = estimate * point_file_bytes_per_point(*format);
-    check_disk_estimate(
-        request.out,
-        fmt::format("scatter's points file '{}' (about {:.3g} instances: {})", request.out.string(), estimate, about),
-        bytes,
-        "free some space, write elsewhere (--out), or scatter less (a larger --tile-size, masks, "
-        "--max-instances)");
-    if (bytes > kLargeScatterFileBytes && !request.large_file_ok)
-      throw Error(
-          fmt::format("scatter's points file '{}' would hold about {:.3g} instances, about {} ({}); add "
-                      "--yes to write it, or scatter less (a larger --tile-size, masks, a smaller area)",
-                      request.out.string(), estimate, byte_text(bytes), about));
-  }
+  refuse_too_large(request, format, estimate, about);
   std::vector<float> xs, ys;
   // Several classes: each point's class beside its coordinates (its variant's class, looked up
   // once per variant), so that each class can be measured on its own after the union without a
@@ -153,25 +190,7 @@ ScatterResult run_scatter(const ScatterRequest& request) {
     metric_options.tile_size = tile_size;
     metric_options.packing_diameter = result.packing_diameter;
     result.metrics = measure_points(xs, ys, metric_options);
-    std::vector<float> class_xs, class_ys;
-    for (std::size_t c = 0; c < class_count; ++c) {
-      class_xs.clear();
-      class_ys.clear();
-      class_xs.reserve(class_sizes[c]);
-      class_ys.reserve(class_sizes[c]);
-      for (std::size_t i = 0; i < point_class.size(); ++i)
-        if (point_class[i] == c) {
-          class_xs.push_back(xs[i]);
-          class_ys.push_back(ys[i]);
-        }
-      ClassMetrics& m = result.classes.emplace_back();
-      m.spacing = filled.classes[c].spacing * tile_size;
-      m.edge_objects = filled.classes[c].edge_objects;
-      PointMetricsOptions class_options = metric_options;
-      class_options.packing_diameter = m.spacing;
-      class_options.zone_width = std::min(filled.classes[c].spacing, 0.3) * tile_size;  // leaves an interior
-      m.metrics = measure_points(class_xs, class_ys, class_options);
-    }
+    measure_classes(filled, tile_size, xs, ys, point_class, class_sizes, metric_options, result.classes);
   }
   return result;
 }
