@@ -471,9 +471,9 @@ bool second_exemplar(const NoiseTileSet& noise, std::uint32_t tile, const std::a
 
 }  // namespace
 
-TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8> exemplars,
-                                  const TextureTileOptions& options, TextureTileReport* report) {
-  const std::string where = "texture tiles of " + set.describe();
+// Refuses options and exemplars the quilting cannot use, naming `where`.
+void check_texture_inputs(const std::string& where, std::span<const ImageRgb8> exemplars,
+                          const TextureTileOptions& options) {
   const int size = options.tile_size;
   if (size < 16 || size > 4096 || size % 2 != 0)
     throw Error(where + ": tile size " + std::to_string(size) + "; expected an even number in 16..4096");
@@ -488,6 +488,54 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
     throw Error(where + ": band " + std::to_string(options.band) + "; expected 0..tile size / 8");
   if (options.rounds < 0 || options.candidates < 1 || options.min_separation < 0)
     throw Error(where + ": expected rounds >= 0, candidates >= 1, min separation >= 0");
+}
+
+// Tile t's pixels from its sources (per layer), the layer at each pixel the marks' boundary picks
+// (none: the first), and the seam cost its cuts and the boundary leave.
+void compose_tile(TextureTile& out, const Tile& tile, std::uint32_t t, int size, std::size_t block,
+                  const std::vector<std::vector<Source>>& sources, const std::vector<Problem>& problems,
+                  const std::vector<Layout>& layouts, const std::optional<NoiseTileSet>& boundary) {
+  out.image = ImageRgb8(size, size);
+  out.source.assign(static_cast<std::size_t>(size) * static_cast<std::size_t>(size), 0);
+  const auto mark = [](int c) { return static_cast<float>((c < 0 ? 0 : c) % 2); };
+  const std::array<float, 4> marks = {mark(tile.sw()), mark(tile.se()), mark(tile.nw()), mark(tile.ne())};
+  std::vector<int> layer_of(out.source.size(), 0);
+  const auto color_of = [&](int layer, const Source& s, int x, int y) {
+    return source_color(problems[static_cast<std::size_t>(layer)], layouts[static_cast<std::size_t>(layer)], s, x, y);
+  };
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const std::size_t o = static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x);
+      const int layer = boundary && second_exemplar(*boundary, t, marks, size, x, y);
+      layer_of[o] = layer;
+      const Source& s = sources[static_cast<std::size_t>(layer)][o];
+      out.source[o] = static_cast<std::uint16_t>((static_cast<std::size_t>(layer) * block + s.window) * 4 +
+                                                 static_cast<std::size_t>(s.slot));
+      const std::uint8_t* c = color_of(layer, s, x, y);
+      out.image.set(x, y, {c[0], c[1], c[2]});
+    }
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const std::size_t o = static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x);
+      for (const auto& [nx, ny] : {std::array<int, 2>{x + 1, y}, std::array<int, 2>{x, y + 1}}) {
+        if (nx >= size || ny >= size) continue;
+        const std::size_t n =
+            static_cast<std::size_t>(ny) * static_cast<std::size_t>(size) + static_cast<std::size_t>(nx);
+        if (out.source[o] == out.source[n]) continue;
+        const int la = layer_of[o], lb = layer_of[n];
+        const Source& a = sources[static_cast<std::size_t>(la)][o];
+        const Source& b = sources[static_cast<std::size_t>(lb)][n];
+        out.error += static_cast<std::uint64_t>(square_difference(color_of(la, a, x, y), color_of(lb, b, x, y)) +
+                                                square_difference(color_of(la, a, nx, ny), color_of(lb, b, nx, ny)));
+      }
+    }
+}
+
+TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8> exemplars,
+                                  const TextureTileOptions& options, TextureTileReport* report) {
+  const std::string where = "texture tiles of " + set.describe();
+  check_texture_inputs(where, exemplars, options);
+  const int size = options.tile_size;
 
   TextureTileSet result;
   result.set = set;
@@ -586,46 +634,10 @@ TextureTileSet make_texture_tiles(const TileSet& set, std::span<const ImageRgb8>
                   : std::nullopt;
   result.tiles.resize(set.size());
   tbb::parallel_for(std::size_t{0}, set.size(), [&](std::size_t t) {
-    TextureTile& out = result.tiles[t];
-    out.image = ImageRgb8(size, size);
-    out.source.assign(static_cast<std::size_t>(size) * static_cast<std::size_t>(size), 0);
     std::vector<std::vector<Source>> sources;
     for (int layer = 0; layer < layers; ++layer) sources.push_back(layer_sources[static_cast<std::size_t>(layer)][t]);
-    const Tile& tile = set.tiles[t];
-    const auto mark = [&](int c) { return static_cast<float>(color(c) % 2); };
-    const std::array<float, 4> marks = {mark(tile.sw()), mark(tile.se()), mark(tile.nw()), mark(tile.ne())};
-    std::vector<int> layer_of(out.source.size(), 0);
-    const auto color_of = [&](int layer, const Source& s, int x, int y) {
-      return source_color(problems[static_cast<std::size_t>(layer)], layouts[static_cast<std::size_t>(layer)], s, x, y);
-    };
-    for (int y = 0; y < size; ++y)
-      for (int x = 0; x < size; ++x) {
-        const std::size_t o =
-            static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x);
-        const int layer = boundary && second_exemplar(*boundary, static_cast<std::uint32_t>(t), marks, size, x, y);
-        layer_of[o] = layer;
-        const Source& s = sources[static_cast<std::size_t>(layer)][o];
-        out.source[o] = static_cast<std::uint16_t>((static_cast<std::size_t>(layer) * block + s.window) * 4 +
-                                                   static_cast<std::size_t>(s.slot));
-        const std::uint8_t* c = color_of(layer, s, x, y);
-        out.image.set(x, y, {c[0], c[1], c[2]});
-      }
-    for (int y = 0; y < size; ++y)
-      for (int x = 0; x < size; ++x) {
-        const std::size_t o =
-            static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x);
-        for (const auto& [nx, ny] : {std::array<int, 2>{x + 1, y}, std::array<int, 2>{x, y + 1}}) {
-          if (nx >= size || ny >= size) continue;
-          const std::size_t n =
-              static_cast<std::size_t>(ny) * static_cast<std::size_t>(size) + static_cast<std::size_t>(nx);
-          if (out.source[o] == out.source[n]) continue;
-          const int la = layer_of[o], lb = layer_of[n];
-          const Source& a = sources[static_cast<std::size_t>(la)][o];
-          const Source& b = sources[static_cast<std::size_t>(lb)][n];
-          out.error += static_cast<std::uint64_t>(square_difference(color_of(la, a, x, y), color_of(lb, b, x, y)) +
-                                                  square_difference(color_of(la, a, nx, ny), color_of(lb, b, nx, ny)));
-        }
-      }
+    compose_tile(result.tiles[t], set.tiles[t], static_cast<std::uint32_t>(t), size, block, sources, problems, layouts,
+                 boundary);
   });
   return result;
 }
