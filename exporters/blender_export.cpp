@@ -14,6 +14,7 @@
 #include "exporters/export_support.h"
 #include "exporters/image_io.h"
 #include "exporters/zip_writer.h"
+#include "scene/shading_light.h"
 #include "templates/blender_addon.h"
 
 namespace wangscape {
@@ -233,6 +234,15 @@ void BlenderWriter::finish(const StreamTotals& totals) {
                          {"elevation_degrees", scene.sun.elevation_degrees},
                          {"strength", scene.sun.strength},
                          {"direction", scene.sun.direction()}};
+  // The one shading model's light (scene/shading_light.h), so Cycles shows what the Embree
+  // reference and the view show: linear RGB, the sun's already times its strength.
+  const ShadingSettings light = with_sun(ShadingSettings{}, scene.sun);
+  const SkyGradient sky = sky_gradient(light);
+  manifest["light"] = Json{{"sun_color", light.sun_color},
+                           {"sky_color", light.sky_color},
+                           {"sky_horizon", sky.horizon},
+                           {"sky_zenith", sky.zenith},
+                           {"exposure", light.exposure}};
   manifest["render"] = Json{{"width", scene.render.width},
                             {"height", scene.render.height},
                             {"samples", blender_cycles_samples(scene.render, options)},

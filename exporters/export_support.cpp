@@ -10,6 +10,7 @@
 #include "core/atomic_file.h"
 #include "core/number_text.h"
 #include "exporters/image_io.h"
+#include "scene/shading_light.h"
 
 namespace wangscape {
 
@@ -19,7 +20,8 @@ Bounds3f bounds_of(std::span<const std::array<float, 3>> points) {
   return bounds;
 }
 
-Material default_ground_material() { return Material{"ground", {0.22f, 0.16f, 0.10f}, 0.9f, 0.0f}; }
+// The plain ground of the one shading model, so every engine shows the same one.
+Material default_ground_material() { return Material{"ground", ShadingSettings{}.ground_color, 0.9f, 0.0f}; }
 
 namespace {
 

@@ -34,7 +34,8 @@ struct Bounds3f {
 
 Bounds3f bounds_of(std::span<const std::array<float, 3>> points);
 
-// The material used for terrain that carries none: dry loam.
+// The material used for terrain that carries none: the one shading model's plain ground
+// (ShadingSettings::ground_color), as the Embree reference and the view show it.
 Material default_ground_material();
 
 // Every distinct material of the scene once (terrain first, then each model's), and for

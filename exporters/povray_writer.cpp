@@ -15,6 +15,7 @@
 #include "core/printable.h"
 #include "exporters/export_support.h"
 #include "exporters/image_io.h"
+#include "scene/shading_light.h"
 
 namespace wangscape {
 
@@ -204,13 +205,15 @@ std::string comment_safe(std::string_view source) {
   return text;
 }
 
-// Warm light when the sun is low, near-white when high.
-std::array<double, 3> sun_color(const Sun& sun) {
-  const double t = std::clamp(sun.elevation_degrees / 40.0, 0.0, 1.0);
-  const std::array<double, 3> low{1.0, 0.72, 0.45}, high{1.0, 0.97, 0.92};
-  std::array<double, 3> color{};
-  for (int i = 0; i < 3; ++i) color[i] = (low[i] + (high[i] - low[i]) * t) * 1.25 * sun.strength;
-  return color;
+// The one shading model's light (scene/shading_light.h) with the scene's sun: what the Embree
+// reference and the view show, so POV-Ray gets the same numbers.
+ShadingSettings scene_light(const Sun& sun) { return with_sun(ShadingSettings{}, sun); }
+
+// `rgb <r, g, b>` of a linear color times the exposure (POV-Ray with assumed_gamma 1 is linear).
+std::string exposed_rgb(const Vec3f& color, float exposure) {
+  std::string out = "rgb ";
+  append_vector(out, double(color[0] * exposure), double(color[1] * exposure), double(color[2] * exposure), 4);
+  return out;
 }
 
 struct HeightRange {
@@ -244,26 +247,33 @@ std::string scene_pov(const Scene& scene, bool has_terrain, bool has_instances, 
   s += "#ifndef (Use_Radiosity) #declare Use_Radiosity = " + std::string(scene.render.radiosity ? "1" : "0") +
        "; #end\n";
   s += "#ifndef (Show_Instances) #declare Show_Instances = 1; #end\n";
-  s += "#declare Ambient_Level = (Use_Radiosity ? 0 : 0.28);\n\n";
-  s += "global_settings {\n  assumed_gamma 1.0\n  max_trace_level 8\n  ambient_light rgb <0.75, 0.85, 1.0>\n";
+  // Without radiosity every surface gets the open sky's light as ambient (lit()'s sky term, open
+  // everywhere); with it, the light the sky_sphere and the other surfaces send.
+  s += "#declare Ambient_Level = (Use_Radiosity ? 0 : 1);\n\n";
+  const ShadingSettings light = scene_light(scene.sun);
+  s += "global_settings {\n  assumed_gamma 1.0\n  max_trace_level 8\n  ambient_light " +
+       exposed_rgb(light.sky_color, light.exposure) + "\n";
   s += "  #if (Use_Radiosity)\n";
   s += "  radiosity {\n    pretrace_start 0.08 pretrace_end 0.02 count 50 nearest_count 5\n";
   s += "    error_bound 1.5 recursion_limit 1 low_error_factor 0.5 gray_threshold 0\n";
   s += "    minimum_reuse 0.015 brightness 1 adc_bailout 0.01\n  }\n  #end\n}\n\n";
 
   // A material from the models' Material: linear RGB color, roughness 0..1, translucency 0..1
-  // (light through thin petals and leaves, as POV-Ray's back-side diffuse).
+  // (light through thin petals and leaves, as POV-Ray's back-side diffuse). Lambert alone, as in
+  // the one shading model (sun_share): the front gets the sun's cosine, the back Translucency of it.
+  // Roughness is kept in the call for the materials' record; no highlight depends on it.
   s += "#macro Wangscape_Finish(Roughness, Translucency)\n";
-  s += "  ambient Ambient_Level\n  diffuse 0.8 * (1 - 0.5 * Translucency), 0.8 * 0.5 * Translucency\n";
-  s += "  specular 0.25 * (1 - Roughness) roughness max(0.002, 0.1 * Roughness)\n#end\n";
+  s += "  ambient Ambient_Level\n  diffuse 1, Translucency\n#end\n";
   s += "#macro Wangscape_Material(Color, Roughness, Translucency)\n";
   s += "  pigment { rgb Color }\n  finish { Wangscape_Finish(Roughness, Translucency) }\n#end\n\n";
 
   s += povray_camera_and_sun(scene.camera, scene.sun) + "\n";
 
-  s += "sky_sphere {\n  pigment {\n    function { max(0, y) }\n    color_map {\n";
-  s += "      [0.00 rgb <0.80, 0.86, 0.93>]\n      [0.06 rgb <0.56, 0.70, 0.90>]\n";
-  s += "      [0.25 rgb <0.30, 0.48, 0.82>]\n      [1.00 rgb <0.14, 0.28, 0.66>]\n    }\n  }\n}\n\n";
+  // The sky of sky_radiance(): horizon to zenith by the square root of the ray's up component.
+  const SkyGradient sky = sky_gradient(light);
+  s += "sky_sphere {\n  pigment {\n    function { sqrt(max(0, y)) }\n    color_map {\n";
+  s += "      [0 " + exposed_rgb(sky.horizon, light.exposure) + "]\n      [1 " +
+       exposed_rgb(sky.zenith, light.exposure) + "]\n    }\n  }\n}\n\n";
 
   if (has_terrain) {
     s += "#include \"terrain.inc\"\n";
@@ -278,26 +288,17 @@ std::string scene_pov(const Scene& scene, bool has_terrain, bool has_instances, 
          "\" gamma srgb map_type 0 interpolate 2 once }\n";
     s += "      rotate x * 90\n      scale <" + fixed(e.width(), 3) + ", 1, " + fixed(e.height(), 3) + ">\n";
     s += "      translate <" + fixed(e.min_x, 3) + ", 0, " + fixed(e.min_y, 3) + ">\n    }\n";
-    s += "    normal { granite 0.12 scale 3 }\n    finish { ambient Ambient_Level diffuse 0.75 }\n  }\n";
+    s += "    finish { ambient Ambient_Level diffuse 1 }\n  }\n";
     s += "object { Terrain texture { Ground_Texture } }\n\n";
   } else if (has_terrain) {
-    s += "// Ground: vegetation low, soil and ash higher up, rock on steep slopes.\n";
-    s += "#declare Ground_Texture =\n  texture {\n    pigment {\n      gradient y\n      color_map {\n";
-    s += "        [0.00 rgb <0.050, 0.100, 0.020>]\n        [0.25 rgb <0.080, 0.120, 0.030>]\n";
-    s += "        [0.38 rgb <0.170, 0.160, 0.090>]\n        [0.60 rgb <0.300, 0.280, 0.250>]\n";
-    s += "        [1.00 rgb <0.520, 0.510, 0.500>]\n      }\n";
-    s += "      scale (Terrain_Max_Height - Terrain_Min_Height) translate y * Terrain_Min_Height\n    }\n";
-    s += "    normal { granite 0.15 scale 3 }\n    finish { ambient Ambient_Level diffuse 0.75 }\n  }\n";
-    s += "  texture {\n    pigment {\n      slope { y }\n      color_map {\n";
-    s += "        [0.00 rgb <0.24, 0.22, 0.20>]\n        [0.86 rgb <0.24, 0.22, 0.20>]\n";
-    s += "        [0.93 rgbt <0.24, 0.22, 0.20, 1>]\n        [1.00 rgbt 1]\n      }\n    }\n";
-    s += "    finish { ambient Ambient_Level diffuse 0.75 }\n  }\n";
+    // One plain color, the one Blender, glTF, the Embree reference and the view give the ground.
+    s += "// Ground: one plain color (the scene has no [ground] look).\n";
+    s += "#declare Ground_Texture =\n  texture {\n    pigment { " +
+         exposed_rgb(default_ground_material().base_color, 1.0f) + " }\n";
+    s += "    finish { ambient Ambient_Level diffuse 1 }\n  }\n";
     s += "object { Terrain texture { Ground_Texture } }\n\n";
   }
-  // Aerial perspective: haze that thins out with altitude, so far terrain fades towards the
-  // horizon while the sky overhead keeps its blue.
-  s += "fog {\n  fog_type 2\n  fog_offset " + std::string(has_terrain ? "Terrain_Min_Height" : "0") +
-       "\n  fog_alt 400\n  distance 25000\n  color rgbt <0.74, 0.81, 0.92, 0.05>\n  up y\n}\n\n";
+  // No fog: the Embree reference, the view and Cycles have no aerial perspective either.
   s += "#include \"models.inc\"\n";
   if (has_instances) s += "#if (Show_Instances)\n  #include \"instances.inc\"\n#end\n";
   return s;
@@ -345,7 +346,7 @@ std::string povray_camera_and_sun(const Camera& cam, const Sun& sun) {
   s += "\n  right x * image_width / image_height\n  angle " + fixed(cam.fov_degrees, 3) + "\n}\n\n";
 
   const auto dir = sun.direction();
-  const auto color = sun_color(sun);
+  const ShadingSettings light = scene_light(sun);
   // A parallel light must sit outside every object to cast their shadows: far along the sun.
   constexpr double kSunDistance = 1.0e6;
   const std::array<double, 3> sun_position{cam.target[0] + dir[0] * kSunDistance, cam.target[1] + dir[1] * kSunDistance,
@@ -354,8 +355,7 @@ std::string povray_camera_and_sun(const Camera& cam, const Sun& sun) {
        fixed(sun.elevation_degrees, 2) + " deg.\n";
   s += "light_source {\n  ";
   append_enu_as_pov(s, sun_position, 1);
-  s += "\n  color rgb ";
-  append_vector(s, color[0], color[1], color[2], 4);
+  s += "\n  color " + exposed_rgb(light.sun_color, light.exposure);
   s += "\n  parallel\n  point_at ";
   append_enu_as_pov(s, cam.target, 3);
   s += "\n}\n";

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <variant>
 
+#include "scene/shading_light.h"
 #include "terrain/mask.h"
 #include "terrain/terrain.h"
 #include "terrain/terrain_mesh.h"
@@ -229,7 +230,8 @@ Mesh SceneGround::mesh(std::size_t max_vertices) const {
   const Extent area = impl_->area;
   Mesh mesh;
   mesh.name = "terrain";
-  mesh.materials = {{"ground", {0.2f, 0.18f, 0.12f}, 0.9f, 0.0f}};
+  // The one shading model's plain ground, so every engine shows this one colour without [ground].
+  mesh.materials = {{"ground", ShadingSettings{}.ground_color, 0.9f, 0.0f}};
   if (impl_->terrain) {
     TerrainMeshOptions options;
     options.max_vertices = max_vertices;

@@ -46,10 +46,16 @@ inline Vec3f lit(const ShadingSettings& s, const Vec3f& base, float sun, float s
   return out;
 }
 
-// Linear RGB (times exposure) seen along a ray that meets nothing: a gradient from a pale horizon
-// to a deeper zenith around sky_color (the open sky's irradiance in lit(), so a white surface
-// under the open sky is as bright as the sky beside it). Directions below the horizon see the
-// horizon's color. `direction` need not be unit.
+// The sky seen along a ray that meets nothing, linear RGB before exposure: `horizon` at and below
+// the horizon, `zenith` straight up, mixed by the square root of the ray's up component. Both come
+// from sky_color (the open sky's irradiance in lit()): a pale haze at the horizon, a deeper, bluer
+// sky_color overhead. POV-Ray's sky_sphere and Blender's world draw this same gradient.
+struct SkyGradient {
+  Vec3f horizon{}, zenith{};
+};
+SkyGradient sky_gradient(const ShadingSettings& settings);
+
+// Linear RGB (times exposure) of sky_gradient() seen along `direction` (need not be unit).
 Vec3f sky_radiance(const ShadingSettings& settings, const Vec3f& direction);
 
 }  // namespace wangscape

@@ -182,10 +182,16 @@ check(close(towards_sun, manifest["sun"]["direction"], 1e-4), "sun lamp points f
 azimuth, elevation = (math.radians(manifest["sun"][k]) for k in ("azimuth_degrees", "elevation_degrees"))
 compass = (math.sin(azimuth) * math.cos(elevation), math.cos(azimuth) * math.cos(elevation), math.sin(elevation))
 check(close(towards_sun, compass, 1e-4), "sun lamp at the compass azimuth/elevation")
-sky = next(n for n in scene.world.node_tree.nodes if n.type == "TEX_SKY")
-check(sky.sky_type == "NISHITA", "Nishita sky")
-check(abs(math.degrees(sky.sun_elevation) - manifest["sun"]["elevation_degrees"]) < 1e-3, "sky sun elevation")
-check(abs(math.degrees(sky.sun_rotation) - manifest["sun"]["azimuth_degrees"]) < 1e-3, "sky sun azimuth")
+# The one shading model's light: the lamp brings sun_color, the world shows the sky's gradient
+# and lights with sky_color, no tone curve.
+light = manifest["light"]
+check(close(sun.data.color * (sun.data.energy / math.pi), light["sun_color"], 1e-4), "sun lamp color and strength")
+mixes = [n for n in scene.world.node_tree.nodes if n.type == "MIX_RGB"]
+check(any(close(n.inputs["Color1"].default_value[:3], light["sky_horizon"], 1e-4) and
+          close(n.inputs["Color2"].default_value[:3], light["sky_zenith"], 1e-4) for n in mixes), "sky gradient")
+check(any(close(n.inputs["Color1"].default_value[:3], light["sky_color"], 1e-4) for n in mixes), "sky light")
+check(scene.view_settings.view_transform == "Standard", "no tone curve (Standard view transform)")
+check(abs(2 ** scene.view_settings.exposure - light["exposure"]) < 1e-4, "exposure")
 
 check(scene.render.engine == "CYCLES" and scene.cycles.device == "CPU", "Cycles on the CPU")
 check(not scene.cycles.use_denoising, "denoising off (no OIDN in Debian's Blender)")

@@ -5,10 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <locale>
 #include <sstream>
 
 #include "core/error.h"
 #include "scene/scene.h"
+#include "scene/shading_light.h"
 #include "scene/sun.h"
 
 namespace wangscape {
@@ -23,6 +25,24 @@ TEST(PovrayWriter, NumbersBeyondSixtyThreeBitsAreWrittenInFull) {
   EXPECT_NE(text.find("location <1000000000000000019884624838656.000,-30000000000000000.000,2.500>"), std::string::npos)
       << text;
   EXPECT_NE(text.find("look_at <0.000,0.000,0.000>"), std::string::npos) << text;
+}
+
+// One look (issue 39): POV-Ray's sun is the one shading model's, times the scene's strength.
+TEST(PovrayWriter, TheSunIsTheOneShadingModelsTimesItsStrength) {
+  Camera camera;
+  camera.position = {0, 0, 2};
+  camera.target = {0, 10, 0};
+  Sun sun;
+  sun.strength = 0.5;
+  const Vec3f color = with_sun(ShadingSettings{}, sun).sun_color;
+  EXPECT_FLOAT_EQ(color[0], 0.5f * ShadingSettings{}.sun_color[0]);
+  std::ostringstream expected;
+  expected.imbue(std::locale::classic());
+  expected.setf(std::ios::fixed);
+  expected.precision(4);
+  expected << "color rgb <" << color[0] << "," << color[1] << "," << color[2] << ">";
+  const std::string text = povray_camera_and_sun(camera, sun);
+  EXPECT_NE(text.find(expected.str()), std::string::npos) << expected.str() << " not in\n" << text;
 }
 
 // Models are named by what they are (issue 40): a species' grass was `Sunflower_12` before.

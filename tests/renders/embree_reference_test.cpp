@@ -256,6 +256,18 @@ TEST(reference_render, TheSkyIsTheGradientTheViewCanDraw) {
   EXPECT_LT(r.image.at(20, 0).r, r.image.at(20, 23).r);
 }
 
+// One look (issue 39): the sky overhead is blue, not the pale grey it was (zenith 0.7 x sky_color),
+// and the horizon a pale haze; POV-Ray and Cycles draw this gradient (sky_gradient) too.
+TEST(reference_render, TheSkyIsBlueOverheadAndPaleAtTheHorizon) {
+  const ShadingSettings s;
+  const Vec3f zenith = sky_radiance(s, {0, 0, 1}), horizon = sky_radiance(s, {1, 0, 0});
+  EXPECT_GT(zenith[2], 2.5f * zenith[0]);
+  EXPECT_GT(horizon[0], 0.6f);
+  EXPECT_LT(horizon[2], 1.3f * horizon[0]);
+  const SkyGradient g = sky_gradient(s);
+  for (std::size_t c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(zenith[c], g.zenith[c] * s.exposure);
+}
+
 // The tiny scene of the CLI tests (tests/cli/tiny_scene.toml: flat ground, a field of real
 // sunflowers seen from its edge), assembled as `wangscape build` does.
 Scene tiny_scene() {

@@ -144,7 +144,7 @@ def apply_ground_texture(mesh, folder, spec):
     principled.inputs["Roughness"].default_value = 0.9
     specular = principled_input(principled, "Specular", "Specular IOR Level")
     if specular is not None:
-        specular.default_value = 0.2
+        specular.default_value = 0.0  # diffuse alone, as the one shading model's ground
     texture = tree.nodes.new("ShaderNodeTexImage")
     texture.image = bpy.data.images.load(os.path.join(folder, spec["file"]), check_existing=True)
     texture.extension = "EXTEND"
@@ -174,17 +174,18 @@ def build_material(spec):
     principled.inputs["Roughness"].default_value = material.roughness
     specular = principled_input(principled, "Specular", "Specular IOR Level")
     if specular is not None:
-        specular.default_value = 0.3
+        specular.default_value = 0.0  # diffuse alone, as the one shading model
     translucency = float(spec.get("translucency", 0.0))
     if translucency > 0.0:
         output = next(node for node in tree.nodes if node.type == "OUTPUT_MATERIAL")
+        # The front keeps all its diffuse light and the back passes `translucency` of it, as in
+        # the one shading model (sun_share) and POV-Ray's back-side diffuse: added, not mixed.
         translucent = tree.nodes.new("ShaderNodeBsdfTranslucent")
-        translucent.inputs["Color"].default_value = color
-        mix = tree.nodes.new("ShaderNodeMixShader")
-        mix.inputs["Fac"].default_value = translucency
-        tree.links.new(principled.outputs["BSDF"], mix.inputs[1])
-        tree.links.new(translucent.outputs["BSDF"], mix.inputs[2])
-        tree.links.new(mix.outputs["Shader"], output.inputs["Surface"])
+        translucent.inputs["Color"].default_value = [c * translucency for c in color[:3]] + [1.0]
+        add = tree.nodes.new("ShaderNodeAddShader")
+        tree.links.new(principled.outputs["BSDF"], add.inputs[0])
+        tree.links.new(translucent.outputs["BSDF"], add.inputs[1])
+        tree.links.new(add.outputs["Shader"], output.inputs["Surface"])
     material["wangscape_name"] = spec["name"]
     return material
 
@@ -304,11 +305,21 @@ def build_camera(context, spec, scene_extent):
     return obj
 
 
-def build_sun_and_sky(context, spec):
-    """A sun lamp shining along -direction and a Nishita sky whose sun sits at the same place."""
+def build_sun_and_sky(context, spec, light=None):
+    """A sun lamp shining along -direction, and the sky. With the manifest's light (the one
+    shading model's, docs/blender-format.md): the lamp's color and strength, and a world that
+    shows the sky's gradient to the camera and lights the scene with the open sky's uniform
+    color. Without it (older manifests): a Nishita sky whose sun sits at the same place."""
     data = bpy.data.lights.new("Wangscape sun", "SUN")
     data.energy = 3.0 * float(spec.get("strength", 1.0))  # W/m^2: bright daylight under Filmic
     data.angle = math.radians(0.53)  # the sun's apparent diameter
+    if light:
+        # A sun of strength E lights a white diffuse surface facing it to E / pi (measured in
+        # Cycles 3.4), lit() to sun_color: strength pi times the brightest channel, color the rest.
+        sun_color = [float(c) for c in light["sun_color"]]
+        brightest = max(sun_color + [1e-6])
+        data.energy = math.pi * brightest
+        data.color = [c / brightest for c in sun_color]
     obj = bpy.data.objects.new("Wangscape sun", data)
     obj.rotation_mode = "QUATERNION"
     obj.rotation_quaternion = Vector(spec["direction"]).to_track_quat("Z", "Y")  # lamps shine down -z
@@ -318,6 +329,10 @@ def build_sun_and_sky(context, spec):
     world.use_nodes = True
     tree = world.node_tree
     background = next(node for node in tree.nodes if node.type == "BACKGROUND")
+    if light:
+        build_gradient_sky(tree, background, light)
+        context.scene.world = world
+        return obj
     sky = tree.nodes.new("ShaderNodeTexSky")
     sky.sky_type = "NISHITA"
     sky.sun_disc = False  # the lamp is the sun; a disc too would light the scene twice
@@ -327,6 +342,44 @@ def build_sun_and_sky(context, spec):
     tree.links.new(sky.outputs["Color"], background.inputs["Color"])
     context.scene.world = world
     return obj
+
+
+def build_gradient_sky(tree, background, light):
+    """sky_radiance() of scene/shading_light.h for camera rays (horizon to zenith by the square
+    root of the ray's up component); the uniform sky_color for the light on surfaces, whose
+    irradiance under the open sky is then sky_color, as in lit()."""
+    direction = tree.nodes.new("ShaderNodeTexCoord")  # Generated, in a world: the ray's direction
+    split = tree.nodes.new("ShaderNodeSeparateXYZ")
+    tree.links.new(direction.outputs["Generated"], split.inputs["Vector"])
+    up = tree.nodes.new("ShaderNodeMath")
+    up.operation = "MAXIMUM"
+    up.inputs[1].default_value = 0.0
+    tree.links.new(split.outputs["Z"], up.inputs[0])
+    root = tree.nodes.new("ShaderNodeMath")
+    root.operation = "SQRT"
+    tree.links.new(up.outputs["Value"], root.inputs[0])
+    gradient = tree.nodes.new("ShaderNodeMixRGB")
+    gradient.blend_type = "MIX"
+    gradient.inputs["Color1"].default_value = [float(c) for c in light["sky_horizon"]] + [1.0]
+    gradient.inputs["Color2"].default_value = [float(c) for c in light["sky_zenith"]] + [1.0]
+    tree.links.new(root.outputs["Value"], gradient.inputs["Fac"])
+    path = tree.nodes.new("ShaderNodeLightPath")
+    seen = tree.nodes.new("ShaderNodeMixRGB")
+    seen.blend_type = "MIX"
+    seen.inputs["Color1"].default_value = [float(c) for c in light["sky_color"]] + [1.0]
+    tree.links.new(path.outputs["Is Camera Ray"], seen.inputs["Fac"])
+    tree.links.new(gradient.outputs["Color"], seen.inputs["Color2"])
+    tree.links.new(seen.outputs["Color"], background.inputs["Color"])
+    background.inputs["Strength"].default_value = 1.0
+
+
+def set_linear_exposure(scene, exposure):
+    """The one shading model's output: linear RGB times the exposure, sRGB-encoded, no tone curve."""
+    settings = scene.view_settings
+    settings.view_transform = "Standard"
+    settings.look = "None"
+    settings.exposure = math.log2(max(float(exposure), 1e-6))
+    settings.gamma = 1.0
 
 
 def set_view_transform(scene):
@@ -344,14 +397,20 @@ def set_view_transform(scene):
             continue
 
 
-def apply_render_settings(scene, spec):
+def apply_render_settings(scene, spec, light=None):
     scene.render.engine = "CYCLES"
     scene.cycles.device = "CPU"
     scene.cycles.samples = int(spec.get("samples", 16))
     scene.cycles.use_denoising = False  # Debian's Blender is built without OpenImageDenoise
     if hasattr(scene.cycles, "use_preview_denoising"):
         scene.cycles.use_preview_denoising = False
-    set_view_transform(scene)
+    if light:
+        # Direct light only (the sun and the sky, shadowed), as the one shading model: no light
+        # bounced off the ground or the plants.
+        scene.cycles.max_bounces = 0
+        set_linear_exposure(scene, light.get("exposure", 1.0))
+    else:
+        set_view_transform(scene)
     scene.render.resolution_x = int(spec["width"])
     scene.render.resolution_y = int(spec["height"])
     scene.render.resolution_percentage = 100
@@ -405,9 +464,9 @@ def import_manifest(context, path, set_render_settings=True, set_world=True):
     build_field(context, folder, manifest, collection)
     build_camera(context, manifest["camera"], _extent(manifest))
     if set_world:
-        build_sun_and_sky(context, manifest["sun"])
+        build_sun_and_sky(context, manifest["sun"], manifest.get("light"))
     if set_render_settings:
-        apply_render_settings(scene, manifest["render"])
+        apply_render_settings(scene, manifest["render"], manifest.get("light"))
     apply_georeference(scene, manifest)
     scene["wangscape_manifest"] = os.path.abspath(path)
     return {
