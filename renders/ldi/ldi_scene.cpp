@@ -105,20 +105,33 @@ void build_scene_ldi_packs(const Scene& scene, const std::filesystem::path& fold
   const SceneLdiInputs inputs = scene_ldi_inputs(scene, tiles_options);
   const LdiPackInfo pack = ldi_pack_info(inputs.filled, inputs.models, tiles_options);
   const LdiPackInfo steep = steep_pack_info(pack);
+  // With fewer levels than kSteepLevels the steep sets take the finest level's resolution: six
+  // sets of it (156 MB for a 16 x 24 m field of two levels) would outweigh the tiles' pack, and
+  // the view samples them if it ever looks down. Written only when at most twice the tiles' (the
+  // default scene's seven levels: a fifth of them, 19 MB).
+  const auto pixels = [](const LdiPackInfo& info) {
+    double sum = 0;
+    for (const std::uint32_t r : info.resolutions) sum += double(r) * double(r);
+    return sum;
+  };
+  const bool with_steep = pixels(steep) <= 2 * pixels(pack);
   // One progress over both packs: the steep sets' LDIs and rays follow the tiles'.
   const std::uint64_t tiles_total = std::uint64_t(pack.tiles) * pack.levels * pack.directions;
-  const std::uint64_t total = tiles_total + std::uint64_t(steep.tiles) * steep.levels * steep.directions;
+  const std::uint64_t total =
+      tiles_total + (with_steep ? std::uint64_t(steep.tiles) * steep.levels * steep.directions : 0);
   const auto report = [&](std::uint64_t before, std::uint64_t rays_before) {
     return [&observer, &total, before, rays_before](std::uint64_t done, std::uint64_t, std::uint64_t rays) {
       if (observer.progress) observer.progress(before + done, total, rays_before + rays);
     };
   };
   if (observer.stage)
-    observer.stage("sampling " + std::to_string(pack.tiles) + " tiles x " + std::to_string(pack.levels) + " levels x " +
-                   std::to_string(pack.directions) + " directions into " + pack_file.string() + ", and " +
-                   std::to_string(steep.levels) + " steep sets into " + steep_file.string());
+    observer.stage(
+        "sampling " + std::to_string(pack.tiles) + " tiles x " + std::to_string(pack.levels) + " levels x " +
+        std::to_string(pack.directions) + " directions into " + pack_file.string() +
+        (with_steep ? ", and " + std::to_string(steep.levels) + " steep sets into " + steep_file.string() : ""));
   tiles_options.progress = report(0, 0);
   const LdiBuildReport tiles = build_ldi_pack(inputs.filled, inputs.models, tiles_options, pack_file);
+  if (!with_steep) return;
   LdiBuildOptions steep_build = steep_options(steep, tiles_options.shading);  // (the sun already applied)
   steep_build.tile_size = tiles_options.tile_size;
   steep_build.progress = report(tiles_total, tiles.primary_rays + tiles.secondary_rays);

@@ -70,7 +70,8 @@ constexpr std::uint32_t steep_pack_level(std::uint32_t set) { return std::uint32
 std::vector<LdiImage> build_scene_steep_ldis(const Scene& scene, const LdiPackInfo& pack,
                                              const ShadingSettings& shading, std::size_t tile);
 // A scene folder's two packs into `folder` (atomically each): the tiles' (kFolderPackFile, as
-// build_scene_ldi_pack) and the steep sets' (kFolderSteepPackFile), with one progress over both.
+// build_scene_ldi_pack) and the steep sets' (kFolderSteepPackFile) where they are at most twice
+// the tiles' in pixels (not with kSteepLevels levels or fewer), with one progress over both.
 void build_scene_ldi_packs(const Scene& scene, const std::filesystem::path& folder, const LdiBuildOptions& options,
                            const LdiSceneObserver& observer = {});
 

@@ -437,6 +437,21 @@ TEST(ldi_view_above, TheSteepPackDrawsTheBytesTheViewWouldSample) {
     frames[k] = renderer.image().pixels;
   }
   EXPECT_EQ(frames[0], frames[1]);
+  // With three levels the steep sets take the finest level's resolution, six times: more than
+  // twice the tiles' pack, so the build leaves them to the view.
+  {
+    LdiBuildOptions three;
+    three.view.levels = 3;
+    three.view.directions = 4;
+    three.view.image_width = 128;
+    three.shading.ao_rays = 0;
+    const fs::path folder = scratch("three_levels");
+    fs::create_directories(folder);
+    build_scene_ldi_packs(make_scene(parse_scene_config(scene, "three.toml", fs::temp_directory_path())), folder,
+                          three);
+    EXPECT_TRUE(fs::exists(folder / kFolderPackFile));
+    EXPECT_FALSE(fs::exists(folder / kFolderSteepPackFile));
+  }
   // Another field's steep pack (5 m tiles) beside this pack: refused, naming the steep pack.
   std::string other_scene = tiny_scene("[-12.0, -12.0, 12.0, 12.0]");
   other_scene.replace(other_scene.find("tile_size = 4.0"), 15, "tile_size = 5.0");

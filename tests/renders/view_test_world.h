@@ -35,7 +35,7 @@ inline std::shared_ptr<const ViewWorld> world_of(const std::string& text, const 
   Scene scene = make_scene(config);
   LdiBuildOptions options;
   if (!full_pack) {
-    options.view.levels = 3;
+    options.view.levels = steep_pack ? 4 : 3;  // (with three, the steep sets outweigh the pack: not written)
     options.view.directions = 4;
     options.view.image_width = 128;
   }
