@@ -13,7 +13,7 @@
 // steps toward and of the holes reprojection left (before tracing), the median of the warm frames' phases
 // (reprojecting, choosing, tracing, resolving; ms), the cold frames, and the process CPU
 // seconds per frame (all threads: getrusage). Quality along the same paths: `wangscape view DIR
-// --path P --fps 60 --compare-every K --json` (docs/viewer.md, "The sample cache").
+// --path P --fps 60 --compare-every K --json` (docs/viewer-design.md, "The sample cache").
 // BM_CachedPath/PATH/W/H/0 draws every frame whole instead (LdiRenderer::render, the default
 // engine): the frames before the cache.
 // BM_WarmStep/W/H: the cost of a warm frame's passes, steadier than a path's medians on a busy

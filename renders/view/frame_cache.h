@@ -1,4 +1,4 @@
-// The view in motion: each frame drawn from the previous frame's samples (docs/viewer.md, "The
+// The view in motion: each frame drawn from the previous frame's samples (docs/viewer-design.md, "The
 // sample cache"), after the render cache of Walter, Drettakis and Parker (1999) and stable ray
 // tracing (Dal Corso et al. 2017). Every pixel keeps one sample: its camera depth and sub-pixel
 // position, its colour (linear), where it came from and its age. A frame reprojects the previous
@@ -40,7 +40,7 @@ enum class SampleSource : std::uint8_t {
 };
 
 // How many samples a frame may trace anew: sized to the frame time 1000 / fps ms from nominal
-// costs measured on this machine (bench/view_cache_bench; docs/viewer.md), so that the count is
+// costs measured on this machine (bench/view_cache_bench; docs/viewer-design.md), so that the count is
 // the same on every run and thread count. With `adaptive` both costs (a pixel's passes, a fresh
 // sample) are measured per moving frame instead (the window's own clock): the rate holds on any
 // machine, the frames vary with it.

@@ -32,7 +32,7 @@ namespace wangscape {
 
 inline constexpr double kMinViewDetail = 0.1, kMaxViewDetail = 10;
 // The near field (LdiRenderer::set_near_field): at most this far (meters), and the distance
-// `wangscape view` uses unless told (docs/viewer.md says how it was chosen).
+// `wangscape view` uses unless told (docs/viewer-design.md says how it was chosen).
 inline constexpr double kMaxNearField = 100;
 inline constexpr double kDefaultNearField = 8;
 // The terrain's level of detail (LdiRenderer::set_terrain_error): the most its chunks' levels may
@@ -72,7 +72,7 @@ enum class ViewEngine {
               // every flower of the scene): the anchor the LDI frame is measured against
   automatic,  // per frame: the whole frame ray cast when the near field's flowers and ground stop at
               // least kRayCastShare of a coarse grid of its rays (the eye inside the field, where
-              // rays end soon and LDIs are slower than rays: docs/viewer.md), else as ldi
+              // rays end soon and LDIs are slower than rays: docs/viewer-design.md), else as ldi
 };
 inline constexpr int kMaxViewSamples = 1024;
 
@@ -169,7 +169,7 @@ class LdiRenderer {
   int samples_ = 1;
   std::array<float, 2> subpixel_{0, 0};  // the sample's offset, pixels
   const ViewFrameStats& render_sample(const Camera& camera);
-  // The frame's named steps (docs/viewer.md, "What a frame does"), in the order render() runs them.
+  // The frame's named steps (docs/viewer-design.md, "What a frame does"), in the order render() runs them.
   void begin_frame(const Camera& camera);
   void choose_tiles();
   void warp_tiles();

@@ -1,4 +1,4 @@
-// One LDI warped into a thread's z-buffer (step 6 of docs/viewer.md): each depth pixel moved to
+// One LDI warped into a thread's z-buffer (step 6 of docs/viewer-design.md): each depth pixel moved to
 // its place on the tile's two terrain triangles, projected and splatted. Internal to renders/view.
 #pragma once
 

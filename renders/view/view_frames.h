@@ -22,7 +22,7 @@
 namespace wangscape {
 
 // The truth of a comparison: the Embree reference at 64 samples per pixel (40 dB from 256, so
-// converged for a comparison of one-sample frames; docs/viewer.md).
+// converged for a comparison of one-sample frames; docs/viewer-design.md).
 inline constexpr int kDefaultTruthSamples = 64;
 inline constexpr double kDefaultPathFps = 24;
 
