@@ -1,203 +1,273 @@
 #include "templates/mesh_io.h"
 
+#include <assimp/GltfMaterial.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
 #include <algorithm>
+#include <assimp/Importer.hpp>
 #include <bit>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <istream>
+#include <limits>
+#include <map>
+#include <memory>
 #include <ostream>
 #include <string_view>
-#include <unordered_map>
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
 
 #include "core/number_text.h"
-#include "templates/sunflower.h"
 
 namespace wangscape {
 namespace {
 
-// ---- shared helpers ----
+// Assimp's steps: triangles only (points and lines are dropped), one vertex per distinct corner,
+// every node's transform applied (so a scene graph becomes one mesh per material), normals where
+// the file has none, and Assimp's own check of what its importer made.
+constexpr unsigned kImportSteps = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
+                                  aiProcess_PreTransformVertices | aiProcess_GenSmoothNormals |
+                                  aiProcess_ValidateDataStructure;
 
-std::vector<std::string_view> split_whitespace(std::string_view line) {
-  std::vector<std::string_view> tokens;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    if (i > start) tokens.push_back(line.substr(start, i - start));
+std::string lowercase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return text;
+}
+
+// Largest image a material may map: 16384 x 16384 texels (1 GiB of RGBA).
+constexpr double kMaxTexels = 16384.0 * 16384.0;
+
+// A file name for the image's copy in a scene folder: letters, digits, '_' and '-' only.
+std::string image_name(const std::string& text) {
+  std::string name;
+  for (const char c : text) name += std::isalnum(static_cast<unsigned char>(c)) || c == '-' ? c : '_';
+  return name.empty() ? std::string("image") : name;
+}
+
+// Decodes an image through OpenImageIO (from `proxy` when given, else the file) to RGBA8.
+std::shared_ptr<const TextureImage> decode_image(const std::string& file_name, OIIO::Filesystem::IOProxy* proxy,
+                                                 const std::string& name, const std::string& source,
+                                                 const std::string& place) {
+  auto input = OIIO::ImageInput::open(file_name, nullptr, proxy);
+  if (!input) throw Error(source, place, "cannot read its image " + file_name + ": " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = input->spec();
+  const int channels = spec.nchannels;
+  if (spec.width <= 0 || spec.height <= 0 || double(spec.width) * double(spec.height) > kMaxTexels || channels <= 0)
+    throw Error(source, place,
+                "its image " + file_name + " is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                    " texels: expected at least 1 x 1 and at most 16384 x 16384");
+  const std::size_t texels = std::size_t(spec.width) * std::size_t(spec.height);
+  std::vector<std::uint8_t> pixels(texels * std::size_t(channels));
+  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data()))
+    throw Error(source, place, "cannot read its image " + file_name + ": " + input->geterror());
+  auto image = std::make_shared<TextureImage>();
+  image->name = name;
+  image->width = spec.width;
+  image->height = spec.height;
+  image->rgba.resize(texels * 4);
+  // Grey is replicated; an image without alpha covers everything.
+  const bool has_alpha = channels == 2 || channels >= 4;
+  for (std::size_t i = 0; i < texels; ++i) {
+    const std::uint8_t* from = &pixels[i * std::size_t(channels)];
+    std::uint8_t* to = &image->rgba[i * 4];
+    const bool grey = channels < 3;
+    to[0] = from[0];
+    to[1] = grey ? from[0] : from[1];
+    to[2] = grey ? from[0] : from[2];
+    to[3] = has_alpha ? from[grey ? 1 : 3] : 255;
   }
-  return tokens;
+  return image;
 }
 
-template <class Number>
-bool parse_number(std::string_view token, Number& value) {
-  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
-  const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
-  return error == std::errc() && end == token.data() + token.size() && std::isfinite(value);
-}
-
-bool parse_integer(std::string_view token, long long& value) {
-  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
-  const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
-  return error == std::errc() && end == token.data() + token.size();
-}
-
-// A material by name; the sunflower names keep the sunflower colors so a user model can reuse them.
-Material material_named(const std::string& name) {
-  for (const Material& known : sunflower_materials()) {
-    if (known.name == name) return known;
+// The image `reference` names: one the model file holds ("*0" in a GLB, or an embedded name),
+// else a file relative to the model's folder (written with '\' by Windows exporters).
+std::shared_ptr<const TextureImage> material_image(const aiScene& scene, const std::string& reference,
+                                                   const std::filesystem::path& folder, const std::string& source,
+                                                   const std::string& material) {
+  const std::string place = "material '" + material + "'";
+  const std::string model = std::filesystem::path(source).stem().string();
+  if (const auto [held, index] = scene.GetEmbeddedTextureAndIndex(reference.c_str()); held != nullptr) {
+    if (held->mHeight != 0 || held->pcData == nullptr)
+      throw Error(source, place, "its image is held as raw texels: expected an encoded image (PNG, JPEG)");
+    std::string hint = lowercase(held->achFormatHint);
+    if (hint.empty() || !std::all_of(hint.begin(), hint.end(), [](unsigned char c) { return std::isalnum(c); }))
+      hint = "png";
+    OIIO::Filesystem::IOMemReader bytes(held->pcData, held->mWidth);
+    return decode_image("held." + hint, &bytes, image_name(model + "_" + std::to_string(index)), source, place);
   }
-  return Material{name, {0.5f, 0.5f, 0.5f}, 0.5f, 0.0f};
+  if (reference.starts_with('*') || folder.empty())
+    throw Error(source, place, "its image '" + reference + "' is not in the file");
+  std::string relative = reference;
+  std::replace(relative.begin(), relative.end(), '\\', '/');
+  const std::filesystem::path file = (folder / relative).lexically_normal();
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(file, error))
+    throw Error(source, place, "its image '" + reference + "' is not at " + file.string());
+  return decode_image(file.string(), nullptr, image_name(file.stem().string()), source, place);
 }
 
-// Collects the materials of a file in order of first use.
-class MaterialTable {
- public:
-  std::uint16_t index_of(const std::string& name) {
-    for (std::size_t i = 0; i < materials_.size(); ++i) {
-      if (materials_[i].name == name) return std::uint16_t(i);
+// Base colour (glTF's baseColorFactor, else the diffuse colour: an MTL's Kd), its image, the
+// roughness where the file gives one, and alpha: glTF's MASK (BLEND is cut at its cutoff too,
+// as Wangscape draws no partial coverage) or an MTL's map_d.
+// How far into a file a PLY header's 'end_header' is looked for.
+constexpr std::size_t kPlyHeaderLimit = 1 << 20;
+
+// One image per reference: materials that share an image share its texels.
+using ImageCache = std::map<std::string, std::shared_ptr<const TextureImage>>;
+
+Material read_material(const aiScene& scene, const aiMaterial& source_material, const std::filesystem::path& folder,
+                       const std::string& source, ImageCache& images) {
+  Material material;
+  aiString name;
+  if (source_material.Get(AI_MATKEY_NAME, name) == AI_SUCCESS) material.name = name.C_Str();
+  if (material.name.empty()) material.name = "default";
+  aiColor4D color(0.5f, 0.5f, 0.5f, 1.0f);
+  if (source_material.Get(AI_MATKEY_BASE_COLOR, color) != AI_SUCCESS)
+    source_material.Get(AI_MATKEY_COLOR_DIFFUSE, color);
+  const auto unit = [](float value) { return std::isfinite(value) ? std::clamp(value, 0.0f, 1.0f) : 0.5f; };
+  material.base_color = {unit(color.r), unit(color.g), unit(color.b)};
+  float roughness = material.roughness;
+  if (source_material.Get(AI_MATKEY_ROUGHNESS_FACTOR, roughness) == AI_SUCCESS) material.roughness = unit(roughness);
+  aiString reference;
+  if (source_material.GetTexture(aiTextureType_BASE_COLOR, 0, &reference) == AI_SUCCESS ||
+      source_material.GetTexture(aiTextureType_DIFFUSE, 0, &reference) == AI_SUCCESS) {
+    auto& image = images[reference.C_Str()];
+    if (!image) image = material_image(scene, reference.C_Str(), folder, source, material.name);
+    material.base_color_map = image;
+  }
+  aiString alpha_mode;
+  float cutoff = 0.5f;
+  if (source_material.Get(AI_MATKEY_GLTF_ALPHAMODE, alpha_mode) == AI_SUCCESS) {
+    if (std::string(alpha_mode.C_Str()) != "OPAQUE") {
+      source_material.Get(AI_MATKEY_GLTF_ALPHACUTOFF, cutoff);
+      material.alpha_cutoff = std::isfinite(cutoff) ? std::clamp(cutoff, 1.0f / 256.0f, 1.0f) : 0.5f;
     }
-    materials_.push_back(material_named(name));
-    return std::uint16_t(materials_.size() - 1);
+  } else if (source_material.GetTextureCount(aiTextureType_OPACITY) > 0) {
+    material.alpha_cutoff = cutoff;
   }
-  std::vector<Material> take() { return std::move(materials_); }
+  if (!material.base_color_map) material.alpha_cutoff = 0;  // alpha comes from the image
+  return material;
+}
 
- private:
-  std::vector<Material> materials_;
-};
-
-// Normals from the file if it gave one for every vertex, else computed; then zero-length or
-// missing ones are recomputed too.
-void finish_normals(Mesh& mesh, bool file_has_normals) {
-  if (file_has_normals) {
-    bool all_valid = true;
-    for (auto& n : mesh.normals) {
-      const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      if (!(length > 1e-12f) || !std::isfinite(length)) {
-        all_valid = false;
-        break;
-      }
+// Normals from the file (or Assimp's) if every one is usable, else computed.
+void finish_normals(Mesh& mesh) {
+  bool all_valid = mesh.normals.size() == mesh.positions.size();
+  for (auto& n : mesh.normals) {
+    if (!all_valid) break;
+    const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    all_valid = length > 1e-12f && std::isfinite(length);
+    if (all_valid)
       for (float& c : n) c /= length;
-    }
-    if (all_valid) return;
   }
-  compute_vertex_normals(mesh);
+  if (!all_valid) compute_vertex_normals(mesh);
+}
+
+// One Mesh from Assimp's scene: its triangle meshes concatenated, the materials they use in
+// order of first use.
+Mesh mesh_from_scene(const aiScene& scene, const std::filesystem::path& folder, const std::string& source) {
+  Mesh mesh;
+  std::vector<int> slot_of(scene.mNumMaterials, -1);
+  bool any_uvs = false;
+  ImageCache images;
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh& part = *scene.mMeshes[m];
+    if (!(part.mPrimitiveTypes & aiPrimitiveType_TRIANGLE) || part.mNumVertices == 0) continue;
+    if (part.mMaterialIndex >= scene.mNumMaterials) throw Error(source, "", "a mesh names a material it lacks");
+    int& slot = slot_of[part.mMaterialIndex];
+    if (slot < 0) {
+      if (mesh.materials.size() > std::numeric_limits<std::uint16_t>::max())
+        throw Error(source, "", "more than 65536 materials");
+      slot = int(mesh.materials.size());
+      mesh.materials.push_back(read_material(scene, *scene.mMaterials[part.mMaterialIndex], folder, source, images));
+    }
+    const std::size_t first = mesh.positions.size();
+    if (first + part.mNumVertices > std::numeric_limits<std::uint32_t>::max())
+      throw Error(source, "", "more than 2^32 vertices");
+    for (unsigned v = 0; v < part.mNumVertices; ++v) {
+      const aiVector3D& p = part.mVertices[v];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+        throw Error(source, "mesh " + std::to_string(m) + ", vertex " + std::to_string(v),
+                    "a position is not a finite number");
+      mesh.positions.push_back({p.x, p.y, p.z});
+      const aiVector3D n = part.mNormals ? part.mNormals[v] : aiVector3D(0, 0, 0);
+      mesh.normals.push_back({n.x, n.y, n.z});
+      const aiVector3D uv = part.mTextureCoords[0] ? part.mTextureCoords[0][v] : aiVector3D(0, 0, 0);
+      mesh.uvs.push_back({std::isfinite(uv.x) ? uv.x : 0.0f, std::isfinite(uv.y) ? uv.y : 0.0f});
+      any_uvs = any_uvs || part.mTextureCoords[0] != nullptr;
+    }
+    for (unsigned f = 0; f < part.mNumFaces; ++f) {
+      const aiFace& face = part.mFaces[f];
+      if (face.mNumIndices != 3) continue;  // a point or line Assimp kept beside triangles
+      std::array<std::uint32_t, 3> triangle{};
+      for (int corner = 0; corner < 3; ++corner) {
+        if (face.mIndices[corner] >= part.mNumVertices)
+          throw Error(source, "mesh " + std::to_string(m) + ", face " + std::to_string(f), "a vertex index is outside");
+        triangle[corner] = std::uint32_t(first + face.mIndices[corner]);
+      }
+      mesh.triangles.push_back(triangle);
+      mesh.triangle_material.push_back(std::uint16_t(slot));
+    }
+  }
+  if (mesh.triangles.empty()) throw Error(source, "", "no triangles (expected faces, not only points or lines)");
+  if (!any_uvs) mesh.uvs.clear();
+  finish_normals(mesh);
+  return mesh;
+}
+
+// Assimp 5.2's PLY reader never returns on a header without its 'end_header' line (found while
+// testing this reader): such a file is refused before Assimp sees it. `head` is the file's start.
+void refuse_unfinished_ply_header(std::string_view head, const std::string& source) {
+  if (head.size() < 3 || lowercase(std::string(head.substr(0, 3))) != "ply") return;
+  if (head.find("end_header") == std::string_view::npos)
+    throw Error(source, "",
+                "a PLY header without 'end_header' in its first " + std::to_string(kPlyHeaderLimit) + " bytes");
+}
+
+void configure(Assimp::Importer& importer) {
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
 }
 
 void require_writable(const std::ostream& out, const char* format) {
   if (!out) throw Error(std::string("writing ") + format + " failed (stream error)");
 }
 
-// ---- OBJ ----
-
-struct ObjCorner {
-  std::uint32_t position;
-  std::int64_t normal;  // -1: none
-};
-
 }  // namespace
 
-Mesh read_obj(std::istream& in, const std::string& source_name) {
-  std::vector<std::array<float, 3>> positions, normals;
-  std::vector<ObjCorner> corners;  // three per triangle
-  std::vector<std::uint16_t> triangle_material;
-  MaterialTable materials;
-  std::string current_material = "default";
-
-  std::string line;
-  std::size_t line_number = 0;
-  const auto fail = [&](const std::string& message) {
-    throw Error(source_name + ":" + std::to_string(line_number) + ": " + message);
-  };
-  const auto read_vector = [&](const std::vector<std::string_view>& tokens, const char* what) {
-    if (tokens.size() < 4) fail(std::string("expected 3 numbers after '") + what + "'");
-    std::array<float, 3> v{};
-    for (int axis = 0; axis < 3; ++axis) {
-      // Parsed straight to float: written floats come back bit for bit.
-      if (!parse_number(tokens[axis + 1], v[axis])) {
-        fail("'" + std::string(tokens[axis + 1]) + "' is not a finite number in '" + what + "'");
-      }
-    }
-    return v;
-  };
-  // OBJ indices are 1-based; negative ones count back from the latest element.
-  const auto resolve = [&](std::string_view token, std::size_t count, const char* what) -> std::uint32_t {
-    long long index;
-    if (!parse_integer(token, index) || index == 0) {
-      fail(std::string("'") + std::string(token) + "' is not a valid " + what + " index");
-    }
-    const long long resolved = index > 0 ? index - 1 : (long long)count + index;
-    if (resolved < 0 || resolved >= (long long)count) {
-      fail(std::string(what) + " index " + std::to_string(index) + " out of range (" + std::to_string(count) + " " +
-           what + "s defined so far)");
-    }
-    return std::uint32_t(resolved);
-  };
-
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    const auto tokens = split_whitespace(line);
-    if (tokens.empty()) continue;
-    const std::string_view keyword = tokens[0];
-    if (keyword == "v") {
-      positions.push_back(read_vector(tokens, "v"));
-    } else if (keyword == "vn") {
-      normals.push_back(read_vector(tokens, "vn"));
-    } else if (keyword == "usemtl") {
-      if (tokens.size() < 2) fail("expected a material name after 'usemtl'");
-      current_material = std::string(tokens[1]);
-    } else if (keyword == "f") {
-      if (tokens.size() < 4) fail("a face needs at least 3 vertices, got " + std::to_string(tokens.size() - 1));
-      std::vector<ObjCorner> polygon;
-      for (std::size_t i = 1; i < tokens.size(); ++i) {
-        const std::string_view token = tokens[i];
-        const std::size_t slash = token.find('/');
-        ObjCorner corner{resolve(token.substr(0, slash), positions.size(), "vertex"), -1};
-        if (slash != std::string_view::npos) {
-          const std::size_t second = token.find('/', slash + 1);
-          if (second != std::string_view::npos && second + 1 < token.size()) {
-            corner.normal = resolve(token.substr(second + 1), normals.size(), "normal");
-          }
-        }
-        polygon.push_back(corner);
-      }
-      const std::uint16_t material = materials.index_of(current_material);
-      for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
-        corners.insert(corners.end(), {polygon[0], polygon[i], polygon[i + 1]});
-        triangle_material.push_back(material);
-      }
-    }
-    // Everything else (vt, o, g, s, mtllib, l, ...) does not change the geometry we keep.
+Mesh load_mesh(const std::filesystem::path& path) {
+  const std::string source = path.string();
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) throw Error(path, "", "no such model file");
+  {
+    std::ifstream in(path, std::ios::binary);
+    std::string head(kPlyHeaderLimit, '\0');
+    in.read(head.data(), std::streamsize(head.size()));
+    head.resize(std::size_t(in.gcount()));
+    refuse_unfinished_ply_header(head, source);
   }
-  if (in.bad()) throw Error(source_name + ": read error after line " + std::to_string(line_number));
-  if (corners.empty()) throw Error(source_name + ": no faces (expected 'f' lines)");
+  Assimp::Importer importer;
+  configure(importer);
+  const aiScene* scene = importer.ReadFile(source, kImportSteps);
+  if (scene == nullptr) throw Error(path, "", std::string("not a model Assimp reads: ") + importer.GetErrorString());
+  Mesh mesh = mesh_from_scene(*scene, std::filesystem::absolute(path, error).parent_path(), source);
+  mesh.name = path.stem().string();
+  return mesh;
+}
 
-  // One output vertex per distinct (position, normal) pair, or per position without normals.
-  const bool file_has_normals =
-      std::all_of(corners.begin(), corners.end(), [](const ObjCorner& c) { return c.normal >= 0; });
-  Mesh mesh;
+Mesh read_model(std::span<const std::uint8_t> bytes, const std::string& extension, const std::string& source_name) {
+  refuse_unfinished_ply_header(
+      std::string_view(reinterpret_cast<const char*>(bytes.data()), std::min(bytes.size(), kPlyHeaderLimit)),
+      source_name);
+  Assimp::Importer importer;
+  configure(importer);
+  const std::string hint = lowercase(extension.starts_with('.') ? extension.substr(1) : extension);
+  const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), kImportSteps, hint.c_str());
+  if (scene == nullptr)
+    throw Error(source_name, "", std::string("not a model Assimp reads: ") + importer.GetErrorString());
+  Mesh mesh = mesh_from_scene(*scene, {}, source_name);
   mesh.name = std::filesystem::path(source_name).stem().string();
-  std::unordered_map<std::uint64_t, std::uint32_t> vertex_of;
-  const auto output_vertex = [&](const ObjCorner& c) {
-    const std::uint64_t key =
-        file_has_normals ? (std::uint64_t(c.position) << 32 | std::uint64_t(c.normal)) : std::uint64_t(c.position);
-    const auto [it, inserted] = vertex_of.try_emplace(key, std::uint32_t(mesh.positions.size()));
-    if (inserted) {
-      mesh.positions.push_back(positions[c.position]);
-      if (file_has_normals) mesh.normals.push_back(normals[std::size_t(c.normal)]);
-    }
-    return it->second;
-  };
-  for (std::size_t i = 0; i < corners.size(); i += 3) {
-    mesh.triangles.push_back({output_vertex(corners[i]), output_vertex(corners[i + 1]), output_vertex(corners[i + 2])});
-  }
-  mesh.triangle_material = std::move(triangle_material);
-  mesh.materials = materials.take();
-  finish_normals(mesh, file_has_normals);
   return mesh;
 }
 
@@ -234,350 +304,6 @@ void write_obj(std::ostream& out, const Mesh& mesh) {
   }
   out.write(text.data(), std::streamsize(text.size()));
   require_writable(out, "OBJ");
-}
-
-// ---- PLY ----
-
-namespace {
-
-enum class PlyScalar { int8, uint8, int16, uint16, int32, uint32, float32, float64 };
-
-bool parse_scalar(std::string_view name, PlyScalar& type) {
-  static constexpr std::pair<std::string_view, PlyScalar> kNames[] = {
-      {"char", PlyScalar::int8},      {"int8", PlyScalar::int8},       {"uchar", PlyScalar::uint8},
-      {"uint8", PlyScalar::uint8},    {"short", PlyScalar::int16},     {"int16", PlyScalar::int16},
-      {"ushort", PlyScalar::uint16},  {"uint16", PlyScalar::uint16},   {"int", PlyScalar::int32},
-      {"int32", PlyScalar::int32},    {"uint", PlyScalar::uint32},     {"uint32", PlyScalar::uint32},
-      {"float", PlyScalar::float32},  {"float32", PlyScalar::float32}, {"double", PlyScalar::float64},
-      {"float64", PlyScalar::float64}};
-  for (const auto& [text, value] : kNames) {
-    if (text == name) {
-      type = value;
-      return true;
-    }
-  }
-  return false;
-}
-
-std::size_t scalar_size(PlyScalar type) {
-  switch (type) {
-    case PlyScalar::int8:
-    case PlyScalar::uint8:
-      return 1;
-    case PlyScalar::int16:
-    case PlyScalar::uint16:
-      return 2;
-    case PlyScalar::int32:
-    case PlyScalar::uint32:
-    case PlyScalar::float32:
-      return 4;
-    case PlyScalar::float64:
-      return 8;
-  }
-  return 0;
-}
-
-struct PlyProperty {
-  std::string name;
-  PlyScalar type = PlyScalar::float32;  // for lists: the item type
-  bool is_list = false;
-  PlyScalar count_type = PlyScalar::uint8;
-};
-
-struct PlyElement {
-  std::string name;
-  std::size_t count = 0;
-  std::vector<PlyProperty> properties;
-};
-
-// Values of ASCII PLY: one element instance per line.
-class PlyAsciiReader {
- public:
-  PlyAsciiReader(std::istream& in, const std::string& source, std::size_t header_lines)
-      : in_(in), source_(source), line_number_(header_lines) {}
-
-  void begin(const std::string& element, std::size_t index) {
-    element_ = &element;
-    index_ = index;
-    do {
-      ++line_number_;
-      if (!std::getline(in_, line_)) fail("unexpected end of file");
-      tokens_ = split_whitespace(line_);
-    } while (tokens_.empty());
-    next_token_ = 0;
-  }
-  double next(PlyScalar type) {
-    if (next_token_ >= tokens_.size()) fail("too few values on the line");
-    // float properties parse straight to float: written floats come back bit for bit.
-    float single = 0;
-    double value = 0;
-    const bool ok = type == PlyScalar::float32 ? parse_number(tokens_[next_token_], single)
-                                               : parse_number(tokens_[next_token_], value);
-    if (!ok) fail("'" + std::string(tokens_[next_token_]) + "' is not a finite number");
-    ++next_token_;
-    return type == PlyScalar::float32 ? double(single) : value;
-  }
-  [[noreturn]] void fail(const std::string& message) const {
-    throw Error(source_ + ":" + std::to_string(line_number_) + ": " + *element_ + " " + std::to_string(index_) + ": " +
-                message);
-  }
-
- private:
-  std::istream& in_;
-  const std::string& source_;
-  std::size_t line_number_;
-  std::string line_;
-  std::vector<std::string_view> tokens_;
-  std::size_t next_token_ = 0;
-  const std::string* element_ = nullptr;
-  std::size_t index_ = 0;
-};
-
-// Values of binary_little_endian PLY.
-class PlyBinaryReader {
- public:
-  PlyBinaryReader(std::istream& in, const std::string& source) : in_(in), source_(source) {}
-
-  void begin(const std::string& element, std::size_t index) {
-    element_ = &element;
-    index_ = index;
-  }
-  double next(PlyScalar type) {
-    unsigned char bytes[8];
-    const std::size_t size = scalar_size(type);
-    if (!in_.read(reinterpret_cast<char*>(bytes), std::streamsize(size))) fail("unexpected end of file");
-    if constexpr (std::endian::native == std::endian::big) std::reverse(bytes, bytes + size);
-    switch (type) {
-      case PlyScalar::int8:
-        return as<std::int8_t>(bytes);
-      case PlyScalar::uint8:
-        return as<std::uint8_t>(bytes);
-      case PlyScalar::int16:
-        return as<std::int16_t>(bytes);
-      case PlyScalar::uint16:
-        return as<std::uint16_t>(bytes);
-      case PlyScalar::int32:
-        return as<std::int32_t>(bytes);
-      case PlyScalar::uint32:
-        return as<std::uint32_t>(bytes);
-      case PlyScalar::float32:
-        return checked(as<float>(bytes));
-      case PlyScalar::float64:
-        return checked(as<double>(bytes));
-    }
-    return 0;
-  }
-  [[noreturn]] void fail(const std::string& message) const {
-    throw Error(source_ + ": " + *element_ + " " + std::to_string(index_) + ": " + message);
-  }
-
- private:
-  template <class T>
-  static double as(const unsigned char* bytes) {
-    T value;
-    std::memcpy(&value, bytes, sizeof value);
-    return double(value);
-  }
-  double checked(double value) const {
-    if (!std::isfinite(value)) fail("value is not a finite number");
-    return value;
-  }
-
-  std::istream& in_;
-  const std::string& source_;
-  const std::string* element_ = nullptr;
-  std::size_t index_ = 0;
-};
-
-struct PlyHeader {
-  bool binary = false;
-  std::vector<PlyElement> elements;
-  std::vector<Material> comment_materials;  // from "comment material <i> <name> <r> <g> <b>"
-  std::size_t line_count = 0;
-};
-
-PlyHeader read_ply_header(std::istream& in, const std::string& source) {
-  PlyHeader header;
-  std::string line;
-  const auto fail = [&](const std::string& message) {
-    throw Error(source + ":" + std::to_string(header.line_count) + ": " + message);
-  };
-  const auto next_line = [&] {
-    if (!std::getline(in, line)) fail("unexpected end of file in the PLY header (expected 'end_header')");
-    ++header.line_count;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-  };
-  next_line();
-  if (line != "ply") fail("not a PLY file (expected 'ply' on the first line)");
-  bool has_format = false;
-  while (true) {
-    next_line();
-    const auto tokens = split_whitespace(line);
-    if (tokens.empty()) continue;
-    if (tokens[0] == "end_header") break;
-    if (tokens[0] == "format") {
-      if (tokens.size() < 2) fail("expected a format name");
-      if (tokens[1] == "ascii") {
-        header.binary = false;
-      } else if (tokens[1] == "binary_little_endian") {
-        header.binary = true;
-      } else {
-        fail("unsupported PLY format '" + std::string(tokens[1]) + "' (expected ascii or binary_little_endian)");
-      }
-      has_format = true;
-    } else if (tokens[0] == "element") {
-      long long count = 0;
-      if (tokens.size() != 3 || !parse_integer(tokens[2], count) || count < 0) {
-        fail("expected 'element <name> <count>'");
-      }
-      header.elements.push_back({std::string(tokens[1]), std::size_t(count), {}});
-    } else if (tokens[0] == "property") {
-      if (header.elements.empty()) fail("property before any element");
-      PlyProperty property;
-      if (tokens.size() == 5 && tokens[1] == "list") {
-        property.is_list = true;
-        if (!parse_scalar(tokens[2], property.count_type) || !parse_scalar(tokens[3], property.type)) {
-          fail("unknown type in list property '" + std::string(tokens[4]) + "'");
-        }
-        if (property.count_type == PlyScalar::float32 || property.count_type == PlyScalar::float64) {
-          fail("list count type of '" + std::string(tokens[4]) + "' must be an integer type");
-        }
-        property.name = std::string(tokens[4]);
-      } else if (tokens.size() == 3) {
-        if (!parse_scalar(tokens[1], property.type)) fail("unknown property type '" + std::string(tokens[1]) + "'");
-        property.name = std::string(tokens[2]);
-      } else {
-        fail("expected 'property <type> <name>' or 'property list <count type> <item type> <name>'");
-      }
-      header.elements.back().properties.push_back(property);
-    } else if (tokens[0] == "comment" && tokens.size() == 7 && tokens[1] == "material") {
-      long long index;
-      Material material;
-      float rgb[3];
-      if (parse_integer(tokens[2], index) && parse_number(tokens[4], rgb[0]) && parse_number(tokens[5], rgb[1]) &&
-          parse_number(tokens[6], rgb[2]) && index == (long long)header.comment_materials.size()) {
-        material = material_named(std::string(tokens[3]));
-        material.base_color = {rgb[0], rgb[1], rgb[2]};
-        header.comment_materials.push_back(material);
-      }
-    } else if (tokens[0] != "comment" && tokens[0] != "obj_info") {
-      fail("unexpected header line '" + line + "'");
-    }
-  }
-  if (!has_format) fail("missing 'format' line in the PLY header");
-  return header;
-}
-
-int property_index(const PlyElement& element, std::string_view name) {
-  for (std::size_t i = 0; i < element.properties.size(); ++i) {
-    if (element.properties[i].name == name) return int(i);
-  }
-  return -1;
-}
-
-template <class Reader>
-Mesh read_ply_body(Reader& reader, const PlyHeader& header, const std::string& source) {
-  Mesh mesh;
-  mesh.name = std::filesystem::path(source).stem().string();
-  bool has_vertices = false, has_faces = false, has_normals = false, has_material = false;
-  std::size_t vertex_count = 0;
-  // Guards reserve() against absurd counts in a damaged header.
-  constexpr std::size_t kReserveLimit = std::size_t(1) << 24;
-
-  for (const PlyElement& element : header.elements) {
-    std::vector<double> values(element.properties.size());
-    std::vector<std::uint32_t> polygon;
-    const bool is_vertex = element.name == "vertex";
-    const bool is_face = element.name == "face";
-    int xyz[3] = {-1, -1, -1}, nxyz[3] = {-1, -1, -1}, list = -1, material = -1;
-    if (is_vertex) {
-      static constexpr const char* kAxes[3] = {"x", "y", "z"};
-      static constexpr const char* kNormalAxes[3] = {"nx", "ny", "nz"};
-      for (int axis = 0; axis < 3; ++axis) {
-        xyz[axis] = property_index(element, kAxes[axis]);
-        nxyz[axis] = property_index(element, kNormalAxes[axis]);
-        if (xyz[axis] < 0 || element.properties[xyz[axis]].is_list) {
-          throw Error(source + ": element vertex has no scalar property '" + kAxes[axis] + "'");
-        }
-      }
-      has_vertices = true;
-      has_normals = nxyz[0] >= 0 && nxyz[1] >= 0 && nxyz[2] >= 0;
-      vertex_count = element.count;
-      mesh.positions.reserve(std::min(element.count, kReserveLimit));
-      if (has_normals) mesh.normals.reserve(std::min(element.count, kReserveLimit));
-    } else if (is_face) {
-      list = property_index(element, "vertex_indices");
-      if (list < 0) list = property_index(element, "vertex_index");
-      if (list < 0 || !element.properties[list].is_list) {
-        throw Error(source + ": element face has no list property 'vertex_indices'");
-      }
-      material = property_index(element, "material");
-      has_material = material >= 0 && !element.properties[material].is_list;
-      has_faces = true;
-      mesh.triangles.reserve(std::min(element.count, kReserveLimit));
-    }
-
-    for (std::size_t index = 0; index < element.count; ++index) {
-      reader.begin(element.name, index);
-      for (std::size_t p = 0; p < element.properties.size(); ++p) {
-        const PlyProperty& property = element.properties[p];
-        if (!property.is_list) {
-          values[p] = reader.next(property.type);
-          continue;
-        }
-        const double count = reader.next(property.count_type);
-        if (count < 0 || count != std::floor(count)) reader.fail("invalid list length for '" + property.name + "'");
-        const bool keep = int(p) == list;
-        if (keep) polygon.clear();
-        for (std::size_t i = 0; i < std::size_t(count); ++i) {
-          const double item = reader.next(property.type);
-          if (!keep) continue;
-          if (item < 0 || item >= double(vertex_count) || item != std::floor(item)) {
-            reader.fail("vertex index " + std::to_string(item) + " out of range (" + std::to_string(vertex_count) +
-                        " vertices)");
-          }
-          polygon.push_back(std::uint32_t(item));
-        }
-      }
-      if (is_vertex) {
-        mesh.positions.push_back({float(values[xyz[0]]), float(values[xyz[1]]), float(values[xyz[2]])});
-        if (has_normals)
-          mesh.normals.push_back({float(values[nxyz[0]]), float(values[nxyz[1]]), float(values[nxyz[2]])});
-      } else if (is_face) {
-        if (polygon.size() < 3) reader.fail("a face needs at least 3 vertices, got " + std::to_string(polygon.size()));
-        std::uint16_t material_index = 0;
-        if (has_material) {
-          const double m = values[material];
-          if (m < 0 || m >= double(std::max<std::size_t>(1, header.comment_materials.size()))) {
-            reader.fail("material " + std::to_string(m) + " has no 'comment material' line");
-          }
-          material_index = std::uint16_t(m);
-        }
-        for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
-          mesh.triangles.push_back({polygon[0], polygon[i], polygon[i + 1]});
-          mesh.triangle_material.push_back(material_index);
-        }
-      }
-    }
-  }
-  if (!has_vertices) throw Error(source + ": no 'element vertex' in the PLY header");
-  if (!has_faces || mesh.triangles.empty()) throw Error(source + ": no faces (expected 'element face')");
-  mesh.materials = header.comment_materials;
-  if (mesh.materials.empty()) mesh.materials.push_back(material_named("default"));
-  finish_normals(mesh, has_normals);
-  return mesh;
-}
-
-}  // namespace
-
-Mesh read_ply(std::istream& in, const std::string& source_name) {
-  const PlyHeader header = read_ply_header(in, source_name);
-  if (header.binary) {
-    PlyBinaryReader reader(in, source_name);
-    return read_ply_body(reader, header, source_name);
-  }
-  PlyAsciiReader reader(in, source_name, header.line_count);
-  return read_ply_body(reader, header, source_name);
 }
 
 void write_ply(std::ostream& out, const Mesh& mesh, PlyFormat format) {
@@ -652,18 +378,6 @@ void write_ply(std::ostream& out, const Mesh& mesh, PlyFormat format) {
   }
   out.write(text.data(), std::streamsize(text.size()));
   require_writable(out, "PLY");
-}
-
-Mesh load_mesh(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
-  if (extension != ".obj" && extension != ".ply") {
-    throw Error(path.string() + ": unknown mesh format '" + extension + "' (expected .obj or .ply)");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path.string() + ": cannot open the file for reading");
-  return extension == ".obj" ? read_obj(in, path.string()) : read_ply(in, path.string());
 }
 
 Mesh load_user_model(const std::filesystem::path& path, const UserModelOptions& options) {
