@@ -119,6 +119,11 @@ def build_mesh(name, folder, spec, materials):
         mesh.use_auto_smooth = True  # required for custom normals before 4.1
     mesh.normals_split_custom_set_from_vertices(normals.reshape(-1, 3))
 
+    if spec.get("uvs"):
+        # A model's own uvs (v up, as Blender's), per vertex: spread to the loops.
+        uv = read_array(folder, spec["uvs"]).reshape(-1, 2)
+        mesh.uv_layers.new(name="UVMap").data.foreach_set("uv", uv[indices].ravel())
+
     for slot in spec.get("material_slots", []):
         mesh.materials.append(materials[slot])
     return mesh
@@ -161,8 +166,9 @@ def _loop_total_writable():
     return prop is not None and not prop.is_readonly
 
 
-def build_material(spec):
-    """Principled BSDF, mixed with a Translucent BSDF for thin parts (petals, leaves)."""
+def build_material(spec, folder):
+    """Principled BSDF, mixed with a Translucent BSDF for thin parts (petals, leaves); with an
+    image, its colour (which holds the base colour already) and, for a cutout, its alpha, clipped."""
     material = bpy.data.materials.new(spec["name"])
     material.use_nodes = True
     color = list(spec["base_color"]) + [1.0]
@@ -175,11 +181,24 @@ def build_material(spec):
     specular = principled_input(principled, "Specular", "Specular IOR Level")
     if specular is not None:
         specular.default_value = 0.3
+    image = None
+    if spec.get("image"):
+        image = tree.nodes.new("ShaderNodeTexImage")
+        image.image = bpy.data.images.load(os.path.join(folder, spec["image"]), check_existing=True)
+        tree.links.new(image.outputs["Color"], principled.inputs["Base Color"])
+        if spec.get("alpha_clip"):
+            tree.links.new(image.outputs["Alpha"], principled.inputs["Alpha"])
+            material.blend_method = "CLIP"  # EEVEE; Cycles takes the alpha as it is (0 or 1 here)
+            material.alpha_threshold = 0.5
+            if hasattr(material, "shadow_method"):
+                material.shadow_method = "CLIP"
     translucency = float(spec.get("translucency", 0.0))
     if translucency > 0.0:
         output = next(node for node in tree.nodes if node.type == "OUTPUT_MATERIAL")
         translucent = tree.nodes.new("ShaderNodeBsdfTranslucent")
         translucent.inputs["Color"].default_value = color
+        if image is not None:
+            tree.links.new(image.outputs["Color"], translucent.inputs["Color"])
         mix = tree.nodes.new("ShaderNodeMixShader")
         mix.inputs["Fac"].default_value = translucency
         tree.links.new(principled.outputs["BSDF"], mix.inputs[1])
@@ -393,7 +412,7 @@ def import_manifest(context, path, set_render_settings=True, set_world=True):
     folder = os.path.dirname(os.path.abspath(path))
     scene = context.scene
 
-    materials = [build_material(spec) for spec in manifest["materials"]]
+    materials = [build_material(spec, folder) for spec in manifest["materials"]]
     terrain_spec = manifest.get("terrain")
     if terrain_spec:
         terrain_mesh = build_mesh("Wangscape terrain", folder, terrain_spec, materials)
