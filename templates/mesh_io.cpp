@@ -8,13 +8,16 @@
 #include <assimp/Importer.hpp>
 #include <bit>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <istream>
 #include <limits>
 #include <map>
 #include <memory>
 #include <ostream>
+#include <sstream>
 #include <string_view>
 
 #include <OpenImageIO/filesystem.h>
@@ -25,10 +28,12 @@
 namespace wangscape {
 namespace {
 
-// Assimp's steps: triangles only (points and lines are dropped), one vertex per distinct corner,
-// every node's transform applied (so a scene graph becomes one mesh per material), normals where
-// the file has none, and Assimp's own check of what its importer made.
-constexpr unsigned kImportSteps = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
+// Assimp's steps: triangles (polygons split; points and lines stay, and are skipped below), one
+// vertex per distinct corner, every node's transform applied (so a scene graph becomes one mesh
+// per material), normals where the file has none, and Assimp's own check of what its importer
+// made. Not aiProcess_SortByPType: in Assimp 5.2 it crashes (SIGBUS) on a mutated PLY the
+// model_file fuzzer found (fuzz/corpus/model_file/regress-sort-by-ptype-bus.seed).
+constexpr unsigned kImportSteps = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                                   aiProcess_PreTransformVertices | aiProcess_GenSmoothNormals |
                                   aiProcess_ValidateDataStructure;
 
@@ -112,9 +117,6 @@ std::shared_ptr<const TextureImage> material_image(const aiScene& scene, const s
 // Base colour (glTF's baseColorFactor, else the diffuse colour: an MTL's Kd), its image, the
 // roughness where the file gives one, and alpha: glTF's MASK (BLEND is cut at its cutoff too,
 // as Wangscape draws no partial coverage) or an MTL's map_d.
-// How far into a file a PLY header's 'end_header' is looked for.
-constexpr std::size_t kPlyHeaderLimit = 1 << 20;
-
 // One image per reference: materials that share an image share its texels.
 using ImageCache = std::map<std::string, std::shared_ptr<const TextureImage>>;
 
@@ -217,38 +219,407 @@ Mesh mesh_from_scene(const aiScene& scene, const std::filesystem::path& folder, 
   return mesh;
 }
 
-// Assimp 5.2's PLY reader never returns on a header without its 'end_header' line (found while
-// testing this reader): such a file is refused before Assimp sees it. `head` is the file's start.
-void refuse_unfinished_ply_header(std::string_view head, const std::string& source) {
-  if (head.size() < 3 || lowercase(std::string(head.substr(0, 3))) != "ply") return;
-  if (head.find("end_header") == std::string_view::npos)
-    throw Error(source, "",
-                "a PLY header without 'end_header' in its first " + std::to_string(kPlyHeaderLimit) + " bytes");
-}
-
-void configure(Assimp::Importer& importer) {
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-}
-
 void require_writable(const std::ostream& out, const char* format) {
   if (!out) throw Error(std::string("writing ") + format + " failed (stream error)");
 }
 
 }  // namespace
 
+// ---- PLY: read by hand -------------------------------------------------------------------
+// Assimp 5.2's PLY reader never returns on some damaged headers (a missing end_header, a stray
+// byte in an element line) and one of its steps crashes on another: the model_file fuzzer found
+// all three within seconds (fuzz/corpus/model_file/regress-*). This reader was fuzzed for 10^6
+// runs before Assimp came; it also keeps write_ply's `comment material` colours.
+
+namespace {
+
+std::vector<std::string_view> split_whitespace(std::string_view line) {
+  std::vector<std::string_view> tokens;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    const std::size_t start = i;
+    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    if (i > start) tokens.push_back(line.substr(start, i - start));
+  }
+  return tokens;
+}
+
+template <class Number>
+bool parse_number(std::string_view token, Number& value) {
+  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+  return error == std::errc() && end == token.data() + token.size() && std::isfinite(value);
+}
+
+bool parse_integer(std::string_view token, long long& value) {
+  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+  return error == std::errc() && end == token.data() + token.size();
+}
+
+// A material by name, grey until the file colours it.
+Material material_named(const std::string& name) { return Material{name, {0.5f, 0.5f, 0.5f}, 0.5f, 0.0f}; }
+
+}  // namespace
+
+namespace {
+
+enum class PlyScalar { int8, uint8, int16, uint16, int32, uint32, float32, float64 };
+
+bool parse_scalar(std::string_view name, PlyScalar& type) {
+  static constexpr std::pair<std::string_view, PlyScalar> kNames[] = {
+      {"char", PlyScalar::int8},      {"int8", PlyScalar::int8},       {"uchar", PlyScalar::uint8},
+      {"uint8", PlyScalar::uint8},    {"short", PlyScalar::int16},     {"int16", PlyScalar::int16},
+      {"ushort", PlyScalar::uint16},  {"uint16", PlyScalar::uint16},   {"int", PlyScalar::int32},
+      {"int32", PlyScalar::int32},    {"uint", PlyScalar::uint32},     {"uint32", PlyScalar::uint32},
+      {"float", PlyScalar::float32},  {"float32", PlyScalar::float32}, {"double", PlyScalar::float64},
+      {"float64", PlyScalar::float64}};
+  for (const auto& [text, value] : kNames) {
+    if (text == name) {
+      type = value;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::size_t scalar_size(PlyScalar type) {
+  switch (type) {
+    case PlyScalar::int8:
+    case PlyScalar::uint8:
+      return 1;
+    case PlyScalar::int16:
+    case PlyScalar::uint16:
+      return 2;
+    case PlyScalar::int32:
+    case PlyScalar::uint32:
+    case PlyScalar::float32:
+      return 4;
+    case PlyScalar::float64:
+      return 8;
+  }
+  return 0;
+}
+
+struct PlyProperty {
+  std::string name;
+  PlyScalar type = PlyScalar::float32;  // for lists: the item type
+  bool is_list = false;
+  PlyScalar count_type = PlyScalar::uint8;
+};
+
+struct PlyElement {
+  std::string name;
+  std::size_t count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+// Values of ASCII PLY: one element instance per line.
+class PlyAsciiReader {
+ public:
+  PlyAsciiReader(std::istream& in, const std::string& source, std::size_t header_lines)
+      : in_(in), source_(source), line_number_(header_lines) {}
+
+  void begin(const std::string& element, std::size_t index) {
+    element_ = &element;
+    index_ = index;
+    do {
+      ++line_number_;
+      if (!std::getline(in_, line_)) fail("unexpected end of file");
+      tokens_ = split_whitespace(line_);
+    } while (tokens_.empty());
+    next_token_ = 0;
+  }
+  double next(PlyScalar type) {
+    if (next_token_ >= tokens_.size()) fail("too few values on the line");
+    // float properties parse straight to float: written floats come back bit for bit.
+    float single = 0;
+    double value = 0;
+    const bool ok = type == PlyScalar::float32 ? parse_number(tokens_[next_token_], single)
+                                               : parse_number(tokens_[next_token_], value);
+    if (!ok) fail("'" + std::string(tokens_[next_token_]) + "' is not a finite number");
+    ++next_token_;
+    return type == PlyScalar::float32 ? double(single) : value;
+  }
+  [[noreturn]] void fail(const std::string& message) const {
+    throw Error(source_ + ":" + std::to_string(line_number_) + ": " + *element_ + " " + std::to_string(index_) + ": " +
+                message);
+  }
+
+ private:
+  std::istream& in_;
+  const std::string& source_;
+  std::size_t line_number_;
+  std::string line_;
+  std::vector<std::string_view> tokens_;
+  std::size_t next_token_ = 0;
+  const std::string* element_ = nullptr;
+  std::size_t index_ = 0;
+};
+
+// Values of binary_little_endian PLY.
+class PlyBinaryReader {
+ public:
+  PlyBinaryReader(std::istream& in, const std::string& source) : in_(in), source_(source) {}
+
+  void begin(const std::string& element, std::size_t index) {
+    element_ = &element;
+    index_ = index;
+  }
+  double next(PlyScalar type) {
+    unsigned char bytes[8];
+    const std::size_t size = scalar_size(type);
+    if (!in_.read(reinterpret_cast<char*>(bytes), std::streamsize(size))) fail("unexpected end of file");
+    if constexpr (std::endian::native == std::endian::big) std::reverse(bytes, bytes + size);
+    switch (type) {
+      case PlyScalar::int8:
+        return as<std::int8_t>(bytes);
+      case PlyScalar::uint8:
+        return as<std::uint8_t>(bytes);
+      case PlyScalar::int16:
+        return as<std::int16_t>(bytes);
+      case PlyScalar::uint16:
+        return as<std::uint16_t>(bytes);
+      case PlyScalar::int32:
+        return as<std::int32_t>(bytes);
+      case PlyScalar::uint32:
+        return as<std::uint32_t>(bytes);
+      case PlyScalar::float32:
+        return checked(as<float>(bytes));
+      case PlyScalar::float64:
+        return checked(as<double>(bytes));
+    }
+    return 0;
+  }
+  [[noreturn]] void fail(const std::string& message) const {
+    throw Error(source_ + ": " + *element_ + " " + std::to_string(index_) + ": " + message);
+  }
+
+ private:
+  template <class T>
+  static double as(const unsigned char* bytes) {
+    T value;
+    std::memcpy(&value, bytes, sizeof value);
+    return double(value);
+  }
+  double checked(double value) const {
+    if (!std::isfinite(value)) fail("value is not a finite number");
+    return value;
+  }
+
+  std::istream& in_;
+  const std::string& source_;
+  const std::string* element_ = nullptr;
+  std::size_t index_ = 0;
+};
+
+struct PlyHeader {
+  bool binary = false;
+  std::vector<PlyElement> elements;
+  std::vector<Material> comment_materials;  // from "comment material <i> <name> <r> <g> <b>"
+  std::size_t line_count = 0;
+};
+
+PlyHeader read_ply_header(std::istream& in, const std::string& source) {
+  PlyHeader header;
+  std::string line;
+  const auto fail = [&](const std::string& message) {
+    throw Error(source + ":" + std::to_string(header.line_count) + ": " + message);
+  };
+  const auto next_line = [&] {
+    if (!std::getline(in, line)) fail("unexpected end of file in the PLY header (expected 'end_header')");
+    ++header.line_count;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+  };
+  next_line();
+  if (line != "ply") fail("not a PLY file (expected 'ply' on the first line)");
+  bool has_format = false;
+  while (true) {
+    next_line();
+    const auto tokens = split_whitespace(line);
+    if (tokens.empty()) continue;
+    if (tokens[0] == "end_header") break;
+    if (tokens[0] == "format") {
+      if (tokens.size() < 2) fail("expected a format name");
+      if (tokens[1] == "ascii") {
+        header.binary = false;
+      } else if (tokens[1] == "binary_little_endian") {
+        header.binary = true;
+      } else {
+        fail("unsupported PLY format '" + std::string(tokens[1]) + "' (expected ascii or binary_little_endian)");
+      }
+      has_format = true;
+    } else if (tokens[0] == "element") {
+      long long count = 0;
+      if (tokens.size() != 3 || !parse_integer(tokens[2], count) || count < 0) {
+        fail("expected 'element <name> <count>'");
+      }
+      header.elements.push_back({std::string(tokens[1]), std::size_t(count), {}});
+    } else if (tokens[0] == "property") {
+      if (header.elements.empty()) fail("property before any element");
+      PlyProperty property;
+      if (tokens.size() == 5 && tokens[1] == "list") {
+        property.is_list = true;
+        if (!parse_scalar(tokens[2], property.count_type) || !parse_scalar(tokens[3], property.type)) {
+          fail("unknown type in list property '" + std::string(tokens[4]) + "'");
+        }
+        if (property.count_type == PlyScalar::float32 || property.count_type == PlyScalar::float64) {
+          fail("list count type of '" + std::string(tokens[4]) + "' must be an integer type");
+        }
+        property.name = std::string(tokens[4]);
+      } else if (tokens.size() == 3) {
+        if (!parse_scalar(tokens[1], property.type)) fail("unknown property type '" + std::string(tokens[1]) + "'");
+        property.name = std::string(tokens[2]);
+      } else {
+        fail("expected 'property <type> <name>' or 'property list <count type> <item type> <name>'");
+      }
+      header.elements.back().properties.push_back(property);
+    } else if (tokens[0] == "comment" && tokens.size() == 7 && tokens[1] == "material") {
+      long long index;
+      Material material;
+      float rgb[3];
+      if (parse_integer(tokens[2], index) && parse_number(tokens[4], rgb[0]) && parse_number(tokens[5], rgb[1]) &&
+          parse_number(tokens[6], rgb[2]) && index == (long long)header.comment_materials.size()) {
+        material = material_named(std::string(tokens[3]));
+        material.base_color = {rgb[0], rgb[1], rgb[2]};
+        header.comment_materials.push_back(material);
+      }
+    } else if (tokens[0] != "comment" && tokens[0] != "obj_info") {
+      fail("unexpected header line '" + line + "'");
+    }
+  }
+  if (!has_format) fail("missing 'format' line in the PLY header");
+  return header;
+}
+
+int property_index(const PlyElement& element, std::string_view name) {
+  for (std::size_t i = 0; i < element.properties.size(); ++i) {
+    if (element.properties[i].name == name) return int(i);
+  }
+  return -1;
+}
+
+template <class Reader>
+Mesh read_ply_body(Reader& reader, const PlyHeader& header, const std::string& source) {
+  Mesh mesh;
+  mesh.name = std::filesystem::path(source).stem().string();
+  bool has_vertices = false, has_faces = false, has_normals = false, has_material = false;
+  std::size_t vertex_count = 0;
+  // Guards reserve() against absurd counts in a damaged header.
+  constexpr std::size_t kReserveLimit = std::size_t(1) << 24;
+
+  for (const PlyElement& element : header.elements) {
+    std::vector<double> values(element.properties.size());
+    std::vector<std::uint32_t> polygon;
+    const bool is_vertex = element.name == "vertex";
+    const bool is_face = element.name == "face";
+    int xyz[3] = {-1, -1, -1}, nxyz[3] = {-1, -1, -1}, list = -1, material = -1;
+    if (is_vertex) {
+      static constexpr const char* kAxes[3] = {"x", "y", "z"};
+      static constexpr const char* kNormalAxes[3] = {"nx", "ny", "nz"};
+      for (int axis = 0; axis < 3; ++axis) {
+        xyz[axis] = property_index(element, kAxes[axis]);
+        nxyz[axis] = property_index(element, kNormalAxes[axis]);
+        if (xyz[axis] < 0 || element.properties[xyz[axis]].is_list) {
+          throw Error(source + ": element vertex has no scalar property '" + kAxes[axis] + "'");
+        }
+      }
+      has_vertices = true;
+      has_normals = nxyz[0] >= 0 && nxyz[1] >= 0 && nxyz[2] >= 0;
+      vertex_count = element.count;
+      mesh.positions.reserve(std::min(element.count, kReserveLimit));
+      if (has_normals) mesh.normals.reserve(std::min(element.count, kReserveLimit));
+    } else if (is_face) {
+      list = property_index(element, "vertex_indices");
+      if (list < 0) list = property_index(element, "vertex_index");
+      if (list < 0 || !element.properties[list].is_list) {
+        throw Error(source + ": element face has no list property 'vertex_indices'");
+      }
+      material = property_index(element, "material");
+      has_material = material >= 0 && !element.properties[material].is_list;
+      has_faces = true;
+      mesh.triangles.reserve(std::min(element.count, kReserveLimit));
+    }
+
+    for (std::size_t index = 0; index < element.count; ++index) {
+      reader.begin(element.name, index);
+      for (std::size_t p = 0; p < element.properties.size(); ++p) {
+        const PlyProperty& property = element.properties[p];
+        if (!property.is_list) {
+          values[p] = reader.next(property.type);
+          continue;
+        }
+        const double count = reader.next(property.count_type);
+        if (count < 0 || count != std::floor(count)) reader.fail("invalid list length for '" + property.name + "'");
+        const bool keep = int(p) == list;
+        if (keep) polygon.clear();
+        for (std::size_t i = 0; i < std::size_t(count); ++i) {
+          const double item = reader.next(property.type);
+          if (!keep) continue;
+          if (item < 0 || item >= double(vertex_count) || item != std::floor(item)) {
+            reader.fail("vertex index " + std::to_string(item) + " out of range (" + std::to_string(vertex_count) +
+                        " vertices)");
+          }
+          polygon.push_back(std::uint32_t(item));
+        }
+      }
+      if (is_vertex) {
+        mesh.positions.push_back({float(values[xyz[0]]), float(values[xyz[1]]), float(values[xyz[2]])});
+        if (has_normals)
+          mesh.normals.push_back({float(values[nxyz[0]]), float(values[nxyz[1]]), float(values[nxyz[2]])});
+      } else if (is_face) {
+        if (polygon.size() < 3) reader.fail("a face needs at least 3 vertices, got " + std::to_string(polygon.size()));
+        std::uint16_t material_index = 0;
+        if (has_material) {
+          const double m = values[material];
+          if (m < 0 || m >= double(std::max<std::size_t>(1, header.comment_materials.size()))) {
+            reader.fail("material " + std::to_string(m) + " has no 'comment material' line");
+          }
+          material_index = std::uint16_t(m);
+        }
+        for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
+          mesh.triangles.push_back({polygon[0], polygon[i], polygon[i + 1]});
+          mesh.triangle_material.push_back(material_index);
+        }
+      }
+    }
+  }
+  if (!has_vertices) throw Error(source + ": no 'element vertex' in the PLY header");
+  if (!has_faces || mesh.triangles.empty()) throw Error(source + ": no faces (expected 'element face')");
+  mesh.materials = header.comment_materials;
+  if (mesh.materials.empty()) mesh.materials.push_back(material_named("default"));
+  if (!has_normals) mesh.normals.clear();
+  finish_normals(mesh);
+  return mesh;
+}
+
+}  // namespace
+
+Mesh read_ply(std::istream& in, const std::string& source_name) {
+  const PlyHeader header = read_ply_header(in, source_name);
+  if (header.binary) {
+    PlyBinaryReader reader(in, source_name);
+    return read_ply_body(reader, header, source_name);
+  }
+  PlyAsciiReader reader(in, source_name, header.line_count);
+  return read_ply_body(reader, header, source_name);
+}
+
+namespace {
+bool is_ply(const std::string& extension) { return lowercase(extension) == ".ply" || lowercase(extension) == "ply"; }
+}  // namespace
+
 Mesh load_mesh(const std::filesystem::path& path) {
   const std::string source = path.string();
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) throw Error(path, "", "no such model file");
-  {
+  if (is_ply(path.extension().string())) {
     std::ifstream in(path, std::ios::binary);
-    std::string head(kPlyHeaderLimit, '\0');
-    in.read(head.data(), std::streamsize(head.size()));
-    head.resize(std::size_t(in.gcount()));
-    refuse_unfinished_ply_header(head, source);
+    if (!in) throw Error(path, "", "cannot open the file for reading");
+    return read_ply(in, source);
   }
   Assimp::Importer importer;
-  configure(importer);
   const aiScene* scene = importer.ReadFile(source, kImportSteps);
   if (scene == nullptr) throw Error(path, "", std::string("not a model Assimp reads: ") + importer.GetErrorString());
   Mesh mesh = mesh_from_scene(*scene, std::filesystem::absolute(path, error).parent_path(), source);
@@ -257,11 +628,11 @@ Mesh load_mesh(const std::filesystem::path& path) {
 }
 
 Mesh read_model(std::span<const std::uint8_t> bytes, const std::string& extension, const std::string& source_name) {
-  refuse_unfinished_ply_header(
-      std::string_view(reinterpret_cast<const char*>(bytes.data()), std::min(bytes.size(), kPlyHeaderLimit)),
-      source_name);
+  if (is_ply(extension)) {
+    std::istringstream in(std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()), std::ios::binary);
+    return read_ply(in, source_name);
+  }
   Assimp::Importer importer;
-  configure(importer);
   const std::string hint = lowercase(extension.starts_with('.') ? extension.substr(1) : extension);
   const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), kImportSteps, hint.c_str());
   if (scene == nullptr)

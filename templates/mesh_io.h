@@ -17,18 +17,26 @@
 namespace wangscape {
 
 // Loads a model file in any format Assimp reads (chosen by Assimp from the extension and the
-// bytes). Polygons are triangulated, points and lines dropped, the file's node transforms applied,
-// smooth normals computed where the file has none. One material per material of the file that a
-// triangle uses, in order of first use: its name, base colour (glTF baseColorFactor, else the
-// diffuse colour: an MTL's Kd; 0.5 grey when the file gives none), roughness (glTF's), the image
-// of its base colour (a file beside the model, which must exist, or one the file holds) and an
-// alpha cutout (glTF alphaMode MASK or BLEND at alphaCutoff; an MTL's map_d at 0.5). uvs are the
-// first texture coordinates, kept when any triangle has them. The mesh is named by the file's stem.
+// bytes); a .ply file by read_ply instead (Assimp 5.2's PLY reader hangs on damaged headers). Polygons are
+// triangulated, points and lines dropped, the file's node transforms applied, smooth normals computed where the file
+// has none. One material per material of the file that a triangle uses, in order of first use: its name, base colour
+// (glTF baseColorFactor, else the diffuse colour: an MTL's Kd; 0.5 grey when the file gives none), roughness (glTF's),
+// the image of its base colour (a file beside the model, which must exist, or one the file holds) and an alpha cutout
+// (glTF alphaMode MASK or BLEND at alphaCutoff; an MTL's map_d at 0.5). uvs are the first texture coordinates, kept
+// when any triangle has them. The mesh is named by the file's stem. (A .ply file is read by read_ply: no images,
+// colours from `comment material` lines.)
 Mesh load_mesh(const std::filesystem::path& path);
 
 // The same from bytes in memory, the format named by `extension` (".glb", "obj"); images must be
 // held by the bytes. `source_name` is used in error messages and names the mesh.
 Mesh read_model(std::span<const std::uint8_t> bytes, const std::string& extension, const std::string& source_name);
+
+// PLY, ascii or binary_little_endian, read by hand: element vertex with x, y, z [nx, ny, nz],
+// element face with list vertex_indices (or vertex_index) and optional integer `material` (its
+// colour and name from write_ply's `comment material` lines, else one grey "default"); other
+// elements and properties are skipped. Errors name the file and the line (ascii) or element
+// (binary). `in` must be opened in binary mode.
+Mesh read_ply(std::istream& in, const std::string& source_name);
 
 // How to bring a user's model into Wangscape model space.
 struct UserModelOptions {
