@@ -1,5 +1,6 @@
 #include "templates/mesh_io.h"
 
+#include <assimp/BaseImporter.h>
 #include <assimp/GltfMaterial.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -607,36 +608,60 @@ Mesh read_ply(std::istream& in, const std::string& source_name) {
 }
 
 namespace {
-bool is_ply(const std::string& extension) { return lowercase(extension) == ".ply" || lowercase(extension) == "ply"; }
+
+// A PLY file by its name or its first line: read_ply's, never Assimp's.
+bool is_ply(const std::string& extension, std::string_view head) {
+  const std::string first = lowercase(std::string(head.substr(0, 4)));
+  return lowercase(extension) == ".ply" || lowercase(extension) == "ply" || first == "ply\n" || first == "ply\r";
+}
+
+// An importer without Assimp's PLY reader: Assimp picks readers by the bytes too (the word "ply"
+// in a file's first 200 bytes is enough), so that reader must not be there to pick. The importer
+// does not free a reader it no longer holds: freed here.
+std::unique_ptr<Assimp::Importer> make_importer() {
+  auto importer = std::make_unique<Assimp::Importer>();
+  if (Assimp::BaseImporter* ply = importer->GetImporter("ply")) {
+    if (importer->UnregisterLoader(ply) == AI_SUCCESS) delete ply;
+  }
+  return importer;
+}
+
 }  // namespace
 
 Mesh load_mesh(const std::filesystem::path& path) {
   const std::string source = path.string();
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) throw Error(path, "", "no such model file");
-  if (is_ply(path.extension().string())) {
+  {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path, "", "cannot open the file for reading");
-    return read_ply(in, source);
+    char head[4] = {};
+    in.read(head, sizeof head);
+    if (is_ply(path.extension().string(), std::string_view(head, std::size_t(in.gcount())))) {
+      in.clear();
+      in.seekg(0);
+      return read_ply(in, source);
+    }
   }
-  Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(source, kImportSteps);
-  if (scene == nullptr) throw Error(path, "", std::string("not a model Assimp reads: ") + importer.GetErrorString());
+  const auto importer = make_importer();
+  const aiScene* scene = importer->ReadFile(source, kImportSteps);
+  if (scene == nullptr) throw Error(path, "", std::string("not a model Assimp reads: ") + importer->GetErrorString());
   Mesh mesh = mesh_from_scene(*scene, std::filesystem::absolute(path, error).parent_path(), source);
   mesh.name = path.stem().string();
   return mesh;
 }
 
 Mesh read_model(std::span<const std::uint8_t> bytes, const std::string& extension, const std::string& source_name) {
-  if (is_ply(extension)) {
-    std::istringstream in(std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()), std::ios::binary);
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  if (is_ply(extension, text)) {
+    std::istringstream in(std::string(text), std::ios::binary);
     return read_ply(in, source_name);
   }
-  Assimp::Importer importer;
+  const auto importer = make_importer();
   const std::string hint = lowercase(extension.starts_with('.') ? extension.substr(1) : extension);
-  const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), kImportSteps, hint.c_str());
+  const aiScene* scene = importer->ReadFileFromMemory(bytes.data(), bytes.size(), kImportSteps, hint.c_str());
   if (scene == nullptr)
-    throw Error(source_name, "", std::string("not a model Assimp reads: ") + importer.GetErrorString());
+    throw Error(source_name, "", std::string("not a model Assimp reads: ") + importer->GetErrorString());
   Mesh mesh = mesh_from_scene(*scene, {}, source_name);
   mesh.name = std::filesystem::path(source_name).stem().string();
   return mesh;

@@ -11,7 +11,7 @@ set(model_colors "${CMAKE_CURRENT_SOURCE_DIR}/model_colors.py")
 # A closer camera than the tiny scene's: the 0.6 m tulips and 1 m cards fill the frame.
 function(models_scene name model extra)
   tiny_scene("${models_dir}/${name}.toml" MODELS "mesh = \"${models_data}/${model}\"\n${extra}"
-             EXPORTS "povray = true\ngltf = true\nblender = true")
+             EXPORTS "povray = true\ngltf = true\nblender = true\nldi = true")
   file(READ "${models_dir}/${name}.toml" text)
   string(REPLACE "position = [0.0, -16.0, 2.2]" "position = [0.0, -9.0, 1.6]" text "${text}")
   string(REPLACE "target = [0.0, 0.0, 1.2]" "target = [0.0, 0.0, 0.4]" text "${text}")
@@ -56,3 +56,9 @@ add_test(NAME models_leaf_card_blender
   COMMAND sh -c "\"$0\" --quiet render \"$1\" --engine blender && \"$2\" \"$3\" \"$1/render_blender.png\" orange:min:100 red:min:20 blue:max:0 \"agrees:$1/render_embree.png:6\""
           "${WANGSCAPE_BIN}" "${models_dir}/models_leaf_card" "${models_python3}" "${model_colors}")
 set_tests_properties(models_leaf_card_blender PROPERTIES DEPENDS models_leaf_card_embree TIMEOUT 180)
+# The LDI build (Embree, the same filter) and the view drawing the pack alone (--near 0): the
+# pack holds the image's colours and the holes.
+add_test(NAME models_leaf_card_ldi_view
+  COMMAND sh -c "\"$0\" --quiet view \"$1\" --near 0 --engine ldi --out \"$1/view_ldi.png\" && \"$2\" \"$3\" \"$1/view_ldi.png\" orange:min:100 red:min:20 blue:max:0 \"agrees:$1/render_embree.png:6\""
+          "${WANGSCAPE_BIN}" "${models_dir}/models_leaf_card" "${models_python3}" "${model_colors}")
+set_tests_properties(models_leaf_card_ldi_view PROPERTIES DEPENDS models_leaf_card_embree)

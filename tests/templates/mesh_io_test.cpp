@@ -290,6 +290,27 @@ TEST(ModelImport, HeldAndBesideImagesAreTheSame) {
   EXPECT_EQ(from_memory.materials[0].base_color_map->rgba, held.materials[0].base_color_map->rgba);
 }
 
+// A PLY by its first line goes to read_ply whatever its name, and never to Assimp's PLY reader
+// (taken out of every importer): the fuzzer's binary PLY told to be glTF crashed in it.
+TEST_F(MeshIo, PlyContentIsReadByHandWhateverItsName) {
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_EQ(load_mesh(write("triangle.model", ply)).triangle_count(), 1u);
+  EXPECT_EQ(read_model(std::span(reinterpret_cast<const std::uint8_t*>(ply.data()), ply.size()), ".gltf", "t.gltf")
+                .triangle_count(),
+            1u);
+  std::ifstream in(fs::path(WANGSCAPE_SOURCE_DIR) / "fuzz/corpus/model_file/regress-ply-sniffed-segv.seed",
+                   std::ios::binary);
+  const std::string seed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(seed.size(), 1u);
+  try {
+    read_model(std::span(reinterpret_cast<const std::uint8_t*>(seed.data()) + 1, seed.size() - 1), ".gltf", "seed");
+  } catch (const Error&) {  // a refusal is fine; a crash is not
+  }
+}
+
 TEST_F(MeshIo, AMissingImageIsAnErrorNamingMaterialAndPath) {
   write("card.mtl", "newmtl leaf\nKd 1 1 1\nmap_Kd no_such_leaf.png\n");
   const fs::path path = write("card.obj",
