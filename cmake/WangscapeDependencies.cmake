@@ -18,6 +18,8 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(TOMLPLUSPLUS REQUIRED IMPORTED_TARGET tomlplusplus)
 find_package(GDAL CONFIG REQUIRED)
 find_package(embree 3 REQUIRED)
+# Users' models (templates/mesh_io.cpp): Debian's libassimp-dev 5.2 exports assimp::assimp.
+find_package(assimp REQUIRED)
 # The real-time view's window (renders/window/ldi_window.cpp); Debian's SDL2 exports SDL2::SDL2.
 find_package(SDL2 REQUIRED)
 if(WANGSCAPE_BUILD_BENCH)

@@ -81,6 +81,9 @@ Json write_mesh(const Mesh& mesh, const std::string& prefix, const std::vector<s
   entry["material_indices"] =
       write_array(folder, prefix + "_materials.u16", std::span<const std::uint16_t>(triangle_slots), 1, bytes);
   entry["material_slots"] = slots;
+  if (mesh.uvs.size() == mesh.positions.size() && !mesh.uvs.empty())  // a model's own, v up
+    entry["uvs"] = write_array(folder, prefix + "_uvs.f32",
+                               std::span<const float>(mesh.uvs.front().data(), mesh.uvs.size() * 2), 2, bytes);
   entry["bounds"] = bounds_json(bounds_of(mesh.positions));
   return entry;
 }
@@ -156,12 +159,13 @@ struct BlenderWriter::Impl {
   Json terrain = nullptr;
   Json ground_texture = nullptr;  // {"file", "extent": [min_x, min_y, max_x, max_y]} or null
   Json models = Json::array();
+  std::vector<MaterialTexture> textures{};  // per material of the table (PNG bytes dropped once written)
   std::unique_ptr<InstanceArrays> arrays{};
   BlenderExportSummary summary{};
 
   void list_files(const Json& mesh_entry) {
-    for (const char* key : {"positions", "normals", "indices", "material_indices"})
-      files.push_back(mesh_entry[key]["file"]);
+    for (const char* key : {"positions", "normals", "indices", "material_indices", "uvs"})
+      if (mesh_entry.contains(key)) files.push_back(mesh_entry[key]["file"]);
   }
 };
 
@@ -184,6 +188,15 @@ BlenderWriter::BlenderWriter(const Scene& scene, const std::filesystem::path& fo
       impl.ground_texture = Json{{"file", "ground.png"}, {"extent", {e.min_x, e.min_y, e.max_x, e.max_y}}};
       impl.files.push_back("ground.png");
     }
+  }
+  // The models' images: the add-on maps them through each model's uvs.
+  impl.textures = material_textures(table);
+  for (MaterialTexture& texture : impl.textures) {
+    if (texture.file.empty()) continue;
+    write_file_atomically(folder / texture.file, texture.png);
+    impl.bytes += texture.png.size();
+    impl.files.push_back(texture.file);
+    texture.png.clear();
   }
   for (std::size_t i = 0; i < scene.models.size(); ++i) {
     char prefix[32];
@@ -222,7 +235,15 @@ void BlenderWriter::finish(const StreamTotals& totals) {
                             {"instances", count}};
   manifest["files"] = impl.files;
   manifest["materials"] = Json::array();
-  for (const Material& material : table.materials) manifest["materials"].push_back(material_json(material));
+  for (std::size_t m = 0; m < table.materials.size(); ++m) {
+    Json material = material_json(table.materials[m]);
+    if (m < impl.textures.size() && !impl.textures[m].file.empty()) {
+      // The image's texels already hold the base colour and a 0-or-255 alpha (material_textures).
+      material["image"] = impl.textures[m].file;
+      material["alpha_clip"] = table.materials[m].alpha_cutoff > 0;
+    }
+    manifest["materials"].push_back(material);
+  }
   manifest["terrain"] = impl.terrain;
   manifest["ground_texture"] = impl.ground_texture;
   manifest["models"] = impl.models;

@@ -4,10 +4,12 @@
 #include <cctype>
 #include <charconv>
 #include <mutex>
+#include <set>
 
 #include <GeographicLib/UTMUPS.hpp>
 
 #include "core/atomic_file.h"
+#include "core/color.h"
 #include "core/number_text.h"
 #include "exporters/image_io.h"
 #include "scene/shading_light.h"
@@ -27,7 +29,7 @@ namespace {
 
 bool same_material(const Material& a, const Material& b) {
   return a.name == b.name && a.base_color == b.base_color && a.roughness == b.roughness &&
-         a.translucency == b.translucency;
+         a.translucency == b.translucency && a.base_color_map == b.base_color_map && a.alpha_cutoff == b.alpha_cutoff;
 }
 
 std::vector<std::uint32_t> add_materials(std::vector<Material>& table, const std::vector<Material>& materials) {
@@ -108,6 +110,29 @@ MaterialTable build_material_table(const Scene& scene) {
         table.materials, model.materials.empty() ? std::vector<Material>{Material{"default"}} : model.materials));
   }
   return table;
+}
+
+std::vector<MaterialTexture> material_textures(const MaterialTable& table) {
+  std::vector<MaterialTexture> textures(table.materials.size());
+  std::set<std::string> taken;
+  for (std::size_t m = 0; m < table.materials.size(); ++m) {
+    const Material& material = table.materials[m];
+    if (!material.base_color_map) continue;
+    const TextureImage& image = *material.base_color_map;
+    std::vector<std::uint8_t> rgba = image.rgba;
+    const bool cutout = material.alpha_cutoff > 0;
+    for (std::size_t i = 0; i + 3 < rgba.size(); i += 4) {
+      for (std::size_t c = 0; c < 3; ++c)
+        if (material.base_color[c] != 1.0f)
+          rgba[i + c] = linear_to_srgb8(srgb8_to_linear(rgba[i + c]) * material.base_color[c]);
+      rgba[i + 3] = !cutout || float(rgba[i + 3]) / 255.0f >= material.alpha_cutoff ? 255 : 0;
+    }
+    std::string name = "map_" + image.name;
+    for (int k = 2; taken.contains(name); ++k) name = "map_" + image.name + "_" + std::to_string(k);
+    taken.insert(name);
+    textures[m] = {name + ".png", encode_png(image.width, image.height, 4, rgba)};
+  }
+  return textures;
 }
 
 void check_mesh(const Mesh& mesh, const std::string& what) {

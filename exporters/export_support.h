@@ -47,6 +47,17 @@ struct MaterialTable {
 };
 MaterialTable build_material_table(const Scene& scene);
 
+// A material's image as the exporters write it (POV-Ray and Blender read the file beside the
+// scene, glTF holds the same bytes), so that every engine draws what the Embree reference does:
+// the texels times the base colour (sRGB-encoded again), alpha cut to 0 or 255 at the material's
+// cutoff (255 everywhere without one). `file`: a name for the folder ("map_leaf_card.png").
+struct MaterialTexture {
+  std::string file;  // empty: the material maps no image
+  std::string png;   // the PNG's bytes
+};
+// One per material of the table, in its order; names are unique within the table.
+std::vector<MaterialTexture> material_textures(const MaterialTable& table);
+
 // Throws Error naming `what` when the mesh's arrays disagree in size or its vertex or
 // material indices point outside. (Absent triangle_material means material 0 everywhere.)
 void check_mesh(const Mesh& mesh, const std::string& what);

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -106,6 +107,13 @@ class GltfBuilder {
       for (const auto& p : mesh.positions)
         uv.push_back(
             {float((p[0] - texture->min_x) / texture->width()), float((texture->max_y - p[1]) / texture->height())});
+      const int view = add_view(uv.data(), uv.size() * sizeof(uv[0]), kArrayBuffer);
+      attributes["TEXCOORD_0"] = add_accessor(view, kFloat, uv.size(), "VEC2");
+    } else if (mesh.uvs.size() == mesh.positions.size()) {
+      // A model's own uvs; glTF's v runs down the image, Wangscape's up.
+      std::vector<std::array<float, 2>> uv;
+      uv.reserve(mesh.uvs.size());
+      for (const auto& t : mesh.uvs) uv.push_back({t[0], 1.0f - t[1]});
       const int view = add_view(uv.data(), uv.size() * sizeof(uv[0]), kArrayBuffer);
       attributes["TEXCOORD_0"] = add_accessor(view, kFloat, uv.size(), "VEC2");
     }
@@ -256,6 +264,32 @@ struct GroundImage {
   Json images, textures, samplers;
 };
 
+// The models' images (material_textures' PNGs, already in buffer views `views`, -1 for none) as
+// images and textures of their materials, with alphaMode MASK where a material is a cutout
+// (the PNG's alpha is 0 or 255 already, so any cutoff between cuts the same).
+void add_material_images(const MaterialTable& table, const std::vector<int>& views, GroundImage& images,
+                         Json& materials) {
+  std::optional<std::size_t> sampler;  // repeated, linear: made with the first image
+  for (std::size_t m = 0; m < views.size(); ++m) {
+    if (views[m] < 0) continue;
+    if (images.images.is_null()) images = GroundImage{Json::array(), Json::array(), Json::array()};
+    if (!sampler) {
+      images.samplers.push_back(Json{{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 10497}, {"wrapT", 10497}});
+      sampler = images.samplers.size() - 1;
+    }
+    images.images.push_back(
+        Json{{"name", table.materials[m].name}, {"bufferView", views[m]}, {"mimeType", "image/png"}});
+    images.textures.push_back(Json{{"sampler", *sampler}, {"source", images.images.size() - 1}});
+    auto& material = materials[m];
+    material["pbrMetallicRoughness"]["baseColorTexture"] = Json{{"index", images.textures.size() - 1}};
+    material["pbrMetallicRoughness"]["baseColorFactor"] = {1.0, 1.0, 1.0, 1.0};  // in the texels
+    if (table.materials[m].alpha_cutoff > 0) {
+      material["alphaMode"] = "MASK";
+      material["alphaCutoff"] = 0.5;
+    }
+  }
+}
+
 GroundImage ground_image(int image_view, const MaterialTable& table, Json& materials) {
   GroundImage ground;
   if (image_view < 0) return ground;
@@ -292,7 +326,8 @@ struct GltfWriter::Impl {
   Json nodes = Json::array();
   Json root_children = Json::array();
   std::size_t first_model_mesh = 0;
-  int ground_image_view = -1;  // buffer view of the baked ground PNG, -1 without one
+  int ground_image_view = -1;               // buffer view of the baked ground PNG, -1 without one
+  std::vector<int> material_image_views{};  // per material of the table: its PNG's view, or -1
   std::unique_ptr<InstanceSpill> spill{};
   std::vector<std::uint64_t> per_variant{};
   GltfSummary summary{};
@@ -319,6 +354,9 @@ GltfWriter::GltfWriter(const Scene& scene, const std::filesystem::path& path, co
     impl.nodes.push_back(Json{{"name", "terrain"}, {"mesh", impl.meshes.size() - 1}});
     impl.root_children.push_back(impl.nodes.size() - 1);
   }
+  for (const MaterialTexture& texture : material_textures(impl.table))
+    impl.material_image_views.push_back(
+        texture.file.empty() ? -1 : impl.builder.add_view(texture.png.data(), texture.png.size(), 0));
   impl.first_model_mesh = impl.meshes.size();
   for (std::size_t m = 0; m < scene.models.size(); ++m)
     impl.meshes.push_back(impl.builder.add_mesh(scene.models[m], impl.table.model_slots[m]));
@@ -456,6 +494,7 @@ void GltfWriter::finish(const StreamTotals& totals) {
   impl.add_camera(cameras);
   Json materials = material_list(impl.table);
   GroundImage ground = ground_image(impl.ground_image_view, impl.table, materials);
+  add_material_images(impl.table, impl.material_image_views, ground, materials);
   const std::uint64_t instance_bytes = impl.options.instancing == GltfInstancing::gpu_instancing ? count * 40 : 0;
   const std::uint64_t bin_size = impl.builder.bin.size() + instance_bytes;
   const Json gltf = impl.document(count, std::move(cameras), std::move(materials), std::move(ground), bin_size);

@@ -126,16 +126,23 @@ ImageGray16 read_image_gray16(const std::filesystem::path& path) {
   return image;
 }
 
-std::string encode_png(const ImageRgb8& image) {
-  if (image.width < 1 || image.height < 1) throw Error("cannot encode a PNG: the image is empty");
+std::string encode_png(int width, int height, int channels, std::span<const std::uint8_t> pixels) {
+  if (width < 1 || height < 1) throw Error("cannot encode a PNG: the image is empty");
+  if (pixels.size() != std::size_t(width) * std::size_t(height) * std::size_t(channels))
+    throw Error("cannot encode a PNG: " + std::to_string(pixels.size()) + " bytes for " + std::to_string(width) +
+                " x " + std::to_string(height) + " x " + std::to_string(channels));
   std::vector<unsigned char> bytes;
   OIIO::Filesystem::IOVecOutput proxy(bytes);
   auto output = OIIO::ImageOutput::create("memory.png");
-  const OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
+  const OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
   if (!output || !output->set_ioproxy(&proxy) || !output->open("memory.png", spec) ||
-      !output->write_image(OIIO::TypeDesc::UINT8, image.pixels.data()) || !output->close())
+      !output->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !output->close())
     throw Error(std::string("cannot encode a PNG: ") + (output ? output->geterror() : OIIO::geterror()));
   return std::string(bytes.begin(), bytes.end());
+}
+
+std::string encode_png(const ImageRgb8& image) {
+  return encode_png(image.width, image.height, 3, std::span<const std::uint8_t>(image.pixels));
 }
 
 ImageRgb8 read_image(const std::filesystem::path& path) {

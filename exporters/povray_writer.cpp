@@ -8,6 +8,7 @@
 #include <memory>
 #include <numbers>
 #include <set>
+#include <span>
 #include <vector>
 
 #include "core/atomic_file.h"
@@ -85,9 +86,58 @@ std::string fixed(double value, int decimals) {
 
 // ---- meshes ---------------------------------------------------------------------------------
 
+std::string comment_safe(std::string_view source);  // the scene file's, below
+
+// A texture_list of one texture per material: an image map where `material_files` names the
+// material's image (its alpha a cutout), else the material's colour; then face_indices with each
+// triangle's texture. For meshes with images only: a texture_list costs every copy of the mesh a
+// copy of each texture, which the palette below avoids.
+void append_textured_faces(std::string& out, const Mesh& mesh, std::span<const std::string> material_files) {
+  out += "  uv_vectors { ";
+  append_int(out, mesh.uvs.size());
+  for (std::size_t i = 0; i < mesh.uvs.size(); ++i) {
+    out += (i % 4 == 0) ? ",\n    <" : ", <";
+    append_fixed(out, mesh.uvs[i][0], 6);
+    out.push_back(',');
+    append_fixed(out, mesh.uvs[i][1], 6);
+    out.push_back('>');
+  }
+  out += "\n  }\n  texture_list { ";
+  append_int(out, mesh.materials.size());
+  for (std::size_t m = 0; m < mesh.materials.size(); ++m) {
+    const Material& material = mesh.materials[m];
+    const std::string finish = fixed(material.roughness, 3) + ", " + fixed(material.translucency, 3);
+    out += ",\n    texture { ";
+    if (m < material_files.size() && !material_files[m].empty()) {
+      // The PNG's alpha (0 or 255) is POV-Ray's transmit: the holes of a cutout.
+      out += "uv_mapping pigment { image_map { png \"" + material_files[m] + "\" interpolate 2 } } finish { " +
+             "Wangscape_Finish(" + finish + ") } }  // " + comment_safe(material.name);
+    } else {
+      out += "Wangscape_Material(";
+      append_vector(out, material.base_color[0], material.base_color[1], material.base_color[2], 4);
+      out += ", " + finish + ") }  // " + comment_safe(material.name);
+    }
+  }
+  out += "\n  }\n  face_indices { ";
+  append_int(out, mesh.triangles.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    out += (t % 4 == 0) ? ",\n    <" : ", <";
+    append_int(out, tri[0]);
+    out.push_back(',');
+    append_int(out, tri[1]);
+    out.push_back(',');
+    append_int(out, tri[2]);
+    out += ">, ";
+    append_int(out, std::min<std::size_t>(mesh.triangle_material[t], mesh.materials.size() - 1));
+  }
+  out += "\n  }\n}\n";
+}
+
 // Writes `mesh2 { ... }` (without a declaration) for a mesh whose positions are ENU/model
 // space (z up). Textures: one per material, chosen per triangle through texture_list.
-void append_mesh2(std::string& out, const Mesh& mesh, int position_decimals, const std::string& texture_override) {
+void append_mesh2(std::string& out, const Mesh& mesh, int position_decimals, const std::string& texture_override,
+                  std::span<const std::string> material_files = {}) {
   out += "mesh2 {\n  vertex_vectors { ";
   append_int(out, mesh.positions.size());
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
@@ -106,6 +156,13 @@ void append_mesh2(std::string& out, const Mesh& mesh, int position_decimals, con
       append_vector(out, n[0], n[2], n[1], 4);
     }
     out += "\n  }\n";
+  }
+  const bool has_images =
+      std::any_of(material_files.begin(), material_files.end(), [](const std::string& file) { return !file.empty(); });
+  if (texture_override.empty() && has_images && mesh.uvs.size() == mesh.positions.size() &&
+      mesh.triangle_material.size() == mesh.triangles.size() && !mesh.materials.empty()) {
+    append_textured_faces(out, mesh, material_files);
+    return;
   }
   const bool per_triangle_textures =
       texture_override.empty() && mesh.materials.size() > 1 && mesh.triangle_material.size() == mesh.triangles.size();
@@ -480,6 +537,11 @@ PovrayWriter::PovrayWriter(const Scene& scene, const std::filesystem::path& dir,
 
   const auto library_dir = std::filesystem::absolute(options.final_dir.empty() ? dir : options.final_dir);
   impl.write_whole("scene.ini", scene_ini(scene, library_dir));
+  // The models' images, beside models.inc (POV-Ray finds them through the folder's +L path).
+  const MaterialTable table = build_material_table(scene);
+  const std::vector<MaterialTexture> textures = material_textures(table);
+  for (const MaterialTexture& texture : textures)
+    if (!texture.file.empty()) impl.write_whole(texture.file.c_str(), texture.png);
   {
     std::string models = "// Model variants, each declared once: copies of a mesh2 share its data.\n";
     models += "#declare Wangscape_Model_Count = " + std::to_string(scene.models.size()) + ";\n";
@@ -487,7 +549,9 @@ PovrayWriter::PovrayWriter(const Scene& scene, const std::filesystem::path& dir,
       const auto& mesh = scene.models[v];
       models += "\n// " + comment_safe(mesh.name) + ": " + std::to_string(mesh.triangle_count()) + " triangles\n";
       models += "#declare " + model_names[v] + " = ";
-      append_mesh2(models, mesh, 5, "");
+      std::vector<std::string> files;
+      for (const std::uint32_t slot : table.model_slots[v]) files.push_back(textures[slot].file);
+      append_mesh2(models, mesh, 5, "", files);
     }
     impl.write_whole("models.inc", models);
   }

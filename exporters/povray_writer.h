@@ -7,7 +7,9 @@
 //   models.inc      each model variant declared once as `mesh2`, named by povray_model_names:
 //                   copies of a mesh2 share its data, so a million flowers cost little memory;
 //                   materials are one uv-mapped palette texture (a texture_list would be
-//                   copied with every instance)
+//                   copied with every instance), except for a model whose materials map images:
+//                   a texture_list, an image_map per such material through the model's uvs
+//   map_NAME.png    those images (material_textures: base colour in, alpha 0 or 255)
 //   terrain.inc     the terrain as one mesh2 (Terrain), absent when the scene has no terrain
 //   instances.inc   one `object { Sunflower_3 rotate ... scale ... translate ... }` per instance,
 //                   closed by a comment with the count

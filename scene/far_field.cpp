@@ -20,6 +20,22 @@ namespace wangscape {
 
 namespace {
 
+// For an image seen from afar: the mean linear RGB of the texels whose alpha is at least
+// `cutoff` (0: all), and the share of texels that are.
+std::array<float, 4> covered_mean(const TextureImage& image, float cutoff) {
+  double sum[3] = {0, 0, 0};
+  std::size_t covered = 0;
+  const std::size_t texels = image.rgba.size() / 4;
+  for (std::size_t i = 0; i < texels; ++i) {
+    if (float(image.rgba[i * 4 + 3]) / 255.0f < cutoff) continue;
+    for (std::size_t c = 0; c < 3; ++c) sum[c] += srgb8_to_linear(image.rgba[i * 4 + c]);
+    ++covered;
+  }
+  if (covered == 0) return {0, 0, 0, 0};
+  return {float(sum[0] / double(covered)), float(sum[1] / double(covered)), float(sum[2] / double(covered)),
+          float(double(covered) / double(texels))};
+}
+
 // A model seen from straight above: per cell of a square grid over its reach, whether it
 // covers the ground there.
 struct TopView {
@@ -276,14 +292,21 @@ CanopyLook look_at_canopy(const std::vector<PlacedFlower>& flowers, double side,
       const std::size_t m =
           raster.triangle[c] < mesh.triangle_material.size() ? mesh.triangle_material[raster.triangle[c]] : 0;
       const bool has_material = m < mesh.materials.size();
-      const Vec3f base = has_material ? mesh.materials[m].base_color : Vec3f{0.5f, 0.5f, 0.5f};
+      Vec3f base = has_material ? mesh.materials[m].base_color : Vec3f{0.5f, 0.5f, 0.5f};
+      // A model's image: its mean colour, and a cutout covers only its share (leaf cards).
+      float cover = 1;
+      if (has_material && mesh.materials[m].base_color_map) {
+        const auto mean = covered_mean(*mesh.materials[m].base_color_map, mesh.materials[m].alpha_cutoff);
+        for (std::size_t k = 0; k < 3; ++k) base[k] *= mean[k];
+        cover = mean[3];
+      }
       const float sun = sun_map.lit(point) ? sun_share(cos_sun, has_material ? mesh.materials[m].translucency : 0) : 0;
       const Vec3f seen = lit(light, base, sun, 1);
       FieldSplat& sum = is_yellow(base) ? look.yellow : look.rest;
-      sum.r += seen[0] / ground_light[0];
-      sum.g += seen[1] / ground_light[1];
-      sum.b += seen[2] / ground_light[2];
-      sum.coverage += 1;
+      sum.r += cover * seen[0] / ground_light[0];
+      sum.g += cover * seen[1] / ground_light[1];
+      sum.b += cover * seen[2] / ground_light[2];
+      sum.coverage += cover;
     }
   const float all = look.yellow.coverage + look.rest.coverage;
   if (all == 0) return {};

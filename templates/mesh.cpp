@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/color.h"
+
 namespace wangscape {
 
 MeshExtent measure_extent(const Mesh& mesh) {
@@ -20,6 +22,17 @@ MeshExtent measure_extent(const Mesh& mesh) {
   extent.height = extent.max[2];
   extent.radius = std::sqrt(radius_squared);
   return extent;
+}
+
+std::array<float, 4> TextureImage::at(float u, float v) const {
+  if (width <= 0 || height <= 0 || rgba.size() < std::size_t(width) * std::size_t(height) * 4) return {1, 1, 1, 1};
+  const auto wrap = [](float t, int size) {
+    const float repeated = std::isfinite(t) ? t - std::floor(t) : 0.0f;
+    return std::min(size - 1, int(repeated * float(size)));
+  };
+  const int column = wrap(u, width), row = height - 1 - wrap(v, height);
+  const std::uint8_t* texel = &rgba[(std::size_t(row) * std::size_t(width) + std::size_t(column)) * 4];
+  return {srgb8_to_linear(texel[0]), srgb8_to_linear(texel[1]), srgb8_to_linear(texel[2]), float(texel[3]) / 255.0f};
 }
 
 void compute_vertex_normals(Mesh& mesh) {

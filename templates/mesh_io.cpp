@@ -1,6 +1,12 @@
 #include "templates/mesh_io.h"
 
+#include <assimp/BaseImporter.h>
+#include <assimp/GltfMaterial.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
 #include <algorithm>
+#include <assimp/Importer.hpp>
 #include <bit>
 #include <cctype>
 #include <charconv>
@@ -8,17 +14,225 @@
 #include <cstring>
 #include <fstream>
 #include <istream>
+#include <limits>
+#include <map>
+#include <memory>
 #include <ostream>
+#include <sstream>
 #include <string_view>
-#include <unordered_map>
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
 
 #include "core/number_text.h"
-#include "templates/sunflower.h"
 
 namespace wangscape {
 namespace {
 
-// ---- shared helpers ----
+// Assimp's steps: triangles (polygons split; points and lines stay, and are skipped below), one
+// vertex per distinct corner, every node's transform applied (so a scene graph becomes one mesh
+// per material), normals where the file has none, and Assimp's own check of what its importer
+// made. Not aiProcess_SortByPType: in Assimp 5.2 it crashes (SIGBUS) on a mutated PLY the
+// model_file fuzzer found (fuzz/corpus/model_file/regress-sort-by-ptype-bus.seed).
+constexpr unsigned kImportSteps = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                  aiProcess_PreTransformVertices | aiProcess_GenSmoothNormals |
+                                  aiProcess_ValidateDataStructure;
+
+std::string lowercase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return text;
+}
+
+// Largest image a material may map: 16384 x 16384 texels (1 GiB of RGBA).
+constexpr double kMaxTexels = 16384.0 * 16384.0;
+
+// A file name for the image's copy in a scene folder: letters, digits, '_' and '-' only.
+std::string image_name(const std::string& text) {
+  std::string name;
+  for (const char c : text) name += std::isalnum(static_cast<unsigned char>(c)) || c == '-' ? c : '_';
+  return name.empty() ? std::string("image") : name;
+}
+
+// Decodes an image through OpenImageIO (from `proxy` when given, else the file) to RGBA8.
+std::shared_ptr<const TextureImage> decode_image(const std::string& file_name, OIIO::Filesystem::IOProxy* proxy,
+                                                 const std::string& name, const std::string& source,
+                                                 const std::string& place) {
+  auto input = OIIO::ImageInput::open(file_name, nullptr, proxy);
+  if (!input) throw Error(source, place, "cannot read its image " + file_name + ": " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = input->spec();
+  const int channels = spec.nchannels;
+  if (spec.width <= 0 || spec.height <= 0 || double(spec.width) * double(spec.height) > kMaxTexels || channels <= 0)
+    throw Error(source, place,
+                "its image " + file_name + " is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                    " texels: expected at least 1 x 1 and at most 16384 x 16384");
+  const std::size_t texels = std::size_t(spec.width) * std::size_t(spec.height);
+  std::vector<std::uint8_t> pixels(texels * std::size_t(channels));
+  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data()))
+    throw Error(source, place, "cannot read its image " + file_name + ": " + input->geterror());
+  auto image = std::make_shared<TextureImage>();
+  image->name = name;
+  image->width = spec.width;
+  image->height = spec.height;
+  image->rgba.resize(texels * 4);
+  // Grey is replicated; an image without alpha covers everything.
+  const bool has_alpha = channels == 2 || channels >= 4;
+  for (std::size_t i = 0; i < texels; ++i) {
+    const std::uint8_t* from = &pixels[i * std::size_t(channels)];
+    std::uint8_t* to = &image->rgba[i * 4];
+    const bool grey = channels < 3;
+    to[0] = from[0];
+    to[1] = grey ? from[0] : from[1];
+    to[2] = grey ? from[0] : from[2];
+    to[3] = has_alpha ? from[grey ? 1 : 3] : 255;
+  }
+  return image;
+}
+
+// The image `reference` names: one the model file holds ("*0" in a GLB, or an embedded name),
+// else a file relative to the model's folder (written with '\' by Windows exporters).
+std::shared_ptr<const TextureImage> material_image(const aiScene& scene, const std::string& reference,
+                                                   const std::filesystem::path& folder, const std::string& source,
+                                                   const std::string& material) {
+  const std::string place = "material '" + material + "'";
+  const std::string model = std::filesystem::path(source).stem().string();
+  if (const auto [held, index] = scene.GetEmbeddedTextureAndIndex(reference.c_str()); held != nullptr) {
+    if (held->mHeight != 0 || held->pcData == nullptr)
+      throw Error(source, place, "its image is held as raw texels: expected an encoded image (PNG, JPEG)");
+    std::string hint = lowercase(held->achFormatHint);
+    if (hint.empty() || !std::all_of(hint.begin(), hint.end(), [](unsigned char c) { return std::isalnum(c); }))
+      hint = "png";
+    OIIO::Filesystem::IOMemReader bytes(held->pcData, held->mWidth);
+    return decode_image("held." + hint, &bytes, image_name(model + "_" + std::to_string(index)), source, place);
+  }
+  if (reference.starts_with('*') || folder.empty())
+    throw Error(source, place, "its image '" + reference + "' is not in the file");
+  std::string relative = reference;
+  std::replace(relative.begin(), relative.end(), '\\', '/');
+  const std::filesystem::path file = (folder / relative).lexically_normal();
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(file, error))
+    throw Error(source, place, "its image '" + reference + "' is not at " + file.string());
+  return decode_image(file.string(), nullptr, image_name(file.stem().string()), source, place);
+}
+
+// Base colour (glTF's baseColorFactor, else the diffuse colour: an MTL's Kd), its image, the
+// roughness where the file gives one, and alpha: glTF's MASK (BLEND is cut at its cutoff too,
+// as Wangscape draws no partial coverage) or an MTL's map_d.
+// One image per reference: materials that share an image share its texels.
+using ImageCache = std::map<std::string, std::shared_ptr<const TextureImage>>;
+
+Material read_material(const aiScene& scene, const aiMaterial& source_material, const std::filesystem::path& folder,
+                       const std::string& source, ImageCache& images) {
+  Material material;
+  aiString name;
+  if (source_material.Get(AI_MATKEY_NAME, name) == AI_SUCCESS) material.name = name.C_Str();
+  if (material.name.empty()) material.name = "default";
+  aiColor4D color(0.5f, 0.5f, 0.5f, 1.0f);
+  if (source_material.Get(AI_MATKEY_BASE_COLOR, color) != AI_SUCCESS)
+    source_material.Get(AI_MATKEY_COLOR_DIFFUSE, color);
+  const auto unit = [](float value) { return std::isfinite(value) ? std::clamp(value, 0.0f, 1.0f) : 0.5f; };
+  material.base_color = {unit(color.r), unit(color.g), unit(color.b)};
+  float roughness = material.roughness;
+  if (source_material.Get(AI_MATKEY_ROUGHNESS_FACTOR, roughness) == AI_SUCCESS) material.roughness = unit(roughness);
+  aiString reference;
+  if (source_material.GetTexture(aiTextureType_BASE_COLOR, 0, &reference) == AI_SUCCESS ||
+      source_material.GetTexture(aiTextureType_DIFFUSE, 0, &reference) == AI_SUCCESS) {
+    auto& image = images[reference.C_Str()];
+    if (!image) image = material_image(scene, reference.C_Str(), folder, source, material.name);
+    material.base_color_map = image;
+  }
+  aiString alpha_mode;
+  float cutoff = 0.5f;
+  if (source_material.Get(AI_MATKEY_GLTF_ALPHAMODE, alpha_mode) == AI_SUCCESS) {
+    if (std::string(alpha_mode.C_Str()) != "OPAQUE") {
+      source_material.Get(AI_MATKEY_GLTF_ALPHACUTOFF, cutoff);
+      material.alpha_cutoff = std::isfinite(cutoff) ? std::clamp(cutoff, 1.0f / 256.0f, 1.0f) : 0.5f;
+    }
+  } else if (source_material.GetTextureCount(aiTextureType_OPACITY) > 0) {
+    material.alpha_cutoff = cutoff;
+  }
+  if (!material.base_color_map) material.alpha_cutoff = 0;  // alpha comes from the image
+  return material;
+}
+
+// Normals from the file (or Assimp's) if every one is usable, else computed.
+void finish_normals(Mesh& mesh) {
+  bool all_valid = mesh.normals.size() == mesh.positions.size();
+  for (auto& n : mesh.normals) {
+    if (!all_valid) break;
+    const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    all_valid = length > 1e-12f && std::isfinite(length);
+    if (all_valid)
+      for (float& c : n) c /= length;
+  }
+  if (!all_valid) compute_vertex_normals(mesh);
+}
+
+// One Mesh from Assimp's scene: its triangle meshes concatenated, the materials they use in
+// order of first use.
+Mesh mesh_from_scene(const aiScene& scene, const std::filesystem::path& folder, const std::string& source) {
+  Mesh mesh;
+  std::vector<int> slot_of(scene.mNumMaterials, -1);
+  bool any_uvs = false;
+  ImageCache images;
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh& part = *scene.mMeshes[m];
+    if (!(part.mPrimitiveTypes & aiPrimitiveType_TRIANGLE) || part.mNumVertices == 0) continue;
+    if (part.mMaterialIndex >= scene.mNumMaterials) throw Error(source, "", "a mesh names a material it lacks");
+    int& slot = slot_of[part.mMaterialIndex];
+    if (slot < 0) {
+      if (mesh.materials.size() > std::numeric_limits<std::uint16_t>::max())
+        throw Error(source, "", "more than 65536 materials");
+      slot = int(mesh.materials.size());
+      mesh.materials.push_back(read_material(scene, *scene.mMaterials[part.mMaterialIndex], folder, source, images));
+    }
+    const std::size_t first = mesh.positions.size();
+    if (first + part.mNumVertices > std::numeric_limits<std::uint32_t>::max())
+      throw Error(source, "", "more than 2^32 vertices");
+    for (unsigned v = 0; v < part.mNumVertices; ++v) {
+      const aiVector3D& p = part.mVertices[v];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+        throw Error(source, "mesh " + std::to_string(m) + ", vertex " + std::to_string(v),
+                    "a position is not a finite number");
+      mesh.positions.push_back({p.x, p.y, p.z});
+      const aiVector3D n = part.mNormals ? part.mNormals[v] : aiVector3D(0, 0, 0);
+      mesh.normals.push_back({n.x, n.y, n.z});
+      const aiVector3D uv = part.mTextureCoords[0] ? part.mTextureCoords[0][v] : aiVector3D(0, 0, 0);
+      mesh.uvs.push_back({std::isfinite(uv.x) ? uv.x : 0.0f, std::isfinite(uv.y) ? uv.y : 0.0f});
+      any_uvs = any_uvs || part.mTextureCoords[0] != nullptr;
+    }
+    for (unsigned f = 0; f < part.mNumFaces; ++f) {
+      const aiFace& face = part.mFaces[f];
+      if (face.mNumIndices != 3) continue;  // a point or line Assimp kept beside triangles
+      std::array<std::uint32_t, 3> triangle{};
+      for (int corner = 0; corner < 3; ++corner) {
+        if (face.mIndices[corner] >= part.mNumVertices)
+          throw Error(source, "mesh " + std::to_string(m) + ", face " + std::to_string(f), "a vertex index is outside");
+        triangle[corner] = std::uint32_t(first + face.mIndices[corner]);
+      }
+      mesh.triangles.push_back(triangle);
+      mesh.triangle_material.push_back(std::uint16_t(slot));
+    }
+  }
+  if (mesh.triangles.empty()) throw Error(source, "", "no triangles (expected faces, not only points or lines)");
+  if (!any_uvs) mesh.uvs.clear();
+  finish_normals(mesh);
+  return mesh;
+}
+
+void require_writable(const std::ostream& out, const char* format) {
+  if (!out) throw Error(std::string("writing ") + format + " failed (stream error)");
+}
+
+}  // namespace
+
+// ---- PLY: read by hand -------------------------------------------------------------------
+// Assimp 5.2's PLY reader never returns on some damaged headers (a missing end_header, a stray
+// byte in an element line) and one of its steps crashes on another: the model_file fuzzer found
+// all three within seconds (fuzz/corpus/model_file/regress-*). This reader was fuzzed for 10^6
+// runs before Assimp came; it also keeps write_ply's `comment material` colours.
+
+namespace {
 
 std::vector<std::string_view> split_whitespace(std::string_view line) {
   std::vector<std::string_view> tokens;
@@ -45,198 +259,10 @@ bool parse_integer(std::string_view token, long long& value) {
   return error == std::errc() && end == token.data() + token.size();
 }
 
-// A material by name; the sunflower names keep the sunflower colors so a user model can reuse them.
-Material material_named(const std::string& name) {
-  for (const Material& known : sunflower_materials()) {
-    if (known.name == name) return known;
-  }
-  return Material{name, {0.5f, 0.5f, 0.5f}, 0.5f, 0.0f};
-}
-
-// Collects the materials of a file in order of first use.
-class MaterialTable {
- public:
-  std::uint16_t index_of(const std::string& name) {
-    for (std::size_t i = 0; i < materials_.size(); ++i) {
-      if (materials_[i].name == name) return std::uint16_t(i);
-    }
-    materials_.push_back(material_named(name));
-    return std::uint16_t(materials_.size() - 1);
-  }
-  std::vector<Material> take() { return std::move(materials_); }
-
- private:
-  std::vector<Material> materials_;
-};
-
-// Normals from the file if it gave one for every vertex, else computed; then zero-length or
-// missing ones are recomputed too.
-void finish_normals(Mesh& mesh, bool file_has_normals) {
-  if (file_has_normals) {
-    bool all_valid = true;
-    for (auto& n : mesh.normals) {
-      const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      if (!(length > 1e-12f) || !std::isfinite(length)) {
-        all_valid = false;
-        break;
-      }
-      for (float& c : n) c /= length;
-    }
-    if (all_valid) return;
-  }
-  compute_vertex_normals(mesh);
-}
-
-void require_writable(const std::ostream& out, const char* format) {
-  if (!out) throw Error(std::string("writing ") + format + " failed (stream error)");
-}
-
-// ---- OBJ ----
-
-struct ObjCorner {
-  std::uint32_t position;
-  std::int64_t normal;  // -1: none
-};
+// A material by name, grey until the file colours it.
+Material material_named(const std::string& name) { return Material{name, {0.5f, 0.5f, 0.5f}, 0.5f, 0.0f}; }
 
 }  // namespace
-
-Mesh read_obj(std::istream& in, const std::string& source_name) {
-  std::vector<std::array<float, 3>> positions, normals;
-  std::vector<ObjCorner> corners;  // three per triangle
-  std::vector<std::uint16_t> triangle_material;
-  MaterialTable materials;
-  std::string current_material = "default";
-
-  std::string line;
-  std::size_t line_number = 0;
-  const auto fail = [&](const std::string& message) {
-    throw Error(source_name + ":" + std::to_string(line_number) + ": " + message);
-  };
-  const auto read_vector = [&](const std::vector<std::string_view>& tokens, const char* what) {
-    if (tokens.size() < 4) fail(std::string("expected 3 numbers after '") + what + "'");
-    std::array<float, 3> v{};
-    for (int axis = 0; axis < 3; ++axis) {
-      // Parsed straight to float: written floats come back bit for bit.
-      if (!parse_number(tokens[axis + 1], v[axis])) {
-        fail("'" + std::string(tokens[axis + 1]) + "' is not a finite number in '" + what + "'");
-      }
-    }
-    return v;
-  };
-  // OBJ indices are 1-based; negative ones count back from the latest element.
-  const auto resolve = [&](std::string_view token, std::size_t count, const char* what) -> std::uint32_t {
-    long long index;
-    if (!parse_integer(token, index) || index == 0) {
-      fail(std::string("'") + std::string(token) + "' is not a valid " + what + " index");
-    }
-    const long long resolved = index > 0 ? index - 1 : (long long)count + index;
-    if (resolved < 0 || resolved >= (long long)count) {
-      fail(std::string(what) + " index " + std::to_string(index) + " out of range (" + std::to_string(count) + " " +
-           what + "s defined so far)");
-    }
-    return std::uint32_t(resolved);
-  };
-
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    const auto tokens = split_whitespace(line);
-    if (tokens.empty()) continue;
-    const std::string_view keyword = tokens[0];
-    if (keyword == "v") {
-      positions.push_back(read_vector(tokens, "v"));
-    } else if (keyword == "vn") {
-      normals.push_back(read_vector(tokens, "vn"));
-    } else if (keyword == "usemtl") {
-      if (tokens.size() < 2) fail("expected a material name after 'usemtl'");
-      current_material = std::string(tokens[1]);
-    } else if (keyword == "f") {
-      if (tokens.size() < 4) fail("a face needs at least 3 vertices, got " + std::to_string(tokens.size() - 1));
-      std::vector<ObjCorner> polygon;
-      for (std::size_t i = 1; i < tokens.size(); ++i) {
-        const std::string_view token = tokens[i];
-        const std::size_t slash = token.find('/');
-        ObjCorner corner{resolve(token.substr(0, slash), positions.size(), "vertex"), -1};
-        if (slash != std::string_view::npos) {
-          const std::size_t second = token.find('/', slash + 1);
-          if (second != std::string_view::npos && second + 1 < token.size()) {
-            corner.normal = resolve(token.substr(second + 1), normals.size(), "normal");
-          }
-        }
-        polygon.push_back(corner);
-      }
-      const std::uint16_t material = materials.index_of(current_material);
-      for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
-        corners.insert(corners.end(), {polygon[0], polygon[i], polygon[i + 1]});
-        triangle_material.push_back(material);
-      }
-    }
-    // Everything else (vt, o, g, s, mtllib, l, ...) does not change the geometry we keep.
-  }
-  if (in.bad()) throw Error(source_name + ": read error after line " + std::to_string(line_number));
-  if (corners.empty()) throw Error(source_name + ": no faces (expected 'f' lines)");
-
-  // One output vertex per distinct (position, normal) pair, or per position without normals.
-  const bool file_has_normals =
-      std::all_of(corners.begin(), corners.end(), [](const ObjCorner& c) { return c.normal >= 0; });
-  Mesh mesh;
-  mesh.name = std::filesystem::path(source_name).stem().string();
-  std::unordered_map<std::uint64_t, std::uint32_t> vertex_of;
-  const auto output_vertex = [&](const ObjCorner& c) {
-    const std::uint64_t key =
-        file_has_normals ? (std::uint64_t(c.position) << 32 | std::uint64_t(c.normal)) : std::uint64_t(c.position);
-    const auto [it, inserted] = vertex_of.try_emplace(key, std::uint32_t(mesh.positions.size()));
-    if (inserted) {
-      mesh.positions.push_back(positions[c.position]);
-      if (file_has_normals) mesh.normals.push_back(normals[std::size_t(c.normal)]);
-    }
-    return it->second;
-  };
-  for (std::size_t i = 0; i < corners.size(); i += 3) {
-    mesh.triangles.push_back({output_vertex(corners[i]), output_vertex(corners[i + 1]), output_vertex(corners[i + 2])});
-  }
-  mesh.triangle_material = std::move(triangle_material);
-  mesh.materials = materials.take();
-  finish_normals(mesh, file_has_normals);
-  return mesh;
-}
-
-void write_obj(std::ostream& out, const Mesh& mesh) {
-  std::string text = "# written by wangscape\no " + (mesh.name.empty() ? std::string("mesh") : mesh.name) + "\n";
-  const auto append_vector = [&](const char* keyword, const std::array<float, 3>& v) {
-    text += keyword;
-    for (float c : v) {
-      text += ' ';
-      append_number(text, c);
-    }
-    text += '\n';
-  };
-  for (const auto& p : mesh.positions) append_vector("v", p);
-  for (const auto& n : mesh.normals) append_vector("vn", n);
-  const bool has_normals = mesh.normals.size() == mesh.positions.size();
-  int current_material = -1;
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const int material = t < mesh.triangle_material.size() ? mesh.triangle_material[t] : 0;
-    if (material != current_material && std::size_t(material) < mesh.materials.size()) {
-      text += "usemtl " + mesh.materials[material].name + "\n";
-      current_material = material;
-    }
-    text += 'f';
-    for (std::uint32_t v : mesh.triangles[t]) {
-      text += ' ';
-      append_number(text, std::uint64_t(v) + 1);
-      if (has_normals) {
-        text += "//";
-        append_number(text, std::uint64_t(v) + 1);
-      }
-    }
-    text += '\n';
-  }
-  out.write(text.data(), std::streamsize(text.size()));
-  require_writable(out, "OBJ");
-}
-
-// ---- PLY ----
 
 namespace {
 
@@ -564,7 +590,8 @@ Mesh read_ply_body(Reader& reader, const PlyHeader& header, const std::string& s
   if (!has_faces || mesh.triangles.empty()) throw Error(source + ": no faces (expected 'element face')");
   mesh.materials = header.comment_materials;
   if (mesh.materials.empty()) mesh.materials.push_back(material_named("default"));
-  finish_normals(mesh, has_normals);
+  if (!has_normals) mesh.normals.clear();
+  finish_normals(mesh);
   return mesh;
 }
 
@@ -578,6 +605,101 @@ Mesh read_ply(std::istream& in, const std::string& source_name) {
   }
   PlyAsciiReader reader(in, source_name, header.line_count);
   return read_ply_body(reader, header, source_name);
+}
+
+namespace {
+
+// A PLY file by its name or its first line: read_ply's, never Assimp's.
+bool is_ply(const std::string& extension, std::string_view head) {
+  const std::string first = lowercase(std::string(head.substr(0, 4)));
+  return lowercase(extension) == ".ply" || lowercase(extension) == "ply" || first == "ply\n" || first == "ply\r";
+}
+
+// An importer without Assimp's PLY reader: Assimp picks readers by the bytes too (the word "ply"
+// in a file's first 200 bytes is enough), so that reader must not be there to pick. The importer
+// does not free a reader it no longer holds: freed here.
+std::unique_ptr<Assimp::Importer> make_importer() {
+  auto importer = std::make_unique<Assimp::Importer>();
+  if (Assimp::BaseImporter* ply = importer->GetImporter("ply")) {
+    if (importer->UnregisterLoader(ply) == AI_SUCCESS) delete ply;
+  }
+  return importer;
+}
+
+}  // namespace
+
+Mesh load_mesh(const std::filesystem::path& path) {
+  const std::string source = path.string();
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) throw Error(path, "", "no such model file");
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path, "", "cannot open the file for reading");
+    char head[4] = {};
+    in.read(head, sizeof head);
+    if (is_ply(path.extension().string(), std::string_view(head, std::size_t(in.gcount())))) {
+      in.clear();
+      in.seekg(0);
+      return read_ply(in, source);
+    }
+  }
+  const auto importer = make_importer();
+  const aiScene* scene = importer->ReadFile(source, kImportSteps);
+  if (scene == nullptr) throw Error(path, "", std::string("not a model Assimp reads: ") + importer->GetErrorString());
+  Mesh mesh = mesh_from_scene(*scene, std::filesystem::absolute(path, error).parent_path(), source);
+  mesh.name = path.stem().string();
+  return mesh;
+}
+
+Mesh read_model(std::span<const std::uint8_t> bytes, const std::string& extension, const std::string& source_name) {
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  if (is_ply(extension, text)) {
+    std::istringstream in(std::string(text), std::ios::binary);
+    return read_ply(in, source_name);
+  }
+  const auto importer = make_importer();
+  const std::string hint = lowercase(extension.starts_with('.') ? extension.substr(1) : extension);
+  const aiScene* scene = importer->ReadFileFromMemory(bytes.data(), bytes.size(), kImportSteps, hint.c_str());
+  if (scene == nullptr)
+    throw Error(source_name, "", std::string("not a model Assimp reads: ") + importer->GetErrorString());
+  Mesh mesh = mesh_from_scene(*scene, {}, source_name);
+  mesh.name = std::filesystem::path(source_name).stem().string();
+  return mesh;
+}
+
+void write_obj(std::ostream& out, const Mesh& mesh) {
+  std::string text = "# written by wangscape\no " + (mesh.name.empty() ? std::string("mesh") : mesh.name) + "\n";
+  const auto append_vector = [&](const char* keyword, const std::array<float, 3>& v) {
+    text += keyword;
+    for (float c : v) {
+      text += ' ';
+      append_number(text, c);
+    }
+    text += '\n';
+  };
+  for (const auto& p : mesh.positions) append_vector("v", p);
+  for (const auto& n : mesh.normals) append_vector("vn", n);
+  const bool has_normals = mesh.normals.size() == mesh.positions.size();
+  int current_material = -1;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const int material = t < mesh.triangle_material.size() ? mesh.triangle_material[t] : 0;
+    if (material != current_material && std::size_t(material) < mesh.materials.size()) {
+      text += "usemtl " + mesh.materials[material].name + "\n";
+      current_material = material;
+    }
+    text += 'f';
+    for (std::uint32_t v : mesh.triangles[t]) {
+      text += ' ';
+      append_number(text, std::uint64_t(v) + 1);
+      if (has_normals) {
+        text += "//";
+        append_number(text, std::uint64_t(v) + 1);
+      }
+    }
+    text += '\n';
+  }
+  out.write(text.data(), std::streamsize(text.size()));
+  require_writable(out, "OBJ");
 }
 
 void write_ply(std::ostream& out, const Mesh& mesh, PlyFormat format) {
@@ -652,18 +774,6 @@ void write_ply(std::ostream& out, const Mesh& mesh, PlyFormat format) {
   }
   out.write(text.data(), std::streamsize(text.size()));
   require_writable(out, "PLY");
-}
-
-Mesh load_mesh(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
-  if (extension != ".obj" && extension != ".ply") {
-    throw Error(path.string() + ": unknown mesh format '" + extension + "' (expected .obj or .ply)");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path.string() + ": cannot open the file for reading");
-  return extension == ".obj" ? read_obj(in, path.string()) : read_ply(in, path.string());
 }
 
 Mesh load_user_model(const std::filesystem::path& path, const UserModelOptions& options) {

@@ -1,22 +1,42 @@
-// Reading and writing meshes as Wavefront OBJ and PLY, so a user model can replace the built-in
-// sunflower. Readers throw Error whose message names the file and the line (OBJ, ASCII PLY)
-// or element (binary PLY) at fault. Loaded meshes keep the file's coordinates: the caller decides
-// units and axes (Wangscape models are meters, z up, ground contact at the origin).
+// A user's model read through Assimp (OBJ with its MTL, glTF 2.0 and GLB, FBX, Collada, PLY and
+// whatever else Assimp reads), so it can replace the built-in plants; and OBJ and PLY writers for
+// Wangscape's own meshes. Readers throw Error naming the file (and the material or mesh at
+// fault). Loaded meshes keep the file's coordinates: the caller decides units and axes
+// (Wangscape models are meters, z up, ground contact at the origin). Thread-safe: each call has
+// its own Assimp importer. Assimp logs nothing unless a logger is made, and none is.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <iosfwd>
+#include <span>
 #include <string>
 
 #include "templates/mesh.h"
 
 namespace wangscape {
 
-// Loads an .obj or .ply file (chosen by extension, case-insensitive). Triangulates polygons as
-// fans; computes smooth normals when the file has none (or not for every face corner).
-// Materials: OBJ `usemtl` names, PLY `comment material` lines as written by write_ply, else one
-// material "default"; the names petal, disk, stem and leaf take the sunflower colors.
+// Loads a model file in any format Assimp reads (chosen by Assimp from the extension and the
+// bytes); a .ply file by read_ply instead (Assimp 5.2's PLY reader hangs on damaged headers). Polygons are
+// triangulated, points and lines dropped, the file's node transforms applied, smooth normals computed where the file
+// has none. One material per material of the file that a triangle uses, in order of first use: its name, base colour
+// (glTF baseColorFactor, else the diffuse colour: an MTL's Kd; 0.5 grey when the file gives none), roughness (glTF's),
+// the image of its base colour (a file beside the model, which must exist, or one the file holds) and an alpha cutout
+// (glTF alphaMode MASK or BLEND at alphaCutoff; an MTL's map_d at 0.5). uvs are the first texture coordinates, kept
+// when any triangle has them. The mesh is named by the file's stem. (A .ply file is read by read_ply: no images,
+// colours from `comment material` lines.)
 Mesh load_mesh(const std::filesystem::path& path);
+
+// The same from bytes in memory, the format named by `extension` (".glb", "obj"); images must be
+// held by the bytes. `source_name` is used in error messages and names the mesh.
+Mesh read_model(std::span<const std::uint8_t> bytes, const std::string& extension, const std::string& source_name);
+
+// PLY, ascii or binary_little_endian, read by hand: element vertex with x, y, z [nx, ny, nz],
+// element face with list vertex_indices (or vertex_index) and optional integer `material` (its
+// colour and name from write_ply's `comment material` lines, else one grey "default"); other
+// elements and properties are skipped. Errors name the file and the line (ascii) or element
+// (binary). `in` must be opened in binary mode.
+Mesh read_ply(std::istream& in, const std::string& source_name);
 
 // How to bring a user's model into Wangscape model space.
 struct UserModelOptions {
@@ -29,15 +49,6 @@ struct UserModelOptions {
 // load_mesh, then scale, turn to z up and move to the origin as `options` say; normals follow.
 // The result can replace the built-in sunflower (its extent gives height and placement radius).
 Mesh load_user_model(const std::filesystem::path& path, const UserModelOptions& options = {});
-
-// OBJ with v, vn and f (v, v/vt, v//vn, v/vt/vn; negative indices count back from the last
-// vertex); other statements are ignored. `source_name` is used in error messages.
-Mesh read_obj(std::istream& in, const std::string& source_name);
-
-// PLY, ascii or binary_little_endian: element vertex with x, y, z [nx, ny, nz], element face with
-// list vertex_indices (or vertex_index) and optional integer `material`; other elements and
-// properties are skipped. `in` must be opened in binary mode.
-Mesh read_ply(std::istream& in, const std::string& source_name);
 
 // OBJ with v, vn, `usemtl` per material run and f v//vn. Numbers round-trip exactly.
 void write_obj(std::ostream& out, const Mesh& mesh);

@@ -63,6 +63,13 @@ void collect_hits(const RTCFilterFunctionNArguments* args) {
   const unsigned n = args->N;
   for (unsigned i = 0; i < n; ++i) {
     if (args->valid[i] == 0) continue;
+    // A hole of a leaf card's cutout is no hit (the geometry's user pointer: a model with cutouts).
+    if (args->geometryUserPtr != nullptr &&
+        in_cutout(*static_cast<const Mesh*>(args->geometryUserPtr), RTCHitN_primID(args->hit, n, i),
+                  RTCHitN_u(args->hit, n, i), RTCHitN_v(args->hit, n, i))) {
+      args->valid[i] = 0;
+      continue;
+    }
     HitBuffer& b = context->lanes[RTCRayN_id(args->ray, n, i)];
     ++b.recorded;
     if (b.count < b.capacity) {
@@ -544,6 +551,7 @@ Scene context_scene(Device& device, const FilledTileSet& filled, std::span<const
           moved[v] = {xfm[0] * q[0] + xfm[3] * q[1] + xfm[9], xfm[1] * q[0] + xfm[4] * q[1] + xfm[10], xfm[8] * q[2]};
         }
         g = triangle_geometry(device.get(), moved, mesh.triangles);
+        add_cutouts(g, mesh, false);  // collect_hits skips the holes itself
       }
       if (g) {
         rtcAttachGeometryByID(scene.get(), g, id);

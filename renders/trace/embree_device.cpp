@@ -50,6 +50,7 @@ std::vector<EmbreeScene> model_scenes(EmbreeDevice& device, std::span<const Mesh
     rtcSetSceneBuildQuality(scene.get(), RTC_BUILD_QUALITY_HIGH);
     if (!m.triangles.empty()) {
       RTCGeometry g = triangle_geometry(device.get(), m.positions, m.triangles, filter);
+      add_cutouts(g, m, filter == nullptr);
       rtcAttachGeometryByID(scene.get(), g, 0);
       rtcReleaseGeometry(g);
     }
@@ -58,6 +59,45 @@ std::vector<EmbreeScene> model_scenes(EmbreeDevice& device, std::span<const Mesh
   }
   device.check("building the model scenes");
   return scenes;
+}
+
+void add_cutouts(RTCGeometry geometry, const Mesh& mesh, bool intersection) {
+  if (!has_cutouts(mesh)) return;
+  rtcSetGeometryUserData(geometry, const_cast<Mesh*>(&mesh));  // Embree's API is not const
+  rtcSetGeometryOccludedFilterFunction(geometry, &reject_cutouts);
+  if (intersection) rtcSetGeometryIntersectFilterFunction(geometry, &reject_cutouts);
+  rtcCommitGeometry(geometry);
+}
+
+bool has_cutouts(const Mesh& mesh) {
+  if (mesh.uvs.size() != mesh.positions.size()) return false;
+  for (const Material& material : mesh.materials)
+    if (material.alpha_cutoff > 0 && material.base_color_map) return true;
+  return false;
+}
+
+bool in_cutout(const Mesh& mesh, unsigned prim, float u, float v) {
+  if (prim >= mesh.triangle_material.size() || mesh.uvs.size() != mesh.positions.size()) return false;
+  const std::uint16_t slot = mesh.triangle_material[prim];
+  if (slot >= mesh.materials.size()) return false;
+  const Material& material = mesh.materials[slot];
+  if (!(material.alpha_cutoff > 0) || !material.base_color_map) return false;
+  const auto& tri = mesh.triangles[prim];
+  const float w = 1 - u - v;
+  const float s = w * mesh.uvs[tri[0]][0] + u * mesh.uvs[tri[1]][0] + v * mesh.uvs[tri[2]][0];
+  const float t = w * mesh.uvs[tri[0]][1] + u * mesh.uvs[tri[1]][1] + v * mesh.uvs[tri[2]][1];
+  return material.base_color_map->at(s, t)[3] < material.alpha_cutoff;
+}
+
+void reject_cutouts(const RTCFilterFunctionNArguments* args) {
+  const auto* mesh = static_cast<const Mesh*>(args->geometryUserPtr);
+  if (mesh == nullptr) return;
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    if (in_cutout(*mesh, RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
+                  RTCHitN_v(args->hit, args->N, i)))
+      args->valid[i] = 0;
+  }
 }
 
 }  // namespace wangscape

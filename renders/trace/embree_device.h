@@ -57,8 +57,26 @@ RTCGeometry triangle_geometry(RTCDevice device, std::span<const std::array<float
                               RTCFilterFunctionN filter = nullptr);
 
 // One committed scene per model (its triangles as geometry 0; HIGH build quality: built once,
-// instanced many times), with `filter` on every model's triangles. Throws Embree's errors.
+// instanced many times), with `filter` on every model's triangles. A model with cut-out
+// materials (leaf cards) has its Mesh as the geometry's user pointer and reject_cutouts as its
+// occlusion filter, and as its intersection filter when `filter` is null (a given filter must
+// call in_cutout itself). The models must outlive the scenes. Throws Embree's errors.
 std::vector<EmbreeScene> model_scenes(EmbreeDevice& device, std::span<const Mesh> models,
                                       RTCFilterFunctionN filter = nullptr);
+
+// Whether the hit at barycentric (u, v) of triangle `prim` falls in a hole of its material's
+// cutout: the alpha of the material's image at the interpolated uv below alpha_cutoff.
+bool in_cutout(const Mesh& mesh, unsigned prim, float u, float v);
+
+// Whether any material of `mesh` is a cutout with an image to cut by, and the mesh has uvs.
+bool has_cutouts(const Mesh& mesh);
+
+// Gives a model's triangle geometry its cutouts when it has any: `mesh` as the user pointer,
+// reject_cutouts as the occlusion filter and, when `intersection`, as the intersection filter;
+// commits it again. `mesh` must outlive the geometry.
+void add_cutouts(RTCGeometry geometry, const Mesh& mesh, bool intersection);
+
+// Embree filter: rejects the hits in_cutout finds, the geometry's user pointer being its Mesh.
+void reject_cutouts(const RTCFilterFunctionNArguments* args);
 
 }  // namespace wangscape

@@ -63,8 +63,17 @@ void model_surface(const Mesh& mesh, unsigned prim, float u, float v, float cos_
   if (prim < mesh.triangle_material.size()) {
     const std::uint16_t slot = mesh.triangle_material[prim];
     if (slot < mesh.materials.size()) {
-      out.base_color = mesh.materials[slot].base_color;
-      out.translucency = mesh.materials[slot].translucency;
+      const Material& material = mesh.materials[slot];
+      out.base_color = material.base_color;
+      out.translucency = material.translucency;
+      // The image's texel at the interpolated uv multiplies the base colour (glTF's rule).
+      if (material.base_color_map && mesh.uvs.size() == mesh.positions.size()) {
+        const float w0 = 1 - u - v;
+        const float s = w0 * mesh.uvs[tri[0]][0] + u * mesh.uvs[tri[1]][0] + v * mesh.uvs[tri[2]][0];
+        const float t = w0 * mesh.uvs[tri[0]][1] + u * mesh.uvs[tri[1]][1] + v * mesh.uvs[tri[2]][1];
+        const auto texel = material.base_color_map->at(s, t);
+        for (std::size_t c = 0; c < 3; ++c) out.base_color[c] *= texel[c];
+      }
     }
   }
 }

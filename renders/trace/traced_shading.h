@@ -34,9 +34,9 @@ Vec3f face_normal(const std::array<float, 3>& a, const std::array<float, 3>& b, 
 
 // The surface of triangle `prim` of a model hit at barycentric (u, v): the normal (smooth where
 // the mesh has normals, else the triangle's), turned by the instance's yaw about +z and made unit
-// (+z when degenerate), and the triangle's material (base color, translucency; left as they are
-// when the triangle has none). A uniform scale does not change normals. Not yet turned towards
-// the viewer.
+// (+z when degenerate), and the triangle's material (base color times its image's texel at the
+// interpolated uv, translucency; left as they are when the triangle has none). A uniform scale does not change normals.
+// Not yet turned towards the viewer.
 void model_surface(const Mesh& mesh, unsigned prim, float u, float v, float cos_yaw, float sin_yaw, SurfaceSample& out);
 
 // Outgoing linear RGB at `sample`. Shadow and sky rays are rtcOccluded1 queries of `scene`

@@ -119,6 +119,11 @@ def build_mesh(name, folder, spec, materials):
         mesh.use_auto_smooth = True  # required for custom normals before 4.1
     mesh.normals_split_custom_set_from_vertices(normals.reshape(-1, 3))
 
+    if spec.get("uvs"):
+        # A model's own uvs (v up, as Blender's), per vertex: spread to the loops.
+        uv = read_array(folder, spec["uvs"]).reshape(-1, 2)
+        mesh.uv_layers.new(name="UVMap").data.foreach_set("uv", uv[indices].ravel())
+
     for slot in spec.get("material_slots", []):
         mesh.materials.append(materials[slot])
     return mesh
@@ -161,8 +166,9 @@ def _loop_total_writable():
     return prop is not None and not prop.is_readonly
 
 
-def build_material(spec):
-    """Principled BSDF, mixed with a Translucent BSDF for thin parts (petals, leaves)."""
+def build_material(spec, folder):
+    """Principled BSDF, mixed with a Translucent BSDF for thin parts (petals, leaves); with an
+    image, its colour (which holds the base colour already) and, for a cutout, its alpha, clipped."""
     material = bpy.data.materials.new(spec["name"])
     material.use_nodes = True
     color = list(spec["base_color"]) + [1.0]
@@ -175,6 +181,17 @@ def build_material(spec):
     specular = principled_input(principled, "Specular", "Specular IOR Level")
     if specular is not None:
         specular.default_value = 0.0  # diffuse alone, as the one shading model
+    image = None
+    if spec.get("image"):
+        image = tree.nodes.new("ShaderNodeTexImage")
+        image.image = bpy.data.images.load(os.path.join(folder, spec["image"]), check_existing=True)
+        tree.links.new(image.outputs["Color"], principled.inputs["Base Color"])
+        if spec.get("alpha_clip"):
+            tree.links.new(image.outputs["Alpha"], principled.inputs["Alpha"])
+            material.blend_method = "CLIP"  # EEVEE; Cycles takes the alpha as it is (0 or 1 here)
+            material.alpha_threshold = 0.5
+            if hasattr(material, "shadow_method"):
+                material.shadow_method = "CLIP"
     translucency = float(spec.get("translucency", 0.0))
     if translucency > 0.0:
         output = next(node for node in tree.nodes if node.type == "OUTPUT_MATERIAL")
@@ -182,6 +199,13 @@ def build_material(spec):
         # the one shading model (sun_share) and POV-Ray's back-side diffuse: added, not mixed.
         translucent = tree.nodes.new("ShaderNodeBsdfTranslucent")
         translucent.inputs["Color"].default_value = [c * translucency for c in color[:3]] + [1.0]
+        if image is not None:  # the image's colour times the translucency
+            scaled = tree.nodes.new("ShaderNodeMixRGB")
+            scaled.blend_type = "MULTIPLY"
+            scaled.inputs["Fac"].default_value = 1.0
+            scaled.inputs["Color2"].default_value = [translucency] * 3 + [1.0]
+            tree.links.new(image.outputs["Color"], scaled.inputs["Color1"])
+            tree.links.new(scaled.outputs["Color"], translucent.inputs["Color"])
         add = tree.nodes.new("ShaderNodeAddShader")
         tree.links.new(principled.outputs["BSDF"], add.inputs[0])
         tree.links.new(translucent.outputs["BSDF"], add.inputs[1])
@@ -452,7 +476,7 @@ def import_manifest(context, path, set_render_settings=True, set_world=True):
     folder = os.path.dirname(os.path.abspath(path))
     scene = context.scene
 
-    materials = [build_material(spec) for spec in manifest["materials"]]
+    materials = [build_material(spec, folder) for spec in manifest["materials"]]
     terrain_spec = manifest.get("terrain")
     if terrain_spec:
         terrain_mesh = build_mesh("Wangscape terrain", folder, terrain_spec, materials)
