@@ -40,8 +40,11 @@ foreach(variant IN ITEMS patch_full patch_aware)
     COMMAND sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$1.toml\" --out \"$1\" && \"$0\" --quiet render \"$1\" && test -s \"$1/render.png\""
             "${WANGSCAPE_BIN}" "${aware_dir}/${variant}")
 endforeach()
-# Measured 31.3 dB (idiff, 160 x 90); two full stills of different tile seeds differ by more.
+# Measured 28.1 dB (idiff, 160 x 90; 31.3 while POV-Ray still had fog, before the one look of
+# issue 39): past `far` the field texture is the flowers' top-down colour, a little darker and
+# greener than heads seen edge-on (rows 50-55 of 90: 0.37/0.39/0.15 against 0.41/0.43/0.16). Two
+# full stills of tile seeds 7 and 8 differ at 16.9 dB.
 add_test(NAME camera_aware_patch_psnr
   COMMAND sh "${CMAKE_CURRENT_SOURCE_DIR}/psnr_at_least.sh" "${aware_dir}/patch_full/render.png"
-          "${aware_dir}/patch_aware/render.png" 29)
+          "${aware_dir}/patch_aware/render.png" 27)
 set_tests_properties(camera_aware_patch_psnr PROPERTIES DEPENDS "camera_aware_patch_full;camera_aware_patch_aware")
