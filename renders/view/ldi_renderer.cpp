@@ -1,10 +1,16 @@
 #include "renders/view/ldi_renderer.h"
 
-#include "renders/view/ldi_renderer_impl.h"
-
 #include <tbb/parallel_sort.h>
 
+#include <chrono>
+
+#include "core/color.h"
+#include "core/error.h"
+#include "renders/view/ldi_renderer_impl.h"
+
 namespace wangscape {
+
+using namespace ldi_renderer_detail;  // the renderer's inner parts (ldi_renderer_impl.h)
 
 LdiRenderer::LdiRenderer(std::shared_ptr<const ViewWorld> world, int width, int height)
     : world_(std::move(world)), impl_(std::make_unique<Impl>()) {

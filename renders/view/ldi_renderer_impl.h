@@ -5,7 +5,6 @@
 
 #include "renders/view/ldi_renderer.h"
 
-#include <embree3/rtcore.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -13,19 +12,10 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
-#include <chrono>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
-#include "core/color.h"
-#include "core/error.h"
 #include "core/vecmath.h"
-#include "exporters/scene_folder.h"
-#include "generator/placement.h"
-#include "renders/ldi/ldi_scene.h"
-#include "renders/trace/embree_device.h"
-#include "renders/trace/traced_shading.h"
 
 #include "renders/trace/scene_tracer.h"
 #include "renders/view/ldi_warp.h"
@@ -71,10 +61,14 @@ using V3 = Vector3d;
 
 }  // namespace ldi_renderer_detail
 
-// (Included only by the renderer's own sources, which use these names throughout.)
-using namespace ldi_renderer_detail;
-
 struct LdiRenderer::Impl {
+  // The inner names the members use here (the renderer's sources bring them all in themselves).
+  using V3 = Vector3d;
+  using ThreadDepths = view_detail::ThreadDepths;
+  static constexpr int kOcclusionBlock = ldi_renderer_detail::kOcclusionBlock;
+  static constexpr float kNear = view_detail::kNear;
+  static constexpr std::uint64_t kEmpty = view_detail::kEmpty;
+
   int width = 0, height = 0;
   std::vector<std::uint64_t> zbuffer;
   // The frame's camera: eye, axes (ENU), pixels per unit of tan, screen centre.

@@ -2,7 +2,11 @@
 // the whole frame ray cast.
 #include "renders/view/ldi_renderer_impl.h"
 
+#include "renders/trace/traced_shading.h"
+
 namespace wangscape {
+
+using namespace ldi_renderer_detail;  // the renderer's inner parts (ldi_renderer_impl.h)
 
 // ---- occlusion: the LDI tiles wholly behind the near field (every screen block their box
 // covers holds a near surface nearer than the box's nearest point) are dropped from the order:

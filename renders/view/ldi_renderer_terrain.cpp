@@ -4,6 +4,8 @@
 
 namespace wangscape {
 
+using namespace ldi_renderer_detail;  // the renderer's inner parts (ldi_renderer_impl.h)
+
 // The terrain's chunks to draw and their levels (step 7's first part): into chunk_order and chunk_level.
 void LdiRenderer::choose_chunks() {
   Impl& m = *impl_;
