@@ -615,6 +615,22 @@ bool is_ply(const std::string& extension, std::string_view head) {
   return lowercase(extension) == ".ply" || lowercase(extension) == "ply" || first == "ply\n" || first == "ply\r";
 }
 
+// Text formats handed to Assimp must hold no NUL byte: Assimp 5.2's OBJ reader wrote through a
+// null pointer on a `usemtl` line with NULs in it (found by fuzz_model_file). Throws an Error
+// naming the first one's line; `line` is the line `text` starts on (the file is read in chunks).
+bool is_text_format(const std::string& extension) {
+  const std::string e = lowercase(extension.starts_with('.') ? extension.substr(1) : extension);
+  return e == "obj" || e == "dae" || e == "gltf";
+}
+void refuse_nul(std::string_view text, std::uint64_t& line, const std::string& source, const std::string& extension) {
+  const std::size_t nul = text.find('\0');
+  const std::string_view before = text.substr(0, nul);
+  line += std::uint64_t(std::count(before.begin(), before.end(), '\n'));
+  if (nul == std::string_view::npos) return;
+  throw Error(source, std::to_string(line),
+              "holds a NUL byte; a " + extension + " file is text (a damaged or binary file under that name?)");
+}
+
 // An importer without Assimp's PLY reader: Assimp picks readers by the bytes too (the word "ply"
 // in a file's first 200 bytes is enough), so that reader must not be there to pick. The importer
 // does not free a reader it no longer holds: freed here.
@@ -643,6 +659,13 @@ Mesh load_mesh(const std::filesystem::path& path) {
       return read_ply(in, source);
     }
   }
+  if (is_text_format(path.extension().string())) {
+    std::ifstream in(path, std::ios::binary);
+    std::string chunk(1 << 16, '\0');
+    std::uint64_t line = 1;
+    while (in.read(chunk.data(), std::streamsize(chunk.size())) || in.gcount() > 0)
+      refuse_nul(std::string_view(chunk.data(), std::size_t(in.gcount())), line, source, path.extension().string());
+  }
   const auto importer = make_importer();
   const aiScene* scene = importer->ReadFile(source, kImportSteps);
   if (scene == nullptr) throw Error(path, "", std::string("not a model Assimp reads: ") + importer->GetErrorString());
@@ -656,6 +679,10 @@ Mesh read_model(std::span<const std::uint8_t> bytes, const std::string& extensio
   if (is_ply(extension, text)) {
     std::istringstream in(std::string(text), std::ios::binary);
     return read_ply(in, source_name);
+  }
+  if (is_text_format(extension)) {
+    std::uint64_t line = 1;
+    refuse_nul(text, line, source_name, extension);
   }
   const auto importer = make_importer();
   const std::string hint = lowercase(extension.starts_with('.') ? extension.substr(1) : extension);

@@ -311,6 +311,25 @@ TEST_F(MeshIo, PlyContentIsReadByHandWhateverItsName) {
   }
 }
 
+// Assimp 5.2's OBJ reader crashed on a `usemtl` line holding NULs (the fuzzer's seed below): text
+// formats with a NUL byte are refused before Assimp sees them, from a file and from memory.
+TEST_F(MeshIo, TextModelsWithNulBytesAreRefusedNamingTheLine) {
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nusem" + std::string(2, '\0') + "tl x\nf 1 2 3\n";
+  expect_contains(load_error(write("nul.obj", obj)), "nul.obj:4: holds a NUL byte; a .obj file is text");
+  expect_contains(load_error(write("nul.dae", "<?xml version=\"1.0\"?>\n<COLLADA>" + std::string(1, '\0'))),
+                  "nul.dae:2: holds a NUL byte");
+  std::ifstream in(fs::path(WANGSCAPE_SOURCE_DIR) / "fuzz/corpus/model_file/regress-obj-nul-usemtl-segv.seed",
+                   std::ios::binary);
+  const std::string seed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(seed.size(), 1u);
+  try {
+    read_model(std::span(reinterpret_cast<const std::uint8_t*>(seed.data()) + 1, seed.size() - 1), ".obj", "seed.obj");
+    ADD_FAILURE() << "the seed's NUL bytes should be refused";
+  } catch (const Error& error) {
+    expect_contains(error.what(), "seed.obj:1: holds a NUL byte");
+  }
+}
+
 TEST_F(MeshIo, AMissingImageIsAnErrorNamingMaterialAndPath) {
   write("card.mtl", "newmtl leaf\nKd 1 1 1\nmap_Kd no_such_leaf.png\n");
   const fs::path path = write("card.obj",
