@@ -6,6 +6,7 @@
 // a path file, as the view plays it (renders/render_path.h), and FOLDER/path.mp4.
 #include <fmt/core.h>
 
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <memory>
@@ -14,6 +15,7 @@
 #include "cli/progress.h"
 #include "cli/scene_commands.h"
 #include "core/number_text.h"
+#include "core/vecmath.h"
 #include "renders/render_folder.h"
 #include "renders/render_path.h"
 #include "renders/trace/embree_reference.h"
@@ -33,6 +35,9 @@ void run_render_path(const std::filesystem::path& dir, const RenderRequest& requ
   const WriteReport report(global.quiet);
   if (request.camera || request.look_at)
     throw CLI::ValidationError("--camera", "a path gives every frame's camera: give --path or --camera, not both");
+  if (request.fov || request.sun)
+    throw CLI::ValidationError(request.fov ? "--fov" : "--sun",
+                               "is for one still; a path renders the scene's lens and sun");
   if (!request.out.empty()) throw CLI::ValidationError("--out", "with --path the frames go to --frames FOLDER");
   PathRenderRequest path;
   path.engine = parse_render_engine(request.engine);
@@ -77,10 +82,16 @@ void run_render(const std::filesystem::path& dir, const RenderRequest& request, 
     return run_render_path(dir, request, global);
   }
   const WriteReport report(global.quiet);
-  FolderRenderRequest folder{
-      parse_render_engine(request.engine), request.width, request.height, request.out, request.spp, {}, {}, {}};
+  FolderRenderRequest folder;
+  folder.engine = parse_render_engine(request.engine);
+  folder.width = request.width;
+  folder.height = request.height;
+  folder.out = request.out;
+  folder.samples_per_pixel = request.spp;
   folder.eye = request.camera;
   folder.look_at = request.look_at;
+  folder.fov_degrees = request.fov;
+  folder.sun_degrees = request.sun;
   std::unique_ptr<Progress> progress;
   if (chatty(global)) {
     std::fprintf(stderr, "wangscape: rendering %s with %s\n", dir.string().c_str(), request.engine.c_str());
@@ -103,6 +114,7 @@ void register_render_command(CLI::App& app, const GlobalOptions& global) {
   auto request = std::make_shared<RenderRequest>();
   auto dir = std::make_shared<std::string>();
   auto camera = std::make_shared<std::string>(), look_at = std::make_shared<std::string>();
+  auto sun = std::make_shared<std::string>();
   sub->add_option("dir", *dir, "Scene folder")->required();
   sub->add_option("--engine", request->engine, "Renderer: povray, blender or embree")->capture_default_str();
   sub->add_option("--width", request->width, "Image width in pixels (default: the scene's; alone, the height follows)")
@@ -120,6 +132,11 @@ void register_render_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--camera", *camera,
                   "Render from another eye, E,N[,H] (ENU m; without H: the [ldi] head height above the ground)");
   sub->add_option("--look-at", *look_at, "With or without --camera: the point looked at, E,N,H (ENU m)");
+  sub->add_option("--fov", request->fov, "embree: the horizontal field of view in degrees (default: the scene's)")
+      ->check(CLI::Range(1e-3, kMaxFieldOfViewDegrees));
+  sub->add_option("--sun", *sun,
+                  "embree: another sun, AZIMUTH,ELEVATION in degrees as [sun] gives them (azimuth clockwise from "
+                  "north, -360 .. 360; elevation -90 .. 90)");
   sub->add_option("--path", request->path,
                   "Render every frame along a path file (the view's: docs/viewer.md) into --frames");
   sub->add_option("--frames", request->frames,
@@ -137,7 +154,14 @@ void register_render_command(CLI::App& app, const GlobalOptions& global) {
                    "small/close.png",
                    "wangscape render small --engine embree --path templates/paths/small_walk.json --frames small/walk "
                    "--fps 4 --width 160"});
-  sub->callback([dir, request, camera, look_at, &global] {
+  sub->callback([dir, request, camera, look_at, sun, &global] {
+    if (!sun->empty()) {
+      const auto angles = parse_number_list(*sun, ',', 2, 2);
+      if (!angles || !(std::abs((*angles)[0]) <= 360) || !(std::abs((*angles)[1]) <= 90))
+        throw CLI::ValidationError("--sun",
+                                   "'" + *sun + "' is not AZIMUTH,ELEVATION in degrees (-360 .. 360, -90 .. 90)");
+      request->sun = std::array<double, 2>{(*angles)[0], (*angles)[1]};
+    }
     if (!camera->empty() && !(request->camera = parse_enu_triple(*camera, true)))
       throw CLI::ValidationError("--camera", "'" + *camera + "' is not E,N or E,N,H in meters");
     if (!look_at->empty() && !(request->look_at = parse_enu_triple(*look_at, false)))

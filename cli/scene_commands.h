@@ -33,6 +33,8 @@ struct RenderRequest {
   std::string path, frames;                              // --path FILE --frames FOLDER: an animation along the path
   std::optional<double> fps;                             // of the path (default 24)
   std::optional<std::array<double, 3>> camera, look_at;  // another camera (E,N[,H]; E,N,H)
+  std::optional<double> fov;                             // embree: another field of view (degrees)
+  std::optional<std::array<double, 2>> sun;              // embree: another sun (azimuth, elevation degrees)
 };
 // Renders a built folder into DIR/render.png (cmd_render.cpp).
 void run_render(const std::filesystem::path& dir, const RenderRequest& request, const GlobalOptions& global);

@@ -23,7 +23,7 @@ namespace wangscape {
 
 namespace {
 
-bool other_camera(const FolderRenderRequest& request) { return request.eye || request.look_at; }
+bool other_camera(const FolderRenderRequest& request) { return request.eye || request.look_at || request.fov_degrees; }
 
 // The scene's camera with the parts `request` gives replaced.
 Camera chosen_camera(const Scene& scene, const SceneConfig& config, const FolderRenderRequest& request) {
@@ -40,6 +40,7 @@ Camera chosen_camera(const Scene& scene, const SceneConfig& config, const Folder
     }
   }
   if (request.look_at) camera.target = *request.look_at;
+  if (request.fov_degrees) camera.fov_degrees = *request.fov_degrees;
   if (!(std::hypot(camera.target[0] - camera.position[0], camera.target[1] - camera.position[1]) >= 1e-6))
     throw Error("render: the point looked at must lie sideways of the eye (not straight above, below or at it)");
   return camera;
@@ -54,7 +55,11 @@ void move_image(const std::filesystem::path& from, const std::filesystem::path& 
 
 FolderRenderResult render_embree(const std::filesystem::path& dir, const FolderRenderRequest& request) {
   const SceneConfig config = load_scene_folder_config(dir);
-  const Scene scene = make_folder_scene(dir, config);
+  Scene scene = make_folder_scene(dir, config);
+  if (request.sun_degrees) {
+    scene.sun.azimuth_degrees = (*request.sun_degrees)[0];
+    scene.sun.elevation_degrees = (*request.sun_degrees)[1];
+  }
   ReferenceOptions options;
   if (other_camera(request)) options.camera = chosen_camera(scene, config, request);
   options.width = request.width;
@@ -117,6 +122,9 @@ FolderRenderResult render_scene_folder(const std::filesystem::path& dir, const F
   if (request.samples_per_pixel != 0)
     throw Error("render: --spp is for --engine embree (and blender --path); " + std::string(to_string(request.engine)) +
                 " takes its samples from the scene (its antialias)");
+  if (request.fov_degrees || request.sun_degrees)
+    throw Error("render: --fov and --sun are for --engine embree; " + std::string(to_string(request.engine)) +
+                " renders the folder's export, whose camera lens and sun were written by the build");
   if (request.engine == RenderEngine::blender) {
     BlenderRenderOptions options;
     options.width = request.width;

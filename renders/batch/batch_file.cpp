@@ -462,8 +462,8 @@ BatchConfig parse_batch_config(std::string_view toml_text, const std::filesystem
     config.engines.clear();
     for (const auto& name : top.strings("engines")) {
       const auto e = find_render_engine(name);
-      if (!e || *e == RenderEngine::embree)
-        top.fail(*n, "engines", "'" + name + "' is not an engine of this wangscape (known: povray, blender)");
+      if (!e)
+        top.fail(*n, "engines", "'" + name + "' is not an engine of this wangscape (known: povray, blender, embree)");
       config.engines.push_back(*e);
     }
     if (config.engines.empty()) top.fail(*n, "engines", "must name at least one engine");

@@ -62,7 +62,7 @@ struct BatchConfig {
   int dems_line = 0;                        // line of `dems`, for messages
   std::vector<ViewpointRule> viewpoints;
   std::vector<BatchSun> suns;                               // empty = the scene's sun
-  std::vector<RenderEngine> engines{RenderEngine::povray};  // povray or blender
+  std::vector<RenderEngine> engines{RenderEngine::povray};  // povray, blender or embree
   int width = 0, height = 0;                                // 0 = the scene's
 };
 
@@ -76,7 +76,7 @@ struct BatchTask {
   Camera camera;                              // ENU meters
   std::array<double, 2> camera_latlon{0, 0};  // WGS 84 degrees of the camera
   BatchSun sun;
-  RenderEngine engine = RenderEngine::povray;  // povray or blender
+  RenderEngine engine = RenderEngine::povray;  // povray, blender or embree
   int width = 0, height = 0;
   std::string input_hash;  // scene key + camera + sun + engine + size: skip when unchanged
 };

@@ -224,6 +224,14 @@ fs::path shared_scene(const fs::path& dir, const Plan& plan, const BatchTask& t)
   return folder;
 }
 
+// This program: workers, Slurm's array tasks and the Embree stills run it again.
+fs::path self_program() { return fs::read_symlink("/proc/self/exe"); }
+
+// The log of task t's engine (work/ID/ENGINE.log).
+fs::path engine_log(const fs::path& dir, const BatchTask& t) {
+  return dir / "work" / t.id / (std::string(to_string(t.engine)) + ".log");
+}
+
 // POV-Ray over the shared folder: scene.pov with this task's camera and sun, includes and
 // Library_Path pointing at the shared folder.
 fs::path render_povray_task(const fs::path& dir, const Plan& plan, const BatchTask& t) {
@@ -265,6 +273,54 @@ fs::path render_blender_task(const fs::path& dir, const Plan& plan, const BatchT
   return render_blender(work, options).image;
 }
 
+// The Embree reference over the shared folder: `wangscape render` in a child process with this
+// task's camera, lens and sun (batch starts programs on a folder; the Embree scene is the render
+// command's to make).
+fs::path render_embree_task(const fs::path& dir, const Plan& plan, const BatchTask& t) {
+  const fs::path scene = shared_scene(dir, plan, t);
+  const fs::path work = fs::absolute(dir / "work" / t.id);
+  fs::create_directories(work);
+  const auto triple = [](const std::array<double, 3>& p) {
+    return number_text(p[0]) + "," + number_text(p[1]) + "," + number_text(p[2]);
+  };
+  const fs::path image = work / "render_embree.png";
+  // (--option=value: a value may start with a minus sign)
+  std::vector<std::string> argv{self_program().string(),
+                                "--quiet",
+                                "render",
+                                scene.string(),
+                                "--engine=embree",
+                                "--camera=" + triple(t.camera.position),
+                                "--look-at=" + triple(t.camera.target),
+                                "--fov=" + number_text(t.camera.fov_degrees),
+                                "--sun=" + number_text(t.sun.azimuth) + "," + number_text(t.sun.elevation),
+                                "--out=" + image.string()};
+  if (t.width > 0) argv.push_back("--width=" + std::to_string(t.width));
+  if (t.height > 0) argv.push_back("--height=" + std::to_string(t.height));
+  // The log starts with the command, so that the gallery's link shows what was run.
+  std::string command;
+  for (const std::string& arg : argv) command += (command.empty() ? "" : " ") + arg;
+  const fs::path log = engine_log(dir, t);
+  write_file_atomically(log, command + "\n");
+  const ChildExit ended = run_logged(argv, log);
+  if (!ended.exited || ended.status != 0)
+    throw Error(log, "", "the Embree render " + ended.describe() + last_log_lines(log, 3));
+  return image;
+}
+
+// The still of task t, rendered by its engine.
+fs::path render_task(const fs::path& dir, const Plan& plan, const BatchTask& t) {
+  switch (t.engine) {
+    case RenderEngine::blender:
+      return render_blender_task(dir, plan, t);
+    case RenderEngine::embree:
+      return render_embree_task(dir, plan, t);
+    case RenderEngine::povray:
+      break;
+  }
+  return render_povray_task(dir, plan, t);
+}
+
 // Publishes a rendered PNG as the task's still without the chunks that record when it was
 // rendered (POV-Ray writes tIME and a "Render Date" comment), so a still is a function of its
 // inputs: reruns and executors give the same bytes.
@@ -301,8 +357,7 @@ bool run_task(const fs::path& dir, const Plan& plan, const BatchTask& t) {
   write_file_atomically(record_of(dir, t, ".running"), std::to_string(::getpid()) + " " + host + "\n");
   const auto start = std::chrono::steady_clock::now();
   try {
-    const fs::path image =
-        t.engine == RenderEngine::blender ? render_blender_task(dir, plan, t) : render_povray_task(dir, plan, t);
+    const fs::path image = render_task(dir, plan, t);
     publish_still(image, still_of(dir, t));
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const json record = {{"input_hash", t.input_hash},
@@ -316,8 +371,7 @@ bool run_task(const fs::path& dir, const Plan& plan, const BatchTask& t) {
     std::printf("task %s: rendered in %.2f s\n", t.id.c_str(), seconds);
     return true;
   } catch (const std::exception& e) {
-    const fs::path log =
-        t.engine == RenderEngine::blender ? dir / "work" / t.id / "blender.log" : dir / "work" / t.id / "povray.log";
+    const fs::path log = engine_log(dir, t);
     write_file_atomically(record_of(dir, t, ".failed"), json_text(json{{"error", e.what()}, {"log", log.string()}}, 1));
     fs::remove(record_of(dir, t, ".running"));
     std::fprintf(stderr, "task %s failed: %s\n", t.id.c_str(), e.what());
@@ -349,8 +403,6 @@ State task_state(const fs::path& dir, const BatchTask& t) {
 }
 
 // ---- executors ----------------------------------------------------------------------------------
-
-fs::path self_program() { return fs::read_symlink("/proc/self/exe"); }
 
 int default_workers() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
 
@@ -499,13 +551,16 @@ std::string html_escape(const std::string& text) {
 // Where the gallery links a still to, relative to the output folder: the scene folder it was
 // rendered from (POV-Ray: the shared scenes/KEY/; Blender: the task's own work/ID/), the
 // engine's log and what the engine ran (POV-Ray: work/ID/scene.pov with the task's camera and
-// sun; Blender: the manifest of the task's folder, which holds them).
+// sun; Blender: the manifest of the task's folder, which holds them; Embree: the shared scene file,
+// its log starting with the command that holds the task's camera and sun).
 struct TaskLinks {
   std::string scene, log, inputs;
 };
 TaskLinks task_links(const BatchTask& t) {
   const std::string work = "work/" + t.id + "/";
   if (t.engine == RenderEngine::blender) return {work, work + "blender.log", work + "blender/manifest.json"};
+  if (t.engine == RenderEngine::embree)
+    return {"scenes/" + t.scene_key + "/", work + "embree.log", "scenes/" + t.scene_key + "/scene.toml"};
   return {"scenes/" + t.scene_key + "/", work + "povray.log", work + "scene.pov"};
 }
 

@@ -14,6 +14,18 @@ count = 2
 [sun]
 angles = [[120.0, 30.0], [240.0, 50.0]]
 ]=])
+# The Embree reference beside POV-Ray (issue 39): 1 viewpoint x 2 suns x 2 engines.
+file(WRITE "${batch_dir}/engines.toml" [=[
+scene = "tiny.toml"
+width = 48
+height = 36
+engines = ["embree", "povray"]
+[[viewpoints]]
+kind = "flowers"
+count = 1
+[sun]
+angles = [[120.0, 30.0], [240.0, 50.0]]
+]=])
 # A cropped real DEM: one still per viewpoint kind (flowers, summit, grid, 2 path points) x 2 suns.
 file(WRITE "${batch_dir}/dem_scene.toml" "name = \"boulder\"
 [terrain]
@@ -47,7 +59,7 @@ from = 2024-07-15T09:00:00-06:00
 to = 2024-07-15T15:00:00-06:00
 step_minutes = 360
 ]=])
-foreach(scenario IN ITEMS plan example local kill missing_dem failing terrain slurm)
+foreach(scenario IN ITEMS plan example local embree kill missing_dem failing terrain slurm)
   add_test(NAME batch_${scenario}
     COMMAND sh "${CMAKE_CURRENT_SOURCE_DIR}/batch/scenario.sh" ${scenario} "${WANGSCAPE_BIN}" "${batch_dir}")
   set_tests_properties(batch_${scenario} PROPERTIES TIMEOUT 120 SKIP_RETURN_CODE 77 RESOURCE_LOCK batch_dir)

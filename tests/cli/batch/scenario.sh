@@ -90,6 +90,33 @@ local)
   "$bin" --quiet batch run four.toml --out local --workers 2 2> quiet.txt > /dev/null || fail "quiet run"
   [ -s quiet.txt ] && fail "--quiet still wrote to stderr"
   ;;
+embree)
+  # Embree stills beside POV-Ray's, each with its task's sun: the two suns give two pictures, and
+  # each engine's mean brightness is near the other's at the same sun.
+  rm -rf engines
+  "$bin" --quiet batch run engines.toml --out engines --workers 2 || fail "embree batch run"
+  check_links engines
+  check_once engines 4
+  python3 - engines <<'PY' || fail "embree stills"
+import json, subprocess, sys
+d = sys.argv[1]
+tasks = json.load(open(d + "/batch.json"))["tasks"]
+def mean(path):
+    out = subprocess.run(["oiiotool", path, "--printstats"], capture_output=True, text=True).stdout
+    line = next(l for l in out.splitlines() if "Stats Avg" in l)
+    rgb = [float(v) for v in line.split(":")[1].split()[:3]]
+    return sum(rgb) / 3 / (255 if "of 255" in line else 1)
+stills = {(t["engine"], t["sun"]["azimuth"]): d + "/stills/" + t["id"] + ".png" for t in tasks}
+assert sorted(stills) == [("embree", 120.0), ("embree", 240.0), ("povray", 120.0), ("povray", 240.0)], sorted(stills)
+a, b = (open(stills[("embree", s)], "rb").read() for s in (120.0, 240.0))
+assert a != b, "the two suns gave the same Embree still"
+for sun in (120.0, 240.0):
+    e, p = mean(stills[("embree", sun)]), mean(stills[("povray", sun)])
+    assert abs(e - p) < 0.05, (sun, e, p)  # measured 0.015 apart
+    print("sun", sun, "mean embree", round(e, 3), "povray", round(p, 3))
+PY
+  grep -q -- "--sun=120,30" engines/work/*/embree.log || fail "no Embree log names its task's sun"
+  ;;
 kill)
   rm -rf killed
   setsid "$bin" --quiet batch run four.toml --out killed --workers 1 > kill-run.log 2>&1 &
