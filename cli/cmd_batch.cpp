@@ -1,4 +1,5 @@
 // wangscape batch plan|example|run|status|run-task (hidden: what workers run): renders/batch/batch_run.h.
+#include <cstdio>
 #include <iostream>
 #include "cli/command.h"
 #include "cli/progress.h"
@@ -29,7 +30,8 @@ void register_batch_command(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::Range(0, kMaxBatchRetries));
   run->callback([=, &global] {
     s->executor = parse_batch_executor(*executor);
-    s->chatty = chatty(global);
+    if (chatty(global))
+      s->on_message = [](const std::string& line) { std::fprintf(stderr, "wangscape: %s\n", line.c_str()); };
     const WriteReport report(global.quiet);
     const BatchCounts counts = run_batch(*s);  // failures end in the error instead, which names them
     report.wrote(s->out_dir,
@@ -56,7 +58,11 @@ void register_batch_command(CLI::App& app, const GlobalOptions& global) {
   set_help_footer(batch, "see each command's --help (docs/batch-file.md)",
                   {"wangscape batch example > batch.toml", "wangscape batch plan batch.toml",
                    "wangscape batch run batch.toml --out stills"});
-  auto* task = batch->add_subcommand("run-task")->group("")->callback([=] { run_batch_tasks(*s); });
+  // A worker's lines go to its log (logs/<id>.log, Slurm's), --quiet or not.
+  auto* task = batch->add_subcommand("run-task")->group("")->callback([=] {
+    s->on_message = [](const std::string& line) { std::printf("%s\n", line.c_str()); };
+    run_batch_tasks(*s);
+  });
   task->add_option("dir", s->out_dir)->required();
   task->add_option("tasks", s->task_range, "FIRST [COUNT]; none: assemble the gallery")->expected(0, 2);
   // The bar of `run` and `status --progress` (only on a terminal, never with --quiet).

@@ -41,6 +41,8 @@ using nlohmann::json;
 
 namespace {
 
+using Messages = std::function<void(const std::string& line)>;
+
 // ---- plan.json ----------------------------------------------------------------------------------
 
 // A path of the plan: its text under `key` (U+FFFD where it is not UTF-8, as JSON output writes
@@ -345,9 +347,9 @@ void publish_still(const fs::path& image, const fs::path& still) {
 }
 
 // Runs one task unless it is done. Returns true when its still is done.
-bool run_task(const fs::path& dir, const Plan& plan, const BatchTask& t) {
+bool run_task(const fs::path& dir, const Plan& plan, const BatchTask& t, const Messages& say) {
   if (task_done(dir, t)) {
-    std::printf("task %s: done already, skipped\n", t.id.c_str());
+    say("task " + t.id + ": done already, skipped");
     return true;
   }
   const json previous = read_json(record_of(dir, t, ".json"));
@@ -368,13 +370,13 @@ bool run_task(const fs::path& dir, const Plan& plan, const BatchTask& t) {
     write_file_atomically(record_of(dir, t, ".json"), json_text(record, 1) + "\n");
     fs::remove(record_of(dir, t, ".failed"));
     fs::remove(record_of(dir, t, ".running"));
-    std::printf("task %s: rendered in %.2f s\n", t.id.c_str(), seconds);
+    say("task " + t.id + ": rendered in " + fixed_text(seconds, 2) + " s");
     return true;
   } catch (const std::exception& e) {
     const fs::path log = engine_log(dir, t);
     write_file_atomically(record_of(dir, t, ".failed"), json_text(json{{"error", e.what()}, {"log", log.string()}}, 1));
     fs::remove(record_of(dir, t, ".running"));
-    std::fprintf(stderr, "task %s failed: %s\n", t.id.c_str(), e.what());
+    say("task " + t.id + " failed: " + e.what());
     return false;
   }
 }
@@ -406,15 +408,17 @@ State task_state(const fs::path& dir, const BatchTask& t) {
 
 int default_workers() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
 
-void report_failures(const fs::path& dir, const Plan& plan) {
+// A line per failed task: its viewpoint, sun and engine, its error and its log.
+std::string failure_lines(const fs::path& dir, const Plan& plan) {
+  std::string lines;
   for (const auto& t : plan.tasks)
     if (task_state(dir, t) == State::failed) {
       const json f = read_json(record_of(dir, t, ".failed"));
-      std::fprintf(stderr, "wangscape: task %s (%s, %s, %s) failed: %s (log: %s)\n", t.id.c_str(), t.viewpoint.c_str(),
-                   t.sun.label.c_str(), std::string(to_string(t.engine)).c_str(),
-                   f.is_object() ? f.value("error", "?").c_str() : "?",
-                   f.is_object() ? f.value("log", "?").c_str() : "?");
+      lines += "\n  task " + t.id + " (" + t.viewpoint + ", " + t.sun.label + ", " + std::string(to_string(t.engine)) +
+               ") failed: " + (f.is_object() ? f.value("error", "?") : "?") +
+               " (log: " + (f.is_object() ? f.value("log", "?") : "?") + ")";
     }
+  return lines;
 }
 
 // Local: N worker processes (`wangscape batch run-task`), each task its own process.
@@ -505,8 +509,7 @@ void run_slurm(const BatchRunSettings& s, const Plan& plan) {
       array.push_back("--output=" + (dir / "logs" / "slurm-%A_%a.log").string());
       array.push_back(script.string());
       after = slurm(dir, array);
-      if (s.chatty)
-        std::fprintf(stderr, "wangscape: submitted job array %s (elements %s)\n", after.c_str(), elements.c_str());
+      if (s.on_message) s.on_message("submitted job array " + after + " (elements " + elements + ")");
     }
     auto final_job = sbatch;
     if (!after.empty()) final_job.push_back("--dependency=afterok:" + after);
@@ -525,7 +528,7 @@ void run_slurm(const BatchRunSettings& s, const Plan& plan) {
       return;
     }
     slurm(dir, {"scancel", assemble});
-    if (s.chatty) std::fprintf(stderr, "wangscape: %d tasks failed; resubmitting them\n", total - counts.done);
+    if (s.on_message) s.on_message(std::to_string(total - counts.done) + " tasks failed; resubmitting them");
   }
 }
 
@@ -683,20 +686,21 @@ std::string batch_plan_text(const fs::path& batch_file, bool as_json) {
   return out + std::to_string(tasks.size()) + " tasks\n";
 }
 
-void run_batch_tasks(const fs::path& dir, int first, int count) {
+void run_batch_tasks(const fs::path& dir, int first, int count, const Messages& on_message) {
+  const Messages say = on_message ? on_message : [](const std::string&) {};
   const Plan plan = load_plan(dir);
   const int total = static_cast<int>(plan.tasks.size());
   if (first < 0 || first >= total) throw Error(dir / "plan.json", "", "has no task " + std::to_string(first));
   std::string failed;
   for (int k = first; k < std::min(total, first + count); ++k)
-    if (!run_task(dir, plan, plan.tasks[k])) failed += " " + plan.tasks[k].id;
+    if (!run_task(dir, plan, plan.tasks[k], say)) failed += " " + plan.tasks[k].id;
   if (!failed.empty()) throw Error(dir / "tasks", "", "task(s)" + failed + " failed (see the .failed files)");
 }
 
 void run_batch_tasks(const BatchRunSettings& settings) {
   if (settings.task_range.empty()) return assemble_batch(settings.out_dir);
-  run_batch_tasks(settings.out_dir, settings.task_range[0],
-                  settings.task_range.size() > 1 ? settings.task_range[1] : 1);
+  run_batch_tasks(settings.out_dir, settings.task_range[0], settings.task_range.size() > 1 ? settings.task_range[1] : 1,
+                  settings.on_message);
 }
 
 std::string batch_status_text(const BatchRunSettings& settings) {
@@ -861,9 +865,9 @@ BatchCounts run_batch(const BatchRunSettings& s) {
   const RunLock lock(s.out_dir);
   write_plan(s.out_dir, config, tasks);
   const Plan plan = load_plan(s.out_dir);
-  if (s.chatty)
-    std::fprintf(stderr, "wangscape: %zu tasks, executor %s, into %s\n", tasks.size(),
-                 std::string(to_string(s.executor)).c_str(), s.out_dir.string().c_str());
+  if (s.on_message)
+    s.on_message(std::to_string(tasks.size()) + " tasks, executor " + std::string(to_string(s.executor)) + ", into " +
+                 s.out_dir.string());
   if (s.executor == BatchExecutor::slurm)
     run_slurm(s, plan);
   else
@@ -872,11 +876,11 @@ BatchCounts run_batch(const BatchRunSettings& s) {
   assemble_batch(s.out_dir);
   const auto counts = batch_status(s.out_dir);
   if (s.on_progress) s.on_progress(static_cast<int>(tasks.size()), static_cast<int>(tasks.size()));
-  report_failures(s.out_dir, plan);
   if (counts.done != static_cast<int>(tasks.size()))
     throw Error(s.out_dir / "index.html", "",
                 std::to_string(counts.done) + " of " + std::to_string(tasks.size()) + " stills done, " +
-                    std::to_string(counts.failed) + " failed, " + std::to_string(counts.pending) + " pending");
+                    std::to_string(counts.failed) + " failed, " + std::to_string(counts.pending) + " pending" +
+                    failure_lines(s.out_dir, plan));
   return counts;
 }
 

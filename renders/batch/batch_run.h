@@ -39,15 +39,17 @@ struct BatchRunSettings {
   std::filesystem::path batch_file;
   std::filesystem::path out_dir;
   BatchExecutor executor = BatchExecutor::local;
-  int workers = 0;              // local: worker processes, 0 = the cores
-  int chunk = 0;                // slurm: tasks per array element, 0 = 1 up to 256 tasks, then more
-  int throttle = 0;             // slurm: array elements running at once (%), 0 = no limit
-  int retries = 1;              // slurm: times failed elements are resubmitted (sbatch reads
-                                // SBATCH_PARTITION, SBATCH_ACCOUNT, ... from the environment)
-  bool chatty = false;          // messages on stderr
-  bool json = false;            // plan: a JSON list of tasks
-  bool watch = false;           // status: report progress until no task is running
-  std::vector<int> task_range;  // run-task: first [count]; empty = assemble the gallery
+  int workers = 0;   // local: worker processes, 0 = the cores
+  int chunk = 0;     // slurm: tasks per array element, 0 = 1 up to 256 tasks, then more
+  int throttle = 0;  // slurm: array elements running at once (%), 0 = no limit
+  int retries = 1;   // slurm: times failed elements are resubmitted (sbatch reads
+                     // SBATCH_PARTITION, SBATCH_ACCOUNT, ... from the environment)
+  // What a terminal shows of a run (the tasks and executor, Slurm's submissions and
+  // resubmissions, and in run-task each task's outcome); empty: nothing. The library prints nothing.
+  std::function<void(const std::string& line)> on_message;
+  bool json = false;                                         // plan: a JSON list of tasks
+  bool watch = false;                                        // status: report progress until no task is running
+  std::vector<int> task_range;                               // run-task: first [count]; empty = assemble the gallery
   std::function<void(int finished, int total)> on_progress;  // tasks done or failed so far
 };
 
@@ -58,7 +60,7 @@ struct BatchCounts {
 // Expands the batch, writes plan.json, runs every task not yet done and assembles the results;
 // returns the tasks' states at the end. Throws Error for a bad batch file or output folder before
 // any task starts, when another `batch run` holds the folder, and after the run when some task
-// failed (each one named on stderr with its error and log).
+// failed (the message names each one with its error and log, a line each).
 BatchCounts run_batch(const BatchRunSettings& settings);
 
 // At most this many local worker processes (`--workers`).
@@ -78,8 +80,10 @@ BatchPlan parse_batch_plan(std::string_view text, const std::filesystem::path& f
 std::string batch_plan_text(const std::filesystem::path& batch_file, bool json);
 
 // Runs tasks [first, first + count) of DIR/plan.json in this process (what a worker or a
-// Slurm array element does). Throws Error naming the tasks that failed.
-void run_batch_tasks(const std::filesystem::path& dir, int first, int count);
+// Slurm array element does), each task's outcome to `on_message` (a line for the worker's log).
+// Throws Error naming the tasks that failed.
+void run_batch_tasks(const std::filesystem::path& dir, int first, int count,
+                     const std::function<void(const std::string& line)>& on_message = {});
 // `batch run-task`: settings.task_range of settings.out_dir, or assemble_batch when it is empty.
 void run_batch_tasks(const BatchRunSettings& settings);
 
