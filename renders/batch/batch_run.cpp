@@ -570,7 +570,17 @@ TaskLinks task_links(const BatchTask& t) {
 // The labels' font: Debian's DejaVu Sans (fonts-dejavu-core); without it the sheet has no labels
 // (index.html still names every still's viewpoint, sun and engine).
 constexpr char kLabelFont[] = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
-constexpr int kLabelSize = 11, kLabelLines = 2;  // pixels per line; viewpoint, then sun and engine
+constexpr int kLabelSize = 11, kLabelLines = 2;  // pixels per line; viewpoint and engine, then sun
+
+// A sun's label as short as a thumbnail's width wants it: a time "2024-07-15T10:00:00-07:00" as
+// "2024-07-15 10:00 -07:00" (with its seconds unless they are 0); other labels as they are. The
+// full label with the engine ran 40 pixels into the next column.
+std::string sheet_sun_label(const std::string& label) {
+  const bool time = label.size() == 25 && label[10] == 'T' && label[13] == ':' && label[16] == ':';
+  if (!time) return label;
+  const std::string clock = label.compare(16, 3, ":00") == 0 ? label.substr(11, 5) : label.substr(11, 8);
+  return label.substr(0, 10) + " " + clock + " " + label.substr(19);
+}
 
 void write_contact_sheet(const fs::path& dir, const Plan& plan) {
   constexpr int kThumb = 160;
@@ -597,8 +607,8 @@ void write_contact_sheet(const fs::path& dir, const Plan& plan) {
     }
     if (!labelled) continue;
     // Under each still (or its empty place): what it shows, as the batch file names it.
-    const std::string lines[kLabelLines] = {task.id + "  " + task.viewpoint,
-                                            task.sun.label + "  " + std::string(to_string(task.engine))};
+    const std::string lines[kLabelLines] = {
+        task.id + "  " + task.viewpoint + "  " + std::string(to_string(task.engine)), sheet_sun_label(task.sun.label)};
     for (int line = 0; line < kLabelLines; ++line)
       OIIO::ImageBufAlgo::render_text(sheet, x + 1, y + thumb_h + (line + 1) * (kLabelSize + 2), lines[line],
                                       kLabelSize, kLabelFont, white);
