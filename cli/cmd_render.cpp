@@ -47,6 +47,9 @@ void run_render_path(const std::filesystem::path& dir, const RenderRequest& requ
   path.width = request.width;
   path.height = request.height;
   path.samples = request.spp;
+  path.first_frame = request.first_frame;
+  path.frame_count = request.frame_count;
+  const bool part = request.first_frame > 0 || request.frame_count > 0;
   std::optional<Progress> progress;
   long long skipped = 0;
   const auto start = std::chrono::steady_clock::now();
@@ -67,7 +70,11 @@ void run_render_path(const std::filesystem::path& dir, const RenderRequest& requ
   std::string details = fmt::format("{} frames of {}x{} at {} frames/s with {}", result.frames, result.width,
                                     result.height, number_text(path.fps), request.engine);
   if (result.skipped > 0) details += fmt::format(", {} there already", result.skipped);
-  details += result.movie.empty() ? "; no ffmpeg on PATH: PNG frames only" : " and path.mp4";
+  if (part)
+    details += fmt::format(" (frames {} .. {}; path.mp4 only for the whole path)", request.first_frame,
+                           request.first_frame + result.frames - 1);
+  else
+    details += result.movie.empty() ? "; no ffmpeg on PATH: PNG frames only" : " and path.mp4";
   if (!result.blend.empty()) details += ", path.blend";
   if (!result.log.empty()) details += "; log " + shown_path(result.log);
   report.wrote(request.frames, details);
@@ -76,8 +83,10 @@ void run_render_path(const std::filesystem::path& dir, const RenderRequest& requ
 }  // namespace
 
 void run_render(const std::filesystem::path& dir, const RenderRequest& request, const GlobalOptions& global) {
-  if (!request.path.empty() || !request.frames.empty() || request.fps) {
-    if (request.path.empty()) throw CLI::ValidationError("--path", "--frames and --fps go with --path FILE");
+  if (!request.path.empty() || !request.frames.empty() || request.fps || request.first_frame > 0 ||
+      request.frame_count > 0) {
+    if (request.path.empty())
+      throw CLI::ValidationError("--path", "--frames, --fps, --first-frame and --frame-count go with --path FILE");
     if (request.frames.empty()) throw CLI::ValidationError("--frames", "--path needs --frames FOLDER for its frames");
     return run_render_path(dir, request, global);
   }
@@ -144,6 +153,12 @@ void register_render_command(CLI::App& app, const GlobalOptions& global) {
                   "there and complete are kept, not rendered again");
   sub->add_option("--fps", request->fps, "With --path: frames per second along the path (1 .. 240, default 24)")
       ->check(finite_number());
+  sub->add_option("--first-frame", request->first_frame,
+                  "With --path: render from this frame (default 0), e.g. one part of a path per machine")
+      ->check(CLI::Range(0LL, 100000000LL));
+  sub->add_option("--frame-count", request->frame_count,
+                  "With --path: render this many frames (default: to the path's end); path.mp4 only for the whole path")
+      ->check(CLI::Range(1LL, 100000000LL));
   set_help_footer(sub,
                   "into the folder: render.png and povray.log (povray); scene.blend, render_blender.png and "
                   "blender.log (blender), with --out a copy there; render_embree.png or --out (embree). With --path: "

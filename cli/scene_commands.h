@@ -32,6 +32,7 @@ struct RenderRequest {
   int spp = 0;                                           // embree: samples per pixel (0 = from the scene)
   std::string path, frames;                              // --path FILE --frames FOLDER: an animation along the path
   std::optional<double> fps;                             // of the path (default 24)
+  long long first_frame = 0, frame_count = 0;            // a part of the path (0 frames: to its end)
   std::optional<std::array<double, 3>> camera, look_at;  // another camera (E,N[,H]; E,N,H)
   std::optional<double> fov;                             // embree: another field of view (degrees)
   std::optional<std::array<double, 2>> sun;              // embree: another sun (azimuth, elevation degrees)

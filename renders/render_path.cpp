@@ -155,18 +155,27 @@ PathRenderResult render_path(const fs::path& dir, const PathRenderRequest& reque
   const Scene scene = make_folder_scene(dir, config);
   const std::vector<Camera> cameras = path_cameras(scene, path, request.fps, request.path);
   const auto [width, height] = folder_image_size(dir, request.width, request.height);
+  const long long all = static_cast<long long>(cameras.size());
+  const long long first = request.first_frame, count = request.frame_count > 0 ? request.frame_count : all - first;
+  if (first < 0 || first >= all || count < 1 || count > all - first)
+    throw Error(
+        request.path, "",
+        (first < 0 || first >= all ? "frame " + std::to_string(first)
+                                   : "frames " + std::to_string(first) + " .. " + std::to_string(first + count - 1)) +
+            " asked; the path has " + std::to_string(all) + " at " + number_text(request.fps) +
+            " frames a second (0 .. " + std::to_string(all - 1) + ")");
 
   std::error_code ec;
   FramesFolder folder(fs::absolute(request.frames, ec));  // POV-Ray runs in DIR
   remove_stale_temporaries(folder.dir());                 // a killed run's unfinished frames
   remove_stale_temporaries(dir);                          // and its .pov
   PathRenderResult result;
-  result.frames = static_cast<long long>(cameras.size());
+  result.frames = count;
   result.width = width;
   result.height = height;
   const auto frame_file = [&](long long k) { return folder.dir() / path_frame_name(k); };
   std::vector<long long> todo;
-  for (long long k = 0; k < result.frames; ++k) {
+  for (long long k = first; k < first + count; ++k) {
     if (complete_png(frame_file(k), width, height)) {
       ++result.skipped;
       folder.keep();
@@ -232,12 +241,12 @@ PathRenderResult render_path(const fs::path& dir, const PathRenderRequest& reque
     result.blend = blender.blend;
     result.log = blender.log;
   }
-  for (long long k = 0; k < result.frames; ++k)
+  for (long long k = first; k < first + count; ++k)
     if (!complete_png(frame_file(k), width, height))
       throw Error(frame_file(k), "",
                   "the " + std::string(to_string(request.engine)) + " run ended without this frame" +
                       (result.log.empty() ? std::string() : "; log " + result.log.string()));
-  if (write_frames_movie(folder.dir(), kPathFramePattern, request.fps, folder.dir() / "path.mp4"))
+  if (count == all && write_frames_movie(folder.dir(), kPathFramePattern, request.fps, folder.dir() / "path.mp4"))
     result.movie = folder.dir() / "path.mp4";
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -29,12 +29,16 @@ struct PathRenderRequest {
   double fps = kDefaultPathRenderFps;
   int width = 0, height = 0;  // pixels; 0: the scene's (one side given: the other keeps its aspect)
   int samples = 0;            // embree: samples per pixel; blender: Cycles samples; 0: the scene's
+  // A part of the path: frame_count frames from first_frame (0: to the end), rendered with the
+  // whole path's cameras (a batch splits a path so, each part a task); the movie is made only
+  // when the request covers every frame.
+  long long first_frame = 0, frame_count = 0;
   // A frame done of the total: `rendered` false when it was already there, complete.
   std::function<void(long long frame, long long total, bool rendered)> on_frame;
 };
 
 struct PathRenderResult {
-  long long frames = 0, rendered = 0, skipped = 0;
+  long long frames = 0, rendered = 0, skipped = 0;  // of the requested part
   int width = 0, height = 0;
   std::filesystem::path movie;  // FRAMES/path.mp4; empty without ffmpeg on PATH
   std::filesystem::path blend;  // Blender: FRAMES/path.blend, the camera keyframed
@@ -49,9 +53,9 @@ std::vector<Camera> path_cameras(const Scene& scene, const ViewPath& path, doubl
 
 // Renders `request.path` over DIR into request.frames, then path.mp4 when ffmpeg is on PATH.
 // Throws Error, before any frame, for a path file that cannot be read, a frame rate outside
-// kMinPathRenderFps .. kMaxPathRenderFps, a folder without that engine's export, a frames folder
-// that cannot be made or written; and the renderer's failure (the frames completed before it stay,
-// for a later run to skip).
+// kMinPathRenderFps .. kMaxPathRenderFps, a part outside the path's frames, a folder without that
+// engine's export, a frames folder that cannot be made or written; and the renderer's failure (the frames completed
+// before it stay, for a later run to skip).
 PathRenderResult render_path(const std::filesystem::path& dir, const PathRenderRequest& request);
 
 // True when `file` is a whole PNG image (its signature, header and closing chunk) of `width` x
