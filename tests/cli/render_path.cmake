@@ -81,7 +81,14 @@ render_path_test(bad_fps "--fps 0.5: expected 1 .. 240 frames a second"
   "${rp_dir}/refused_frames")
 render_path_test(frames_unwritable "cannot make the frames folder"
   "\"$0\" --quiet render \"$1\" --engine embree --path \"$2\" --frames \"$2/frames\" --width 64 --height 36; test $? = 1")
-render_path_test(frames_without_path "--frames and --fps go with --path"
+# A part of the path (a batch's task): frames 1 and 2 of 4, as POV-Ray renders them in the whole
+# path's run (the same pixels), and no path.mp4; a part past the path's end is refused.
+render_path_test(part "frames 1 .. 2; path.mp4 only for the whole path"
+  "rm -rf \"$3\" && \"$0\" render \"$1\" --engine povray --path \"$2\" --frames \"$3\" --fps 10 --width 64 --height 36 --first-frame 1 --frame-count 2 && test \"$(ls \"$3\" | tr '\\n' ' ')\" = 'frame-00001.png frame-00002.png ' && idiff -q \"$3/frame-00002.png\" \"$4/frame-00002.png\" && \"$0\" --quiet render \"$1\" --engine povray --path \"$2\" --frames \"$3\" --fps 10 --first-frame 3 --frame-count 2; test $? = 1"
+  "${rp_dir}/part_frames" "${rp_dir}/povray_frames")
+set_tests_properties(render_path_part PROPERTIES FIXTURES_REQUIRED "render_path_folder;render_path_povray_frames"
+                     RESOURCE_LOCK render_path_povray_log)
+render_path_test(frames_without_path "--frames, --fps, --first-frame and --frame-count go with --path"
   "\"$0\" --quiet render \"$1\" --engine embree --frames \"$1/x\"; test $? = 2")
 
 # --camera/--look-at: another camera without building again. Embree from a camera of the view's
