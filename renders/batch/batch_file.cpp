@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -213,6 +214,27 @@ ViewpointRule read_viewpoint(Table& v, int line) {
   return rule;
 }
 
+// One [[paths]] table: the path file read now, so that a bad file fails before anything runs.
+BatchPath read_path(Table& p, int line, const std::filesystem::path& base_dir) {
+  BatchPath path;
+  path.line = line;
+  const auto* file = p.node("file");
+  const auto name = file ? file->value<std::string>() : std::nullopt;
+  if (!name || name->empty())
+    throw Error(p.file(), std::to_string(line), "[[paths]] needs 'file', the path file (the view's, docs/viewer.md)");
+  std::error_code ignored;  // absolute: Slurm's workers run in the output folder
+  path.file = std::filesystem::absolute(base_dir / *name, ignored);
+  path.fps = p.number("fps", path.fps, kMinBatchPathFps, kMaxBatchPathFps, "frames a second");
+  path.frames_per_task = p.integer("frames_per_task", path.frames_per_task, 1, 100000);
+  try {
+    path.path = read_view_path(path.file);
+    path.frames = path_frame_count(path.path, path.fps, path.file, "'paths.fps'");
+  } catch (const Error& e) {
+    throw Error(p.file(), std::to_string(line), "[[paths]] file: " + std::string(e.what()));
+  }
+  return path;
+}
+
 // ---- numbers and hashes -------------------------------------------------------------------------
 
 // What the scene folder depends on: the scene text, the DEM and its size and time.
@@ -381,6 +403,38 @@ std::vector<View> expand_viewpoint(const ViewpointRule& rule, const Site& site, 
   return views;
 }
 
+// `name` as a folder name: letters, digits, '-' and '_' kept, anything else '_'.
+std::string safe_name(const std::string& name) {
+  std::string out;
+  for (const char c : name) out += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+  return out.empty() ? "path" : out;
+}
+
+// The tasks of one [[paths]] entry (the `number`th) over one ground: each engine's frames in parts
+// of frames_per_task, each part's camera its first frame's, its frames folder shared by the parts.
+template <class AddTask>
+void add_path_tasks(const BatchPath& path, int number, const std::string& dem_name, const BatchConfig& config,
+                    const SceneGround& ground, const BatchSun& sun, const AddTask& add_task) {
+  const GroundHeightAt height = [&](double e, double n) { return ground.height(e, n); };
+  const std::string stem = safe_name(path.file.stem().string());
+  const std::string canonical = view_path_json(path.path);  // what the frames depend on, not the file's spacing
+  for (const RenderEngine engine : config.engines) {
+    const std::string folder = std::to_string(number) + "-" + stem +
+                               (dem_name.empty() ? "" : "-" + safe_name(dem_name)) + "-" +
+                               std::string(to_string(engine));
+    for (long long first = 0; first < path.frames; first += path.frames_per_task) {
+      const long long count = std::min<long long>(path.frames_per_task, path.frames - first);
+      const Camera camera = camera_at_frame(path.path, first, path.fps, config.scene.camera.fov, height, path.file);
+      BatchTask& t =
+          add_task("path " + stem + " frames " + std::to_string(first) + "-" + std::to_string(first + count - 1),
+                   camera, sun, engine);
+      t.frames = BatchFrames{path.file, path.fps, first, count, path.frames, folder};
+      t.input_hash = hash_hex(t.input_hash + ' ' + canonical + ' ' + number_text(path.fps) + ' ' +
+                              std::to_string(first) + ' ' + std::to_string(count));
+    }
+  }
+}
+
 // The tasks a batch will make, counted from the file before any ground is loaded: the viewpoints
 // a rule asks for (fewer may fit the ground) times the suns, engines and DEMs.
 double planned_tasks(const BatchConfig& config, double* viewpoints = nullptr) {
@@ -390,7 +444,9 @@ double planned_tasks(const BatchConfig& config, double* viewpoints = nullptr) {
              : rule.kind == ViewpointKind::path ? double(rule.path_enu.size() + rule.path_latlon.size())
                                                 : double(rule.count);
   if (viewpoints) *viewpoints = views;
-  return views * double(std::max<std::size_t>(config.suns.size(), 1)) * double(config.engines.size()) *
+  double parts = 0;  // a path's tasks take the scene's sun alone
+  for (const auto& path : config.paths) parts += std::ceil(double(path.frames) / double(path.frames_per_task));
+  return (views * double(std::max<std::size_t>(config.suns.size(), 1)) + parts) * double(config.engines.size()) *
          double(std::max<std::size_t>(config.dems.size(), 1));
 }
 
@@ -402,7 +458,8 @@ void check_batch_size(const BatchConfig& config) {
               "the batch asks for up to " + fixed_text(tasks, 0) + " stills (" +
                   std::to_string(std::max<std::size_t>(config.dems.size(), 1)) + " DEMs x " + fixed_text(views, 0) +
                   " viewpoints x " + std::to_string(std::max<std::size_t>(config.suns.size(), 1)) + " suns x " +
-                  std::to_string(config.engines.size()) + " engines); at most " + std::to_string(kMaxBatchTasks) +
+                  std::to_string(config.engines.size()) + " engines, and the paths' parts); at most " +
+                  std::to_string(kMaxBatchTasks) +
                   " are planned: split it into several batch files, each with its own --out");
 }
 
@@ -479,6 +536,15 @@ BatchConfig parse_batch_config(std::string_view toml_text, const std::filesystem
       v.finish();
     }
   }
+  if (const auto* n = top.node("paths")) {
+    const auto* array = n->as_array();
+    if (!array || !array->is_array_of_tables()) top.fail(*n, "paths", "must be [[paths]] tables");
+    for (const auto& item : *array) {
+      Table p(*item.as_table(), source, "paths.");
+      config.paths.push_back(read_path(p, line_of(item), base_dir));
+      p.finish();
+    }
+  }
   if (const auto* n = top.node("sun")) {
     if (!n->as_table()) top.fail(*n, "sun", "must be a [sun] table");
     Table sun(*n->as_table(), source, "sun.");
@@ -528,15 +594,14 @@ std::vector<BatchTask> expand_batch(const BatchConfig& config) {
     const auto ground = SceneGround::load(scene.terrain, scene.masks, scene.tiles.area_latlon);
     Site site{scene, ground, field_area(scene, ground)};
     const EnuFrame frame(LatLon{ground.origin()[0], ground.origin()[1]});
-    std::vector<BatchSun> suns = config.suns;
-    if (suns.empty()) {
-      BatchSun s;
-      s.time_unix = config.scene.sun.time_unix;
-      s.azimuth = config.scene.sun.azimuth;
-      s.elevation = config.scene.sun.elevation;
-      s.label = s.time_unix ? config.scene.sun.time_text : "the scene's sun";
-      suns.push_back(s);
-    }
+    // The scene's own sun (a path's frames take it alone), then the batch's.
+    BatchSun own;
+    own.time_unix = config.scene.sun.time_unix;
+    own.azimuth = config.scene.sun.azimuth;
+    own.elevation = config.scene.sun.elevation;
+    own.label = own.time_unix ? config.scene.sun.time_text : "the scene's sun";
+    std::vector<BatchSun> suns = config.suns.empty() ? std::vector<BatchSun>{own} : config.suns;
+    suns.push_back(own);
     for (auto& s : suns) {
       if (!s.time_unix) continue;
       const auto p = solar_position(ground.origin()[0], ground.origin()[1], *s.time_unix);
@@ -545,36 +610,44 @@ std::vector<BatchTask> expand_batch(const BatchConfig& config) {
       s.azimuth = p.azimuth_degrees;
       s.elevation = p.elevation_degrees;
     }
+    own = suns.back();
+    suns.pop_back();
     const std::string key = scene_key(scene, dem);
+    const auto add_task = [&](const std::string& viewpoint, const Camera& camera, const BatchSun& sun,
+                              RenderEngine engine) -> BatchTask& {
+      BatchTask t;
+      t.index = static_cast<int>(tasks.size());
+      t.id = batch_task_id(t.index);
+      t.dem = dem;
+      t.scene_key = key;
+      t.viewpoint = viewpoint;
+      t.camera = camera;
+      const auto ll = frame.to_lat_lon(camera.position[0], camera.position[1]);
+      t.camera_latlon = {ll.lat, ll.lon};
+      t.sun = sun;
+      t.engine = engine;
+      t.width = config.width ? config.width : config.scene.image.width;
+      t.height = config.height ? config.height : config.scene.image.height;
+      // The input hash: the scene, then every number of the still, shortest round-trip form.
+      std::string h =
+          key + ' ' + std::string(to_string(engine)) + ' ' + std::to_string(t.width) + 'x' + std::to_string(t.height);
+      const auto& c = camera;
+      for (double v : {c.position[0], c.position[1], c.position[2], c.target[0], c.target[1], c.target[2],
+                       c.fov_degrees, sun.azimuth, sun.elevation, config.scene.sun.strength}) {
+        h += ' ';
+        h += number_text(v);
+      }
+      t.input_hash = hash_hex(h);
+      tasks.push_back(t);
+      return tasks.back();
+    };
     for (const auto& rule : config.viewpoints)
       for (const auto& view : expand_viewpoint(rule, site, config.source))
         for (const auto& sun : suns)
-          for (const auto& engine : config.engines) {
-            BatchTask t;
-            t.index = static_cast<int>(tasks.size());
-            t.id = batch_task_id(t.index);
-            t.dem = dem;
-            t.scene_key = key;
-            t.viewpoint = view.name;
-            t.camera = view.camera;
-            const auto ll = frame.to_lat_lon(view.camera.position[0], view.camera.position[1]);
-            t.camera_latlon = {ll.lat, ll.lon};
-            t.sun = sun;
-            t.engine = engine;
-            t.width = config.width ? config.width : config.scene.image.width;
-            t.height = config.height ? config.height : config.scene.image.height;
-            // The input hash: the scene, then every number of the still, shortest round-trip form.
-            std::string h = key + ' ' + std::string(to_string(engine)) + ' ' + std::to_string(t.width) + 'x' +
-                            std::to_string(t.height);
-            const auto& c = view.camera;
-            for (double v : {c.position[0], c.position[1], c.position[2], c.target[0], c.target[1], c.target[2],
-                             c.fov_degrees, sun.azimuth, sun.elevation, config.scene.sun.strength}) {
-              h += ' ';
-              h += number_text(v);
-            }
-            t.input_hash = hash_hex(h);
-            tasks.push_back(t);
-          }
+          for (const auto& engine : config.engines) add_task(view.name, view.camera, sun, engine);
+    for (std::size_t k = 0; k < config.paths.size(); ++k)
+      add_path_tasks(config.paths[k], int(k) + 1, dems.size() > 1 ? dem.stem().string() : "", config, ground, own,
+                     add_task);
   }
   return tasks;
 }

@@ -15,6 +15,7 @@
 #include "renders/external/render_engine.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
+#include "scene/view_path.h"
 
 namespace wangscape {
 
@@ -48,6 +49,28 @@ struct ViewpointRule {
   int line = 0;                                    // where it was written, for messages
 };
 
+// [[paths]]: an animation along a path file (the view's, docs/viewer.md), rendered by every engine
+// of the batch over every DEM with the scene's own sun, its frames split into tasks of
+// frames_per_task each (over the pool or a Slurm array) and made into path.mp4 once all are done.
+inline constexpr double kMinBatchPathFps = 1, kMaxBatchPathFps = 240;  // render --path's range
+struct BatchPath {
+  std::filesystem::path file;  // the path file
+  ViewPath path;               // read when the batch file is
+  double fps = 24;
+  int frames_per_task = 24;
+  long long frames = 0;  // at fps
+  int line = 0;
+};
+
+// A task's part of a path: frames first .. first + count - 1 of `total`, into the output's
+// paths/FOLDER/ (shared by the parts of one path, engine and DEM).
+struct BatchFrames {
+  std::filesystem::path file;  // the path file
+  double fps = 24;
+  long long first = 0, count = 0, total = 0;
+  std::string folder;  // "1-walk-povray": the [[paths]] entry, the file's stem, the engine (and DEM)
+};
+
 // One sun: a time (at the scene's origin) or fixed angles.
 struct BatchSun {
   std::optional<std::int64_t> time_unix;  // seconds since 1970 UTC
@@ -61,12 +84,14 @@ struct BatchConfig {
   std::vector<std::filesystem::path> dems;  // empty = the scene's own terrain
   int dems_line = 0;                        // line of `dems`, for messages
   std::vector<ViewpointRule> viewpoints;
+  std::vector<BatchPath> paths;
   std::vector<BatchSun> suns;                               // empty = the scene's sun
   std::vector<RenderEngine> engines{RenderEngine::povray};  // povray, blender or embree
   int width = 0, height = 0;                                // 0 = the scene's
 };
 
-// One still: everything a worker needs, resolved (no ground lookups at run time).
+// One still, or one part of a path's frames: everything a worker needs, resolved (no ground
+// lookups at run time).
 struct BatchTask {
   int index = 0;
   std::string id;                             // "0007"
@@ -79,6 +104,9 @@ struct BatchTask {
   RenderEngine engine = RenderEngine::povray;  // povray, blender or embree
   int width = 0, height = 0;
   std::string input_hash;  // scene key + camera + sun + engine + size: skip when unchanged
+  // A part of a path's frames instead of a still (the camera: its first frame's); its still is
+  // that first frame, for the gallery.
+  std::optional<BatchFrames> frames;
 };
 
 // Parses a batch file; relative paths resolve against its folder. Throws Error

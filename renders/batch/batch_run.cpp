@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -32,6 +33,7 @@
 #include "exporters/scene_folder.h"
 #include "renders/external/blender_render.h"
 #include "renders/external/child_process.h"
+#include "renders/external/movie.h"
 #include "renders/external/povray_render.h"
 
 namespace wangscape {
@@ -98,6 +100,11 @@ json task_json(const BatchTask& t) {
             {"scene_key", t.scene_key},
             {"input_hash", t.input_hash}};
   put_path(j, "dem", t.dem);
+  if (t.frames) {
+    const BatchFrames& f = *t.frames;
+    j["frames"] = {{"fps", f.fps}, {"first", f.first}, {"count", f.count}, {"total", f.total}, {"folder", f.folder}};
+    put_path(j["frames"], "file", f.file);
+  }
   return j;
 }
 
@@ -133,6 +140,16 @@ BatchTask task_from_json(const json& j) {
   t.height = int_field(j, "height");
   t.scene_key = j.at("scene_key");
   t.input_hash = j.at("input_hash");
+  if (const auto frames = j.find("frames"); frames != j.end()) {
+    BatchFrames f;
+    f.file = get_path(*frames, "file");
+    f.fps = frames->at("fps");
+    f.first = int_field(*frames, "first");
+    f.count = int_field(*frames, "count");
+    f.total = int_field(*frames, "total");
+    f.folder = frames->at("folder");
+    t.frames = f;
+  }
   return t;
 }
 
@@ -275,6 +292,16 @@ fs::path render_blender_task(const fs::path& dir, const Plan& plan, const BatchT
   return render_blender(work, options).image;
 }
 
+// Runs argv (this program again) with its output in `log`, which starts with the command so that the
+// gallery's link shows what was run. Throws Error naming `what` and the log's last lines.
+void run_child(const std::vector<std::string>& argv, const fs::path& log, const std::string& what) {
+  std::string command;
+  for (const std::string& arg : argv) command += (command.empty() ? "" : " ") + arg;
+  write_file_atomically(log, command + "\n");
+  const ChildExit ended = run_logged(argv, log);
+  if (!ended.exited || ended.status != 0) throw Error(log, "", what + " " + ended.describe() + last_log_lines(log, 3));
+}
+
 // The Embree reference over the shared folder: `wangscape render` in a child process with this
 // task's camera, lens and sun (batch starts programs on a folder; the Embree scene is the render
 // command's to make).
@@ -299,19 +326,67 @@ fs::path render_embree_task(const fs::path& dir, const Plan& plan, const BatchTa
                                 "--out=" + image.string()};
   if (t.width > 0) argv.push_back("--width=" + std::to_string(t.width));
   if (t.height > 0) argv.push_back("--height=" + std::to_string(t.height));
-  // The log starts with the command, so that the gallery's link shows what was run.
-  std::string command;
-  for (const std::string& arg : argv) command += (command.empty() ? "" : " ") + arg;
-  const fs::path log = engine_log(dir, t);
-  write_file_atomically(log, command + "\n");
-  const ChildExit ended = run_logged(argv, log);
-  if (!ended.exited || ended.status != 0)
-    throw Error(log, "", "the Embree render " + ended.describe() + last_log_lines(log, 3));
+  run_child(argv, engine_log(dir, t), "the Embree render");
   return image;
+}
+
+// A part of a path: `wangscape render --path` over the scene folder (the shared one; Blender's its
+// own, with its export) into work/ID/frames, where an earlier run's frames are kept and not
+// rendered again; each frame is then linked into the path's folder paths/FOLDER/ (under a
+// temporary name, then renamed: a frame there is whole), and the part's first frame is the still.
+fs::path render_frames_task(const fs::path& dir, const Plan& plan, const BatchTask& t) {
+  const BatchFrames& f = *t.frames;
+  const fs::path work = fs::absolute(dir / "work" / t.id), frames = work / "frames";
+  const fs::path shared = fs::absolute(dir / "paths" / f.folder);
+  fs::create_directories(frames);
+  fs::create_directories(shared);
+  const auto missing = [&] {
+    for (long long k = f.first; k < f.first + f.count; ++k)
+      if (!fs::exists(shared / path_frame_name(k))) return true;
+    return false;
+  };
+  if (missing()) {
+    fs::path scene;
+    if (t.engine == RenderEngine::blender) {
+      SceneConfig config = task_scene_config(plan.scene, t);
+      config.exports = {};
+      config.exports.blender = true;
+      scene = work / "scene";
+      if (!fs::exists(scene / "scene.toml")) build_scene_folder(config, scene);
+    } else {
+      scene = shared_scene(dir, plan, t);
+    }
+    std::vector<std::string> argv{self_program().string(),
+                                  "--quiet",
+                                  "render",
+                                  scene.string(),
+                                  "--engine=" + std::string(to_string(t.engine)),
+                                  "--path=" + f.file.string(),
+                                  "--frames=" + frames.string(),
+                                  "--fps=" + number_text(f.fps),
+                                  "--first-frame=" + std::to_string(f.first),
+                                  "--frame-count=" + std::to_string(f.count),
+                                  "--width=" + std::to_string(t.width),
+                                  "--height=" + std::to_string(t.height)};
+    run_child(argv, engine_log(dir, t), "the " + std::string(to_string(t.engine)) + " render of frames");
+    for (long long k = f.first; k < f.first + f.count; ++k) {
+      const fs::path from = frames / path_frame_name(k), to = shared / path_frame_name(k);
+      if (fs::exists(to)) continue;
+      AtomicPath linked(to);
+      std::error_code failed;
+      fs::create_hard_link(from, linked.temp_path(), failed);
+      if (failed) fs::copy_file(from, linked.temp_path());  // (another filesystem)
+      linked.commit();
+    }
+  }
+  const fs::path first = work / "first-frame.png";
+  fs::copy_file(shared / path_frame_name(f.first), first, fs::copy_options::overwrite_existing);
+  return first;
 }
 
 // The still of task t, rendered by its engine.
 fs::path render_task(const fs::path& dir, const Plan& plan, const BatchTask& t) {
+  if (t.frames) return render_frames_task(dir, plan, t);
   switch (t.engine) {
     case RenderEngine::blender:
       return render_blender_task(dir, plan, t);
@@ -552,7 +627,8 @@ std::string html_escape(const std::string& text) {
 }
 
 // Where the gallery links a still to, relative to the output folder: the scene folder it was
-// rendered from (POV-Ray: the shared scenes/KEY/; Blender: the task's own work/ID/), the
+// rendered from (POV-Ray: the shared scenes/KEY/; Blender: the task's own work/ID/; a path's part:
+// its inputs are the path's frames folder), the
 // engine's log and what the engine ran (POV-Ray: work/ID/scene.pov with the task's camera and
 // sun; Blender: the manifest of the task's folder, which holds them; Embree: the shared scene file,
 // its log starting with the command that holds the task's camera and sun).
@@ -561,6 +637,10 @@ struct TaskLinks {
 };
 TaskLinks task_links(const BatchTask& t) {
   const std::string work = "work/" + t.id + "/";
+  if (t.frames) {  // a path's part: its frames folder (with path.mp4 once every part is done)
+    const std::string scene = t.engine == RenderEngine::blender ? work + "scene/" : "scenes/" + t.scene_key + "/";
+    return {scene, work + std::string(to_string(t.engine)) + ".log", "paths/" + t.frames->folder + "/"};
+  }
   if (t.engine == RenderEngine::blender) return {work, work + "blender.log", work + "blender/manifest.json"};
   if (t.engine == RenderEngine::embree)
     return {"scenes/" + t.scene_key + "/", work + "embree.log", "scenes/" + t.scene_key + "/scene.toml"};
@@ -672,6 +752,15 @@ BatchPlan parse_batch_plan(std::string_view text, const fs::path& file) {
     if (!valid_field_of_view(c.fov_degrees) || !(t.sun.elevation >= -90 && t.sun.elevation <= 90) || t.width < 1 ||
         t.width > 32768 || t.height < 1 || t.height > 32768)
       throw bad(place, "has a field of view, a sun elevation or an image size out of range");
+    if (const auto& f = t.frames) {  // paths/FOLDER/ stays inside the output folder too
+      if (f->folder.empty() || f->folder.size() > 255 ||
+          f->folder.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_") !=
+              std::string::npos)
+        throw bad(place, "has frames folder '" + printable(f->folder) + "'; expected letters, digits, '-' and '_'");
+      if (!(f->fps >= kMinBatchPathFps && f->fps <= kMaxBatchPathFps) || f->count < 1 || f->first + f->count > f->total)
+        throw bad(place, "has a path part out of range (frames " + std::to_string(f->first) + " + " +
+                             std::to_string(f->count) + " of " + std::to_string(f->total) + ")");
+    }
     plan.tasks.push_back(t);
   }
   return plan;
@@ -745,6 +834,34 @@ BatchCounts batch_status(const fs::path& dir, std::string* report) {
   return counts;
 }
 
+namespace {
+
+// Each path whose parts are all done made into paths/FOLDER/path.mp4 (once; when ffmpeg is on
+// PATH), and the gallery's list of them.
+std::string movies_html(const fs::path& dir, const Plan& plan) {
+  std::map<std::string, std::pair<double, bool>> paths;  // folder -> fps, every part done
+  for (const auto& t : plan.tasks)
+    if (t.frames) {
+      const auto at = paths.try_emplace(t.frames->folder, t.frames->fps, true).first;
+      at->second.second = at->second.second && task_state(dir, t) == State::done;
+    }
+  if (paths.empty()) return {};
+  std::string html = "<h2>Paths</h2>\n<ul>\n";
+  for (const auto& [folder, state] : paths) {
+    const fs::path frames = dir / "paths" / folder, movie = frames / "path.mp4";
+    const bool made =
+        state.second && (fs::exists(movie) || write_frames_movie(frames, kPathFramePattern, state.first, movie));
+    html += "<li><a href=\"paths/" + html_escape(folder) + "/\">" + html_escape(folder) + "</a>" +
+            (made           ? " · <a href=\"paths/" + html_escape(folder) + "/path.mp4\">path.mp4</a>"
+             : state.second ? " (all frames; no ffmpeg on PATH for path.mp4)"
+                            : " (frames still to come)") +
+            "</li>\n";
+  }
+  return html + "</ul>\n";
+}
+
+}  // namespace
+
 void assemble_batch(const fs::path& dir) {
   const Plan plan = load_plan(dir);
   json all = json::array();
@@ -795,6 +912,7 @@ void assemble_batch(const fs::path& dir) {
         " log</a> · <a href=\"" + links.inputs + "\">inputs</a></figcaption></figure>\n";
     all.push_back(j);
   }
+  html += movies_html(dir, plan);
   html += "</body></html>\n";
   write_contact_sheet(dir, plan);
   write_file_atomically(dir / "index.html", html);

@@ -26,6 +26,24 @@ count = 1
 [sun]
 angles = [[120.0, 30.0], [240.0, 50.0]]
 ]=])
+# A path's frames in parts (issue 39 part 3): 0.7 s at 10 frames/s (8 frames) in parts of 3, in
+# POV-Ray and Embree: 6 tasks, each path's frames and path.mp4 under paths/.
+file(WRITE "${batch_dir}/walk.json"
+  "{\"keyframes\": [{\"time\": 0, \"position\": [0, -16], \"height_above_ground\": 2.2, \"look_at\": [0, 0], \"look_at_height_above_ground\": 1.2},\n"
+  "                {\"time\": 0.7, \"position\": [2, -10], \"height_above_ground\": 2.0, \"look_at\": [0, 4], \"look_at_height_above_ground\": 1.0}]}\n")
+file(WRITE "${batch_dir}/paths.toml" [=[
+scene = "tiny.toml"
+width = 48
+height = 36
+engines = ["povray", "embree"]
+[[viewpoints]]
+kind = "flowers"
+count = 1
+[[paths]]
+file = "walk.json"
+fps = 10
+frames_per_task = 3
+]=])
 # A cropped real DEM: one still per viewpoint kind (flowers, summit, grid, 2 path points) x 2 suns.
 file(WRITE "${batch_dir}/dem_scene.toml" "name = \"boulder\"
 [terrain]
@@ -59,7 +77,7 @@ from = 2024-07-15T09:00:00-06:00
 to = 2024-07-15T15:00:00-06:00
 step_minutes = 360
 ]=])
-foreach(scenario IN ITEMS plan example local embree kill missing_dem failing terrain slurm)
+foreach(scenario IN ITEMS plan example local embree paths kill missing_dem failing terrain slurm)
   add_test(NAME batch_${scenario}
     COMMAND sh "${CMAKE_CURRENT_SOURCE_DIR}/batch/scenario.sh" ${scenario} "${WANGSCAPE_BIN}" "${batch_dir}")
   set_tests_properties(batch_${scenario} PROPERTIES TIMEOUT 120 SKIP_RETURN_CODE 77 RESOURCE_LOCK batch_dir)

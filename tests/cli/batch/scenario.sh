@@ -48,6 +48,12 @@ for t in tasks:
     assert "azimuth" in t["sun"] and "elevation" in t["sun"]
 assert len({t["input_hash"] for t in tasks}) == 4
 ' || fail "plan --json shape"
+  printf 'scene = "tiny.toml"\n[[paths]]\nfile = "nowhere.json"\n' > nopath.toml
+  sh "$here/../expect.sh" 1 "nopath.toml:2: \\[\\[paths\\]\\] file: .*nowhere.json" "$bin" batch plan nopath.toml ||
+    fail "a missing path file is not named with its line"
+  printf 'scene = "tiny.toml"\n[[paths]]\nfile = "walk.json"\nfps = 500\n' > fastpath.toml
+  sh "$here/../expect.sh" 1 "fastpath.toml:4: 'paths.fps' is 500; expected frames a second from 1 to 240" "$bin" batch plan fastpath.toml ||
+    fail "a path's fps out of range is not refused"
   printf 'scene = "tiny.toml"\n[[viewpoints]]\nknd = "grid"\n' > typo.toml
   sh "$here/../expect.sh" 1 "typo.toml:3: unknown key .viewpoints.knd." "$bin" batch plan typo.toml ||
     fail "an unknown key is not named with its line"
@@ -117,6 +123,33 @@ for sun in (120.0, 240.0):
 PY
   grep -q -- "--sun=120,30" engines/work/*/embree.log || fail "no Embree log names its task's sun"
   ;;
+paths)
+  # A path's frames split into tasks: every frame once in paths/1-walk-ENGINE/, path.mp4 when every
+  # part is done; a kill after the first part leaves its frames, which the rerun keeps.
+  rm -rf paths
+  "$bin" batch plan paths.toml | grep -q "^0003  flat ground  path walk frames 3-5 " || fail "plan: no part of frames 3-5"
+  setsid "$bin" --quiet batch run paths.toml --out paths --workers 1 > paths-run.log 2>&1 &
+  pid=$!
+  i=0
+  while [ ! -e paths/tasks/0002.json ] && [ $i -lt 600 ]; do sleep 0.05; i=$((i + 1)); done
+  kill -s KILL -- "-$pid" 2>/dev/null
+  wait "$pid" 2>/dev/null
+  [ -e paths/tasks/0002.json ] || fail "the first part never finished"
+  [ -e paths/tasks/0007.json ] && fail "the killed run finished every part (kill it earlier)"
+  first=$(ls -l --time-style=+%s.%N paths/paths/1-walk-povray/frame-00000.png paths/paths/1-walk-povray/frame-00002.png)
+  "$bin" --quiet batch run paths.toml --out paths --workers 2 || fail "paths run after the kill"
+  check_once paths 8
+  check_links paths
+  [ "$(ls -l --time-style=+%s.%N paths/paths/1-walk-povray/frame-00000.png paths/paths/1-walk-povray/frame-00002.png)" = "$first" ] ||
+    fail "the rerun rendered the killed run's finished frames again"
+  for engine in povray embree; do
+    [ "$(ls paths/paths/1-walk-$engine | grep -c '^frame-0000[0-7].png$')" = 8 ] || fail "$engine: not 8 frames"
+    if command -v ffmpeg > /dev/null; then
+      [ -s "paths/paths/1-walk-$engine/path.mp4" ] || fail "$engine: no path.mp4"
+    fi
+  done
+  grep -q '<a href="paths/1-walk-embree/path.mp4">' paths/index.html || fail "the gallery does not link the movie"
+  ;;
 kill)
   rm -rf killed
   setsid "$bin" --quiet batch run four.toml --out killed --workers 1 > kill-run.log 2>&1 &
@@ -170,6 +203,11 @@ slurm)
   check_once slurm-out 4
   [ -s slurm-out/index.html ] && [ -s slurm-out/contact-sheet.png ] || fail "no gallery from the Slurm run"
   "$bin" batch status slurm-out | grep -q "done 4, running 0" || fail "status after Slurm"
+  # A path's parts as array elements: 8 frames of each engine, path.mp4 made by the assemble job.
+  rm -rf slurm-paths
+  "$bin" --quiet batch run paths.toml --out slurm-paths --executor slurm --chunk 2 || fail "slurm paths run"
+  check_once slurm-paths 8
+  [ "$(ls slurm-paths/paths/1-walk-povray | grep -c '^frame-0000[0-7].png$')" = 8 ] || fail "Slurm: not 8 frames"
   # Failing elements (Blender tasks) are resubmitted once, then reported; the others finish.
   rm -rf slurm-failing
   printf 'scene = "tiny.toml"\nengines = ["povray", "blender"]\nwidth = 48\nheight = 36\n[[viewpoints]]\ncount = 1\n' > slurm-failing.toml
