@@ -8,7 +8,9 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -250,11 +252,55 @@ std::string scene_key(const SceneConfig& scene, const std::filesystem::path& dem
 
 // ---- viewpoints ---------------------------------------------------------------------------------
 
+// A head-height eye among plants is moved to the nearest place clear of them within this many
+// meters (on rings kClearStep apart), or else lifted above them. Clear: this far beyond any plant's
+// reach, and farther from the plants in front (within the field of view): at 0.1 m beyond one a
+// leaf in front still filled a third of a 60-degree still.
+constexpr double kClearSearch = 5.0, kClearStep = 0.25, kClearLift = 0.3;
+constexpr double kClearMargin = 0.1, kClearFrontMargin = 0.6;
+
+// The plants of a ground as a viewpoint meets them: the scene's field laid without a camera's view
+// (every tile, camera-aware or not) and each model's reach and height.
+struct Plants {
+  std::shared_ptr<SceneField> field;
+  std::vector<MeshExtent> extents;  // per model (InstanceBatch::variant)
+
+  // The scene over `ground` with a camera 100 m above `at` (the base scene's own camera may not fit
+  // this DEM; tasks get their own).
+  Plants(const SceneConfig& base, const SceneGround& ground, const std::array<double, 2>& at) {
+    SceneConfig scene = base;
+    const double up = ground.height(at[0], at[1]).value_or(0) + 100;
+    scene.camera = {};
+    scene.camera.position.enu = {at[0], at[1], up};
+    scene.camera.target.enu = {at[0] + 10, at[1], up};
+    const Scene made = make_scene(scene);
+    field = std::make_shared<SceneField>(*made.field);
+    field->view.reset();
+    for (const Mesh& model : made.models) extents.push_back(measure_extent(model));
+  }
+  // The plants whose tiles meet the square of half side `reach` around (x, y): where each stands,
+  // how far its leaves reach and how high it grows.
+  struct Plant {
+    double x, y, reach, top;
+  };
+  std::vector<Plant> around(double x, double y, double reach) const {
+    std::vector<Plant> plants;
+    field->place_in(Extent{x - reach, y - reach, x + reach, y + reach}, [&](const InstanceBatch& batch) {
+      for (std::size_t i = 0; i < batch.size(); ++i) {
+        const MeshExtent& e = extents[std::min<std::size_t>(batch.variant[i], extents.size() - 1)];
+        plants.push_back({batch.x[i], batch.y[i], e.radius * batch.scale[i], batch.z[i] + e.height * batch.scale[i]});
+      }
+    });
+    return plants;
+  }
+};
+
 // The ground of one DEM with what viewpoints need of it.
 struct Site {
   const SceneConfig& scene;
   const SceneGround& ground;
   Extent field;
+  mutable std::optional<Plants> plants;  // made on the first head-height eye
 
   // Flowers may grow here: inside the field, over the ground, within the height/slope masks.
   bool has_flowers(double x, double y) const {
@@ -309,6 +355,40 @@ struct Site {
   std::array<double, 3> eye_at(double x, double y, double eye_height) const {
     return {x, y, ground.height(x, y).value_or(0) + eye_height};
   }
+  // An eye eye_height above the ground at (x, y) looking toward `toward` (ENU) with a horizontal
+  // field of view of fov_degrees, out of the plants: there when no plant's reach (its widest leaf,
+  // scaled) plus a margin holds it below that plant's top, else the nearest clear place within
+  // kClearSearch, else kClearLift above the tops around it. A head-height still taken from inside
+  // a sunflower had a leaf filling a corner (issue 40).
+  std::array<double, 3> clear_eye_at(double x, double y, double eye_height, const std::array<double, 3>& toward,
+                                     double fov_degrees) const {
+    if (!plants) plants.emplace(scene, ground, std::array<double, 2>{x, y});
+    double reach = 0;
+    for (const MeshExtent& e : plants->extents) reach = std::max<double>(reach, e.radius);
+    const auto around = plants->around(x, y, kClearSearch + 2 * reach + kClearFrontMargin);
+    const double ahead = std::atan2(toward[1] - y, toward[0] - x);
+    const double half_view = (fov_degrees / 2 + 10) * std::numbers::pi / 180;  // with a leaf's width to spare
+    const auto inside = [&](const std::array<double, 3>& eye) {
+      return std::any_of(around.begin(), around.end(), [&](const Plants::Plant& p) {
+        const double dx = p.x - eye[0], dy = p.y - eye[1];
+        const double off = std::abs(std::remainder(std::atan2(dy, dx) - ahead, 2 * std::numbers::pi));
+        return eye[2] < p.top && std::hypot(dx, dy) < p.reach + (off < half_view ? kClearFrontMargin : kClearMargin);
+      });
+    };
+    if (const auto eye = eye_at(x, y, eye_height); !inside(eye)) return eye;
+    for (double r = kClearStep; r <= kClearSearch + 1e-9; r += kClearStep) {
+      const int steps = std::max(8, static_cast<int>(std::ceil(2 * std::numbers::pi * r / kClearStep)));
+      for (int k = 0; k < steps; ++k) {
+        const double a = 2 * std::numbers::pi * k / steps, px = x + r * std::cos(a), py = y + r * std::sin(a);
+        if (!ground.height(px, py)) continue;
+        if (const auto eye = eye_at(px, py, eye_height); !inside(eye)) return eye;
+      }
+    }
+    auto eye = eye_at(x, y, eye_height);
+    for (const Plants::Plant& p : around)
+      if (std::hypot(x - p.x, y - p.y) < p.reach) eye[2] = std::max(eye[2], p.top + kClearLift);
+    return eye;
+  }
 };
 
 double halton(int index, int base) {
@@ -334,12 +414,14 @@ std::vector<View> expand_viewpoint(const ViewpointRule& rule, const Site& site, 
     v.camera.fov_degrees = rule.fov > 0 ? rule.fov : site.scene.camera.fov;
     views.push_back(v);
   };
+  const double fov = rule.fov > 0 ? rule.fov : site.scene.camera.fov;
   const Extent& f = site.field;
   if (rule.kind == ViewpointKind::flowers) {
     for (int k = 1; k < 20000 && static_cast<int>(views.size()) < rule.count; ++k) {
       const double x = f.min_x + halton(k, 2) * f.width(), y = f.min_y + halton(k, 3) * f.height();
       if (!site.has_flowers(x, y)) continue;
-      const auto eye = site.eye_at(x, y, rule.eye_height);
+      const auto eye =
+          site.clear_eye_at(x, y, rule.eye_height, site.highest_in_view(site.eye_at(x, y, rule.eye_height)), fov);
       add("flowers " + std::to_string(views.size() + 1), eye, site.highest_in_view(eye));
     }
   } else if (rule.kind == ViewpointKind::summits) {
@@ -372,7 +454,8 @@ std::vector<View> expand_viewpoint(const ViewpointRule& rule, const Site& site, 
         const double x = f.min_x + (i + 0.5) * f.width() / rule.grid[0];
         const double y = f.min_y + (j + 0.5) * f.height() / rule.grid[1];
         if (!site.ground.height(x, y)) continue;
-        const auto eye = site.eye_at(x, y, rule.eye_height);
+        const auto eye =
+            site.clear_eye_at(x, y, rule.eye_height, site.highest_in_view(site.eye_at(x, y, rule.eye_height)), fov);
         add("grid " + std::to_string(i) + "," + std::to_string(j), eye, site.highest_in_view(eye));
       }
   } else {
@@ -393,8 +476,8 @@ std::vector<View> expand_viewpoint(const ViewpointRule& rule, const Site& site, 
                         std::to_string(k + 1 < points.size() ? k + 2 : k + 1) +
                         " are the same place (less than 1 mm apart), so the camera there has no direction; " +
                         "give points that move along the path");
-      const auto eye = site.eye_at(x, y, rule.eye_height);
-      add("path " + std::to_string(k + 1), eye, {x + b[0] - a[0], y + b[1] - a[1], eye[2]});
+      const auto eye = site.clear_eye_at(x, y, rule.eye_height, {x + b[0] - a[0], y + b[1] - a[1], 0}, fov);
+      add("path " + std::to_string(k + 1), eye, {eye[0] + b[0] - a[0], eye[1] + b[1] - a[1], eye[2]});
     }
   }
   if (views.empty())
@@ -592,7 +675,7 @@ std::vector<BatchTask> expand_batch(const BatchConfig& config) {
     SceneConfig scene = config.scene;
     scene.terrain.dem = dem;
     const auto ground = SceneGround::load(scene.terrain, scene.masks, scene.tiles.area_latlon);
-    Site site{scene, ground, field_area(scene, ground)};
+    Site site{scene, ground, field_area(scene, ground), {}};
     const EnuFrame frame(LatLon{ground.origin()[0], ground.origin()[1]});
     // The scene's own sun (a path's frames take it alone), then the batch's.
     BatchSun own;
