@@ -1,9 +1,7 @@
-// Batch runs: tasks that can be run twice, the local and Slurm executors, status from the
-// files and the gallery (see batch_run.h).
+// Batch runs: tasks that can be run twice and the local and Slurm executors (see batch_run.h);
+// the output folder's files are batch_folder.h's, the gallery batch_gallery.cpp's.
 #include "renders/batch/batch_run.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/file.h>
@@ -12,12 +10,9 @@
 
 #include <algorithm>
 #include <atomic>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <map>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -31,182 +26,21 @@
 #include "core/vecmath.h"
 #include "exporters/povray_writer.h"
 #include "exporters/scene_folder.h"
+#include "renders/batch/batch_folder.h"
 #include "renders/external/blender_render.h"
 #include "renders/external/child_process.h"
-#include "renders/external/movie.h"
 #include "renders/external/povray_render.h"
 
 namespace wangscape {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
+using namespace batch_detail;  // the output folder's files (batch_folder.h)
 
 namespace {
 
 using Messages = std::function<void(const std::string& line)>;
 
-// ---- plan.json ----------------------------------------------------------------------------------
-
-// A path of the plan: its text under `key` (U+FFFD where it is not UTF-8, as JSON output writes
-// it) and, when it is not UTF-8 (a DEM folder's Latin-1 file name), its bytes in hex under
-// `key`_bytes, which the workers read instead: they open the file the plan found.
-void put_path(json& j, const std::string& key, const fs::path& path) {
-  static constexpr char kHex[] = "0123456789abcdef";
-  const std::string& bytes = path.native();
-  j[key] = bytes;
-  if (valid_utf8(bytes) == bytes) return;
-  std::string hex;
-  for (const char c : bytes) {
-    hex += kHex[static_cast<unsigned char>(c) >> 4];
-    hex += kHex[static_cast<unsigned char>(c) & 15];
-  }
-  j[key + "_bytes"] = hex;
-}
-
-// The path put_path wrote; a `key`_bytes that is not hex throws as a field of the wrong type.
-fs::path get_path(const json& j, const std::string& key) {
-  const auto bytes = j.find(key + "_bytes");
-  if (bytes == j.end()) return j.at(key).get<std::string>();
-  const std::string hex = bytes->get<std::string>();
-  const auto digit = [&](char c) {
-    if (c >= '0' && c <= '9') return c - '0';
-    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-    throw json::type_error::create(302, "not hex", &*bytes);
-  };
-  if (hex.size() % 2 != 0) throw json::type_error::create(302, "not hex", &*bytes);
-  std::string native;
-  for (std::size_t k = 0; k < hex.size(); k += 2) native += static_cast<char>(digit(hex[k]) * 16 + digit(hex[k + 1]));
-  return native;
-}
-
-json task_json(const BatchTask& t) {
-  json j = {{"index", t.index},
-            {"id", t.id},
-            {"viewpoint", t.viewpoint},
-            {"camera",
-             {{"position_enu", t.camera.position},
-              {"target_enu", t.camera.target},
-              {"fov", t.camera.fov_degrees},
-              {"latitude", t.camera_latlon[0]},
-              {"longitude", t.camera_latlon[1]}}},
-            {"sun",
-             {{"label", t.sun.label},
-              {"azimuth", t.sun.azimuth},
-              {"elevation", t.sun.elevation},
-              {"time_unix", t.sun.time_unix ? json(*t.sun.time_unix) : json(nullptr)}}},
-            {"engine", to_string(t.engine)},
-            {"width", t.width},
-            {"height", t.height},
-            {"scene_key", t.scene_key},
-            {"input_hash", t.input_hash}};
-  put_path(j, "dem", t.dem);
-  if (t.frames) {
-    const BatchFrames& f = *t.frames;
-    j["frames"] = {{"fps", f.fps}, {"first", f.first}, {"count", f.count}, {"total", f.total}, {"folder", f.folder}};
-    put_path(j["frames"], "file", f.file);
-  }
-  return j;
-}
-
-// An integer field of at most 2^31 - 1 (a float or a larger number throws, as a missing field does).
-int int_field(const json& j, const char* key) {
-  const json& v = j.at(key);
-  if (!v.is_number_integer() || v.get<std::int64_t>() < 0 || v.get<std::int64_t>() > 0x7fffffff)
-    throw json::type_error::create(302, "not an integer", &v);
-  return static_cast<int>(v.get<std::int64_t>());
-}
-
-BatchTask task_from_json(const json& j) {
-  BatchTask t;
-  t.index = int_field(j, "index");
-  t.id = j.at("id");
-  t.dem = get_path(j, "dem");
-  t.viewpoint = j.at("viewpoint");
-  const auto& c = j.at("camera");
-  t.camera.position = c.at("position_enu");
-  t.camera.target = c.at("target_enu");
-  t.camera.fov_degrees = c.at("fov");
-  t.camera_latlon = {c.at("latitude"), c.at("longitude")};
-  const auto& s = j.at("sun");
-  t.sun.label = s.at("label");
-  t.sun.azimuth = s.at("azimuth");
-  t.sun.elevation = s.at("elevation");
-  if (const json& when = s.at("time_unix"); !when.is_null()) {
-    if (!when.is_number_integer()) throw json::type_error::create(302, "not an integer", &when);
-    t.sun.time_unix = when.get<std::int64_t>();
-  }
-  t.engine = parse_render_engine(j.at("engine").get<std::string>());
-  t.width = int_field(j, "width");
-  t.height = int_field(j, "height");
-  t.scene_key = j.at("scene_key");
-  t.input_hash = j.at("input_hash");
-  if (const auto frames = j.find("frames"); frames != j.end()) {
-    BatchFrames f;
-    f.file = get_path(*frames, "file");
-    f.fps = frames->at("fps");
-    f.first = int_field(*frames, "first");
-    f.count = int_field(*frames, "count");
-    f.total = int_field(*frames, "total");
-    f.folder = frames->at("folder");
-    t.frames = f;
-  }
-  return t;
-}
-
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return {};
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// A task record (tasks/ID.json, .failed): small files of this run; anything else (a torn write,
-// a folder, a FIFO, a foreign or deep file) counts as absent.
-json read_json(const fs::path& file) {
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec) || fs::file_size(file, ec) > (1u << 20) || ec) return json();
-  const std::string text = read_text(file);
-  if (text.empty()) return json();
-  try {
-    check_nesting(text, file, kMaxNesting);
-    return json::parse(text);
-  } catch (const std::exception&) {
-    return json();
-  }
-}
-
-using Plan = BatchPlan;
-
-Plan load_plan(const fs::path& dir) {
-  const fs::path file = dir / "plan.json";
-  std::error_code ec;
-  if (!fs::exists(file, ec))
-    throw Error(file, "", "is missing: not a batch output folder (run `wangscape batch run BATCH --out DIR` first)");
-  return parse_batch_plan(read_text_file(file, kMaxPlanBytes, "batch plan"), file);
-}
-
-void write_plan(const fs::path& dir, const BatchConfig& config, const std::vector<BatchTask>& tasks) {
-  json j;
-  j["batch_file"] = config.source.string();
-  j["scene"] = {{"text", config.scene.text}};
-  put_path(j["scene"], "source", config.scene.source);
-  put_path(j["scene"], "base_dir", config.scene.base_dir);
-  put_path(j["scene"], "dem", config.scene.terrain.dem);
-  j["tasks"] = json::array();
-  for (const auto& t : tasks) j["tasks"].push_back(task_json(t));
-  write_file_atomically(dir / "plan.json", json_text(j, 1) + "\n");
-}
-
 // ---- one task -----------------------------------------------------------------------------------
-
-fs::path still_of(const fs::path& dir, const BatchTask& t) { return dir / "stills" / (t.id + ".png"); }
-fs::path record_of(const fs::path& dir, const BatchTask& t, const char* ext) { return dir / "tasks" / (t.id + ext); }
-
-bool task_done(const fs::path& dir, const BatchTask& t) {
-  const json r = read_json(record_of(dir, t, ".json"));
-  return r.is_object() && r.value("input_hash", "") == t.input_hash && fs::exists(still_of(dir, t));
-}
 
 // The first task of `t`'s scene: it alone decides the shared folder, whichever worker builds it.
 const BatchTask& scene_owner(const Plan& plan, const BatchTask& t) {
@@ -456,29 +290,6 @@ bool run_task(const fs::path& dir, const Plan& plan, const BatchTask& t, const M
   }
 }
 
-// ---- status -------------------------------------------------------------------------------------
-
-enum class State { done, running, failed, pending };
-const char* state_name(State s) {
-  return s == State::done ? "done" : s == State::running ? "running" : s == State::failed ? "failed" : "pending";
-}
-
-State task_state(const fs::path& dir, const BatchTask& t) {
-  if (task_done(dir, t)) return State::done;
-  const std::string running = read_text(record_of(dir, t, ".running"));
-  if (!running.empty()) {
-    // A worker of this machine that is gone (killed) left its marker: the task is pending.
-    char host[256] = {};
-    ::gethostname(host, sizeof host - 1);
-    std::istringstream in(running);
-    long pid = 0;
-    std::string on;
-    in >> pid >> on;
-    if (on != host || (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) == 0)) return State::running;
-  }
-  return fs::exists(record_of(dir, t, ".failed")) ? State::failed : State::pending;
-}
-
 // ---- executors ----------------------------------------------------------------------------------
 
 int default_workers() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
@@ -607,164 +418,7 @@ void run_slurm(const BatchRunSettings& s, const Plan& plan) {
   }
 }
 
-// ---- results ------------------------------------------------------------------------------------
-
-std::string html_escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '<')
-      out += "&lt;";
-    else if (c == '>')
-      out += "&gt;";
-    else if (c == '&')
-      out += "&amp;";
-    else if (c == '"')
-      out += "&quot;";
-    else
-      out += c;
-  }
-  return out;
-}
-
-// Where the gallery links a still to, relative to the output folder: the scene folder it was
-// rendered from (POV-Ray: the shared scenes/KEY/; Blender: the task's own work/ID/; a path's part:
-// its inputs are the path's frames folder), the
-// engine's log and what the engine ran (POV-Ray: work/ID/scene.pov with the task's camera and
-// sun; Blender: the manifest of the task's folder, which holds them; Embree: the shared scene file,
-// its log starting with the command that holds the task's camera and sun).
-struct TaskLinks {
-  std::string scene, log, inputs;
-};
-TaskLinks task_links(const BatchTask& t) {
-  const std::string work = "work/" + t.id + "/";
-  if (t.frames) {  // a path's part: its frames folder (with path.mp4 once every part is done)
-    const std::string scene = t.engine == RenderEngine::blender ? work + "scene/" : "scenes/" + t.scene_key + "/";
-    return {scene, work + std::string(to_string(t.engine)) + ".log", "paths/" + t.frames->folder + "/"};
-  }
-  if (t.engine == RenderEngine::blender) return {work, work + "blender.log", work + "blender/manifest.json"};
-  if (t.engine == RenderEngine::embree)
-    return {"scenes/" + t.scene_key + "/", work + "embree.log", "scenes/" + t.scene_key + "/scene.toml"};
-  return {"scenes/" + t.scene_key + "/", work + "povray.log", work + "scene.pov"};
-}
-
-// The labels' font: Debian's DejaVu Sans (fonts-dejavu-core); without it the sheet has no labels
-// (index.html still names every still's viewpoint, sun and engine).
-constexpr char kLabelFont[] = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
-constexpr int kLabelSize = 11, kLabelLines = 2;  // pixels per line; viewpoint and engine, then sun
-
-// A sun's label as short as a thumbnail's width wants it: a time "2024-07-15T10:00:00-07:00" as
-// "2024-07-15 10:00 -07:00" (with its seconds unless they are 0); other labels as they are. The
-// full label with the engine ran 40 pixels into the next column.
-std::string sheet_sun_label(const std::string& label) {
-  const bool time = label.size() == 25 && label[10] == 'T' && label[13] == ':' && label[16] == ':';
-  if (!time) return label;
-  const std::string clock = label.compare(16, 3, ":00") == 0 ? label.substr(11, 5) : label.substr(11, 8);
-  return label.substr(0, 10) + " " + clock + " " + label.substr(19);
-}
-
-void write_contact_sheet(const fs::path& dir, const Plan& plan) {
-  constexpr int kThumb = 160;
-  const int n = static_cast<int>(plan.tasks.size());
-  const int columns = std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n)))));
-  const int rows = std::max(1, (n + columns - 1) / columns);
-  int thumb_h = kThumb * 9 / 16;
-  if (!plan.tasks.empty() && plan.tasks[0].width > 0)
-    thumb_h = std::max(1, kThumb * plan.tasks[0].height / plan.tasks[0].width);
-  std::error_code ec;
-  const bool labelled = fs::is_regular_file(kLabelFont, ec);
-  const int label_h = labelled ? kLabelLines * (kLabelSize + 2) + 2 : 0;
-  const int cell_h = thumb_h + label_h + 4;
-  const float grey[3] = {0.2f, 0.2f, 0.2f}, white[3] = {0.92f, 0.92f, 0.92f};
-  OIIO::ImageBuf sheet(OIIO::ImageSpec(columns * (kThumb + 4) + 4, rows * cell_h + 4, 3, OIIO::TypeDesc::UINT8));
-  OIIO::ImageBufAlgo::fill(sheet, grey);
-  for (int k = 0; k < n; ++k) {
-    const BatchTask& task = plan.tasks[std::size_t(k)];
-    const int x = 4 + (k % columns) * (kThumb + 4), y = 4 + (k / columns) * cell_h;
-    if (task_done(dir, task)) {
-      OIIO::ImageBuf image(still_of(dir, task).string());
-      OIIO::ImageBuf thumb = OIIO::ImageBufAlgo::resize(image, "", 0, OIIO::ROI(0, kThumb, 0, thumb_h, 0, 1, 0, 3));
-      OIIO::ImageBufAlgo::paste(sheet, x, y, 0, 0, thumb);
-    }
-    if (!labelled) continue;
-    // Under each still (or its empty place): what it shows, as the batch file names it.
-    const std::string lines[kLabelLines] = {
-        task.id + "  " + task.viewpoint + "  " + std::string(to_string(task.engine)), sheet_sun_label(task.sun.label)};
-    for (int line = 0; line < kLabelLines; ++line)
-      OIIO::ImageBufAlgo::render_text(sheet, x + 1, y + thumb_h + (line + 1) * (kLabelSize + 2), lines[line],
-                                      kLabelSize, kLabelFont, white);
-  }
-  AtomicPath out(dir / "contact-sheet.png");
-  if (!sheet.write(out.temp_path().string(), OIIO::TypeDesc::UINT8, "png"))
-    throw Error(dir / "contact-sheet.png", "", "cannot be written: " + sheet.geterror());
-  out.commit();
-}
-
 }  // namespace
-
-BatchPlan parse_batch_plan(std::string_view text, const fs::path& file) {
-  check_nesting(text, file, kMaxNesting);  // nlohmann's parser recurses
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw Error(file, "", "is not a batch plan: not JSON (at byte " + std::to_string(e.byte) + ")");
-  } catch (const json::exception&) {  // out_of_range.406: a number beyond a double
-    throw Error(file, "", "is not a batch plan: it holds a number too large for a double");
-  }
-  const auto bad = [&](const std::string& place, const std::string& what) {
-    return Error(file, place, what + " (the plan is written by `wangscape batch run`; run it again)");
-  };
-  if (!j.is_object() || !j.contains("scene") || !j.contains("tasks") || !j["tasks"].is_array())
-    throw bad("", "is not a batch plan: expected an object with 'scene' and 'tasks'");
-  BatchPlan plan;
-  try {
-    const auto& s = j.at("scene");
-    plan.scene = parse_scene_config(s.at("text").get<std::string>(), get_path(s, "source"), get_path(s, "base_dir"));
-    plan.scene.terrain.dem = get_path(s, "dem");
-  } catch (const json::exception&) {
-    throw bad("scene", "is not a batch plan's scene: expected 'text', 'source', 'base_dir' and 'dem' strings");
-  }
-  if (j["tasks"].size() > static_cast<std::size_t>(kMaxBatchTasks))
-    throw bad("tasks", "holds " + std::to_string(j["tasks"].size()) + " tasks; at most " +
-                           std::to_string(kMaxBatchTasks) + " are planned");
-  for (const auto& item : j["tasks"]) {
-    const std::string place = "task " + std::to_string(plan.tasks.size());
-    BatchTask t;
-    try {
-      t = task_from_json(item);
-    } catch (const json::exception&) {
-      throw bad(place, "a field is missing or of the wrong type");
-    } catch (const Error& e) {
-      throw bad(place, e.message());
-    }
-    // Every path a worker derives from a task (stills/ID.png, tasks/ID.json, work/ID/, logs/ID.log,
-    // scenes/KEY/) stays inside the output folder: ids and keys are checked, never trusted.
-    if (t.index != static_cast<int>(plan.tasks.size()) || t.id != batch_task_id(t.index))
-      throw bad(place, "has index " + std::to_string(t.index) + " and id '" + printable(t.id) + "'; expected " +
-                           std::to_string(plan.tasks.size()) + " and '" +
-                           batch_task_id(static_cast<int>(plan.tasks.size())) + "'");
-    if (t.scene_key.size() != 16 || t.scene_key.find_first_not_of("0123456789abcdef") != std::string::npos)
-      throw bad(place, "has scene key '" + printable(t.scene_key) + "'; expected 16 hex digits");
-    const auto& c = t.camera;
-    for (double v : {c.position[0], c.position[1], c.position[2], c.target[0], c.target[1], c.target[2], t.sun.azimuth,
-                     t.camera_latlon[0], t.camera_latlon[1]})
-      if (!std::isfinite(v)) throw bad(place, "holds a number that is not finite");
-    if (!valid_field_of_view(c.fov_degrees) || !(t.sun.elevation >= -90 && t.sun.elevation <= 90) || t.width < 1 ||
-        t.width > 32768 || t.height < 1 || t.height > 32768)
-      throw bad(place, "has a field of view, a sun elevation or an image size out of range");
-    if (const auto& f = t.frames) {  // paths/FOLDER/ stays inside the output folder too
-      if (f->folder.empty() || f->folder.size() > 255 ||
-          f->folder.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_") !=
-              std::string::npos)
-        throw bad(place, "has frames folder '" + printable(f->folder) + "'; expected letters, digits, '-' and '_'");
-      if (!(f->fps >= kMinBatchPathFps && f->fps <= kMaxBatchPathFps) || f->count < 1 || f->first + f->count > f->total)
-        throw bad(place, "has a path part out of range (frames " + std::to_string(f->first) + " + " +
-                             std::to_string(f->count) + " of " + std::to_string(f->total) + ")");
-    }
-    plan.tasks.push_back(t);
-  }
-  return plan;
-}
 
 std::string batch_plan_text(const fs::path& batch_file, bool as_json) {
   const auto config = load_batch_config(batch_file);
@@ -813,116 +467,6 @@ std::string batch_status_text(const BatchRunSettings& settings) {
   }
   batch_status(settings.out_dir, &report);
   return report;
-}
-
-BatchCounts batch_status(const fs::path& dir, std::string* report) {
-  const Plan plan = load_plan(dir);
-  BatchCounts counts;
-  for (const auto& t : plan.tasks) {
-    const State s = task_state(dir, t);
-    (s == State::done      ? counts.done
-     : s == State::running ? counts.running
-     : s == State::failed  ? counts.failed
-                           : counts.pending)++;
-    if (report)
-      *report += t.id + "  " + state_name(s) + "  " + t.viewpoint + ", sun " + t.sun.label + ", " +
-                 std::string(to_string(t.engine)) + "\n";
-  }
-  if (report)
-    *report += "done " + std::to_string(counts.done) + ", running " + std::to_string(counts.running) + ", failed " +
-               std::to_string(counts.failed) + ", pending " + std::to_string(counts.pending) + "\n";
-  return counts;
-}
-
-namespace {
-
-// Each path whose parts are all done made into paths/FOLDER/path.mp4 (once; when ffmpeg is on
-// PATH), and the gallery's list of them.
-std::string movies_html(const fs::path& dir, const Plan& plan) {
-  std::map<std::string, std::pair<double, bool>> paths;  // folder -> fps, every part done
-  for (const auto& t : plan.tasks)
-    if (t.frames) {
-      const auto at = paths.try_emplace(t.frames->folder, t.frames->fps, true).first;
-      at->second.second = at->second.second && task_state(dir, t) == State::done;
-    }
-  if (paths.empty()) return {};
-  std::string html = "<h2>Paths</h2>\n<ul>\n";
-  for (const auto& [folder, state] : paths) {
-    const fs::path frames = dir / "paths" / folder, movie = frames / "path.mp4";
-    const bool made =
-        state.second && (fs::exists(movie) || write_frames_movie(frames, kPathFramePattern, state.first, movie));
-    html += "<li><a href=\"paths/" + html_escape(folder) + "/\">" + html_escape(folder) + "</a>" +
-            (made           ? " · <a href=\"paths/" + html_escape(folder) + "/path.mp4\">path.mp4</a>"
-             : state.second ? " (all frames; no ffmpeg on PATH for path.mp4)"
-                            : " (frames still to come)") +
-            "</li>\n";
-  }
-  return html + "</ul>\n";
-}
-
-}  // namespace
-
-void assemble_batch(const fs::path& dir) {
-  const Plan plan = load_plan(dir);
-  json all = json::array();
-  std::string html =
-      "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>Wangscape batch</title><style>"
-      "body{font-family:sans-serif;background:#222;color:#ddd}figure{display:inline-block;margin:6px;"
-      "vertical-align:top;width:330px}img{width:320px}figcaption{font-size:12px}a{color:#9cf}"
-      ".failed{color:#f88;font-size:12px;white-space:pre-wrap}</style></head><body>\n"
-      "<h1>Wangscape batch</h1>\n<p><img src=\"contact-sheet.png\" alt=\"contact sheet\" style=\"width:auto\"></p>\n";
-  int renders = 0;
-  BatchCounts counts;
-  for (const auto& t : plan.tasks) {
-    json j = task_json(t);
-    const State s = task_state(dir, t);
-    (s == State::done      ? counts.done
-     : s == State::running ? counts.running
-     : s == State::failed  ? counts.failed
-                           : counts.pending)++;
-    j["status"] = state_name(s);
-    const json record = read_json(record_of(dir, t, ".json"));
-    const double seconds = record.is_object() ? record.value("seconds", 0.0) : 0.0;
-    j["seconds"] = seconds;
-    j["renders"] = record.is_object() ? record.value("renders", 0) : 0;
-    renders += j["renders"].get<int>();
-    j["image"] = s == State::done ? "stills/" + t.id + ".png" : "";
-    const json failure = s == State::failed ? read_json(record_of(dir, t, ".failed")) : json();
-    if (s == State::failed) j["failure"] = failure;
-    const TaskLinks links = task_links(t);
-    j["links"] = {{"scene", links.scene}, {"log", links.log}, {"inputs", links.inputs}};
-    const auto& p = t.camera.position;
-    std::string failed;
-    if (s == State::failed)
-      failed = "<p class=\"failed\">failed: " +
-               html_escape(failure.is_object() ? failure.value("error", std::string("?")) : std::string("?")) + "</p>";
-    html +=
-        "<figure>" +
-        (s == State::done ? "<a href=\"stills/" + t.id + ".png\"><img src=\"stills/" + t.id + ".png\" alt=\"still " +
-                                t.id + "\"></a>"
-         : failed.empty() ? "<p>" + std::string(state_name(s)) + "</p>"
-                          : failed) +
-        "<figcaption>" + t.id + " " + html_escape(t.viewpoint) +
-        "<br>DEM: " + html_escape(valid_utf8(t.dem.empty() ? std::string("flat ground") : t.dem.filename().string())) +
-        "<br>camera ENU (" + fixed_text(p[0], 1) + ", " + fixed_text(p[1], 1) + ", " + fixed_text(p[2], 1) +
-        ") m, lat/lon " + fixed_text(t.camera_latlon[0], 6) + ", " + fixed_text(t.camera_latlon[1], 6) + "<br>sun " +
-        html_escape(t.sun.label) + " (az " + fixed_text(t.sun.azimuth, 1) + ", el " + fixed_text(t.sun.elevation, 1) +
-        ")<br>" + std::string(to_string(t.engine)) + ", " + fixed_text(seconds, 2) + " s<br><a href=\"" + links.scene +
-        "\">scene folder</a> · <a href=\"" + links.log + "\">" + std::string(to_string(t.engine)) +
-        " log</a> · <a href=\"" + links.inputs + "\">inputs</a></figcaption></figure>\n";
-    all.push_back(j);
-  }
-  html += movies_html(dir, plan);
-  html += "</body></html>\n";
-  write_contact_sheet(dir, plan);
-  write_file_atomically(dir / "index.html", html);
-  const json batch = {{"tasks", all},
-                      {"done", counts.done},
-                      {"failed", counts.failed},
-                      {"pending", counts.pending},
-                      {"running", counts.running},
-                      {"renders_total", renders}};
-  write_file_atomically(dir / "batch.json", json_text(batch, 1) + "\n");
 }
 
 namespace {
