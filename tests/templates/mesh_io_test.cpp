@@ -53,6 +53,12 @@ class MeshIo : public ::testing::Test {
   fs::path dir_;
 };
 
+// A seed of the model reader's fuzzer (fuzz/corpus/model_file/NAME): its first byte picks the format.
+std::string fuzz_seed(const std::string& name) {
+  std::ifstream in(fs::path(WANGSCAPE_SOURCE_DIR) / "fuzz/corpus/model_file" / name, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
 void expect_contains(const std::string& text, const std::string& part) {
   EXPECT_NE(text.find(part), std::string::npos) << "'" << text << "' should contain '" << part << "'";
 }
@@ -301,9 +307,7 @@ TEST_F(MeshIo, PlyContentIsReadByHandWhateverItsName) {
   EXPECT_EQ(read_model(std::span(reinterpret_cast<const std::uint8_t*>(ply.data()), ply.size()), ".gltf", "t.gltf")
                 .triangle_count(),
             1u);
-  std::ifstream in(fs::path(WANGSCAPE_SOURCE_DIR) / "fuzz/corpus/model_file/regress-ply-sniffed-segv.seed",
-                   std::ios::binary);
-  const std::string seed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string seed = fuzz_seed("regress-ply-sniffed-segv.seed");
   ASSERT_GT(seed.size(), 1u);
   try {
     read_model(std::span(reinterpret_cast<const std::uint8_t*>(seed.data()) + 1, seed.size() - 1), ".gltf", "seed");
@@ -318,9 +322,7 @@ TEST_F(MeshIo, TextModelsWithNulBytesAreRefusedNamingTheLine) {
   expect_contains(load_error(write("nul.obj", obj)), "nul.obj:4: holds a NUL byte; a .obj file is text");
   expect_contains(load_error(write("nul.dae", "<?xml version=\"1.0\"?>\n<COLLADA>" + std::string(1, '\0'))),
                   "nul.dae:2: holds a NUL byte");
-  std::ifstream in(fs::path(WANGSCAPE_SOURCE_DIR) / "fuzz/corpus/model_file/regress-obj-nul-usemtl-segv.seed",
-                   std::ios::binary);
-  const std::string seed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string seed = fuzz_seed("regress-obj-nul-usemtl-segv.seed");
   ASSERT_GT(seed.size(), 1u);
   try {
     read_model(std::span(reinterpret_cast<const std::uint8_t*>(seed.data()) + 1, seed.size() - 1), ".obj", "seed.obj");
