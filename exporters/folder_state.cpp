@@ -150,7 +150,7 @@ FolderState read_folder_state(const fs::path& dir, const std::string& scene_text
     r.fail("version " + std::to_string(version) + ", this wangscape reads version " +
            std::to_string(kFolderStateVersion) + "; " + kBuildAgain);
   if (r.get<std::uint64_t>("the scene file's fingerprint") != fingerprint(scene_text))
-    throw Error(dir / "scene.toml", "", std::string("was changed after the build; ") + kBuildAgain);
+    throw Error(dir / kFolderSceneFile, "", std::string("was changed after the build; ") + kBuildAgain);
   const std::uint64_t tiles_fingerprint = r.get<std::uint64_t>("the tile set's fingerprint");
 
   FolderState state;

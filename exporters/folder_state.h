@@ -19,6 +19,8 @@
 
 namespace wangscape {
 
+// A built scene folder's files (docs/scene-folder.md): its scene file, named once here.
+inline constexpr const char* kFolderSceneFile = "scene.toml";
 inline constexpr const char* kFolderStateFile = "scene.cache";
 inline constexpr const char* kFolderTilesFile = "tiles.json";
 inline constexpr std::uint32_t kFolderStateVersion = 1;

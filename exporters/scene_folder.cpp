@@ -1,7 +1,5 @@
 #include "exporters/scene_folder.h"
 
-#include "exporters/folder_state.h"
-
 #include <algorithm>
 #include <chrono>
 #include <memory>
@@ -42,7 +40,7 @@ void check_scene_folder_target(const fs::path& out_dir_in) {
   std::error_code ec;
   if (!fs::exists(out_dir, ec)) return;
   if (!fs::is_directory(out_dir, ec)) throw Error(out_dir, "", "exists and is not a folder");
-  if (fs::is_empty(out_dir, ec) || fs::is_regular_file(out_dir / "scene.toml", ec)) return;
+  if (fs::is_empty(out_dir, ec) || fs::is_regular_file(out_dir / kFolderSceneFile, ec)) return;
   throw Error(out_dir, "",
               "exists and is not a scene folder (it has no scene.toml); give a new or empty folder, or an earlier "
               "build's");
@@ -120,7 +118,7 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
       write_folder_state(staging, scene_text, scene, tiles);
     }
     if (also_write) also_write(staging);
-    write_file_atomically(staging / "scene.toml", scene_text);
+    write_file_atomically(staging / kFolderSceneFile, scene_text);
     if (!scene_base_dir.empty())
       write_file_atomically(staging / kSceneBaseFile, fs::absolute(scene_base_dir).lexically_normal().string() + "\n");
     staged.publish(observer.warning);
@@ -138,7 +136,7 @@ SceneFolderSummary build_scene_folder(const SceneConfig& config, const fs::path&
 }
 
 SceneConfig load_scene_folder_config(const fs::path& dir) {
-  const fs::path file = dir / "scene.toml";
+  const fs::path file = dir / kFolderSceneFile;
   std::error_code ec;
   if (!fs::is_regular_file(file, ec)) throw Error(file, "", "is missing: give a folder written by `wangscape build`");
   const std::string text = read_text_file(file, kMaxSceneFileBytes, "scene file");

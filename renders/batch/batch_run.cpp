@@ -24,6 +24,7 @@
 #include "core/printable.h"
 #include "core/text_file.h"
 #include "core/vecmath.h"
+#include "exporters/folder_state.h"
 #include "exporters/povray_writer.h"
 #include "exporters/scene_folder.h"
 #include "renders/batch/batch_folder.h"
@@ -68,7 +69,7 @@ class FileLock {
 fs::path shared_scene(const fs::path& dir, const Plan& plan, const BatchTask& t) {
   const fs::path folder = fs::absolute(dir / "scenes" / t.scene_key);
   FileLock lock(dir / "scenes" / (t.scene_key + ".lock"));
-  if (!fs::exists(folder / "scene.toml")) {
+  if (!fs::exists(folder / kFolderSceneFile)) {
     SceneConfig scene = task_scene_config(plan.scene, scene_owner(plan, t));
     scene.exports = {};
     scene.exports.povray = true;
@@ -186,7 +187,7 @@ fs::path render_frames_task(const fs::path& dir, const Plan& plan, const BatchTa
       config.exports = {};
       config.exports.blender = true;
       scene = work / "scene";
-      if (!fs::exists(scene / "scene.toml")) build_scene_folder(config, scene);
+      if (!fs::exists(scene / kFolderSceneFile)) build_scene_folder(config, scene);
     } else {
       scene = shared_scene(dir, plan, t);
     }

@@ -174,7 +174,7 @@ std::vector<float> terrain_sun_visibility(const Mesh& mesh, const std::array<flo
 std::shared_ptr<const ViewWorld> ViewWorld::load(const fs::path& dir, const StageObserver& stage) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw Error(dir, "", "no such scene folder (make one with wangscape build)");
-  const fs::path scene_file = dir / "scene.toml", pack_file = dir / kFolderPackFile;
+  const fs::path scene_file = dir / kFolderSceneFile, pack_file = dir / kFolderPackFile;
   if (!fs::is_regular_file(scene_file, ec))
     throw Error(scene_file, "", "missing: the folder was not written by wangscape build");
   if (!fs::is_regular_file(pack_file, ec))
