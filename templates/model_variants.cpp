@@ -6,6 +6,21 @@
 
 namespace wangscape {
 
+namespace {
+
+// The objects of one file stand apart in it (they cannot all stand on its origin): each is moved
+// so that its footprint (x-y box) is centred on the origin, its heights kept.
+void centre_footprint(Mesh& mesh) {
+  const MeshExtent extent = measure_extent(mesh);
+  const float dx = -0.5f * (extent.min[0] + extent.max[0]), dy = -0.5f * (extent.min[1] + extent.max[1]);
+  for (auto& p : mesh.positions) {
+    p[0] += dx;
+    p[1] += dy;
+  }
+}
+
+}  // namespace
+
 std::vector<std::filesystem::path> model_files_in(const std::filesystem::path& folder) {
   std::vector<std::filesystem::path> files;
   std::error_code error;
@@ -32,6 +47,7 @@ std::vector<Mesh> load_model_variants(const std::vector<std::filesystem::path>& 
     } else {
       for (Mesh& object : load_mesh_objects(file)) {
         to_model_space(object, options);
+        centre_footprint(object);
         variants.push_back(std::move(object));
       }
     }

@@ -20,7 +20,8 @@ constexpr std::size_t kMaxModelVariants = 1000;
 std::vector<std::filesystem::path> model_files_in(const std::filesystem::path& folder);
 
 // The variants of the files and folders `named`, in order: a file one variant (load_user_model),
-// or with `objects_as_variants` one variant an object (load_mesh_objects); a folder its model_files_in.
+// or with `objects_as_variants` one variant an object (load_mesh_objects), each object's footprint
+// (x-y box) centred on the origin and its heights kept; a folder its model_files_in.
 // Each mesh is named as its loader names it. Throws Error naming the file at fault, or the
 // folder or file that takes the count beyond kMaxModelVariants.
 std::vector<Mesh> load_model_variants(const std::vector<std::filesystem::path>& named, bool objects_as_variants,

@@ -3,6 +3,7 @@
 #include <meshoptimizer.h>
 
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cstdint>
 #include <vector>
@@ -11,27 +12,47 @@ namespace wangscape {
 
 namespace {
 
-// One index per corner, vertices equal in position and texture coordinate made one: a file's
-// triangles often hold their own copies of a shared corner, which the simplifier would take for
-// separate pieces and could not collapse. Corners at a uv seam stay apart (the simplifier keeps
-// seams whole).
-std::vector<std::uint32_t> welded_corners(const Mesh& model) {
-  std::vector<std::uint32_t> corners;
-  corners.reserve(model.triangles.size() * 3);
-  for (const auto& triangle : model.triangles) corners.insert(corners.end(), triangle.begin(), triangle.end());
-  std::vector<meshopt_Stream> streams{{model.positions.data(), sizeof(float) * 3, sizeof(float) * 3}};
-  if (model.uvs.size() == model.positions.size())
-    streams.push_back({model.uvs.data(), sizeof(float) * 2, sizeof(float) * 2});
-  std::vector<std::uint32_t> remap(model.positions.size());
-  meshopt_generateVertexRemapMulti(remap.data(), corners.data(), corners.size(), model.positions.size(), streams.data(),
-                                   streams.size());
-  // The remap numbers the distinct vertices anew; pointing each corner at the first vertex of its
-  // kind keeps the model's own vertices (and their uvs) as they are.
-  std::vector<std::uint32_t> first_of(model.positions.size(), ~0u);
-  for (std::uint32_t v = 0; v < remap.size(); ++v)
-    if (remap[v] != ~0u && first_of[remap[v]] == ~0u) first_of[remap[v]] = v;
-  for (auto& corner : corners) corner = first_of[remap[corner]];
-  return corners;
+// The model's triangles over its distinct vertices: corners equal in position, texture
+// coordinate and material made one. A file's triangles often hold their own copies of a shared
+// corner, which the simplifier would take for separate pieces (and copies left in its vertex
+// buffer, unused, for locked corners). Corners at a uv seam or a material's edge stay apart: the
+// simplifier keeps such seams whole, so every triangle keeps one material and no crack opens.
+struct Welded {
+  std::vector<std::uint32_t> corners;           // 3 per triangle, into `positions`
+  std::vector<std::array<float, 3>> positions;  // the distinct vertices
+  std::vector<std::uint32_t> model_vertex;      // of each distinct vertex: a model vertex of its kind
+  std::vector<std::uint16_t> material;          // of each distinct vertex
+};
+
+Welded weld(const Mesh& model) {
+  const std::size_t count = model.triangles.size() * 3;
+  const bool uvs = model.uvs.size() == model.positions.size();
+  std::vector<std::array<float, 3>> positions(count);
+  std::vector<std::array<float, 2>> uv(count);
+  std::vector<std::uint32_t> material(count);
+  for (std::size_t c = 0; c < count; ++c) {
+    const std::uint32_t v = model.triangles[c / 3][c % 3];
+    positions[c] = model.positions[v];
+    if (uvs) uv[c] = model.uvs[v];
+    material[c] = c / 3 < model.triangle_material.size() ? model.triangle_material[c / 3] : 0;
+  }
+  const meshopt_Stream streams[] = {{positions.data(), sizeof(float) * 3, sizeof(float) * 3},
+                                    {uv.data(), sizeof(float) * 2, sizeof(float) * 2},
+                                    {material.data(), sizeof(std::uint32_t), sizeof(std::uint32_t)}};
+  Welded welded;
+  welded.corners.resize(count);
+  const std::size_t distinct =
+      meshopt_generateVertexRemapMulti(welded.corners.data(), nullptr, count, count, streams, std::size(streams));
+  welded.positions.resize(distinct);
+  welded.model_vertex.resize(distinct);
+  welded.material.resize(distinct);
+  for (std::size_t c = 0; c < count; ++c) {
+    const std::uint32_t d = welded.corners[c];
+    welded.positions[d] = positions[c];
+    welded.model_vertex[d] = model.triangles[c / 3][c % 3];
+    welded.material[d] = std::uint16_t(material[c]);
+  }
+  return welded;
 }
 
 struct Simplified {
@@ -40,22 +61,26 @@ struct Simplified {
   bool sloppy = false;
 };
 
-// The fewest triangles of `corners` within `target_error`, or `max_triangles` when that takes
-// more error (sloppily where the borders stop the simplifier above it).
-Simplified simplify(const std::vector<std::uint32_t>& corners, const Mesh& model, std::size_t max_triangles,
-                    float target_error) {
-  const float* positions = model.positions.front().data();
-  const std::size_t vertices = model.positions.size(), stride = sizeof(float) * 3;
+// The fewest triangles within `target_error`, open borders held (a leaf card keeps its outline,
+// a stem tube its ends); else `max_triangles` with whatever error it takes: borders held, then
+// free, at last sloppily.
+Simplified simplify(const Welded& welded, std::size_t max_triangles, float target_error) {
   Simplified out;
+  const std::vector<std::uint32_t>& corners = welded.corners;
   out.corners.resize(corners.size());
-  std::size_t kept = meshopt_simplify(out.corners.data(), corners.data(), corners.size(), positions, vertices, stride,
-                                      0, target_error, 0, &out.relative_error);
-  if (kept > max_triangles * 3)
-    kept = meshopt_simplify(out.corners.data(), corners.data(), corners.size(), positions, vertices, stride,
-                            max_triangles * 3, FLT_MAX, 0, &out.relative_error);
-  if (kept > max_triangles * 3) {
-    kept = meshopt_simplifySloppy(out.corners.data(), corners.data(), corners.size(), positions, vertices, stride,
-                                  max_triangles * 3, FLT_MAX, &out.relative_error);
+  const float* positions = welded.positions.front().data();
+  const std::size_t vertices = welded.positions.size(), stride = sizeof(float) * 3;
+  const auto run = [&](std::size_t target, float error, unsigned options) {
+    return meshopt_simplify(out.corners.data(), corners.data(), corners.size(), positions, vertices, stride, target,
+                            error, options, &out.relative_error);
+  };
+  const std::size_t most = max_triangles * 3;
+  std::size_t kept = run(0, target_error, meshopt_SimplifyLockBorder);
+  if (kept > most) kept = run(most, FLT_MAX, meshopt_SimplifyLockBorder);
+  if (kept > most) kept = run(most, FLT_MAX, 0);
+  if (kept > most) {
+    kept = meshopt_simplifySloppy(out.corners.data(), corners.data(), corners.size(), positions, vertices, stride, most,
+                                  FLT_MAX, &out.relative_error);
     out.sloppy = true;
   }
   out.corners.resize(kept);
@@ -86,26 +111,17 @@ StandIn make_stand_in(const Mesh& model, const StandInOptions& options) {
   result.mesh.name = model.name;
   result.mesh.materials = model.materials;
   if (model.triangles.empty() || model.positions.empty()) return result;
-  const std::vector<std::uint32_t> corners = welded_corners(model);
-  const float scale = meshopt_simplifyScale(model.positions.front().data(), model.positions.size(), sizeof(float) * 3);
-  // Each material alone, with its share of the triangles (at least one).
-  std::uint16_t materials = 1;
-  for (const std::uint16_t m : model.triangle_material) materials = std::max<std::uint16_t>(materials, m + 1);
-  for (std::uint16_t m = 0; m < materials; ++m) {
-    std::vector<std::uint32_t> own;
-    for (std::size_t t = 0; t < model.triangles.size(); ++t)
-      if ((t < model.triangle_material.size() ? model.triangle_material[t] : 0) == m)
-        own.insert(own.end(), corners.begin() + std::ptrdiff_t(3 * t), corners.begin() + std::ptrdiff_t(3 * t + 3));
-    if (own.empty()) continue;
-    const std::size_t share =
-        std::max<std::size_t>(1, options.max_triangles * (own.size() / 3) / model.triangles.size());
-    const Simplified simplified = simplify(own, model, share, float(options.target_error));
-    result.error = std::max(result.error, double(simplified.relative_error) * scale);
-    result.sloppy = result.sloppy || simplified.sloppy;
-    for (std::size_t c = 0; c + 2 < simplified.corners.size(); c += 3) {
-      result.mesh.triangles.push_back({simplified.corners[c], simplified.corners[c + 1], simplified.corners[c + 2]});
-      result.mesh.triangle_material.push_back(m);
-    }
+  const Welded welded = weld(model);
+  const float scale =
+      meshopt_simplifyScale(welded.positions.front().data(), welded.positions.size(), sizeof(float) * 3);
+  const Simplified simplified = simplify(welded, options.max_triangles, float(options.target_error));
+  result.error = double(simplified.relative_error) * scale;
+  result.sloppy = simplified.sloppy;
+  for (std::size_t c = 0; c + 2 < simplified.corners.size(); c += 3) {
+    const std::uint32_t a = simplified.corners[c], b = simplified.corners[c + 1], d = simplified.corners[c + 2];
+    result.mesh.triangles.push_back({welded.model_vertex[a], welded.model_vertex[b], welded.model_vertex[d]});
+    // (A sloppy stand-in may join corners of two materials: the first one's.)
+    result.mesh.triangle_material.push_back(welded.material[a]);
   }
   keep_used_vertices(model, result.mesh);
   return result;

@@ -14,7 +14,7 @@
 namespace wangscape {
 
 struct StandInOptions {
-  std::size_t max_triangles = 400;  // at most this many (one a material more when it has more materials)
+  std::size_t max_triangles = 400;  // at most this many
   // The error the simplifier may make, as a fraction of the model's largest extent: it stops
   // there unless max_triangles needs more. 1/16: half a pixel where a model the size of a
   // sunflower head spans 8 (the camera-aware `near`).
@@ -27,9 +27,11 @@ struct StandIn {
   bool sloppy = false;  // the borders held the simplifier above max_triangles: meshopt_simplifySloppy made it
 };
 
-// A stand-in of `model`: its vertices welded by position and texture coordinate, each material's
-// triangles simplified alone (so that no triangle changes material) to the fewest within
-// options.target_error, or to its share of options.max_triangles when that needs more error.
+// A stand-in of `model`: its corners welded by position, texture coordinate and material (uv
+// seams and materials' edges are kept whole, so no triangle changes material), simplified to the
+// fewest triangles within options.target_error with open borders held in place (a leaf card
+// keeps its outline), or to options.max_triangles when that needs more error (borders then
+// free, at last meshopt_simplifySloppy).
 // A model of no triangles gives an empty stand-in.
 StandIn make_stand_in(const Mesh& model, const StandInOptions& options = {});
 
