@@ -405,8 +405,10 @@ void read_species_model(Section& s, SpeciesConfig& species, const SceneConfig& c
   if (listed) {
     species.model.clear();  // no plant kind
   } else if (s.read("model", species.model) && !find_plant_kind(species.model)) {
-    const bool looks_like_file =
-        species.model.find('/') != std::string::npos || species.model.find('.') != std::string::npos;
+    std::error_code error;
+    const bool looks_like_file = species.model.find('/') != std::string::npos ||
+                                 species.model.find('.') != std::string::npos ||
+                                 std::filesystem::is_directory(resolve(config.base_dir, species.model), error);
     if (!looks_like_file)
       s.fail(*s.node("model"), "model",
              "'" + species.model + "' is unknown: expected " + plant_kind_names() +

@@ -21,7 +21,7 @@ std::vector<Mesh> load_user_variants(const SceneConfig& config, const std::strin
   try {
     return load_model_variants(mesh, objects_variants, options);
   } catch (const Error& e) {
-    throw config.error_at(key, e.message());
+    throw config.error_at(key, e.what());  // naming the file at fault: the key may name several
   }
 }
 
