@@ -30,7 +30,21 @@ constexpr int kFieldGroundSubdivisions = 8;
 
 // ---- models ---------------------------------------------------------------------------------
 
-std::vector<Mesh> make_sunflowers(const ModelsConfig& config);
+// The sunflowers of [models] (variants, budget, seed), scaled.
+std::vector<Mesh> make_sunflowers(const ModelsConfig& config) {
+  std::vector<Mesh> models;
+  SunflowerOptions options;
+  options.variant_count = config.variants;
+  options.seed = config.seed;
+  options.triangle_budget = config.triangle_budget;
+  for (auto& model : make_sunflower_variants(options)) {
+    if (config.scale != 1.0)
+      for (auto& p : model.mesh.positions)
+        for (auto& c : p) c = static_cast<float>(c * config.scale);
+    models.push_back(std::move(model.mesh));
+  }
+  return models;
+}
 
 // [models]' variants: a user's models, else the sunflowers.
 std::vector<Mesh> make_models(const SceneConfig& scene_config) {
@@ -45,21 +59,6 @@ std::vector<Mesh> make_models(const SceneConfig& scene_config) {
     return models;
   }
   return make_sunflowers(config);
-}
-
-std::vector<Mesh> make_sunflowers(const ModelsConfig& config) {
-  std::vector<Mesh> models;
-  SunflowerOptions options;
-  options.variant_count = config.variants;
-  options.seed = config.seed;
-  options.triangle_budget = config.triangle_budget;
-  for (auto& model : make_sunflower_variants(options)) {
-    if (config.scale != 1.0)
-      for (auto& p : model.mesh.positions)
-        for (auto& c : p) c = static_cast<float>(c * config.scale);
-    models.push_back(std::move(model.mesh));
-  }
-  return models;
 }
 
 // ---- the field: tiles laid over the ground, flowers where the masks allow -------------------

@@ -123,6 +123,13 @@ StandIn make_stand_in(const Mesh& model, const StandInOptions& options) {
     // (A sloppy stand-in may join corners of two materials: the first one's.)
     result.mesh.triangle_material.push_back(welded.material[a]);
   }
+  if (result.mesh.triangles.empty()) {
+    // Simplified to nothing (a sloppy pass on a tiny budget): the model stands in for itself, as
+    // an empty mesh is no model to an exporter (POV-Ray refuses a mesh2 of no face).
+    result.mesh = model;
+    result.error = 0;
+    return result;
+  }
   keep_used_vertices(model, result.mesh);
   return result;
 }

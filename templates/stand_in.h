@@ -32,7 +32,7 @@ struct StandIn {
 // fewest triangles within options.target_error with open borders held in place (a leaf card
 // keeps its outline), or to options.max_triangles when that needs more error (borders then
 // free, at last meshopt_simplifySloppy).
-// A model of no triangles gives an empty stand-in.
+// A model of no triangles gives an empty stand-in; one the simplifier would empty, itself.
 StandIn make_stand_in(const Mesh& model, const StandInOptions& options = {});
 
 // What a build reports of one stand-in.
