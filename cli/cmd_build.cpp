@@ -1,15 +1,44 @@
 // wangscape build SCENE.toml --out DIR: the whole pipeline from a scene file.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "cli/command.h"
 #include "cli/progress.h"
 #include "cli/scene_commands.h"
+#include "core/number_text.h"
 #include "renders/scene_build.h"
 
 namespace wangscape::cli {
+
+namespace {
+
+// "stand-ins: tulip_0 proxy 120 of 1208 triangles, error 0.0042 m; ...": each of the first
+// kShown, then how many more and their largest error.
+std::string stand_ins_text(const std::vector<StandInFigures>& stand_ins) {
+  constexpr std::size_t kShown = 8;
+  std::string text;
+  double rest_error = 0;
+  for (std::size_t i = 0; i < stand_ins.size(); ++i) {
+    const StandInFigures& s = stand_ins[i];
+    if (i >= kShown) {
+      rest_error = std::max(rest_error, s.error);
+      continue;
+    }
+    text += (text.empty() ? "stand-ins: " : "; ") + s.name + " " + std::to_string(s.triangles) + " of " +
+            std::to_string(s.model_triangles) + " triangles, error " + significant_text(s.error, 3) + " m";
+  }
+  if (stand_ins.size() > kShown)
+    text += "; " + std::to_string(stand_ins.size() - kShown) + " more, error at most " +
+            significant_text(rest_error, 3) + " m";
+  return text;
+}
+
+}  // namespace
 
 bool chatty(const GlobalOptions& global) { return !global.quiet && ::isatty(STDERR_FILENO); }
 
@@ -45,6 +74,7 @@ void run_build(const SceneConfig& config, const std::filesystem::path& out_dir, 
     details = "tiles: " + std::to_string(f->visible_tiles) + " visible, " + std::to_string(f->placed_tiles) +
               " placed, " + std::to_string(f->culled_tiles) + " culled; flowers: " + std::to_string(f->models) +
               " models, " + std::to_string(f->proxies) + " proxies";
+  if (!summary.stand_ins.empty()) details += "; " + stand_ins_text(summary.stand_ins);
   report.wrote(out_dir, details);
 }
 

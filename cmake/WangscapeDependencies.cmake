@@ -20,6 +20,13 @@ find_package(GDAL CONFIG REQUIRED)
 find_package(embree 3 REQUIRED)
 # Users' models (templates/mesh_io.cpp): Debian's libassimp-dev 5.2 exports assimp::assimp.
 find_package(assimp REQUIRED)
+# The stand-ins of users' models (templates/stand_in.cpp): Debian's libmeshoptimizer-dev 0.18,
+# found as a header and a library.
+find_path(MESHOPTIMIZER_INCLUDE_DIR meshoptimizer.h REQUIRED)
+find_library(MESHOPTIMIZER_LIBRARY meshoptimizer REQUIRED)
+add_library(wangscape_meshoptimizer INTERFACE IMPORTED)
+target_include_directories(wangscape_meshoptimizer INTERFACE "${MESHOPTIMIZER_INCLUDE_DIR}")
+target_link_libraries(wangscape_meshoptimizer INTERFACE "${MESHOPTIMIZER_LIBRARY}")
 # The real-time view's window (renders/window/ldi_window.cpp); Debian's SDL2 exports SDL2::SDL2.
 find_package(SDL2 REQUIRED)
 if(WANGSCAPE_BUILD_BENCH)

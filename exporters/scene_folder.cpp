@@ -110,6 +110,7 @@ SceneFolderSummary write_scene_folder(const Scene& scene, const ExportsConfig& e
       summary.instances = totals.instances;
       summary.per_variant = totals.per_variant;
       if (scene.last_placement) summary.field = *scene.last_placement;
+      summary.stand_ins = scene.stand_ins;
       if (observer.placing) observer.placing(1.0);
     }
     if (povray) summary.povray_bytes = povray->stats().total_bytes;

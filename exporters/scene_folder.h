@@ -24,8 +24,9 @@ struct SceneFolderObserver {
 struct SceneFolderSummary {
   std::uint64_t instances = 0;
   std::vector<std::uint64_t> per_variant;
-  std::uint64_t povray_bytes = 0;    // POV-Ray files
-  std::optional<FieldReport> field;  // tiles visible, placed and culled, models and proxies (a scene's field)
+  std::uint64_t povray_bytes = 0;         // POV-Ray files
+  std::optional<FieldReport> field;       // tiles visible, placed and culled, models and proxies (a scene's field)
+  std::vector<StandInFigures> stand_ins;  // the user's models' stand-ins (Scene::stand_ins)
   double seconds = 0;
 };
 

@@ -30,17 +30,9 @@ constexpr int kFieldGroundSubdivisions = 8;
 
 // ---- models ---------------------------------------------------------------------------------
 
-std::vector<Mesh> make_models(const ModelsConfig& config) {
+// The sunflowers of [models] (variants, budget, seed), scaled.
+std::vector<Mesh> make_sunflowers(const ModelsConfig& config) {
   std::vector<Mesh> models;
-  if (!config.mesh.empty()) {
-    UserModelOptions options;
-    options.scale = static_cast<float>(config.scale);
-    options.y_up = config.mesh_y_up;
-    options.ground_at_origin = false;  // the file's origin is the model's ground contact point
-    models.push_back(load_user_model(config.mesh, options));
-    if (models.back().name.empty()) models.back().name = config.mesh.filename().string();
-    return models;
-  }
   SunflowerOptions options;
   options.variant_count = config.variants;
   options.seed = config.seed;
@@ -52,6 +44,21 @@ std::vector<Mesh> make_models(const ModelsConfig& config) {
     models.push_back(std::move(model.mesh));
   }
   return models;
+}
+
+// [models]' variants: a user's models, else the sunflowers.
+std::vector<Mesh> make_models(const SceneConfig& scene_config) {
+  const ModelsConfig& config = scene_config.models;
+  std::vector<Mesh> models;
+  if (!config.mesh.empty()) {
+    models = load_user_variants(scene_config, "models.mesh", config.mesh, config.mesh_y_up,
+                                config.mesh_objects_variants, config.scale);
+    // Several variants are told apart by number: two folders may hold a "tulip.obj" each.
+    if (models.size() > 1)
+      for (std::size_t v = 0; v < models.size(); ++v) models[v].name += "_" + std::to_string(v);
+    return models;
+  }
+  return make_sunflowers(config);
 }
 
 // ---- the field: tiles laid over the ground, flowers where the masks allow -------------------
@@ -91,7 +98,7 @@ Extent field_area(const SceneConfig& config, const SceneGround& ground) {
 namespace {
 
 std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGround& ground, std::size_t model_count,
-                                       const std::vector<double>& species_radii, const StageObserver& stage,
+                                       const SpeciesModels& species_models, const StageObserver& stage,
                                        const FilledTileSet* prefilled) {
   auto field = std::make_shared<SceneField>();
   field->ground = ground;
@@ -140,7 +147,7 @@ std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGro
   fill.min_scale = 1.0 - config.models.scale_jitter;
   fill.max_scale = 1.0 + config.models.scale_jitter;
   if (!config.species.empty()) {
-    fill.classes = species_classes(config, species_radii, fill);
+    fill.classes = species_classes(config, species_models, fill);
     field->species = std::make_shared<const SpeciesRules>(config, ground);
   }
   TileSet set;
@@ -304,6 +311,33 @@ Sun make_sun(const SceneConfig& config, const SceneGround& ground) {
   return sun;
 }
 
+// The camera-aware export's proxies of scene.models (`species_models`' variants with [[species]]), in their order: the
+// procedural plants again at [camera_aware] proxy_triangles, a user's models' stand-ins of at most as many triangles
+// (their figures into scene.stand_ins).
+std::vector<Mesh> make_proxies(const SceneConfig& config, const SpeciesModels& species_models, Scene& scene,
+                               const StageObserver& stage) {
+  const std::size_t budget = config.camera_aware.proxy_triangles;
+  if (!config.species.empty()) {
+    say(stage, "building the proxies of " + std::to_string(config.species.size()) + " species (at most " +
+                   std::to_string(budget) + " triangles each)");
+    return make_species_proxies(config, scene.models, species_models.variants, budget, scene.stand_ins);
+  }
+  if (!config.models.mesh.empty()) {
+    say(stage, "simplifying " + std::to_string(scene.models.size()) + " models into stand-ins (at most " +
+                   std::to_string(budget) + " triangles each)");
+    StandInOptions options;
+    options.max_triangles = budget;
+    return make_stand_ins(scene.models, options, scene.stand_ins);
+  }
+  say(stage, "building " + std::to_string(config.models.variants) + " proxy sunflowers (" + std::to_string(budget) +
+                 " triangles each)");
+  ModelsConfig proxies = config.models;
+  proxies.triangle_budget = std::min(budget, config.models.triangle_budget);
+  std::vector<Mesh> models = make_sunflowers(proxies);
+  for (Mesh& model : models) model.name += " proxy";
+  return models;
+}
+
 }  // namespace
 
 std::optional<std::size_t> SceneField::species_of_model(std::size_t model) const {
@@ -417,20 +451,21 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage, const Sc
   scene.terrain = ground.mesh();
   scene.georeference = ground.georeference();
 
-  std::vector<double> species_radii;  // meters, each species' largest model extent
+  SpeciesModels species_models;  // with [[species]]: their models, variants and radii
   if (config.species.empty()) {
     say(stage, config.models.mesh.empty()
                    ? "building " + std::to_string(config.models.variants) + " sunflower variants (" +
                          std::to_string(config.models.triangle_budget) + " triangles each)"
-                   : "loading model " + config.models.mesh.string());
-    scene.models = make_models(config.models);
+                   : "loading the models of models.mesh");
+    scene.models = make_models(config);
   } else {
     say(stage, "building the models of " + std::to_string(config.species.size()) + " species");
-    scene.models = make_species_models(config, std::numeric_limits<std::size_t>::max(), &species_radii);
+    species_models = make_species_models(config);
+    scene.models = std::move(species_models.models);
   }
 
   const auto field =
-      make_field(config, ground, scene.models.size(), species_radii, stage, prebuilt ? &prebuilt->filled : nullptr);
+      make_field(config, ground, scene.models.size(), species_models, stage, prebuilt ? &prebuilt->filled : nullptr);
   scene.field = field;
   scene.field_area = *field->placement.area;
   // Plants stand on the DEM's bilinear surface; the mesh the renderers draw must follow it under
@@ -445,25 +480,8 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage, const Sc
   if (camera_aware(config)) {
     field->view = make_view(config, *field, scene);
     check_visible_flowers(config, *field);
-    if (!config.species.empty()) {
-      say(stage, "building the proxies of " + std::to_string(config.species.size()) + " species (at most " +
-                     std::to_string(config.camera_aware.proxy_triangles) + " triangles each)");
-      field->proxy_offset = scene.models.size();
-      for (auto& model : make_species_models(config, config.camera_aware.proxy_triangles)) {
-        model.name += " proxy";
-        scene.models.push_back(std::move(model));
-      }
-    } else if (config.models.mesh.empty()) {
-      say(stage, "building " + std::to_string(config.models.variants) + " proxy sunflowers (" +
-                     std::to_string(config.camera_aware.proxy_triangles) + " triangles each)");
-      ModelsConfig proxies = config.models;
-      proxies.triangle_budget = std::min(config.camera_aware.proxy_triangles, config.models.triangle_budget);
-      field->proxy_offset = scene.models.size();
-      for (auto& model : make_models(proxies)) {
-        model.name += " proxy";
-        scene.models.push_back(std::move(model));
-      }
-    }
+    field->proxy_offset = scene.models.size();
+    for (Mesh& proxy : make_proxies(config, species_models, scene, stage)) scene.models.push_back(std::move(proxy));
   }
   auto report = std::make_shared<FieldReport>();
   scene.last_placement = report;

@@ -23,6 +23,7 @@
 #include "scene/species.h"
 #include "scene/sun.h"
 #include "templates/mesh.h"
+#include "templates/stand_in.h"
 
 namespace wangscape {
 
@@ -97,6 +98,7 @@ struct Scene {
   std::string name = "wangscape";
   Mesh terrain;                             // ENU meters; may be empty (no terrain)
   std::vector<Mesh> models;                 // one per variant; InstanceBatch::variant indexes this
+  std::vector<StandInFigures> stand_ins;    // the figures of the user's models' stand-ins among `models`
   InstanceStream instances;                 // may be empty (no instances)
   Extent field_area;                        // where instances may stand (ENU m); rows of the stream go south to north
   std::shared_ptr<const SceneField> field;  // what the stream places (empty for hand-made scenes)

@@ -19,6 +19,7 @@
 #include "core/text_file.h"
 #include "core/vecmath.h"
 #include "generator/poisson_tiles.h"
+#include "templates/model_variants.h"
 #include "templates/plants.h"
 #include "templates/sunflower.h"
 
@@ -297,20 +298,60 @@ void read_masks(Section s, SceneConfig& config) {
   s.reject_unknown();
 }
 
+// A list of a user's model files and folders under `key` (an array of strings, at least one and
+// at most kMaxModelVariants), resolved against the scene's folder; false when `key` is no array.
+bool read_mesh_list(Section& s, std::string_view key, const SceneConfig& config,
+                    std::vector<std::filesystem::path>& out) {
+  const auto* node = s.node(key);
+  const auto* array = node ? node->as_array() : nullptr;
+  if (!array) return false;
+  const std::string expected = "must list model files or folders, e.g. [\"tulip_a.obj\", \"tulip_b.glb\"]";
+  if (array->empty()) s.fail(*node, key, expected);
+  if (array->size() > kMaxModelVariants)
+    s.fail(*node, key,
+           "lists " + std::to_string(array->size()) + " models; at most " + std::to_string(kMaxModelVariants) +
+               " variants are drawn");
+  for (const auto& item : *array) {
+    if (!item.is_string() || item.value<std::string>()->empty()) s.fail(item, key, expected);
+    out.push_back(resolve(config.base_dir, *item.value<std::string>()));
+  }
+  return true;
+}
+
+// The keys that say how a user's models are read (up_axis, mesh_objects), and `variants`, which
+// the models' count decides: refused with a list. `mesh` names the models' key for messages.
+void read_mesh_options(Section& s, const std::string& mesh_key, bool listed,
+                       const std::vector<std::filesystem::path>& mesh, bool& y_up, bool& objects_variants) {
+  std::string text;
+  if (s.read("up_axis", text)) {
+    if (text != "z" && text != "y") s.fail(*s.node("up_axis"), "up_axis", "must be \"z\" or \"y\"");
+    if (mesh.empty()) s.fail(*s.node("up_axis"), "up_axis", "needs " + mesh_key);
+    y_up = text == "y";
+  }
+  if (s.read("mesh_objects", text)) {
+    if (text != "one" && text != "variants")
+      s.fail(*s.node("mesh_objects"), "mesh_objects",
+             "must be \"one\" (a file is one model) or \"variants\" (each object of a file is a variant)");
+    if (mesh.empty()) s.fail(*s.node("mesh_objects"), "mesh_objects", "needs " + mesh_key);
+    objects_variants = text == "variants";
+  }
+  if (listed && s.node("variants"))
+    s.fail(*s.node("variants"), "variants",
+           "cannot be given with a list of models in " + mesh_key + ": the list gives the count (" +
+               std::to_string(mesh.size()) + ")");
+}
+
 // [models]: the sunflower variants or a user mesh, their size and facing.
 void read_models(Section s, SceneConfig& config) {
-  s.read_int("variants", config.models.variants, 1, 1000);
+  const bool listed = read_mesh_list(s, "mesh", config, config.models.mesh);
+  if (std::string mesh; !listed && s.read("mesh", mesh) && !mesh.empty())
+    config.models.mesh = {resolve(config.base_dir, mesh)};
+  read_mesh_options(s, "models.mesh", listed, config.models.mesh, config.models.mesh_y_up,
+                    config.models.mesh_objects_variants);
+  if (!listed) s.read_int("variants", config.models.variants, 1, 1000);
   s.read_int("triangle_budget", config.models.triangle_budget, kSunflowerMinimumTriangleBudget,
              kSunflowerMaximumTriangleBudget);
   s.read_int("seed", config.models.seed, 0, std::numeric_limits<std::int64_t>::max());
-  std::string mesh;
-  if (s.read("mesh", mesh)) config.models.mesh = resolve(config.base_dir, mesh);
-  std::string up_axis;
-  if (s.read("up_axis", up_axis)) {
-    if (up_axis != "z" && up_axis != "y") s.fail(*s.node("up_axis"), "up_axis", "must be \"z\" or \"y\"");
-    if (config.models.mesh.empty()) s.fail(*s.node("up_axis"), "up_axis", "needs models.mesh");
-    config.models.mesh_y_up = up_axis == "y";
-  }
   if (s.read("scale", config.models.scale)) s.check_range("scale", config.models.scale, 1e-6, 1e6);
   if (s.read("scale_jitter", config.models.scale_jitter))
     s.check_range("scale_jitter", config.models.scale_jitter, 0, 0.9);
@@ -360,22 +401,26 @@ void read_limits(Section& s, const char* min_key, const char* max_key, std::opti
 
 // The model of a species: a plant kind, or a mesh file with its up axis.
 void read_species_model(Section& s, SpeciesConfig& species, const SceneConfig& config) {
-  if (s.read("model", species.model) && !find_plant_kind(species.model)) {
-    const bool looks_like_file =
-        species.model.find('/') != std::string::npos || species.model.find('.') != std::string::npos;
+  const bool listed = read_mesh_list(s, "model", config, species.mesh);
+  if (listed) {
+    species.model.clear();  // no plant kind
+  } else if (s.read("model", species.model) && !find_plant_kind(species.model)) {
+    std::error_code error;
+    const bool looks_like_file = species.model.find('/') != std::string::npos ||
+                                 species.model.find('.') != std::string::npos ||
+                                 std::filesystem::is_directory(resolve(config.base_dir, species.model), error);
     if (!looks_like_file)
       s.fail(*s.node("model"), "model",
-             "'" + species.model + "' is unknown: expected " + plant_kind_names() + " or a mesh file (.obj, .ply)");
-    species.mesh = resolve(config.base_dir, species.model);
+             "'" + species.model + "' is unknown: expected " + plant_kind_names() +
+                 ", a model file (.obj, .glb, .ply, ...), a folder of them or a list of files");
+    species.mesh = {resolve(config.base_dir, species.model)};
   }
-  std::string up_axis;
-  if (s.read("up_axis", up_axis)) {
-    if (up_axis != "z" && up_axis != "y") s.fail(*s.node("up_axis"), "up_axis", "must be \"z\" or \"y\"");
-    if (species.mesh.empty()) s.fail(*s.node("up_axis"), "up_axis", "needs a mesh file as the model");
-    species.mesh_y_up = up_axis == "y";
-  }
-  if (s.read_int("variants", species.variants, 1, 1000) && !species.mesh.empty() && species.variants != 1)
-    s.fail(*s.node("variants"), "variants", "must be 1 for a mesh file (it is one model)");
+  read_mesh_options(s, "a mesh file as the model", listed, species.mesh, species.mesh_y_up,
+                    species.mesh_objects_variants);
+  if (!listed && s.read_int("variants", species.variants, 1, 1000) && !species.mesh.empty() && species.variants != 1)
+    s.fail(*s.node("variants"), "variants",
+           "must be 1 for a mesh file: its variants are the files of a list or a folder, or its objects "
+           "(mesh_objects = \"variants\")");
   if (const auto kind = find_plant_kind(species.model)) {
     const auto range = triangle_budget_range(*kind);
     std::size_t budget = 0;

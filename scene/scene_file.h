@@ -14,6 +14,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace wangscape {
 
@@ -59,12 +60,15 @@ struct ModelsConfig {
   int variants = 11;
   std::size_t triangle_budget = 6000;  // per sunflower
   std::uint64_t seed = 1;
-  std::filesystem::path mesh;    // user OBJ/PLY replacing the sunflowers; empty = sunflowers
-  bool mesh_y_up = false;        // up_axis = "y": the mesh file is y-up and is turned z-up
-  double scale = 1.0;            // uniform scale of every model
-  double scale_jitter = 0.1;     // each flower scaled by 1 +- this (uniform)
-  std::optional<double> facing;  // compass degrees the flower heads face; default: random
-  double facing_jitter = 30.0;   // degrees, +- around `facing`
+  // A user's models replacing the sunflowers: files (one variant each) or a folder (its model
+  // files by name); empty = sunflowers.
+  std::vector<std::filesystem::path> mesh;
+  bool mesh_y_up = false;              // up_axis = "y": the mesh file is y-up and is turned z-up
+  bool mesh_objects_variants = false;  // mesh_objects = "variants": each object of a file is a variant
+  double scale = 1.0;                  // uniform scale of every model
+  double scale_jitter = 0.1;           // each flower scaled by 1 +- this (uniform)
+  std::optional<double> facing;        // compass degrees the flower heads face; default: random
+  double facing_jitter = 30.0;         // degrees, +- around `facing`
 };
 
 // [[species]]: one kind of plant of a meadow (docs/scene-file.md). Several share one Poisson tile
@@ -72,9 +76,10 @@ struct ModelsConfig {
 struct SpeciesConfig {
   std::string name;                                       // unique; other species' exclusion names it
   std::string model = "grass";                            // a plant kind (templates/plants.h) or, with `mesh`, a file
-  std::filesystem::path mesh;                             // a user OBJ/PLY instead of a plant kind
+  std::vector<std::filesystem::path> mesh;                // a user's models instead of a plant kind ([models] mesh)
   bool mesh_y_up = false;                                 // up_axis = "y"
-  int variants = 4;                                       // model variants (a mesh: 1)
+  bool mesh_objects_variants = false;                     // mesh_objects = "variants"
+  int variants = 4;                                       // model variants (a mesh: as many as its files or objects)
   std::optional<std::size_t> triangle_budget;             // per model; default: the kind's (triangle_budget_range)
   std::optional<std::uint64_t> seed;                      // default: models.seed
   double scale = 1.0;                                     // uniform scale of the species' models

@@ -5,55 +5,93 @@
 #include <numbers>
 
 #include "core/number_text.h"
-#include "templates/mesh_io.h"
+#include "templates/model_variants.h"
 #include "templates/plants.h"
 #include "terrain/terrain.h"
 
 namespace wangscape {
 
-std::vector<Mesh> make_species_models(const SceneConfig& config, std::size_t budget_cap,
-                                      std::vector<double>* tight_radii) {
-  std::vector<Mesh> models;
-  if (tight_radii) tight_radii->clear();
-  for (const SpeciesConfig& species : config.species) {
-    const std::string key = "species." + species.name;
-    double radius = 0;
-    if (!species.mesh.empty()) {
-      UserModelOptions options;
-      options.scale = static_cast<float>(species.scale);
-      options.y_up = species.mesh_y_up;
-      options.ground_at_origin = false;  // the file's origin is the model's ground contact point
-      Mesh mesh;
-      try {
-        mesh = load_user_model(species.mesh, options);
-      } catch (const Error& e) {
-        throw config.error_at(key + ".model", e.message());
-      }
-      if (mesh.name.empty()) mesh.name = species.name;
-      radius = measure_extent(mesh).radius;
-      models.push_back(std::move(mesh));
-    } else {
-      const PlantKind kind = *find_plant_kind(species.model);
-      const auto range = triangle_budget_range(kind);
-      const std::size_t budget = std::clamp(
-          std::min(species.triangle_budget.value_or(range.default_budget), budget_cap), range.minimum, range.maximum);
-      std::size_t variant = 0;
-      for (auto& model : make_plant_variants(kind, species.seed.value_or(config.models.seed), species.variants, budget,
-                                             species.scale)) {
-        radius = std::max<double>(radius, model.extent.radius);
-        // Named by species and variant ("dandelion_3"): the exporters name the model so.
-        model.mesh.name = species.name + "_" + std::to_string(variant++);
-        // Named by species: two kinds' "petal"s are different materials in every exporter.
-        for (Material& material : model.mesh.materials) material.name = species.name + " " + material.name;
-        models.push_back(std::move(model.mesh));
-      }
-    }
-    if (tight_radii) tight_radii->push_back(radius);
+std::vector<Mesh> load_user_variants(const SceneConfig& config, const std::string& key,
+                                     const std::vector<std::filesystem::path>& mesh, bool y_up, bool objects_variants,
+                                     double scale) {
+  UserModelOptions options;
+  options.scale = static_cast<float>(scale);
+  options.y_up = y_up;
+  options.ground_at_origin = false;  // the file's origin is the model's ground contact point
+  try {
+    return load_model_variants(mesh, objects_variants, options);
+  } catch (const Error& e) {
+    throw config.error_at(key, e.what());  // naming the file at fault: the key may name several
   }
-  return models;
 }
 
-std::vector<PoissonClass> species_classes(const SceneConfig& config, const std::vector<double>& tight_radii,
+namespace {
+
+// A plant kind's variants for `species`, its budget capped at `budget_cap` within the kind's range.
+std::vector<PlantModel> kind_variants(const SceneConfig& config, const SpeciesConfig& species, std::size_t budget_cap) {
+  const PlantKind kind = *find_plant_kind(species.model);
+  const auto range = triangle_budget_range(kind);
+  const std::size_t budget = std::clamp(std::min(species.triangle_budget.value_or(range.default_budget), budget_cap),
+                                        range.minimum, range.maximum);
+  auto variants =
+      make_plant_variants(kind, species.seed.value_or(config.models.seed), species.variants, budget, species.scale);
+  // Named by species: two kinds' "petal"s are different materials in every exporter.
+  for (PlantModel& model : variants)
+    for (Material& material : model.mesh.materials) material.name = species.name + " " + material.name;
+  return variants;
+}
+
+}  // namespace
+
+SpeciesModels make_species_models(const SceneConfig& config) {
+  SpeciesModels out;
+  for (const SpeciesConfig& species : config.species) {
+    std::vector<Mesh> variants;
+    if (!species.mesh.empty()) {
+      variants = load_user_variants(config, "species." + species.name + ".model", species.mesh, species.mesh_y_up,
+                                    species.mesh_objects_variants, species.scale);
+    } else {
+      for (PlantModel& model : kind_variants(config, species, std::numeric_limits<std::size_t>::max()))
+        variants.push_back(std::move(model.mesh));
+    }
+    double radius = 0;
+    for (std::size_t v = 0; v < variants.size(); ++v) {
+      radius = std::max<double>(radius, measure_extent(variants[v]).radius);
+      // Named by species and variant ("dandelion_3"): the exporters name the model so.
+      variants[v].name = species.name + "_" + std::to_string(v);
+      out.models.push_back(std::move(variants[v]));
+    }
+    out.variants.push_back(int(variants.size()));
+    out.tight_radii.push_back(radius);
+  }
+  return out;
+}
+
+std::vector<Mesh> make_species_proxies(const SceneConfig& config, std::span<const Mesh> models,
+                                       const std::vector<int>& variants, std::size_t budget_cap,
+                                       std::vector<StandInFigures>& stand_ins) {
+  std::vector<Mesh> proxies;
+  std::size_t first = 0;
+  for (std::size_t s = 0; s < config.species.size(); ++s) {
+    const SpeciesConfig& species = config.species[s];
+    const std::span<const Mesh> own = models.subspan(first, std::size_t(variants[s]));
+    first += own.size();
+    if (!species.mesh.empty()) {
+      StandInOptions options;
+      options.max_triangles = budget_cap;
+      for (Mesh& stand_in : make_stand_ins(own, options, stand_ins)) proxies.push_back(std::move(stand_in));
+      continue;
+    }
+    std::size_t v = 0;
+    for (PlantModel& model : kind_variants(config, species, budget_cap)) {
+      model.mesh.name = own[v++].name + " proxy";
+      proxies.push_back(std::move(model.mesh));
+    }
+  }
+  return proxies;
+}
+
+std::vector<PoissonClass> species_classes(const SceneConfig& config, const SpeciesModels& models,
                                           PoissonFillOptions fill) {
   const double tile = config.tiles.tile_size;
   const auto in_meters = [tile](double tile_sides) { return significant_text(tile_sides * tile, 4) + " m"; };
@@ -69,9 +107,9 @@ std::vector<PoissonClass> species_classes(const SceneConfig& config, const std::
     const SpeciesConfig& species = config.species[s];
     PoissonClass c;
     c.share = species.share;
-    c.variants = species.mesh.empty() ? species.variants : 1;
+    c.variants = models.variants[s];
     c.edge_objects = species.edge_objects;
-    c.tight_radius = species.tight_radius.value_or(tight_radii[s] * grown) / tile;
+    c.tight_radius = species.tight_radius.value_or(models.tight_radii[s] * grown) / tile;
     c.packing_radius = species.packing_radius.value_or(0) / tile;
     const std::string key = "species." + species.name + ".";
     const auto limit = [&](double radius, const std::string& what, double most) {

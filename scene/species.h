@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <limits>
 #include <optional>
 #include <span>
@@ -16,24 +17,44 @@
 #include "scene/scene_file.h"
 #include "scene/scene_ground.h"
 #include "templates/mesh.h"
+#include "templates/stand_in.h"
 #include "terrain/mask.h"
 
 namespace wangscape {
 
-// The models of every species in file order, each species' variants in a row; a plant kind's
-// budget is capped at `budget_cap` (proxies) but kept within the kind's range. `tight_radii`
-// (optional) receives each species' largest horizontal extent, meters. Throws Error naming the
+// The models of every species.
+struct SpeciesModels {
+  std::vector<Mesh> models;         // every species' variants, in file order, each species' in a row
+  std::vector<int> variants;        // per species: how many of `models` are its
+  std::vector<double> tight_radii;  // per species: its largest model's horizontal extent, meters
+};
+
+// Each species' variants: a plant kind's `variants` of the kind's budget, a user's models'
+// variants (load_user_variants), each named "<species>_<variant>". Throws Error naming the
 // species' key.
-std::vector<Mesh> make_species_models(const SceneConfig& config,
-                                      std::size_t budget_cap = std::numeric_limits<std::size_t>::max(),
-                                      std::vector<double>* tight_radii = nullptr);
+SpeciesModels make_species_models(const SceneConfig& config);
+
+// The camera-aware export's proxies of `models` (make_species_models' models, `variants` of each
+// species), in their order: a plant kind's variants again at a budget capped at `budget_cap`
+// (within the kind's range), a user model's stand-ins of at most `budget_cap` triangles
+// (make_stand_ins; their figures appended to `stand_ins`).
+std::vector<Mesh> make_species_proxies(const SceneConfig& config, std::span<const Mesh> models,
+                                       const std::vector<int>& variants, std::size_t budget_cap,
+                                       std::vector<StandInFigures>& stand_ins);
+
+// The variants of a user's models `mesh` (files, folders; objects as variants or not), turned
+// and scaled into model space with the file's origin as ground contact. Throws Error naming
+// `key` of the scene file and the file at fault.
+std::vector<Mesh> load_user_variants(const SceneConfig& config, const std::string& key,
+                                     const std::vector<std::filesystem::path>& mesh, bool y_up, bool objects_variants,
+                                     double scale);
 
 // The fill's classes: share, radii (meters / tile size; the tight radius defaults to the
-// models' extent `tight_radii`), variants, edge objects, exclusions by index. `fill`: the fill
+// models' extent models.tight_radii), variants (models.variants), edge objects, exclusions by index. `fill`: the fill
 // they join (points per tile, dart rho). Throws Error naming the species' key (file:line) where
 // the fill would refuse them: a radius, an exclusion or a distance the fill keeps (packing radii
 // plus exclusion, a species' own spacing at its share) not below the fill's limits.
-std::vector<PoissonClass> species_classes(const SceneConfig& config, const std::vector<double>& tight_radii,
+std::vector<PoissonClass> species_classes(const SceneConfig& config, const SpeciesModels& models,
                                           PoissonFillOptions fill);
 
 // Piecewise-linear y of x over `curve` (x increasing), held flat beyond its ends; 1 when empty.

@@ -168,14 +168,15 @@ void finish_normals(Mesh& mesh) {
   if (!all_valid) compute_vertex_normals(mesh);
 }
 
-// One Mesh from Assimp's scene: its triangle meshes concatenated, the materials they use in
+// One Mesh from Assimp's meshes `parts` of `scene`: their triangles concatenated, the materials they use in
 // order of first use.
-Mesh mesh_from_scene(const aiScene& scene, const std::filesystem::path& folder, const std::string& source) {
+Mesh mesh_from_scene(const aiScene& scene, const std::filesystem::path& folder, const std::string& source,
+                     const std::vector<unsigned>& parts) {
   Mesh mesh;
   std::vector<int> slot_of(scene.mNumMaterials, -1);
   bool any_uvs = false;
   ImageCache images;
-  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+  for (const unsigned m : parts) {
     const aiMesh& part = *scene.mMeshes[m];
     if (!(part.mPrimitiveTypes & aiPrimitiveType_TRIANGLE) || part.mNumVertices == 0) continue;
     if (part.mMaterialIndex >= scene.mNumMaterials) throw Error(source, "", "a mesh names a material it lacks");
@@ -218,10 +219,6 @@ Mesh mesh_from_scene(const aiScene& scene, const std::filesystem::path& folder, 
   if (!any_uvs) mesh.uvs.clear();
   finish_normals(mesh);
   return mesh;
-}
-
-void require_writable(const std::ostream& out, const char* format) {
-  if (!out) throw Error(std::string("writing ") + format + " failed (stream error)");
 }
 
 }  // namespace
@@ -644,34 +641,116 @@ std::unique_ptr<Assimp::Importer> make_importer() {
 
 }  // namespace
 
-Mesh load_mesh(const std::filesystem::path& path) {
-  const std::string source = path.string();
+namespace {
+
+// Whether the file at `path` is PLY (read by read_ply); throws when it is missing or unreadable.
+bool is_ply_file(const std::filesystem::path& path) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) throw Error(path, "", "no such model file");
-  {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path, "", "cannot open the file for reading");
-    char head[4] = {};
-    in.read(head, sizeof head);
-    if (is_ply(path.extension().string(), std::string_view(head, std::size_t(in.gcount())))) {
-      in.clear();
-      in.seekg(0);
-      return read_ply(in, source);
-    }
-  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path, "", "cannot open the file for reading");
+  char head[4] = {};
+  in.read(head, sizeof head);
+  return is_ply(path.extension().string(), std::string_view(head, std::size_t(in.gcount())));
+}
+
+Mesh load_ply(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return read_ply(in, path.string());
+}
+
+// Assimp's scene of a model file other than PLY (its text checked for NULs first). With
+// `keep_objects` the file's node tree stays, each mesh moved into the file's space, so that its
+// objects can be told apart; else meshes of one material are joined.
+const aiScene& import_file(const std::filesystem::path& path, Assimp::Importer& importer, bool keep_objects) {
   if (is_text_format(path.extension().string())) {
     std::ifstream in(path, std::ios::binary);
     std::string chunk(1 << 16, '\0');
     std::uint64_t line = 1;
     while (in.read(chunk.data(), std::streamsize(chunk.size())) || in.gcount() > 0)
-      refuse_nul(std::string_view(chunk.data(), std::size_t(in.gcount())), line, source, path.extension().string());
+      refuse_nul(std::string_view(chunk.data(), std::size_t(in.gcount())), line, path.string(),
+                 path.extension().string());
   }
+  importer.SetPropertyBool(AI_CONFIG_PP_PTV_KEEP_HIERARCHY, keep_objects);
+  const aiScene* scene = importer.ReadFile(path.string(), kImportSteps);
+  if (scene == nullptr) throw Error(path, "", std::string("not a model Assimp reads: ") + importer.GetErrorString());
+  return *scene;
+}
+
+std::vector<unsigned> every_mesh(const aiScene& scene) {
+  std::vector<unsigned> parts(scene.mNumMeshes);
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) parts[m] = m;
+  return parts;
+}
+
+// The triangle meshes of `node` itself.
+void add_own_meshes(const aiScene& scene, const aiNode& node, std::vector<unsigned>& parts) {
+  for (unsigned i = 0; i < node.mNumMeshes; ++i)
+    if (const unsigned m = node.mMeshes[i];
+        m < scene.mNumMeshes && (scene.mMeshes[m]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
+      parts.push_back(m);
+}
+
+// The triangle meshes under `node`, depth first (a stack, not recursion: a file may nest deep).
+std::vector<unsigned> meshes_under(const aiScene& scene, const aiNode& node) {
+  std::vector<unsigned> parts;
+  std::vector<const aiNode*> stack{&node};
+  while (!stack.empty()) {
+    const aiNode* at = stack.back();
+    stack.pop_back();
+    add_own_meshes(scene, *at, parts);
+    for (unsigned c = at->mNumChildren; c-- > 0;) stack.push_back(at->mChildren[c]);
+  }
+  return parts;
+}
+
+// A file's objects: below the wrappers exporters put around a scene (nodes of no mesh and one
+// child), each child node holding triangles is one object, and the node's own triangles one more.
+std::vector<std::pair<std::string, std::vector<unsigned>>> scene_objects(const aiScene& scene) {
+  std::vector<std::pair<std::string, std::vector<unsigned>>> objects;
+  const aiNode* top = scene.mRootNode;
+  while (top != nullptr && top->mNumMeshes == 0 && top->mNumChildren == 1) top = top->mChildren[0];
+  if (top == nullptr) return objects;
+  std::vector<unsigned> own;
+  add_own_meshes(scene, *top, own);
+  if (!own.empty()) objects.emplace_back(top->mName.C_Str(), own);
+  for (unsigned c = 0; c < top->mNumChildren; ++c)
+    if (auto parts = meshes_under(scene, *top->mChildren[c]); !parts.empty())
+      objects.emplace_back(top->mChildren[c]->mName.C_Str(), std::move(parts));
+  return objects;
+}
+
+}  // namespace
+
+Mesh load_mesh(const std::filesystem::path& path) {
+  if (is_ply_file(path)) return load_ply(path);
   const auto importer = make_importer();
-  const aiScene* scene = importer->ReadFile(source, kImportSteps);
-  if (scene == nullptr) throw Error(path, "", std::string("not a model Assimp reads: ") + importer->GetErrorString());
-  Mesh mesh = mesh_from_scene(*scene, std::filesystem::absolute(path, error).parent_path(), source);
+  const aiScene& scene = import_file(path, *importer, false);
+  std::error_code error;
+  Mesh mesh =
+      mesh_from_scene(scene, std::filesystem::absolute(path, error).parent_path(), path.string(), every_mesh(scene));
   mesh.name = path.stem().string();
   return mesh;
+}
+
+std::vector<Mesh> load_mesh_objects(const std::filesystem::path& path) {
+  if (is_ply_file(path)) return {load_ply(path)};
+  const auto importer = make_importer();
+  const aiScene& scene = import_file(path, *importer, true);
+  std::error_code error;
+  const std::filesystem::path folder = std::filesystem::absolute(path, error).parent_path();
+  std::vector<Mesh> meshes;
+  for (const auto& [name, parts] : scene_objects(scene)) {
+    meshes.push_back(mesh_from_scene(scene, folder, path.string(), parts));
+    meshes.back().name = name.empty() ? path.stem().string() + "_" + std::to_string(meshes.size() - 1) : name;
+  }
+  if (meshes.empty()) throw Error(path, "", "no triangles (expected faces, not only points or lines)");
+  return meshes;
+}
+
+bool is_model_file_name(const std::filesystem::path& path) {
+  const std::string extension = lowercase(path.extension().string());
+  return extension == ".ply" || (extension.size() > 1 && Assimp::Importer().IsExtensionSupported(extension));
 }
 
 Mesh read_model(std::span<const std::uint8_t> bytes, const std::string& extension, const std::string& source_name) {
@@ -689,118 +768,9 @@ Mesh read_model(std::span<const std::uint8_t> bytes, const std::string& extensio
   const aiScene* scene = importer->ReadFileFromMemory(bytes.data(), bytes.size(), kImportSteps, hint.c_str());
   if (scene == nullptr)
     throw Error(source_name, "", std::string("not a model Assimp reads: ") + importer->GetErrorString());
-  Mesh mesh = mesh_from_scene(*scene, {}, source_name);
+  Mesh mesh = mesh_from_scene(*scene, {}, source_name, every_mesh(*scene));
   mesh.name = std::filesystem::path(source_name).stem().string();
   return mesh;
-}
-
-void write_obj(std::ostream& out, const Mesh& mesh) {
-  std::string text = "# written by wangscape\no " + (mesh.name.empty() ? std::string("mesh") : mesh.name) + "\n";
-  const auto append_vector = [&](const char* keyword, const std::array<float, 3>& v) {
-    text += keyword;
-    for (float c : v) {
-      text += ' ';
-      append_number(text, c);
-    }
-    text += '\n';
-  };
-  for (const auto& p : mesh.positions) append_vector("v", p);
-  for (const auto& n : mesh.normals) append_vector("vn", n);
-  const bool has_normals = mesh.normals.size() == mesh.positions.size();
-  int current_material = -1;
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const int material = t < mesh.triangle_material.size() ? mesh.triangle_material[t] : 0;
-    if (material != current_material && std::size_t(material) < mesh.materials.size()) {
-      text += "usemtl " + mesh.materials[material].name + "\n";
-      current_material = material;
-    }
-    text += 'f';
-    for (std::uint32_t v : mesh.triangles[t]) {
-      text += ' ';
-      append_number(text, std::uint64_t(v) + 1);
-      if (has_normals) {
-        text += "//";
-        append_number(text, std::uint64_t(v) + 1);
-      }
-    }
-    text += '\n';
-  }
-  out.write(text.data(), std::streamsize(text.size()));
-  require_writable(out, "OBJ");
-}
-
-void write_ply(std::ostream& out, const Mesh& mesh, PlyFormat format) {
-  const bool binary = format == PlyFormat::binary_little_endian;
-  const bool has_normals = mesh.normals.size() == mesh.positions.size();
-  std::string text = "ply\nformat ";
-  text += binary ? "binary_little_endian" : "ascii";
-  text += " 1.0\ncomment written by wangscape\n";
-  for (std::size_t i = 0; i < mesh.materials.size(); ++i) {
-    const Material& m = mesh.materials[i];
-    text += "comment material " + std::to_string(i) + " " + m.name;
-    for (float c : m.base_color) {
-      text += ' ';
-      append_number(text, c);
-    }
-    text += '\n';
-  }
-  text += "element vertex " + std::to_string(mesh.positions.size()) + "\nproperty float x\nproperty float y\n";
-  text += "property float z\n";
-  if (has_normals) text += "property float nx\nproperty float ny\nproperty float nz\n";
-  text += "element face " + std::to_string(mesh.triangles.size()) + "\n";
-  text += "property list uchar uint vertex_indices\nproperty ushort material\nend_header\n";
-
-  const auto material_of = [&](std::size_t t) -> std::uint16_t {
-    return t < mesh.triangle_material.size() ? mesh.triangle_material[t] : 0;
-  };
-  if (binary) {
-    // Bytes in little-endian order whatever the host.
-    const auto put = [&](auto value) {
-      unsigned char bytes[sizeof value];
-      std::memcpy(bytes, &value, sizeof value);
-      if constexpr (std::endian::native == std::endian::big) std::reverse(bytes, bytes + sizeof value);
-      text.append(reinterpret_cast<const char*>(bytes), sizeof value);
-    };
-    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-      for (float c : mesh.positions[v]) put(c);
-      if (has_normals) {
-        for (float c : mesh.normals[v]) put(c);
-      }
-    }
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-      put(std::uint8_t(3));
-      for (std::uint32_t i : mesh.triangles[t]) put(i);
-      put(material_of(t));
-    }
-  } else {
-    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-      const char* separator = "";
-      for (float c : mesh.positions[v]) {
-        text += separator;
-        append_number(text, c);
-        separator = " ";
-      }
-      if (has_normals) {
-        for (float c : mesh.normals[v]) {
-          text += ' ';
-          append_number(text, c);
-        }
-      }
-      text += '\n';
-    }
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-      text += '3';
-      for (std::uint32_t i : mesh.triangles[t]) {
-        text += ' ';
-        append_number(text, std::uint64_t(i));
-      }
-      text += ' ';
-      append_number(text, std::uint64_t(material_of(t)));
-      text += '\n';
-    }
-  }
-  out.write(text.data(), std::streamsize(text.size()));
-  require_writable(out, "PLY");
 }
 
 Mesh load_user_model(const std::filesystem::path& path, const UserModelOptions& options) {
@@ -808,6 +778,11 @@ Mesh load_user_model(const std::filesystem::path& path, const UserModelOptions& 
     throw Error(path.string() + ": model scale " + std::to_string(options.scale) + " is invalid: expected > 0");
   }
   Mesh mesh = load_mesh(path);
+  to_model_space(mesh, options);
+  return mesh;
+}
+
+void to_model_space(Mesh& mesh, const UserModelOptions& options) {
   // y-up to z-up is a quarter turn about +x: (x, y, z) -> (x, -z, y); it keeps handedness.
   const auto orient = [&](std::array<float, 3> v) -> std::array<float, 3> {
     return options.y_up ? std::array<float, 3>{v[0], -v[2], v[1]} : v;
@@ -825,7 +800,6 @@ Mesh load_user_model(const std::filesystem::path& path, const UserModelOptions& 
       for (int axis = 0; axis < 3; ++axis) p[axis] += shift[axis];
     }
   }
-  return mesh;
 }
 
 }  // namespace wangscape

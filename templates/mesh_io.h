@@ -11,6 +11,7 @@
 #include <iosfwd>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "templates/mesh.h"
 
@@ -26,6 +27,15 @@ namespace wangscape {
 // when any triangle has them. The mesh is named by the file's stem. (A .ply file is read by read_ply: no images,
 // colours from `comment material` lines.)
 Mesh load_mesh(const std::filesystem::path& path);
+
+// One Mesh per object of the file, in the file's order, each as load_mesh makes a whole file
+// and named by its object (node) name, else "<stem>_<index>". An object is a child of the
+// scene's top node (below wrapper nodes of no mesh and one child) with the triangles of its
+// subtree; triangles of the top node itself are one more. A PLY file is one object.
+std::vector<Mesh> load_mesh_objects(const std::filesystem::path& path);
+
+// Whether a file's name is one of a model: .ply or an extension Assimp reads (not .mtl, .bin, .png).
+bool is_model_file_name(const std::filesystem::path& path);
 
 // The same from bytes in memory, the format named by `extension` (".glb", "obj"); images must be
 // held by the bytes. `source_name` is used in error messages and names the mesh.
@@ -49,6 +59,8 @@ struct UserModelOptions {
 // load_mesh, then scale, turn to z up and move to the origin as `options` say; normals follow.
 // The result can replace the built-in sunflower (its extent gives height and placement radius).
 Mesh load_user_model(const std::filesystem::path& path, const UserModelOptions& options = {});
+// What load_user_model does to a loaded mesh (options.scale must be > 0).
+void to_model_space(Mesh& mesh, const UserModelOptions& options);
 
 // OBJ with v, vn, `usemtl` per material run and f v//vn. Numbers round-trip exactly.
 void write_obj(std::ostream& out, const Mesh& mesh);

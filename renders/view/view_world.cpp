@@ -128,9 +128,9 @@ std::array<std::uint8_t, kPlantSpecies> plant_steps(const SpeciesRules& rules, d
 
 bool files_resolve(const SceneConfig& c) {
   std::error_code ec;
-  for (const fs::path& p : {c.terrain.dem, c.masks.mask, c.models.mesh})
+  for (const fs::path& p : {c.terrain.dem, c.masks.mask})
     if (!p.empty() && !fs::exists(p, ec)) return false;
-  return true;
+  return std::all_of(c.models.mesh.begin(), c.models.mesh.end(), [&](const fs::path& p) { return fs::exists(p, ec); });
 }
 
 // The terrain's shadows on itself, as the reference's shadow rays see them, per vertex: 1 where

@@ -149,7 +149,7 @@ TEST(SceneFile, RelativePathsResolveAgainstTheSceneFolder) {
   EXPECT_EQ(c.terrain.dem, std::filesystem::path("/base/dem/a.dem"));
   EXPECT_EQ(c.tiles.set, "/base/sets/mine.json");
   EXPECT_EQ(c.masks.mask, std::filesystem::path("/base/m.png"));
-  EXPECT_EQ(c.models.mesh, std::filesystem::path("/base/flower.obj"));
+  EXPECT_EQ(c.models.mesh, std::vector<std::filesystem::path>{"/base/flower.obj"});
   EXPECT_TRUE(c.models.mesh_y_up);
   EXPECT_EQ(parse("[tiles]\nset = \"cohen12\"\n").tiles.set, "cohen12");  // built-in names stay names
 }

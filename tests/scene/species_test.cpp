@@ -56,7 +56,7 @@ density_by_height = [[900.0, 0.2], [1100.0, 1.0]]
   ASSERT_EQ(grass.density_by_slope.size(), 2u);
   EXPECT_EQ(grass.density_by_slope[1][0], 30.0);
   const SpeciesConfig& rock = c.species[1];
-  EXPECT_EQ(rock.mesh, std::filesystem::path("/base/meshes/boulder.obj"));
+  EXPECT_EQ(rock.mesh, std::vector<std::filesystem::path>{"/base/meshes/boulder.obj"});
   EXPECT_TRUE(rock.mesh_y_up);
   EXPECT_EQ(*rock.tight_radius, 0.8);
   EXPECT_EQ(*rock.packing_radius, 1.2);

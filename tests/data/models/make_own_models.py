@@ -88,3 +88,63 @@ gltf = {
         {"bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR"}],
 }
 write("leaf_card.gltf", json.dumps(gltf, indent=1) + "\n")
+
+
+# Round tulips (issue 38, variants and stand-ins), z up, meters, with texture coordinates: an
+# 8-sided stem and a UV-sphere head of 20 x 14 quads (on the order of 600 triangles, more than
+# the camera-aware proxies' 400, so their stand-ins are simplified). tulips/tulip_1..4.obj are
+# four variants of a folder (stem heights, head sizes differ); tulip_bunch.obj holds four
+# objects, one variant each with mesh_objects = "variants".
+def round_tulip(first_vertex, height, head_radius, offset_x=0.0, segments=20, rings=14):
+    """OBJ lines (v, vt, f with usemtl) of one round tulip; vertex and uv numbers from first_vertex."""
+    import math
+    lines, faces = [], []
+    stem = [(0.012 * math.cos(2 * math.pi * k / 8) + offset_x, 0.012 * math.sin(2 * math.pi * k / 8), z)
+            for z in (0.0, height) for k in range(8)]
+    uvs = [(k / 8, z / height) for z in (0.0, height) for k in range(8)]
+    for k in range(8):
+        a, b = k, (k + 1) % 8
+        faces.append(("stem", (a, b, b + 8)))
+        faces.append(("stem", (a, b + 8, a + 8)))
+    centre = height + head_radius * 0.8
+    head_first = len(stem)
+    for r in range(rings + 1):
+        polar = math.pi * r / rings
+        for s in range(segments + 1):
+            azimuth = 2 * math.pi * s / segments
+            stem.append((offset_x + head_radius * math.sin(polar) * math.cos(azimuth),
+                         head_radius * math.sin(polar) * math.sin(azimuth), centre + head_radius * math.cos(polar)))
+            uvs.append((s / segments, 1 - r / rings))
+    for r in range(rings):
+        for s in range(segments):
+            a = head_first + r * (segments + 1) + s
+            b, c, d = a + 1, a + segments + 1, a + segments + 2
+            faces.append(("head", (a, c, d)))
+            faces.append(("head", (a, d, b)))
+    lines += ["v %.5f %.5f %.5f" % p for p in stem]
+    lines += ["vt %.5f %.5f" % t for t in uvs]
+    material = None
+    for name, corners in faces:
+        if name != material:
+            lines.append("usemtl " + name)
+            material = name
+        lines.append("f " + " ".join("%d/%d" % (first_vertex + i, first_vertex + i) for i in corners))
+    return lines, len(stem)
+
+
+TULIP_SHAPES = [(0.45, 0.07), (0.5, 0.08), (0.55, 0.09), (0.6, 0.1)]  # (stem height, head radius), meters
+os.makedirs(os.path.join(HERE, "tulips"), exist_ok=True)
+write("tulips/tulips.mtl", "# Wangscape test model: the stem green, the head red (Kd only)\n"
+      "newmtl stem\nKd 0.10 0.60 0.10\n\nnewmtl head\nKd 0.80 0.05 0.05\n")
+for number, (height, radius) in enumerate(TULIP_SHAPES, start=1):
+    body, _ = round_tulip(1, height, radius)
+    write("tulips/tulip_%d.obj" % number, "\n".join(
+        ["# Wangscape test model: round tulip variant %d (make_own_models.py)" % number, "mtllib tulips.mtl",
+         "o tulip_%d" % number] + body) + "\n")
+bunch, first = ["# Wangscape test model: four round tulips as four objects (make_own_models.py)",
+                "mtllib tulips/tulips.mtl"], 1
+for number, (height, radius) in enumerate(TULIP_SHAPES, start=1):
+    body, count = round_tulip(first, height, radius, offset_x=0.3 * (number - 1))
+    bunch += ["o tulip_%d" % number] + body
+    first += count
+write("tulip_bunch.obj", "\n".join(bunch) + "\n")
