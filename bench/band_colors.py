@@ -62,18 +62,18 @@ def compare(args):
 
 
 def scene_for_table(template, folder):
-    """The template with an absolute DEM path and [exports] for POV-Ray and Blender."""
+    """The template with absolute paths (its DEM, models and masks) and [exports] for POV-Ray and Blender."""
     text = open(template, encoding="utf-8").read()
     base = os.path.dirname(os.path.abspath(template))
     root = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 
-    def absolute_dem(match):
+    def absolute_path(match):
         for candidate in (os.path.join(base, match.group(2)), os.path.join(root, match.group(2))):
             if os.path.exists(candidate):
                 return match.group(1) + os.path.abspath(candidate) + '"'
         return match.group(0)
 
-    text = re.sub(r'^(dem\s*=\s*")([^"]+)"', absolute_dem, text, flags=re.M)
+    text = re.sub(r'^((?:dem|mesh|model|mask|raster|polygons)\s*=\s*")([^"]+)"', absolute_path, text, flags=re.M)
     lines, section = [], ""
     for line in text.splitlines():
         header = re.match(r"^\[(\w+)\]", line)
