@@ -44,6 +44,8 @@ SKIP = {
         "renders 24,740 proxies over the whole DEM with POV-Ray at 640 x 360 (minutes); the build before it runs",
     "wangscape scatter --tileset tiles.json --dem data/SainteHelens.dem --tile-size 8 --max-height 800 --out points.gpkg":
         "writes a 106 MB GeoPackage in 12 s of CPU; tests/cli/gis.cmake writes GeoPackages of small fields",
+    "scripts/one_look_picture.sh build/release/cli/wangscape ferns.png templates/scenes/card-plants.toml":
+        "makes the README's picture (the scene in three engines at 320 x 180 and its band table); tests/cli/look.cmake runs the same table on the small scene",
     "docs/texture-tiles.md: wangscape noise tiles --set corner-3 --lattice 32 --octaves 3 --out noise [--preview 1024x512 noise.png] [--pattern marble]":
         "a synopsis ([...] marks optional parts); README.md runs the same command",
     "docs/texture-tiles.md: wangscape texture tiles --exemplar meadow [--exemplar2 pumice.png] --set corner-2 --size 64 --out tex [--preview 1024x512 tex.png]":
@@ -59,6 +61,7 @@ REWRITES = [
     (r"$", " --repeat 2", r"^wangscape view (?!.*--repeat)(?!.*--path).*--stats"),
     (r"$", " --truth-spp 4", r"^wangscape view (?!.*--truth-spp).*--compare"),
     (r"$", " --size 160x90", r"--script(?!.*--size)"),
+    (r"$", " --width 96", r"render \S+ --engine blender$"),  # Cycles at the scene's 480 x 270: a minute under load
 ]
 
 # The small stand-in of the default scene: its keys as `demo --print-scene` prints them, each
