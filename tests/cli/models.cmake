@@ -33,13 +33,13 @@ set_tests_properties(models_tulip_embree PROPERTIES DEPENDS models_tulip_povray)
 
 # The leaf card: its image beside models.inc, mapped per material; orange and red arrive, the
 # transparent blue half never shows, in POV-Ray and in the Embree reference (intersection filter).
-# The card's mean colour differs by CIEDE2000 10.7 between the two (Embree's light is brighter on
-# the sunlit cards: issue 39's look across engines); 12 still catches a missing image (white).
+# The card's mean colour differs by CIEDE2000 2.6 between the two since the engines share one
+# light (issue 39; 10.7 before): the issue's 6 holds.
 add_test(NAME models_leaf_card_povray
   COMMAND sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$1.toml\" --out \"$1\" && test -s \"$1/map_leaf_card.png\" && grep -q 'image_map { png \"map_leaf_card.png\"' \"$1/models.inc\" && \"$0\" --quiet render \"$1\" --engine povray && \"$2\" \"$3\" \"$1/render.png\" orange:min:100 red:min:20 blue:max:0"
           "${WANGSCAPE_BIN}" "${models_dir}/models_leaf_card" "${models_python3}" "${model_colors}")
 add_test(NAME models_leaf_card_embree
-  COMMAND sh -c "\"$0\" --quiet render \"$1\" --engine embree --spp 2 && \"$2\" \"$3\" \"$1/render_embree.png\" orange:min:100 red:min:20 blue:max:0 \"agrees:$1/render.png:12\""
+  COMMAND sh -c "\"$0\" --quiet render \"$1\" --engine embree --spp 2 && \"$2\" \"$3\" \"$1/render_embree.png\" orange:min:100 red:min:20 blue:max:0 \"agrees:$1/render.png:6\""
           "${WANGSCAPE_BIN}" "${models_dir}/models_leaf_card" "${models_python3}" "${model_colors}")
 set_tests_properties(models_leaf_card_embree PROPERTIES DEPENDS models_leaf_card_povray)
 # glTF: the card's material masks by alpha and maps its image; the validator finds no error.
