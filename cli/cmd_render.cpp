@@ -141,11 +141,12 @@ void register_render_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--camera", *camera,
                   "Render from another eye, E,N[,H] (ENU m; without H: the [ldi] head height above the ground)");
   sub->add_option("--look-at", *look_at, "With or without --camera: the point looked at, E,N,H (ENU m)");
-  sub->add_option("--fov", request->fov, "embree: the horizontal field of view in degrees (default: the scene's)")
+  sub->add_option("--fov", request->fov,
+                  "embree and povray: the horizontal field of view in degrees (default: the scene's)")
       ->check(CLI::Range(1e-3, kMaxFieldOfViewDegrees));
   sub->add_option("--sun", *sun,
-                  "embree: another sun, AZIMUTH,ELEVATION in degrees as [sun] gives them (azimuth clockwise from "
-                  "north, -360 .. 360; elevation -90 .. 90)");
+                  "embree and povray: another sun, AZIMUTH,ELEVATION in degrees as [sun] gives them (azimuth "
+                  "clockwise from north, -360 .. 360; elevation -90 .. 90)");
   sub->add_option("--path", request->path,
                   "Render every frame along a path file (the view's: docs/viewer.md) into --frames");
   sub->add_option("--frames", request->frames,

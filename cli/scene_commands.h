@@ -34,8 +34,8 @@ struct RenderRequest {
   std::optional<double> fps;                             // of the path (default 24)
   long long first_frame = 0, frame_count = 0;            // a part of the path (0 frames: to its end)
   std::optional<std::array<double, 3>> camera, look_at;  // another camera (E,N[,H]; E,N,H)
-  std::optional<double> fov;                             // embree: another field of view (degrees)
-  std::optional<std::array<double, 2>> sun;              // embree: another sun (azimuth, elevation degrees)
+  std::optional<double> fov;                             // embree, povray: another field of view (degrees)
+  std::optional<std::array<double, 2>> sun;              // embree, povray: another sun (azimuth, elevation)
 };
 // Renders a built folder into DIR/render.png (cmd_render.cpp).
 void run_render(const std::filesystem::path& dir, const RenderRequest& request, const GlobalOptions& global);

@@ -419,6 +419,16 @@ std::string povray_camera_and_sun(const Camera& cam, const Sun& sun) {
   return s;
 }
 
+std::string povray_scene_with_camera_and_sun(const std::string& scene_pov, const Camera& camera, const Sun& sun,
+                                             const std::filesystem::path& file) {
+  const auto begin = scene_pov.find("camera {\n"), end = scene_pov.find("sky_sphere {");
+  if (begin == std::string::npos || end == std::string::npos || end < begin)
+    throw Error(file, "", "has no camera and sky_sphere blocks to replace (write it with `wangscape build`)");
+  std::string text = scene_pov;
+  text.replace(begin, end - begin, povray_camera_and_sun(camera, sun) + "\n");
+  return text;
+}
+
 std::string povray_scene_with_cameras(const std::string& scene_pov, const std::vector<Camera>& cameras,
                                       const std::filesystem::path& file) {
   if (cameras.empty()) throw Error(file, "", "no camera to render it from");

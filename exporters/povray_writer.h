@@ -76,6 +76,12 @@ PovrayExportStats write_povray_scene(const Scene& scene, const std::filesystem::
 // scene folder, so a new viewpoint or hour costs no new placement).
 std::string povray_camera_and_sun(const Camera& camera, const Sun& sun);
 
+// `scene_pov` (a folder's scene.pov, read from `file`, which errors name) with its camera and sun
+// blocks replaced by povray_camera_and_sun's: a still from another camera under another sun.
+// Throws Error naming `file` when it has no such blocks.
+std::string povray_scene_with_camera_and_sun(const std::string& scene_pov, const Camera& camera, const Sun& sun,
+                                             const std::filesystem::path& file);
+
 // `scene_pov` (a folder's scene.pov, read from `file`, which errors name) with its camera block
 // replaced: one camera, or with several an animation's, frame_number k (POV-Ray's +KFI0
 // +KFF<N-1>) looking from cameras[k].position at cameras[k].target, every frame with the first

@@ -46,6 +46,16 @@ Camera chosen_camera(const Scene& scene, const SceneConfig& config, const Folder
   return camera;
 }
 
+// The scene's sun, or the one `request` asks (its strength and colour kept).
+Sun chosen_sun(const Scene& scene, const FolderRenderRequest& request) {
+  Sun sun = scene.sun;
+  if (request.sun_degrees) {
+    sun.azimuth_degrees = (*request.sun_degrees)[0];
+    sun.elevation_degrees = (*request.sun_degrees)[1];
+  }
+  return sun;
+}
+
 // Moves a renderer's finished image into place.
 void move_image(const std::filesystem::path& from, const std::filesystem::path& to) {
   std::error_code ec;
@@ -56,10 +66,7 @@ void move_image(const std::filesystem::path& from, const std::filesystem::path& 
 FolderRenderResult render_embree(const std::filesystem::path& dir, const FolderRenderRequest& request) {
   const SceneConfig config = load_scene_folder_config(dir);
   Scene scene = make_folder_scene(dir, config);
-  if (request.sun_degrees) {
-    scene.sun.azimuth_degrees = (*request.sun_degrees)[0];
-    scene.sun.elevation_degrees = (*request.sun_degrees)[1];
-  }
+  scene.sun = chosen_sun(scene, request);
   ReferenceOptions options;
   if (other_camera(request)) options.camera = chosen_camera(scene, config, request);
   options.width = request.width;
@@ -122,9 +129,10 @@ FolderRenderResult render_scene_folder(const std::filesystem::path& dir, const F
   if (request.samples_per_pixel != 0)
     throw Error("render: --spp is for --engine embree (and blender --path); " + std::string(to_string(request.engine)) +
                 " takes its samples from the scene (its antialias)");
-  if (request.fov_degrees || request.sun_degrees)
-    throw Error("render: --fov and --sun are for --engine embree; " + std::string(to_string(request.engine)) +
-                " renders the folder's export, whose camera lens and sun were written by the build");
+  if (request.engine == RenderEngine::blender && (request.fov_degrees || request.sun_degrees))
+    throw Error(
+        "render: --fov and --sun are for --engine embree and povray; blender renders the folder's export, whose "
+        "camera lens and sun were written by the build");
   if (request.engine == RenderEngine::blender) {
     BlenderRenderOptions options;
     options.width = request.width;
@@ -168,12 +176,17 @@ FolderRenderResult render_scene_folder(const std::filesystem::path& dir, const F
   options.width = request.width;
   options.height = request.height;
   options.on_progress = request.on_progress;
-  // Another camera: the folder's scene.pov with it, in a temporary .pov beside it.
+  // Another camera or sun: the folder's scene.pov with it, in a temporary .pov beside it.
   AtomicPath pov(dir / "scene_camera.pov");  // never committed: removed when done
-  if (other_camera(request) && std::filesystem::is_regular_file(dir / "scene.pov")) {
+  if ((other_camera(request) || request.sun_degrees) && std::filesystem::is_regular_file(dir / "scene.pov")) {
     const std::string text = read_text_file(dir / "scene.pov", std::uintmax_t(1) << 30, "POV-Ray scene");
-    write_file_atomically(pov.temp_path(),
-                          povray_scene_with_cameras(text, {folder_camera(dir, request)}, dir / "scene.pov"));
+    const SceneConfig config = load_scene_folder_config(dir);
+    const Scene scene = make_folder_scene(dir, config);
+    const Camera camera = chosen_camera(scene, config, request);
+    write_file_atomically(pov.temp_path(), request.sun_degrees
+                                               ? povray_scene_with_camera_and_sun(
+                                                     text, camera, chosen_sun(scene, request), dir / "scene.pov")
+                                               : povray_scene_with_cameras(text, {camera}, dir / "scene.pov"));
     options.input_file = pov.temp_path().filename().string();
   }
   const auto result = render_povray(dir, options);

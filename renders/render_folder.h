@@ -26,8 +26,8 @@ struct FolderRenderRequest {
   // the scene camera's. The eye E, N, H (ENU m; H NaN: the [ldi] head height above the ground),
   // the point looked at E, N, H.
   std::optional<std::array<double, 3>> eye, look_at;
-  // Embree only: another horizontal field of view (degrees, in (0, 180)) and another sun (its
-  // azimuth and elevation, degrees, as [sun] has them); the scene's strength and colour stay.
+  // Embree and POV-Ray: another horizontal field of view (degrees, in (0, 180)) and another sun
+  // (its azimuth and elevation, degrees, as [sun] has them); the scene's strength and colour stay.
   std::optional<double> fov_degrees;
   std::optional<std::array<double, 2>> sun_degrees;
 };

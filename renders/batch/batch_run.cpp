@@ -92,16 +92,12 @@ fs::path render_povray_task(const fs::path& dir, const Plan& plan, const BatchTa
   const fs::path scene = shared_scene(dir, plan, t);
   const fs::path work = dir / "work" / t.id;
   fs::create_directories(work);
-  std::string pov = read_text(scene / "scene.pov");
-  const auto begin = pov.find("camera {\n"), end = pov.find("sky_sphere {");
-  if (begin == std::string::npos || end == std::string::npos || end < begin)
-    throw Error(scene / "scene.pov", "", "has no camera and sky_sphere blocks to replace");
   Sun sun;
   sun.azimuth_degrees = t.sun.azimuth;
   sun.elevation_degrees = t.sun.elevation;
   sun.strength = plan.scene.sun.strength;
-  pov.replace(begin, end - begin, povray_camera_and_sun(t.camera, sun) + "\n");
-  write_file_atomically(work / "scene.pov", pov);
+  write_file_atomically(work / "scene.pov", povray_scene_with_camera_and_sun(read_text(scene / "scene.pov"), t.camera,
+                                                                             sun, scene / "scene.pov"));
   std::string ini;
   std::istringstream lines(read_text(scene / "scene.ini"));
   for (std::string line; std::getline(lines, line);)

@@ -40,7 +40,7 @@ add_test(NAME embree_render_not_a_folder
   COMMAND ${cli_expect} 1 "scene.toml.*is missing"
           "${WANGSCAPE_BIN}" render "${embree_dir}/no_such_folder" --engine embree)
 # --sun and --fov (issue 39: batch's Embree stills use them): another sun and lens give another
-# picture; a sun that is not two angles in range is refused naming the flag; POV-Ray refuses them.
+# picture; a sun that is not two angles in range is refused naming the flag; Blender refuses them.
 add_test(NAME embree_render_sun_and_fov
   COMMAND sh -c "\"$0\" --quiet render \"$1\" --engine embree --width 48 --out \"$1_a.png\" && \"$0\" --quiet render \"$1\" --engine embree --width 48 --sun 300,10 --out \"$1_b.png\" && \"$0\" --quiet render \"$1\" --engine embree --width 48 --fov 80 --out \"$1_c.png\" && ! cmp -s \"$1_a.png\" \"$1_b.png\" && ! cmp -s \"$1_a.png\" \"$1_c.png\""
           "${WANGSCAPE_BIN}" "${embree_dir}/embree_tiny")
@@ -48,8 +48,8 @@ add_test(NAME embree_render_bad_sun
   COMMAND ${cli_expect} 2 "--sun: '300,95' is not AZIMUTH,ELEVATION in degrees"
           "${WANGSCAPE_BIN}" render "${embree_dir}/embree_tiny" --engine embree --sun 300,95)
 add_test(NAME embree_render_sun_needs_embree
-  COMMAND ${cli_expect} 1 "--fov and --sun are for --engine embree"
-          "${WANGSCAPE_BIN}" render "${embree_dir}/embree_tiny" --engine povray --sun 300,10)
+  COMMAND ${cli_expect} 1 "--fov and --sun are for --engine embree and povray"
+          "${WANGSCAPE_BIN}" render "${embree_dir}/embree_tiny" --engine blender --sun 300,10)
 set_tests_properties(embree_render_bad_spp embree_render_unknown_engine embree_render_out_needs_embree
   embree_render_height_alone embree_render_sun_and_fov embree_render_bad_sun embree_render_sun_needs_embree
   PROPERTIES DEPENDS embree_render_size)
