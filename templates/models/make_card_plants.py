@@ -19,7 +19,8 @@ HERE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "card_plants")
 
 
 def png_rgba(width, height, pixel):
-    """An 8-bit RGBA PNG; pixel(column, row) gives (r, g, b, a), row 0 at the top."""
+    """An 8-bit RGBA PNG; pixel(column, row) gives (r, g, b, a), row 0 at the top (the test models'
+    script, tests/data/models/make_own_models.py, writes its images with it too)."""
     raw = b"".join(b"\0" + bytes(c for x in range(width) for c in pixel(x, y)) for y in range(height))
 
     def chunk(kind, body):
@@ -113,5 +114,6 @@ def glb(name, height, seed):
         f.write(data)
 
 
-for k, height in enumerate((1.0, 1.2, 0.9)):
-    glb("fern_%d" % k, height, k)
+if __name__ == "__main__":
+    for k, height in enumerate((1.0, 1.2, 0.9)):
+        glb("fern_%d" % k, height, k)

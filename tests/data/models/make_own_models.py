@@ -3,27 +3,19 @@ tulip.obj + tulip.mtl: a green stem and a red head, colours by MTL Kd only (issu
 leaf_card.gltf + leaf_card.bin + leaf_card.png: a vertical 1 m card, y up (glTF), whose image
 holds an opaque left half (red top quarter, orange below) and a transparent blue right half,
 with alphaMode MASK: the blue must never show, the red must be at the top."""
-import base64
 import json
 import os
 import struct
-import zlib
+import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "templates", "models"))
+from make_card_plants import png_rgba  # noqa: E402  (one PNG writer for the example and test models)
 
 
 def write(name, data):
     with open(os.path.join(HERE, name), "wb") as f:
         f.write(data if isinstance(data, bytes) else data.encode())
-
-
-def png_rgba(width, height, pixel):
-    """An 8-bit RGBA PNG; pixel(column, row) gives (r, g, b, a), row 0 at the top."""
-    raw = b"".join(b"\0" + bytes(c for x in range(width) for c in pixel(x, y)) for y in range(height))
-    def chunk(kind, body):
-        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body) & 0xFFFFFFFF)
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)) +
-            chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
 
 
 # The tulip, z up, meters: a thin stem to 0.5 m, an octahedron head 0.1 m across above it.
