@@ -273,6 +273,8 @@ struct Plants {
     scene.camera = {};
     scene.camera.position.enu = {at[0], at[1], up};
     scene.camera.target.enu = {at[0] + 10, at[1], up};
+    scene.ground.reset();  // the plants alone: no ground bake, no far field painted into it
+    scene.camera_aware.far_texture = false;
     const Scene made = make_scene(scene);
     field = std::make_shared<SceneField>(*made.field);
     field->view.reset();
