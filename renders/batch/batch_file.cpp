@@ -417,14 +417,20 @@ std::vector<View> expand_viewpoint(const ViewpointRule& rule, const Site& site, 
     views.push_back(v);
   };
   const double fov = rule.fov > 0 ? rule.fov : site.scene.camera.fov;
+  // A head-height eye at (x, y), out of the plants, looking toward the highest ground it sees
+  // (looked for again only when the eye had to move).
+  const auto add_toward_highest = [&](const std::string& name, double x, double y) {
+    const auto at = site.eye_at(x, y, rule.eye_height);
+    const auto toward = site.highest_in_view(at);
+    const auto eye = site.clear_eye_at(x, y, rule.eye_height, toward, fov);
+    add(name, eye, eye == at ? toward : site.highest_in_view(eye));
+  };
   const Extent& f = site.field;
   if (rule.kind == ViewpointKind::flowers) {
     for (int k = 1; k < 20000 && static_cast<int>(views.size()) < rule.count; ++k) {
       const double x = f.min_x + halton(k, 2) * f.width(), y = f.min_y + halton(k, 3) * f.height();
       if (!site.has_flowers(x, y)) continue;
-      const auto eye =
-          site.clear_eye_at(x, y, rule.eye_height, site.highest_in_view(site.eye_at(x, y, rule.eye_height)), fov);
-      add("flowers " + std::to_string(views.size() + 1), eye, site.highest_in_view(eye));
+      add_toward_highest("flowers " + std::to_string(views.size() + 1), x, y);
     }
   } else if (rule.kind == ViewpointKind::summits) {
     const int n = 48;
@@ -456,9 +462,7 @@ std::vector<View> expand_viewpoint(const ViewpointRule& rule, const Site& site, 
         const double x = f.min_x + (i + 0.5) * f.width() / rule.grid[0];
         const double y = f.min_y + (j + 0.5) * f.height() / rule.grid[1];
         if (!site.ground.height(x, y)) continue;
-        const auto eye =
-            site.clear_eye_at(x, y, rule.eye_height, site.highest_in_view(site.eye_at(x, y, rule.eye_height)), fov);
-        add("grid " + std::to_string(i) + "," + std::to_string(j), eye, site.highest_in_view(eye));
+        add_toward_highest("grid " + std::to_string(i) + "," + std::to_string(j), x, y);
       }
   } else {
     auto points = rule.path_enu;
@@ -679,24 +683,26 @@ std::vector<BatchTask> expand_batch(const BatchConfig& config) {
     const auto ground = SceneGround::load(scene.terrain, scene.masks, scene.tiles.area_latlon);
     Site site{scene, ground, field_area(scene, ground), {}};
     const EnuFrame frame(LatLon{ground.origin()[0], ground.origin()[1]});
-    // The scene's own sun (a path's frames take it alone), then the batch's.
-    BatchSun own;
-    own.time_unix = config.scene.sun.time_unix;
-    own.azimuth = config.scene.sun.azimuth;
-    own.elevation = config.scene.sun.elevation;
-    own.label = own.time_unix ? config.scene.sun.time_text : "the scene's sun";
-    std::vector<BatchSun> suns = config.suns.empty() ? std::vector<BatchSun>{own} : config.suns;
-    suns.push_back(own);
-    for (auto& s : suns) {
-      if (!s.time_unix) continue;
+    // A sun given by its time takes its angles at the ground's origin.
+    const auto placed = [&](BatchSun s) {
+      if (!s.time_unix) return s;
       const auto p = solar_position(ground.origin()[0], ground.origin()[1], *s.time_unix);
       if (p.elevation_degrees <= 0)
         throw Error(config.source, "", "sun time " + s.label + " is night at the origin of " + ground.description());
       s.azimuth = p.azimuth_degrees;
       s.elevation = p.elevation_degrees;
-    }
-    own = suns.back();
-    suns.pop_back();
+      return s;
+    };
+    // The scene's own sun (a path's frames take it alone), and the batch's suns (default: it).
+    BatchSun scene_sun;
+    scene_sun.time_unix = config.scene.sun.time_unix;
+    scene_sun.azimuth = config.scene.sun.azimuth;
+    scene_sun.elevation = config.scene.sun.elevation;
+    scene_sun.label = scene_sun.time_unix ? config.scene.sun.time_text : "the scene's sun";
+    const BatchSun own = placed(scene_sun);
+    std::vector<BatchSun> suns;
+    for (const BatchSun& s : config.suns) suns.push_back(placed(s));
+    if (suns.empty()) suns.push_back(own);
     const std::string key = scene_key(scene, dem);
     const auto add_task = [&](const std::string& viewpoint, const Camera& camera, const BatchSun& sun,
                               RenderEngine engine) -> BatchTask& {

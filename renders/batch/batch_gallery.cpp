@@ -111,27 +111,39 @@ void write_contact_sheet(const fs::path& dir, const Plan& plan) {
   out.commit();
 }
 
-// Each path whose parts are all done made into paths/FOLDER/path.mp4 (once; when ffmpeg is on
-// PATH), and the gallery's list of them.
-std::string movies_html(const fs::path& dir, const Plan& plan) {
+// A path's frames folder as the assembly leaves it.
+enum class PathMovie { frames_to_come, no_ffmpeg, made };
+
+// Each path (its frames folder) whose parts are all done made into paths/FOLDER/path.mp4, once,
+// when ffmpeg is on PATH.
+std::map<std::string, PathMovie> make_path_movies(const fs::path& dir, const Plan& plan) {
   std::map<std::string, std::pair<double, bool>> paths;  // folder -> fps, every part done
   for (const auto& t : plan.tasks)
     if (t.frames) {
       const auto at = paths.try_emplace(t.frames->folder, t.frames->fps, true).first;
       at->second.second = at->second.second && task_state(dir, t) == State::done;
     }
-  if (paths.empty()) return {};
-  std::string html = "<h2>Paths</h2>\n<ul>\n";
+  std::map<std::string, PathMovie> movies;
   for (const auto& [folder, state] : paths) {
     const fs::path frames = dir / "paths" / folder, movie = frames / "path.mp4";
-    const bool made =
-        state.second && (fs::exists(movie) || write_frames_movie(frames, kPathFramePattern, state.first, movie));
-    html += "<li><a href=\"paths/" + html_escape(folder) + "/\">" + html_escape(folder) + "</a>" +
-            (made           ? " · <a href=\"paths/" + html_escape(folder) + "/path.mp4\">path.mp4</a>"
-             : state.second ? " (all frames; no ffmpeg on PATH for path.mp4)"
-                            : " (frames still to come)") +
-            "</li>\n";
+    movies[folder] = !state.second ? PathMovie::frames_to_come
+                     : fs::exists(movie) || write_frames_movie(frames, kPathFramePattern, state.first, movie)
+                         ? PathMovie::made
+                         : PathMovie::no_ffmpeg;
   }
+  return movies;
+}
+
+// The gallery's list of the paths and their movies.
+std::string movies_html(const std::map<std::string, PathMovie>& movies) {
+  if (movies.empty()) return {};
+  std::string html = "<h2>Paths</h2>\n<ul>\n";
+  for (const auto& [folder, movie] : movies)
+    html += "<li><a href=\"paths/" + html_escape(folder) + "/\">" + html_escape(folder) + "</a>" +
+            (movie == PathMovie::made        ? " · <a href=\"paths/" + html_escape(folder) + "/path.mp4\">path.mp4</a>"
+             : movie == PathMovie::no_ffmpeg ? " (all frames; no ffmpeg on PATH for path.mp4)"
+                                             : " (frames still to come)") +
+            "</li>\n";
   return html + "</ul>\n";
 }
 
@@ -187,7 +199,7 @@ void assemble_batch(const fs::path& dir) {
         " log</a> · <a href=\"" + links.inputs + "\">inputs</a></figcaption></figure>\n";
     all.push_back(j);
   }
-  html += movies_html(dir, plan);
+  html += movies_html(make_path_movies(dir, plan));
   html += "</body></html>\n";
   write_contact_sheet(dir, plan);
   write_file_atomically(dir / "index.html", html);
