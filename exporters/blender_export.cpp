@@ -264,6 +264,19 @@ void BlenderWriter::finish(const StreamTotals& totals) {
                            {"sky_horizon", sky.horizon},
                            {"sky_zenith", sky.zenith},
                            {"exposure", light.exposure}};
+  if (scene.wind) {
+    // The wind's lean (scene/wind.h), evaluated by the add-on's geometry nodes at the scene time.
+    Json waves = Json::array();
+    for (const WindWave& w : scene.wind->waves)
+      waves.push_back(Json{{"k_east", w.k_east},
+                           {"k_north", w.k_north},
+                           {"k_time", w.k_time},
+                           {"phase", w.phase},
+                           {"amplitude_east", w.amplitude_east},
+                           {"amplitude_north", w.amplitude_north}});
+    manifest["wind"] =
+        Json{{"base_east", scene.wind->base.east}, {"base_north", scene.wind->base.north}, {"waves", waves}};
+  }
   manifest["render"] = Json{{"width", scene.render.width},
                             {"height", scene.render.height},
                             {"samples", blender_cycles_samples(scene.render, options)},

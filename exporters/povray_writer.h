@@ -76,6 +76,12 @@ PovrayExportStats write_povray_scene(const Scene& scene, const std::filesystem::
 // scene folder, so a new viewpoint or hour costs no new placement).
 std::string povray_camera_and_sun(const Camera& camera, const Sun& sun);
 
+// The wind's lean of a plant at (E, N) at Wind_Time seconds, in degrees, as two POV-Ray
+// functions, Wind_East(E, N) and Wind_North(E, N), that scene.pov declares and instances.inc
+// calls (scene/wind.h: the same sum of sines every engine evaluates). Wind_Time is 0 unless
+// declared before.
+std::string povray_wind_functions(const WindField& wind);
+
 // `scene_pov` (a folder's scene.pov, read from `file`, which errors name) with its camera and sun
 // blocks replaced by povray_camera_and_sun's: a still from another camera under another sun.
 // Throws Error naming `file` when it has no such blocks.
@@ -86,9 +92,10 @@ std::string povray_scene_with_camera_and_sun(const std::string& scene_pov, const
 // replaced: one camera, or with several an animation's, frame_number k (POV-Ray's +KFI0
 // +KFF<N-1>) looking from cameras[k].position at cameras[k].target, every frame with the first
 // camera's field of view. The sun and everything else stay. Throws Error naming `file` when it
-// has no camera block, and for no camera.
+// has no camera block, and for no camera. `seconds`, when given, one per camera: the wind's
+// time of each frame (Wind_Time; a scene without [wind] ignores it).
 std::string povray_scene_with_cameras(const std::string& scene_pov, const std::vector<Camera>& cameras,
-                                      const std::filesystem::path& file);
+                                      const std::filesystem::path& file, const std::vector<double>& seconds = {});
 
 // `path` in double quotes for a POV-Ray ini value or command-line option (POV-Ray rejoins its
 // arguments and splits them at spaces; an unquoted ';' starts an ini comment). Throws Error
@@ -106,8 +113,9 @@ std::vector<std::string> povray_model_names(const std::vector<Mesh>& models);
 // the hot loop of the exporter (see bench/povray_bench.cpp).
 class PovrayInstanceWriter {
  public:
-  // `model_names`: povray_model_names of the models the instances' variants index.
-  PovrayInstanceWriter(std::ostream& out, const std::vector<std::string>& model_names);
+  // `model_names`: povray_model_names of the models the instances' variants index. `sway`: each
+  // instance leans by the scene's wind functions (Wind_North, Wind_East of scene.pov) at its place.
+  PovrayInstanceWriter(std::ostream& out, const std::vector<std::string>& model_names, bool sway = false);
   ~PovrayInstanceWriter() { flush(); }
   PovrayInstanceWriter(const PovrayInstanceWriter&) = delete;
   PovrayInstanceWriter& operator=(const PovrayInstanceWriter&) = delete;
@@ -121,6 +129,7 @@ class PovrayInstanceWriter {
  private:
   std::ostream& out_;
   std::vector<std::string> object_prefixes_;  // per variant: "object{NAME"
+  bool sway_ = false;
   std::string buffer_;
   std::uint64_t instances_ = 0;
   std::uint64_t bytes_ = 0;

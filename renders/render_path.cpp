@@ -200,6 +200,7 @@ PathRenderResult render_path(const fs::path& dir, const PathRenderRequest& reque
     const ReferenceFrames traced(scene, cameras[std::size_t(todo.front())].position);  // built once
     for (const long long k : todo) {
       options.camera = cameras[std::size_t(k)];
+      options.wind_seconds = double(k) / request.fps;
       write_image(frame_file(k), traced.render(options).image);  // atomically
       frame_done(k, {});
     }
@@ -207,10 +208,15 @@ PathRenderResult render_path(const fs::path& dir, const PathRenderRequest& reque
     // One POV-Ray run: the folder's scene.pov with the cameras of the frames to render, indexed
     // by frame_number, in a temporary .pov beside it (POV-Ray resolves includes from the folder).
     std::vector<Camera> todo_cameras;
-    for (const long long k : todo) todo_cameras.push_back(cameras[std::size_t(k)]);
+    std::vector<double> todo_seconds;  // the wind's time of each frame
+    for (const long long k : todo) {
+      todo_cameras.push_back(cameras[std::size_t(k)]);
+      todo_seconds.push_back(double(k) / request.fps);
+    }
     const std::string pov_text = read_text_file(dir / "scene.pov", std::uintmax_t(1) << 30, "POV-Ray scene");
     AtomicPath pov(dir / "scene_path.pov");  // never committed: removed when done
-    write_file_atomically(pov.temp_path(), povray_scene_with_cameras(pov_text, todo_cameras, dir / "scene.pov"));
+    write_file_atomically(pov.temp_path(),
+                          povray_scene_with_cameras(pov_text, todo_cameras, dir / "scene.pov", todo_seconds));
     WorkFolder work(folder.dir(), "povray");
     PovrayRenderOptions options;
     options.width = width;

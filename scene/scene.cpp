@@ -477,6 +477,7 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage, const Sc
     ground.refine_mesh(scene.terrain, scene.field_area, kFieldGroundSubdivisions);
   scene.camera = make_camera(config, ground, scene.field_area);
   scene.sun = make_sun(config, ground);
+  if (config.wind && config.wind->strength > 0) scene.wind = wind_field(*config.wind);
   if (camera_aware(config)) {
     field->view = make_view(config, *field, scene);
     check_visible_flowers(config, *field);

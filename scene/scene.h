@@ -22,6 +22,7 @@
 #include "scene/scene_ground.h"
 #include "scene/species.h"
 #include "scene/sun.h"
+#include "scene/wind.h"
 #include "templates/mesh.h"
 #include "templates/stand_in.h"
 
@@ -112,6 +113,9 @@ struct Scene {
   // exporters write: made once here, shared by every writer). Both empty without [ground].
   std::shared_ptr<const GroundLook> ground_look;
   std::shared_ptr<const GroundBake> ground_texture;
+  // [wind] with a strength above 0: every plant leans about its base by wind->lean(east, north,
+  // seconds); empty when calm (the outputs then as without the section).
+  std::optional<WindField> wind;
 };
 
 // The most flowers a field (or a scatter) may hold, counted before masks (with camera-aware

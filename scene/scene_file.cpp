@@ -608,6 +608,16 @@ void read_camera_aware(Section s, SceneConfig& config) {
   s.reject_unknown();
 }
 
+// [wind]: the plants sway (scene/wind.h).
+void read_wind(Section s, SceneConfig& config) {
+  WindConfig& w = config.wind.emplace();
+  if (s.read("direction", w.direction)) s.check_range("direction", w.direction, 0, 360);
+  if (s.read("strength", w.strength)) s.check_range("strength", w.strength, 0, 45);
+  if (s.read("gust_scale", w.gust_scale)) s.check_range("gust_scale", w.gust_scale, 0.5, 1e5);
+  if (s.read("speed", w.speed)) s.check_range("speed", w.speed, 0, 100);
+  s.reject_unknown();
+}
+
 // [exports]: which writers a build runs.
 void read_exports(Section s, SceneConfig& config) {
   s.read("povray", config.exports.povray);
@@ -675,6 +685,7 @@ SceneConfig parse_scene_config(std::string_view toml_text, const std::filesystem
   read_image(section("image"), config);
   if (const auto* table = top.table("ground")) read_ground(Section(table, "ground", source, config.key_lines), config);
   read_camera_aware(section("camera_aware"), config);
+  if (const auto* table = top.table("wind")) read_wind(Section(table, "wind", source, config.key_lines), config);
   read_exports(section("exports"), config);
   read_ldi(section("ldi"), config);
   top.reject_unknown();

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "generator/tiling.h"
+#include "scene/wind.h"
 
 #include <array>
 #include <cstdint>
@@ -199,6 +200,7 @@ struct SceneConfig {
   SunConfig sun;
   ImageConfig image;
   std::optional<GroundConfig> ground;  // [ground], when the file has it
+  std::optional<WindConfig> wind;      // [wind], when the file has it (scene/wind.h)
   CameraAwareConfig camera_aware;
   ExportsConfig exports;
   LdiConfig ldi;

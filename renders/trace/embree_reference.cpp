@@ -150,7 +150,7 @@ ReferenceImage trace_frame(const Scene& scene, const SceneTracer* traced_already
 
   ReferenceImage out;
   std::optional<SceneTracer> built;
-  if (!traced_already) built.emplace(scene, frame.origin);
+  if (!traced_already) built.emplace(scene, frame.origin, SceneTracer::Layout::whole, options.wind_seconds);
   const SceneTracer& traced = traced_already ? *traced_already : *built;
   for (std::size_t c = 0; c < 3; ++c) frame.origin[c] -= traced.origin()[c];
   out.stats.build_seconds = seconds_since(start);
@@ -222,6 +222,7 @@ ReferenceFrames::ReferenceFrames(const Scene& scene, const std::array<double, 3>
 ReferenceFrames::~ReferenceFrames() = default;
 
 ReferenceImage ReferenceFrames::render(const ReferenceOptions& options) const {
+  impl_->traced.set_wind_time(options.wind_seconds);
   return trace_frame(scene_, &impl_->traced, options);
 }
 

@@ -37,7 +37,8 @@ struct ReferenceOptions {
   // The light. The scene's sun (with_sun) is applied on top: direction and strength come from
   // scene.sun, the rest (sky color, sky rays, exposure, plain ground color) from here.
   ShadingSettings shading;
-  std::uint64_t seed = 0;  // of the jitter and the sky rays: the same seed, the same bytes
+  std::uint64_t seed = 0;   // of the jitter and the sky rays: the same seed, the same bytes
+  double wind_seconds = 0;  // with the scene's wind: the time its flowers lean as at (scene/wind.h)
   // Pixels done of the total, now and then (from worker threads, one call at a time).
   std::function<void(std::uint64_t done, std::uint64_t total)> progress;
 };
@@ -90,7 +91,8 @@ ReferenceImage render_reference(const Scene& scene, const ReferenceOptions& opti
 // Many frames of one scene (the frames of a path): the scene built into Embree once, about
 // `origin` (ENU m: the first frame's eye keeps floats precise near it), then each frame traced
 // as render_reference traces it (its stats' build_seconds then near 0). The scene must outlive
-// it; render() is not to be called from several threads at once.
+// it; render() is not to be called from several threads at once (with the scene's wind it first
+// leans the flowers as they are at options.wind_seconds).
 class ReferenceFrames {
  public:
   ReferenceFrames(const Scene& scene, const std::array<double, 3>& origin);

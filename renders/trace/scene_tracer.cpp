@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "renders/trace/embree_device.h"
+#include "scene/wind.h"
 
 namespace wangscape {
 
@@ -29,6 +30,10 @@ struct SceneTracer::Impl {
   std::vector<std::uint16_t> variant;
   std::vector<float> cos_yaw, sin_yaw, scale;
   std::vector<std::array<float, 3>> position;  // shifted frame
+  // With the scene's wind: each flower's lean at wind_seconds (scene/wind.h), row-major 3 x 3,
+  // applied after its yaw and scale, about its base. Empty when calm.
+  std::vector<std::array<float, 9>> lean;
+  double wind_seconds = 0;
   // bake_sky: per model, per vertex, the sky share of the front (the triangles' winding) and the
   // back, interpolated across a triangle (per triangle, a leaf showed its facets).
   std::vector<std::vector<std::array<float, 2>>> model_sky;
@@ -50,45 +55,61 @@ struct SceneTracer::Impl {
     }
   }
 
+  // Flower f's lean at wind_seconds, from its place as kept (so a frame's lean does not depend
+  // on whether the flowers were added at its time or turned to it later).
+  std::array<float, 9> lean_at(const WindField& wind, std::size_t f) const {
+    const auto r =
+        lean_rotation(wind.lean(double(position[f][0]) + origin[0], double(position[f][1]) + origin[1], wind_seconds));
+    std::array<float, 9> out;
+    for (std::size_t c = 0; c < 9; ++c) out[c] = float(r[c]);
+    return out;
+  }
+
+  // A direction of flower f's model turned as the flower stands: yaw, then its lean (no scale).
+  Vec3f turn(std::size_t f, const Vec3f& d) const {
+    const Vec3f yawed{cos_yaw[f] * d[0] - sin_yaw[f] * d[1], sin_yaw[f] * d[0] + cos_yaw[f] * d[1], d[2]};
+    if (lean.empty()) return yawed;
+    const auto& r = lean[f];
+    return {r[0] * yawed[0] + r[1] * yawed[1] + r[2] * yawed[2], r[3] * yawed[0] + r[4] * yawed[1] + r[5] * yawed[2],
+            r[6] * yawed[0] + r[7] * yawed[1] + r[8] * yawed[2]};
+  }
+
+  // Column-major 3 x 4: rotation about z by yaw, uniform scale, the lean, translation (as
+  // POV-Ray's rotate, scale, rotate, translate of the same instance).
+  std::array<float, 12> transform(std::size_t f) const {
+    const float k = scale[f];
+    const Vec3f x = turn(f, {k, 0, 0}), y = turn(f, {0, k, 0}), z = turn(f, {0, 0, k});
+    return {x[0], x[1], x[2], y[0], y[1], y[2], z[0], z[1], z[2], position[f][0], position[f][1], position[f][2]};
+  }
+
   void add_flowers(const Scene& scene, const InstanceBatch& batch) {
     for (std::size_t i = 0; i < batch.size(); ++i) {
       const std::uint16_t v = batch.variant[i];
       if (v >= scene.models.size())
         throw Error("reference render: an instance of variant " + std::to_string(v) + " but the scene has " +
                     std::to_string(scene.models.size()) + " models");
-      const float c = std::cos(batch.yaw[i]), s = std::sin(batch.yaw[i]), k = batch.scale[i];
-      // Column-major 3 x 4: rotation about z by yaw, uniform scale, translation (as POV-Ray's
-      // rotate, scale, translate of the same instance).
-      const float xfm[12] = {c * k,
-                             s * k,
-                             0,
-                             -s * k,
-                             c * k,
-                             0,
-                             0,
-                             0,
-                             k,
-                             float(batch.x[i] - origin[0]),
-                             float(batch.y[i] - origin[1]),
-                             float(batch.z[i] - origin[2])};
+      const std::size_t f = variant.size();
+      variant.push_back(v);
+      cos_yaw.push_back(std::cos(batch.yaw[i]));
+      sin_yaw.push_back(std::sin(batch.yaw[i]));
+      scale.push_back(batch.scale[i]);
+      position.push_back({float(batch.x[i] - origin[0]), float(batch.y[i] - origin[1]), float(batch.z[i] - origin[2])});
+      if (scene.wind) lean.push_back(lean_at(*scene.wind, f));
+      const auto xfm = transform(f);
       RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
       rtcSetGeometryInstancedScene(g, models[v].get());
-      rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+      rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm.data());
       rtcCommitGeometry(g);
-      rtcAttachGeometryByID(top->get(), g, unsigned(variant.size()) + 1);
+      rtcAttachGeometryByID(top->get(), g, unsigned(f) + 1);
       rtcReleaseGeometry(g);
-      variant.push_back(v);
-      cos_yaw.push_back(c);
-      sin_yaw.push_back(s);
-      scale.push_back(k);
-      position.push_back({xfm[9], xfm[10], xfm[11]});
     }
   }
 };
 
-SceneTracer::SceneTracer(const Scene& scene, const std::array<double, 3>& origin, Layout layout)
+SceneTracer::SceneTracer(const Scene& scene, const std::array<double, 3>& origin, Layout layout, double wind_seconds)
     : scene_(scene), impl_(std::make_unique<Impl>()) {
   Impl& t = *impl_;
+  t.wind_seconds = wind_seconds;
   t.origin = {std::round(origin[0]), std::round(origin[1]), std::round(origin[2])};
   t.models = model_scenes(t.device, scene.models);
   t.top = std::make_unique<EmbreeScene>(t.device.get());
@@ -125,6 +146,7 @@ void SceneTracer::set_flowers(const InstanceStream& flowers) {
   t.sin_yaw.clear();
   t.scale.clear();
   t.position.clear();
+  t.lean.clear();
   if (t.terrain) {
     RTCGeometry g = rtcNewGeometry(t.device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(g, t.terrain->get());
@@ -139,6 +161,25 @@ void SceneTracer::set_flowers(const InstanceStream& flowers) {
   rtcCommitScene(t.top->get());
   t.device.check("building the scene");
 }
+
+void SceneTracer::set_wind_time(double seconds) {
+  Impl& t = *impl_;
+  if (!scene_.wind || seconds == t.wind_seconds) return;
+  t.wind_seconds = seconds;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, t.lean.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t f = r.begin(); f != r.end(); ++f) t.lean[f] = t.lean_at(*scene_.wind, f);
+  });
+  for (std::size_t f = 0; f < t.variant.size(); ++f) {
+    RTCGeometry g = rtcGetGeometry(t.top->get(), unsigned(f) + 1);
+    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, t.transform(f).data());
+    rtcCommitGeometry(g);
+  }
+  t.device.check("leaning the flowers in the wind");
+  rtcCommitScene(t.top->get());
+  t.device.check("building the scene");
+}
+
+double SceneTracer::wind_seconds() const { return impl_->wind_seconds; }
 
 void SceneTracer::bake_sky(const ShadingSettings& shading, int rays, int instances) {
   Impl& t = *impl_;
@@ -175,12 +216,12 @@ void SceneTracer::bake_sky(const ShadingSettings& shading, int rays, int instanc
             for (int side = 0; side < 2; ++side) {
               float open = 0;
               for (const std::size_t f : chosen[v]) {
-                const float cy = t.cos_yaw[f], sy = t.sin_yaw[f], k = t.scale[f];
-                const Vec3f at{t.position[f][0] + k * (cy * centre[0] - sy * centre[1]),
-                               t.position[f][1] + k * (sy * centre[0] + cy * centre[1]),
-                               t.position[f][2] + k * centre[2]};
+                const float k = t.scale[f];
+                const Vec3f turned = t.turn(f, {centre[0], centre[1], centre[2]}), normal = t.turn(f, n);
+                const Vec3f at{t.position[f][0] + k * turned[0], t.position[f][1] + k * turned[1],
+                               t.position[f][2] + k * turned[2]};
                 const float sign = side == 0 ? 1.0f : -1.0f;
-                const Vec3f facing{sign * (cy * n[0] - sy * n[1]), sign * (sy * n[0] + cy * n[1]), sign * n[2]};
+                const Vec3f facing{sign * normal[0], sign * normal[1], sign * normal[2]};
                 open += open_sky_share(
                     t.top->get(), per_flower, at, facing,
                     mix64((std::uint64_t(v) << 40) ^ (std::uint64_t(p) << 8) ^ std::uint64_t(side * 16) ^ f));
@@ -285,12 +326,12 @@ SurfaceSample SceneTracer::surface(const Hit& h, const V3& from, const V3& d, co
     const unsigned f = h.inst - 1;
     const Mesh& mesh = scene_.models[t.variant[f]];
     model_surface(mesh, h.prim, h.u, h.v, t.cos_yaw[f], t.sin_yaw[f], s);
+    if (!t.lean.empty()) s.normal = unit_or_up(t.turn(f, model_normal(mesh, h.prim, h.u, h.v)));
     if (!t.model_sky.empty()) {
       // The side the ray sees: the back where the triangle's winding faces away from the ray.
       const auto& tri = mesh.triangles[h.prim];
-      const Vec3f& n = t.model_faces[t.variant[f]][h.prim];
-      const double yawed[2] = {t.cos_yaw[f] * n[0] - t.sin_yaw[f] * n[1], t.sin_yaw[f] * n[0] + t.cos_yaw[f] * n[1]};
-      const bool back = yawed[0] * d[0] + yawed[1] * d[1] + double(n[2]) * d[2] > 0;
+      const Vec3f turned = t.turn(f, t.model_faces[t.variant[f]][h.prim]);
+      const bool back = double(turned[0]) * d[0] + double(turned[1]) * d[1] + double(turned[2]) * d[2] > 0;
       const auto& sky = t.model_sky[t.variant[f]];
       const std::size_t side = back ? 1 : 0;
       s.sky = (1 - h.u - h.v) * sky[tri[0]][side] + h.u * sky[tri[1]][side] + h.v * sky[tri[2]][side];

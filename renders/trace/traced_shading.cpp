@@ -46,20 +46,27 @@ Vec3f face_normal(const std::array<float, 3>& p0, const std::array<float, 3>& p1
           float(e1[0] * e2[1] - e1[1] * e2[0])};
 }
 
+Vec3f model_normal(const Mesh& mesh, unsigned prim, float u, float v) {
+  const auto& tri = mesh.triangles[prim];
+  if (mesh.normals.empty()) return face_normal(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
+  Vec3f n{};
+  const float w0 = 1 - u - v;
+  for (std::size_t c = 0; c < 3; ++c)
+    n[c] = w0 * mesh.normals[tri[0]][c] + u * mesh.normals[tri[1]][c] + v * mesh.normals[tri[2]][c];
+  return n;
+}
+
+Vec3f unit_or_up(const Vec3f& r) {
+  const float len = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+  return len > 0 ? Vec3f{r[0] / len, r[1] / len, r[2] / len} : Vec3f{0, 0, 1};
+}
+
 void model_surface(const Mesh& mesh, unsigned prim, float u, float v, float cos_yaw, float sin_yaw,
                    SurfaceSample& out) {
   const auto& tri = mesh.triangles[prim];
-  Vec3f n{};
-  if (!mesh.normals.empty()) {
-    const float w0 = 1 - u - v;
-    for (std::size_t c = 0; c < 3; ++c)
-      n[c] = w0 * mesh.normals[tri[0]][c] + u * mesh.normals[tri[1]][c] + v * mesh.normals[tri[2]][c];
-  } else {
-    n = face_normal(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
-  }
+  const Vec3f n = model_normal(mesh, prim, u, v);
   const Vec3f r{cos_yaw * n[0] - sin_yaw * n[1], sin_yaw * n[0] + cos_yaw * n[1], n[2]};
-  const float len = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-  out.normal = len > 0 ? Vec3f{r[0] / len, r[1] / len, r[2] / len} : Vec3f{0, 0, 1};
+  out.normal = unit_or_up(r);
   if (prim < mesh.triangle_material.size()) {
     const std::uint16_t slot = mesh.triangle_material[prim];
     if (slot < mesh.materials.size()) {

@@ -32,6 +32,11 @@ struct SurfaceSample {
 // The normal of the triangle (a, b, c) by its winding, not made unit (its length: twice the area).
 Vec3f face_normal(const std::array<float, 3>& a, const std::array<float, 3>& b, const std::array<float, 3>& c);
 
+// The model's own normal at (u, v) of triangle `prim` (interpolated, or the face's), not unit.
+Vec3f model_normal(const Mesh& mesh, unsigned prim, float u, float v);
+// `r` made unit; up (0, 0, 1) when it has no length.
+Vec3f unit_or_up(const Vec3f& r);
+
 // The surface of triangle `prim` of a model hit at barycentric (u, v): the normal (smooth where
 // the mesh has normals, else the triangle's), turned by the instance's yaw about +z and made unit
 // (+z when degenerate), and the triangle's material (base color times its image's texel at the

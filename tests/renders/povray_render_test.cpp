@@ -10,10 +10,14 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <random>
+#include <sstream>
 #include <string>
 
 #include "exporters/povray_writer.h"
+#include "renders/external/child_process.h"
 #include "renders/external/povray_render.h"
+#include "scene/wind.h"
 
 namespace wangscape {
 namespace {
@@ -236,6 +240,58 @@ TEST(PovrayRender, MissingPovrayIsNamed) {
 TEST(PovrayRender, FolderWithoutSceneIsAnError) {
   const auto dir = scratch("nothing");
   EXPECT_THROW(render_povray(dir), Error);
+}
+
+// The wind's functions as POV-Ray itself evaluates them equal the lean every other engine takes
+// (WindField::lean), at random places and times over many winds. (POV-Ray 3.7 folds
+// `- a * Wind_Time + b` in a function into -(a * t + b): the first version of these functions
+// leaned every plant wrong in POV-Ray alone, which this test catches.)
+TEST(PovrayRender, WindFunctionsLeanAsEveryEngine) {
+  const auto dir = scratch("wind");
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> direction(0, 360), strength(1, 45), scale(0.5, 60), speed(0, 20);
+  std::uniform_real_distribution<double> place(-9000, 9000), time(0, 300);
+  struct Probe {
+    WindField field;
+    double e, n, t;
+  };
+  std::vector<Probe> probes;
+  std::string pov = "#version 3.7;\n";
+  for (int wind = 0; wind < 12; ++wind) {
+    const WindField field = wind_field({direction(rng), strength(rng), scale(rng), speed(rng)});
+    for (int k = 0; k < 5; ++k) {
+      const Probe probe{field, place(rng), place(rng), time(rng)};
+      // Each probe with its own time: the functions compiled anew after Wind_Time changes.
+      if (!probes.empty()) pov += "#undef Wind_East\n#undef Wind_North\n";  // functions cannot be redeclared
+      pov += "#declare Wind_Time = " + std::to_string(probe.t) + ";\n" + povray_wind_functions(field);
+      pov += "#debug concat(\"lean \", str(Wind_East(" + std::to_string(probe.e) + ", " + std::to_string(probe.n) +
+             "), 0, 9), \" \", str(Wind_North(" + std::to_string(probe.e) + ", " + std::to_string(probe.n) +
+             "), 0, 9), \"\\n\")\n";
+      probes.push_back(probe);
+    }
+  }
+  std::ofstream(dir / "wind.pov") << pov;
+  const fs::path povray = find_program("povray");
+  ASSERT_FALSE(povray.empty()) << "povray is not on PATH";
+  const ChildExit exit =
+      run_logged({povray.string(), "+Iwind.pov", "-D", "+W1", "+H1", "+O/dev/null"}, dir / "log", dir);
+  ASSERT_TRUE(exit.exited && exit.status == 0) << exit.describe() << last_log_lines(dir / "log", 10);
+  std::ifstream log(dir / "log");
+  std::size_t seen = 0;
+  for (std::string line; std::getline(log, line);) {
+    if (!line.starts_with("lean ")) continue;
+    ASSERT_LT(seen, probes.size());
+    const Probe& p = probes[seen++];
+    // The probe's time and place as the .pov spells them (six decimals).
+    const auto six = [](double v) { return std::stod(std::to_string(v)); };
+    const WindLean expected = p.field.lean(six(p.e), six(p.n), six(p.t));
+    std::istringstream words(line.substr(5));
+    double east = 0, north = 0;
+    words >> east >> north;
+    EXPECT_NEAR(east, expected.east, 1e-6) << "probe " << seen - 1;
+    EXPECT_NEAR(north, expected.north, 1e-6) << "probe " << seen - 1;
+  }
+  EXPECT_EQ(seen, probes.size());
 }
 
 }  // namespace

@@ -16,6 +16,7 @@ FORMAT_VERSION = 1
 MODELS_COLLECTION = "Wangscape models"
 FIELD_OBJECT = "Wangscape flowers"
 NODE_GROUP = "Wangscape instancing"
+RADIANS_PER_DEGREE = math.pi / 180
 BLENDERGIS_KEYS = ("SRID", "crs x", "crs y", "latitude", "longitude")
 
 DTYPES = {"float32": "<f4", "uint32": "<u4", "uint16": "<u2", "int32": "<i4"}
@@ -235,8 +236,9 @@ def build_models_collection(context, folder, manifest, materials):
     return collection
 
 
-def build_instancing_group(collection):
-    """Geometry nodes: Instance on Points picking a child of the collection per point."""
+def build_instancing_group(collection, wind=None):
+    """Geometry nodes: Instance on Points picking a child of the collection per point; with the
+    manifest's wind, each instance then leans about its base (build_wind_sway)."""
     group = bpy.data.node_groups.new(NODE_GROUP, "GeometryNodeTree")
     new_group_socket(group, "INPUT", "Geometry", "NodeSocketGeometry")
     new_group_socket(group, "OUTPUT", "Geometry", "NodeSocketGeometry")
@@ -267,8 +269,52 @@ def build_instancing_group(collection):
     links.new(named_attribute("variant", "INT", 0), instance.inputs["Instance Index"])
     links.new(named_attribute("rotation", "FLOAT_VECTOR", -150), instance.inputs["Rotation"])
     links.new(named_attribute("scale", "FLOAT", -300), instance.inputs["Scale"])
-    links.new(instance.outputs[0], group_out.inputs[0])
+    if wind:
+        swayed = build_wind_sway(nodes, links, wind)
+        links.new(instance.outputs[0], swayed.inputs["Instances"])
+        links.new(swayed.outputs[0], group_out.inputs[0])
+    else:
+        links.new(instance.outputs[0], group_out.inputs[0])
     return group
+
+
+def build_wind_sway(nodes, links, wind):
+    """Rotate Instances by the wind's lean (docs/blender-format.md "wind"): at each plant's place
+    (E, N) and the scene time t in seconds, east = base_east + sum of amplitude_east *
+    sin(k_east E + k_north N + k_time t + phase), north likewise, in degrees; the plant turns
+    about its base by Euler XYZ (-north, east, 0), in world axes."""
+    position = nodes.new("GeometryNodeInputPosition")
+    place = nodes.new("ShaderNodeSeparateXYZ")
+    links.new(position.outputs[0], place.inputs[0])
+    seconds = nodes.new("GeometryNodeInputSceneTime").outputs["Seconds"]
+
+    def scalar(operation, a, b=0.0, c=0.0):
+        node = nodes.new("ShaderNodeMath")
+        node.operation = operation
+        for socket, value in zip(node.inputs, (a, b, c)):
+            if isinstance(value, bpy.types.NodeSocket):
+                links.new(value, socket)
+            else:
+                socket.default_value = value
+        return node.outputs[0]
+
+    east, north = wind["base_east"], wind["base_north"]
+    for wave in wind["waves"]:
+        phase = scalar("MULTIPLY_ADD", place.outputs["X"], wave["k_east"], wave["phase"])
+        phase = scalar("MULTIPLY_ADD", place.outputs["Y"], wave["k_north"], phase)
+        phase = scalar("MULTIPLY_ADD", seconds, wave["k_time"], phase)
+        wave_value = scalar("SINE", phase)
+        east = scalar("MULTIPLY_ADD", wave_value, wave["amplitude_east"], east)
+        north = scalar("MULTIPLY_ADD", wave_value, wave["amplitude_north"], north)
+    rotation = nodes.new("ShaderNodeCombineXYZ")
+    links.new(scalar("MULTIPLY", north, -RADIANS_PER_DEGREE), rotation.inputs["X"])
+    links.new(scalar("MULTIPLY", east, RADIANS_PER_DEGREE), rotation.inputs["Y"])
+    sway = nodes.new("GeometryNodeRotateInstances")
+    sway.location = (300, 0)
+    links.new(rotation.outputs[0], sway.inputs["Rotation"])
+    links.new(position.outputs[0], sway.inputs["Pivot Point"])
+    sway.inputs["Local Space"].default_value = False
+    return sway
 
 
 def build_field(context, folder, manifest, collection):
@@ -303,7 +349,7 @@ def build_field(context, folder, manifest, collection):
     obj = bpy.data.objects.new(FIELD_OBJECT, mesh)
     context.scene.collection.objects.link(obj)
     modifier = obj.modifiers.new("Wangscape instancing", "NODES")
-    modifier.node_group = build_instancing_group(collection)
+    modifier.node_group = build_instancing_group(collection, manifest.get("wind"))
     obj["wangscape_instance_count"] = count
     return obj
 
@@ -486,6 +532,10 @@ def import_manifest(context, path, set_render_settings=True, set_world=True):
         scene.collection.objects.link(terrain)
     collection = build_models_collection(context, folder, manifest, materials)
     build_field(context, folder, manifest, collection)
+    if manifest.get("wind"):
+        # The wind's time is the scene time: frame 0 is its time 0, as a still's.
+        scene.frame_start = 0
+        scene.frame_current = 0
     build_camera(context, manifest["camera"], _extent(manifest))
     if set_world:
         build_sun_and_sky(context, manifest["sun"], manifest.get("light"))
