@@ -7,9 +7,11 @@
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <numbers>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/atomic_file.h"
@@ -49,6 +51,27 @@ Vec3f unit_gltf_normal(const std::array<float, 3>& enu) {
 std::array<float, 4> yaw_quaternion(float yaw) {
   const double half = 0.5 * double(yaw);
   return {0.0f, float(std::sin(half)), 0.0f, float(std::cos(half))};
+}
+
+// A flower's rotation: its yaw, then with the scene's wind its lean at time 0, as the still of
+// every other engine has it (scene/wind.h): about east (glTF +x) by -north, then about north
+// (glTF -z) by east. Quaternions (x, y, z, w), composed in double.
+std::array<float, 4> flower_rotation(float yaw, const std::optional<WindField>& wind, double east, double north) {
+  if (!wind) return yaw_quaternion(yaw);
+  using Q = std::array<double, 4>;
+  const auto about = [](double x, double y, double z, double radians) {
+    const double s = std::sin(0.5 * radians);
+    return Q{x * s, y * s, z * s, std::cos(0.5 * radians)};
+  };
+  const auto times = [](const Q& a, const Q& b) {
+    return Q{a[3] * b[0] + a[0] * b[3] + a[1] * b[2] - a[2] * b[1], a[3] * b[1] - a[0] * b[2] + a[1] * b[3] + a[2] * b[0],
+             a[3] * b[2] + a[0] * b[1] - a[1] * b[0] + a[2] * b[3], a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2]};
+  };
+  constexpr double kRadiansPerDegree = std::numbers::pi / 180;
+  const WindLean lean = wind->lean(east, north, 0);
+  const Q q = times(times(about(0, 0, -1, lean.east * kRadiansPerDegree), about(1, 0, 0, -lean.north * kRadiansPerDegree)),
+                    about(0, 1, 0, double(yaw)));
+  return {float(q[0]), float(q[1]), float(q[2]), float(q[3])};
 }
 
 // The binary chunk's static part (meshes) plus the glTF objects describing it.
@@ -140,7 +163,8 @@ class GltfBuilder {
 // Per-variant instance attributes streamed to temporary files beside the output.
 class InstanceSpill {
  public:
-  InstanceSpill(const std::filesystem::path& output, std::size_t variants) {
+  InstanceSpill(const std::filesystem::path& output, std::size_t variants, std::optional<WindField> wind)
+      : wind_(std::move(wind)) {
     for (std::size_t v = 0; v < variants; ++v) {
       auto& files = variants_.emplace_back();
       for (int a = 0; a < 3; ++a) {
@@ -157,7 +181,7 @@ class InstanceSpill {
     for (std::size_t i = 0; i < batch.size(); ++i) {
       Variant& v = variants_[batch.variant[i]];
       const Vec3f t = to_gltf(std::array<float, 3>{batch.x[i], batch.y[i], batch.z[i]});
-      const auto r = yaw_quaternion(batch.yaw[i]);
+      const auto r = flower_rotation(batch.yaw[i], wind_, batch.x[i], batch.y[i]);
       const Vec3f s = {batch.scale[i], batch.scale[i], batch.scale[i]};
       v.streams[0].write(reinterpret_cast<const char*>(t.data()), sizeof t);
       v.streams[1].write(reinterpret_cast<const char*>(r.data()), sizeof r);
@@ -183,6 +207,7 @@ class InstanceSpill {
     std::uint64_t count = 0;
   };
   std::vector<Variant> variants_;
+  std::optional<WindField> wind_;
 };
 
 void copy_file_into(std::ostream& out, const std::filesystem::path& path, const std::filesystem::path& output) {
@@ -362,7 +387,7 @@ GltfWriter::GltfWriter(const Scene& scene, const std::filesystem::path& path, co
     impl.meshes.push_back(impl.builder.add_mesh(scene.models[m], impl.table.model_slots[m]));
   impl.per_variant.assign(scene.models.size(), 0);
   if (options.instancing == GltfInstancing::gpu_instancing)
-    impl.spill = std::make_unique<InstanceSpill>(path, scene.models.size());
+    impl.spill = std::make_unique<InstanceSpill>(path, scene.models.size(), scene.wind);
 }
 
 GltfWriter::~GltfWriter() = default;
@@ -377,7 +402,7 @@ void GltfWriter::append(const InstanceBatch& batch) {
     const float s = batch.scale[i];
     impl.nodes.push_back(Json{{"mesh", impl.first_model_mesh + batch.variant[i]},
                               {"translation", to_gltf(std::array<float, 3>{batch.x[i], batch.y[i], batch.z[i]})},
-                              {"rotation", yaw_quaternion(batch.yaw[i])},
+                              {"rotation", flower_rotation(batch.yaw[i], impl.scene.wind, batch.x[i], batch.y[i])},
                               {"scale", {s, s, s}}});
     impl.root_children.push_back(impl.nodes.size() - 1);
     ++impl.per_variant[batch.variant[i]];
