@@ -100,6 +100,33 @@ void publish_frame(const fs::path& from, const fs::path& to) {
   if (ec) throw Error(to, "", "cannot move the rendered frame here: " + ec.message());
 }
 
+// One POV-Ray run of the frames `todo` of `cameras` into `frames`: the folder's scene.pov with
+// their cameras indexed by frame_number, and the wind's time of each (frame k at k / fps), in a
+// temporary .pov beside it (POV-Ray resolves includes from the folder). Returns the log.
+fs::path render_povray_frames(const fs::path& dir, const fs::path& frames, const std::vector<Camera>& cameras,
+                              const std::vector<long long>& todo, double fps, int width, int height,
+                              const std::function<void(long long, const fs::path&)>& frame_done) {
+  std::vector<Camera> todo_cameras;
+  std::vector<double> todo_seconds;
+  for (const long long k : todo) {
+    todo_cameras.push_back(cameras[std::size_t(k)]);
+    todo_seconds.push_back(double(k) / fps);
+  }
+  const std::string pov_text = read_text_file(dir / "scene.pov", std::uintmax_t(1) << 30, "POV-Ray scene");
+  AtomicPath pov(dir / "scene_path.pov");  // never committed: removed when done
+  write_file_atomically(pov.temp_path(),
+                        povray_scene_with_cameras(pov_text, todo_cameras, dir / "scene.pov", todo_seconds));
+  WorkFolder work(frames, "povray");
+  PovrayRenderOptions options;
+  options.width = width;
+  options.height = height;
+  options.input_file = pov.temp_path().filename().string();
+  options.frames = static_cast<int>(todo.size());
+  options.frames_dir = work.dir();
+  options.on_frame = [&](int i, const fs::path& file) { frame_done(todo[std::size_t(i)], file); };
+  return render_povray(dir, options).log;
+}
+
 }  // namespace
 
 bool complete_png(const fs::path& file, int width, int height) {
@@ -205,27 +232,7 @@ PathRenderResult render_path(const fs::path& dir, const PathRenderRequest& reque
       frame_done(k, {});
     }
   } else if (!todo.empty() && request.engine == RenderEngine::povray) {
-    // One POV-Ray run: the folder's scene.pov with the cameras of the frames to render, indexed
-    // by frame_number, in a temporary .pov beside it (POV-Ray resolves includes from the folder).
-    std::vector<Camera> todo_cameras;
-    std::vector<double> todo_seconds;  // the wind's time of each frame
-    for (const long long k : todo) {
-      todo_cameras.push_back(cameras[std::size_t(k)]);
-      todo_seconds.push_back(double(k) / request.fps);
-    }
-    const std::string pov_text = read_text_file(dir / "scene.pov", std::uintmax_t(1) << 30, "POV-Ray scene");
-    AtomicPath pov(dir / "scene_path.pov");  // never committed: removed when done
-    write_file_atomically(pov.temp_path(),
-                          povray_scene_with_cameras(pov_text, todo_cameras, dir / "scene.pov", todo_seconds));
-    WorkFolder work(folder.dir(), "povray");
-    PovrayRenderOptions options;
-    options.width = width;
-    options.height = height;
-    options.input_file = pov.temp_path().filename().string();
-    options.frames = static_cast<int>(todo.size());
-    options.frames_dir = work.dir();
-    options.on_frame = [&](int i, const fs::path& file) { frame_done(todo[std::size_t(i)], file); };
-    result.log = render_povray(dir, options).log;
+    result.log = render_povray_frames(dir, folder.dir(), cameras, todo, request.fps, width, height, frame_done);
   } else if (!todo.empty() && request.engine == RenderEngine::blender) {
     // One Blender run: the camera keyframed at every frame of FRAMES/path.blend, the frames to
     // render rendered by Cycles.
