@@ -15,15 +15,13 @@
 #include "core/number_text.h"
 #include "core/run_cleanup.h"
 #include "core/text_file.h"
-#include "exporters/folder_state.h"
 #include "exporters/image_io.h"
 #include "exporters/povray_writer.h"
-#include "exporters/scene_folder.h"
+#include "folder/scene_folder.h"
 #include "renders/external/blender_render.h"
 #include "renders/external/child_process.h"
 #include "renders/external/movie.h"
 #include "renders/external/povray_render.h"
-#include "renders/ldi/ldi_scene.h"
 #include "renders/render_folder.h"
 #include "renders/trace/embree_reference.h"
 
@@ -147,14 +145,16 @@ PathRenderResult render_path(const fs::path& dir, const PathRenderRequest& reque
   // Everything that can be refused is, before the frames folder is made.
   const ViewPath path = read_view_path(request.path);
   path_frame_count(path, request.fps, request.path, "--fps");
-  if (request.engine == RenderEngine::povray && !fs::is_regular_file(dir / "scene.pov"))
-    throw Error("render: '" + dir.string() + "' has no scene.pov (build it with [exports] povray = true)");
+  const FolderFiles files(dir);
+  if (request.engine == RenderEngine::povray && !fs::is_regular_file(files.povray_scene()))
+    throw Error("render: '" + dir.string() + "' has no " + files.povray_scene().filename().string() +
+                " (build it with [exports] povray = true)");
   if (request.engine == RenderEngine::blender && find_blender_manifest(dir).empty())
     throw Error("render: '" + dir.string() + "' has no blender/manifest.json (build it with [exports] blender = true)");
-  const SceneConfig config = load_scene_folder_config(dir);
-  const Scene scene = make_folder_scene(dir, config);
+  const SceneFolder scene_folder = SceneFolder::open(dir);
+  const Scene scene = scene_folder.make_scene();
   const std::vector<Camera> cameras = path_cameras(scene, path, request.fps, request.path);
-  const auto [width, height] = folder_image_size(dir, request.width, request.height);
+  const auto [width, height] = folder_image_size(scene_folder.config(), request.width, request.height);
   const long long all = static_cast<long long>(cameras.size());
   const long long first = request.first_frame, count = request.frame_count > 0 ? request.frame_count : all - first;
   if (first < 0 || first >= all || count < 1 || count > all - first)
@@ -196,7 +196,7 @@ PathRenderResult render_path(const fs::path& dir, const PathRenderRequest& reque
     options.width = width;
     options.height = height;
     options.samples_per_pixel = request.samples;
-    options.shading = ldi_options(config).shading;  // the light of the folder's LDI pack, as the view's
+    options.shading = scene_folder.light();  // the light of the folder's LDI pack, as the view's
     const ReferenceFrames traced(scene, cameras[std::size_t(todo.front())].position);  // built once
     for (const long long k : todo) {
       options.camera = cameras[std::size_t(k)];
@@ -208,9 +208,9 @@ PathRenderResult render_path(const fs::path& dir, const PathRenderRequest& reque
     // by frame_number, in a temporary .pov beside it (POV-Ray resolves includes from the folder).
     std::vector<Camera> todo_cameras;
     for (const long long k : todo) todo_cameras.push_back(cameras[std::size_t(k)]);
-    const std::string pov_text = read_text_file(dir / "scene.pov", std::uintmax_t(1) << 30, "POV-Ray scene");
+    const std::string pov_text = read_text_file(files.povray_scene(), std::uintmax_t(1) << 30, "POV-Ray scene");
     AtomicPath pov(dir / "scene_path.pov");  // never committed: removed when done
-    write_file_atomically(pov.temp_path(), povray_scene_with_cameras(pov_text, todo_cameras, dir / "scene.pov"));
+    write_file_atomically(pov.temp_path(), povray_scene_with_cameras(pov_text, todo_cameras, files.povray_scene()));
     WorkFolder work(folder.dir(), "povray");
     PovrayRenderOptions options;
     options.width = width;
