@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -116,11 +117,15 @@ std::array<int, 2> folder_image_size(const SceneConfig& config, int width, int h
 }
 
 FolderRenderResult render_scene_folder(const std::filesystem::path& dir, const FolderRenderRequest& asked) {
-  // The scene is made only for Embree, or for another camera or sun.
-  const bool made = asked.engine == RenderEngine::embree || other_camera(asked) || asked.sun_degrees;
-  const SceneFolder folder = SceneFolder::open(dir, made ? SceneFolder::Parts::state : SceneFolder::Parts::scene_file);
-  const FolderRenderRequest request = with_aspect_kept(folder.config(), asked);
-  if (request.engine == RenderEngine::embree) return render_embree(folder, request);
+  // The folder is opened only where the render needs it: the scene made again for Embree, another
+  // camera or POV-Ray's other sun; the scene file for a size given by one side.
+  const bool made = asked.engine == RenderEngine::embree || other_camera(asked) ||
+                    (asked.sun_degrees && asked.engine == RenderEngine::povray);
+  std::optional<SceneFolder> folder;
+  if (made || (asked.width > 0) != (asked.height > 0))
+    folder.emplace(SceneFolder::open(dir, made ? SceneFolder::Parts::state : SceneFolder::Parts::scene_file));
+  const FolderRenderRequest request = folder ? with_aspect_kept(folder->config(), asked) : asked;
+  if (request.engine == RenderEngine::embree) return render_embree(*folder, request);
   if (request.samples_per_pixel != 0)
     throw Error("render: --spp is for --engine embree (and blender --path); " + std::string(to_string(request.engine)) +
                 " takes its samples from the scene (its antialias)");
@@ -138,7 +143,7 @@ FolderRenderResult render_scene_folder(const std::filesystem::path& dir, const F
     }
     // Another camera: a one-frame run of the frames' script (renders/external/blender_render.h),
     // its frame moved to the still's name.
-    const Camera camera = chosen_camera(folder.make_scene(), folder.config(), request);
+    const Camera camera = chosen_camera(folder->make_scene(), folder->config(), request);
     AtomicPath work(dir / "blender_camera");  // a folder under a temporary's name, removed when done
     std::filesystem::create_directory(work.temp_path());
     const nlohmann::json spec{{"fps", 1},
@@ -173,11 +178,11 @@ FolderRenderResult render_scene_folder(const std::filesystem::path& dir, const F
   options.on_progress = request.on_progress;
   // Another camera or sun: the folder's scene.pov with it, in a temporary .pov beside it.
   AtomicPath pov(dir / "scene_camera.pov");  // never committed: removed when done
-  const std::filesystem::path pov_file = folder.files().povray_scene();
+  const std::filesystem::path pov_file = FolderFiles(dir).povray_scene();
   if (made && std::filesystem::is_regular_file(pov_file)) {
     const std::string text = read_text_file(pov_file, std::uintmax_t(1) << 30, "POV-Ray scene");
-    const Scene scene = folder.make_scene();
-    const Camera camera = chosen_camera(scene, folder.config(), request);
+    const Scene scene = folder->make_scene();
+    const Camera camera = chosen_camera(scene, folder->config(), request);
     write_file_atomically(pov.temp_path(), request.sun_degrees ? povray_scene_with_camera_and_sun(
                                                                      text, camera, chosen_sun(scene, request), pov_file)
                                                                : povray_scene_with_cameras(text, {camera}, pov_file));
