@@ -11,9 +11,9 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "folder/ldi_pack.h"
 #include "generator/poisson_tiles.h"
 #include "renders/ldi/ldi_build.h"
-#include "renders/ldi/ldi_pack.h"
 #include "templates/sunflower.h"
 
 namespace {

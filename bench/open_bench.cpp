@@ -1,17 +1,17 @@
 // Opening a scene folder, as `wangscape view` and `render --engine embree` do, on the default
 // scene (its field on Mount St. Helens with [exports] ldi; the folder is built once per run into
 // a temporary folder: about 30 s, mostly the LDI pack):
-// BM_OpenViewWorld: ViewWorld::load (the scene file, what the build kept in scene.cache and
-//   tiles.json, the DEM, the models, the pack mapped and checked, the terrain's light and the far
-//   field) per iteration. The goal (issue 21): under 1 s.
-// BM_OpenFolderScene: make_folder_scene alone (the Scene as the build made it).
+// BM_OpenViewWorld: ViewWorld::load (the scene file, what the build kept for its readers, the
+//   DEM, the models, the pack mapped and checked, the terrain's light and the far field) per
+//   iteration. The goal (issue 21): under 1 s.
+// BM_OpenFolderScene: SceneFolder::open and make_scene alone (the Scene as the build made it).
 // BM_MakeSceneAgain: make_scene from the scene file, as readers did before scene.cache.
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
 #include <filesystem>
 
-#include "exporters/folder_state.h"
+#include "folder/scene_folder.h"
 #include "renders/scene_build.h"
 #include "renders/view/view_world.h"
 #include "scene/scene_file.h"
@@ -40,13 +40,11 @@ void BM_OpenViewWorld(benchmark::State& state) {
 
 void BM_OpenFolderScene(benchmark::State& state) {
   const fs::path& dir = default_folder();
-  const SceneConfig config = load_scene_folder_config(dir);
-  for (auto _ : state) benchmark::DoNotOptimize(make_folder_scene(dir, config));
+  for (auto _ : state) benchmark::DoNotOptimize(SceneFolder::open(dir).make_scene());
 }
 
 void BM_MakeSceneAgain(benchmark::State& state) {
-  const fs::path& dir = default_folder();
-  const SceneConfig config = load_scene_folder_config(dir);
+  const SceneConfig config = SceneFolder::open(default_folder(), SceneFolder::Parts::scene_file).config();
   for (auto _ : state) benchmark::DoNotOptimize(make_scene(config));
 }
 

@@ -9,7 +9,7 @@
 
 #include "cli/command.h"
 #include "cli/progress.h"
-#include "renders/ldi/ldi_info.h"
+#include "folder/ldi_info.h"
 #include "renders/ldi/ldi_scene.h"
 #include "renders/ldi/ldi_sheet.h"
 

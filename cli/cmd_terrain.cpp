@@ -16,7 +16,7 @@
 #include "core/json_text.h"
 #include "core/number_text.h"
 #include "exporters/reports.h"
-#include "exporters/scene_folder.h"
+#include "folder/scene_folder.h"
 #include "scene/scene_file.h"
 #include "scene/scene_ground.h"
 #include "terrain/terrain.h"
@@ -48,7 +48,8 @@ SceneGround load_ground(const TerrainHeightOptions& options) {
   if (folder || source.extension() == ".toml") {
     if (!options.origin.empty())
       throw Error("--origin: the scene's [terrain] sets the origin of '" + options.source + "'; give it there");
-    const SceneConfig config = folder ? load_scene_folder_config(source) : load_scene_config(source);
+    const SceneConfig config =
+        folder ? SceneFolder::open(source, SceneFolder::Parts::scene_file).config() : load_scene_config(source);
     return SceneGround::load(config.terrain);
   }
   TerrainConfig terrain;

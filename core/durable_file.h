@@ -6,7 +6,7 @@
 // rename, the folder the rename wrote into is flushed.
 //
 // Every publisher goes through these: AtomicFile and AtomicPath (core/atomic_file.h), the scene
-// folder's swap (exporters/scene_folder.h), the cleanup that puts a cut-short swap's old build
+// folder's swap (folder/scene_folder.h), the cleanup that puts a cut-short swap's old build
 // back (core/run_cleanup.h). Errors are wangscape::Error naming the file or folder. Thread safe.
 #pragma once
 

@@ -68,7 +68,7 @@ void check_mesh(const Mesh& mesh, const std::string& what);
 std::vector<std::pair<std::string, std::string>> blendergis_properties(const Georeference& georeference);
 
 // A baked ground encoded as PNG once for all the writers of one build (POV-Ray and Blender write
-// it, glTF embeds it: the same bytes). The build (write_scene_folder) owns one and hands it to
+// it, glTF embeds it: the same bytes). The build (folder/scene_folder.h, its writers' stage) owns one and hands it to
 // each writer in its options; a writer made alone makes its own. Thread-safe.
 class EncodedGround {
  public:

@@ -83,7 +83,7 @@ class PlantCover {
 };
 
 // The scene folder's GIS export: `dir`/plants.gpkg and `dir`/cover.tif (names from
-// exporters/scene_folder.h's caller). The scene must stand on a DEM.
+// folder/scene_folder.h's caller). The scene must stand on a DEM.
 class GisWriter : public SceneWriter {
  public:
   GisWriter(const Scene& scene, const std::filesystem::path& plants, const std::filesystem::path& cover,

@@ -7,8 +7,8 @@
 #include <cstring>
 #include <fstream>
 #include <memory>
-#include <numbers>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <utility>
@@ -64,13 +64,15 @@ std::array<float, 4> flower_rotation(float yaw, const std::optional<WindField>& 
     return Q{x * s, y * s, z * s, std::cos(0.5 * radians)};
   };
   const auto times = [](const Q& a, const Q& b) {
-    return Q{a[3] * b[0] + a[0] * b[3] + a[1] * b[2] - a[2] * b[1], a[3] * b[1] - a[0] * b[2] + a[1] * b[3] + a[2] * b[0],
-             a[3] * b[2] + a[0] * b[1] - a[1] * b[0] + a[2] * b[3], a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2]};
+    return Q{
+        a[3] * b[0] + a[0] * b[3] + a[1] * b[2] - a[2] * b[1], a[3] * b[1] - a[0] * b[2] + a[1] * b[3] + a[2] * b[0],
+        a[3] * b[2] + a[0] * b[1] - a[1] * b[0] + a[2] * b[3], a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2]};
   };
   constexpr double kRadiansPerDegree = std::numbers::pi / 180;
   const WindLean lean = wind->lean(east, north, 0);
-  const Q q = times(times(about(0, 0, -1, lean.east * kRadiansPerDegree), about(1, 0, 0, -lean.north * kRadiansPerDegree)),
-                    about(0, 1, 0, double(yaw)));
+  const Q q =
+      times(times(about(0, 0, -1, lean.east * kRadiansPerDegree), about(1, 0, 0, -lean.north * kRadiansPerDegree)),
+            about(0, 1, 0, double(yaw)));
   return {float(q[0]), float(q[1]), float(q[2]), float(q[3])};
 }
 

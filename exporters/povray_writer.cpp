@@ -366,7 +366,7 @@ std::string scene_ini(const Scene& scene, const std::filesystem::path& library_d
   const auto& r = scene.render;
   std::string s;
   s += "; POV-Ray settings written by wangscape. Render from this folder: povray scene.ini\n";
-  s += "Input_File_Name=scene.pov\nOutput_File_Name=render.png\nOutput_File_Type=N\n";
+  s += std::string("Input_File_Name=") + kPovraySceneFile + "\nOutput_File_Name=render.png\nOutput_File_Type=N\n";
   s += "Width=" + std::to_string(r.width) + "\nHeight=" + std::to_string(r.height) + "\n";
   if (r.antialias_samples > 1) {
     s += "Antialias=on\nSampling_Method=2\nAntialias_Depth=" + std::to_string(std::min(r.antialias_samples, 9)) +
@@ -657,7 +657,7 @@ void PovrayWriter::finish(const StreamTotals& totals) {
     std::error_code ec;
     impl.stats.total_bytes += std::filesystem::file_size(impl.dir / kPovrayGroundImage, ec);
   }
-  impl.write_whole("scene.pov", scene_pov(impl.scene, impl.has_terrain, impl.has_instances, totals.instances));
+  impl.write_whole(kPovraySceneFile, scene_pov(impl.scene, impl.has_terrain, impl.has_instances, totals.instances));
   for (auto& file : impl.files) file->commit();
   if (impl.instances_file) impl.instances_file->commit();
 }

@@ -34,6 +34,10 @@ namespace wangscape {
 
 class EncodedGround;  // export_support.h
 
+// The POV-Ray export's entry file, which scene.ini names and POV-Ray renders (a scene folder's
+// readers ask folder/folder_files.h for it).
+inline constexpr char kPovraySceneFile[] = "scene.pov";
+
 struct PovrayExportOptions {
   // Folder the scene will finally live in, written as the ini's Library_Path (the pipeline
   // writes into a staging folder first, then renames it). Empty: the folder written to.

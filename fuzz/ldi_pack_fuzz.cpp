@@ -2,8 +2,8 @@
 // then read as a viewer would (every pixel of every span, both ends of every row, the
 // statistics), so a check that lets a bad offset through shows up as an out-of-bounds read.
 // The reads stay proportional to the file (a valid LDI may declare 65535 x 65535 empty pixels).
+#include "folder/ldi_pack.h"
 #include "fuzz/fuzz_input.h"
-#include "renders/ldi/ldi_pack.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace wangscape;

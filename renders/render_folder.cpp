@@ -5,18 +5,17 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/number_text.h"
 #include "core/text_file.h"
-#include "exporters/folder_state.h"
 #include "exporters/image_io.h"
 #include "exporters/povray_writer.h"
-#include "exporters/scene_folder.h"
+#include "folder/scene_folder.h"
 #include "renders/external/blender_render.h"
 #include "renders/external/povray_render.h"
-#include "renders/ldi/ldi_scene.h"
 #include "renders/trace/embree_reference.h"
 
 namespace wangscape {
@@ -63,19 +62,19 @@ void move_image(const std::filesystem::path& from, const std::filesystem::path& 
   if (ec) throw Error(to, "", "cannot move the rendered image here: " + ec.message());
 }
 
-FolderRenderResult render_embree(const std::filesystem::path& dir, const FolderRenderRequest& request) {
-  const SceneConfig config = load_scene_folder_config(dir);
-  Scene scene = make_folder_scene(dir, config);
+FolderRenderResult render_embree(const SceneFolder& folder, const FolderRenderRequest& request) {
+  const SceneConfig& config = folder.config();
+  Scene scene = folder.make_scene();
   scene.sun = chosen_sun(scene, request);
   ReferenceOptions options;
   if (other_camera(request)) options.camera = chosen_camera(scene, config, request);
   options.width = request.width;
   options.height = request.height;
   options.samples_per_pixel = request.samples_per_pixel;
-  options.shading = ldi_options(config).shading;  // the light the folder's LDI pack is shaded with
+  options.shading = folder.light();  // the light the folder's LDI pack is shaded with
   options.progress = request.on_progress;
   const ReferenceImage result = render_reference(scene, options);
-  const std::filesystem::path image = request.out.empty() ? dir / kEmbreeRenderImage : request.out;
+  const std::filesystem::path image = request.out.empty() ? folder.files().root() / kEmbreeRenderImage : request.out;
   write_image(image, result.image);
   const ReferenceStats& s = result.stats;
   const double rays = double(s.primary_rays + s.secondary_rays);
@@ -87,18 +86,12 @@ FolderRenderResult render_embree(const std::filesystem::path& dir, const FolderR
 }
 
 // One side given: the other keeps the scene's aspect ratio (folder_image_size).
-FolderRenderRequest with_aspect_kept(const std::filesystem::path& dir, FolderRenderRequest request) {
+FolderRenderRequest with_aspect_kept(const SceneConfig& config, FolderRenderRequest request) {
   if ((request.width > 0) == (request.height > 0)) return request;
-  const auto [width, height] = folder_image_size(dir, request.width, request.height);
+  const auto [width, height] = folder_image_size(config, request.width, request.height);
   request.width = width;
   request.height = height;
   return request;
-}
-
-// The camera `request` asks, made from the folder's scene.
-Camera folder_camera(const std::filesystem::path& dir, const FolderRenderRequest& request) {
-  const SceneConfig config = load_scene_folder_config(dir);
-  return chosen_camera(make_folder_scene(dir, config), config, request);
 }
 
 // POV-Ray and Blender write into the folder; --out is a copy of that image, made atomically.
@@ -115,17 +108,24 @@ FolderRenderResult copied_to_out(FolderRenderResult result, const std::filesyste
 
 }  // namespace
 
-std::array<int, 2> folder_image_size(const std::filesystem::path& dir, int width, int height) {
+std::array<int, 2> folder_image_size(const SceneConfig& config, int width, int height) {
   if (width > 0 && height > 0) return {width, height};
-  const ImageConfig scene = load_scene_folder_config(dir).image;
+  const ImageConfig& scene = config.image;
   if (width > 0) return {width, std::max(1, int(std::lround(double(width) * scene.height / scene.width)))};
   if (height > 0) return {std::max(1, int(std::lround(double(height) * scene.width / scene.height))), height};
   return {scene.width, scene.height};
 }
 
 FolderRenderResult render_scene_folder(const std::filesystem::path& dir, const FolderRenderRequest& asked) {
-  const FolderRenderRequest request = with_aspect_kept(dir, asked);
-  if (request.engine == RenderEngine::embree) return render_embree(dir, request);
+  // The folder is opened only where the render needs it: the scene made again for Embree, another
+  // camera or POV-Ray's other sun; the scene file for a size given by one side.
+  const bool made = asked.engine == RenderEngine::embree || other_camera(asked) ||
+                    (asked.sun_degrees && asked.engine == RenderEngine::povray);
+  std::optional<SceneFolder> folder;
+  if (made || (asked.width > 0) != (asked.height > 0))
+    folder.emplace(SceneFolder::open(dir, made ? SceneFolder::Parts::state : SceneFolder::Parts::scene_file));
+  const FolderRenderRequest request = folder ? with_aspect_kept(folder->config(), asked) : asked;
+  if (request.engine == RenderEngine::embree) return render_embree(*folder, request);
   if (request.samples_per_pixel != 0)
     throw Error("render: --spp is for --engine embree (and blender --path); " + std::string(to_string(request.engine)) +
                 " takes its samples from the scene (its antialias)");
@@ -143,7 +143,7 @@ FolderRenderResult render_scene_folder(const std::filesystem::path& dir, const F
     }
     // Another camera: a one-frame run of the frames' script (renders/external/blender_render.h),
     // its frame moved to the still's name.
-    const Camera camera = folder_camera(dir, request);
+    const Camera camera = chosen_camera(folder->make_scene(), folder->config(), request);
     AtomicPath work(dir / "blender_camera");  // a folder under a temporary's name, removed when done
     std::filesystem::create_directory(work.temp_path());
     const nlohmann::json spec{{"fps", 1},
@@ -178,15 +178,14 @@ FolderRenderResult render_scene_folder(const std::filesystem::path& dir, const F
   options.on_progress = request.on_progress;
   // Another camera or sun: the folder's scene.pov with it, in a temporary .pov beside it.
   AtomicPath pov(dir / "scene_camera.pov");  // never committed: removed when done
-  if ((other_camera(request) || request.sun_degrees) && std::filesystem::is_regular_file(dir / "scene.pov")) {
-    const std::string text = read_text_file(dir / "scene.pov", std::uintmax_t(1) << 30, "POV-Ray scene");
-    const SceneConfig config = load_scene_folder_config(dir);
-    const Scene scene = make_folder_scene(dir, config);
-    const Camera camera = chosen_camera(scene, config, request);
-    write_file_atomically(pov.temp_path(), request.sun_degrees
-                                               ? povray_scene_with_camera_and_sun(
-                                                     text, camera, chosen_sun(scene, request), dir / "scene.pov")
-                                               : povray_scene_with_cameras(text, {camera}, dir / "scene.pov"));
+  const std::filesystem::path pov_file = FolderFiles(dir).povray_scene();
+  if (made && std::filesystem::is_regular_file(pov_file)) {
+    const std::string text = read_text_file(pov_file, std::uintmax_t(1) << 30, "POV-Ray scene");
+    const Scene scene = folder->make_scene();
+    const Camera camera = chosen_camera(scene, folder->config(), request);
+    write_file_atomically(pov.temp_path(), request.sun_degrees ? povray_scene_with_camera_and_sun(
+                                                                     text, camera, chosen_sun(scene, request), pov_file)
+                                                               : povray_scene_with_cameras(text, {camera}, pov_file));
     options.input_file = pov.temp_path().filename().string();
   }
   const auto result = render_povray(dir, options);

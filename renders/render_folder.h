@@ -10,6 +10,7 @@
 #include <string>
 
 #include "renders/external/render_engine.h"
+#include "scene/scene_file.h"
 
 namespace wangscape {
 
@@ -42,14 +43,14 @@ struct FolderRenderResult {
 // The image `wangscape render DIR --engine embree` writes unless told otherwise.
 inline constexpr const char* kEmbreeRenderImage = "render_embree.png";
 
-// Renders DIR with the requested engine. Embree renders the Scene made again from
-// DIR/scene.toml (load_scene_folder_config), with the sky rays of its [ldi] section, so it needs
-// no export of its own. Throws Error naming a folder without that engine's export, or the
+// Renders DIR with the requested engine. Embree renders the folder's Scene (SceneFolder::open,
+// folder/scene_folder.h) with the light its LDI pack was shaded with, so it needs no export of
+// its own. Throws Error naming a folder without that engine's export, or the
 // renderer's own failure; with another camera, Error for an eye without a height that is not
 // over the ground or a point looked at that is not sideways of the eye.
 // The image size of a render of DIR asked as `width` x `height`: 0 x 0 the scene's; one side
 // given, the other keeps the scene's aspect ratio (at least one pixel).
-std::array<int, 2> folder_image_size(const std::filesystem::path& dir, int width, int height);
+std::array<int, 2> folder_image_size(const SceneConfig& config, int width, int height);
 
 FolderRenderResult render_scene_folder(const std::filesystem::path& dir, const FolderRenderRequest& request);
 

@@ -15,15 +15,13 @@
 #include "core/number_text.h"
 #include "core/run_cleanup.h"
 #include "core/text_file.h"
-#include "exporters/folder_state.h"
 #include "exporters/image_io.h"
 #include "exporters/povray_writer.h"
-#include "exporters/scene_folder.h"
+#include "folder/scene_folder.h"
 #include "renders/external/blender_render.h"
 #include "renders/external/child_process.h"
 #include "renders/external/movie.h"
 #include "renders/external/povray_render.h"
-#include "renders/ldi/ldi_scene.h"
 #include "renders/render_folder.h"
 #include "renders/trace/embree_reference.h"
 
@@ -100,11 +98,12 @@ void publish_frame(const fs::path& from, const fs::path& to) {
   if (ec) throw Error(to, "", "cannot move the rendered frame here: " + ec.message());
 }
 
-// One POV-Ray run of the frames `todo` of `cameras` into `frames`: the folder's scene.pov with
+// One POV-Ray run of the frames `todo` of `cameras` into `frames`: the folder's `scene_pov` with
 // their cameras indexed by frame_number, and the wind's time of each (frame k at k / fps), in a
 // temporary .pov beside it (POV-Ray resolves includes from the folder). Returns the log.
-fs::path render_povray_frames(const fs::path& dir, const fs::path& frames, const std::vector<Camera>& cameras,
-                              const std::vector<long long>& todo, double fps, int width, int height,
+fs::path render_povray_frames(const fs::path& dir, const fs::path& scene_pov, const fs::path& frames,
+                              const std::vector<Camera>& cameras, const std::vector<long long>& todo, double fps,
+                              int width, int height,
                               const std::function<void(long long, const fs::path&)>& frame_done) {
   std::vector<Camera> todo_cameras;
   std::vector<double> todo_seconds;
@@ -112,10 +111,9 @@ fs::path render_povray_frames(const fs::path& dir, const fs::path& frames, const
     todo_cameras.push_back(cameras[std::size_t(k)]);
     todo_seconds.push_back(double(k) / fps);
   }
-  const std::string pov_text = read_text_file(dir / "scene.pov", std::uintmax_t(1) << 30, "POV-Ray scene");
+  const std::string pov_text = read_text_file(scene_pov, std::uintmax_t(1) << 30, "POV-Ray scene");
   AtomicPath pov(dir / "scene_path.pov");  // never committed: removed when done
-  write_file_atomically(pov.temp_path(),
-                        povray_scene_with_cameras(pov_text, todo_cameras, dir / "scene.pov", todo_seconds));
+  write_file_atomically(pov.temp_path(), povray_scene_with_cameras(pov_text, todo_cameras, scene_pov, todo_seconds));
   WorkFolder work(frames, "povray");
   PovrayRenderOptions options;
   options.width = width;
@@ -174,14 +172,16 @@ PathRenderResult render_path(const fs::path& dir, const PathRenderRequest& reque
   // Everything that can be refused is, before the frames folder is made.
   const ViewPath path = read_view_path(request.path);
   path_frame_count(path, request.fps, request.path, "--fps");
-  if (request.engine == RenderEngine::povray && !fs::is_regular_file(dir / "scene.pov"))
-    throw Error("render: '" + dir.string() + "' has no scene.pov (build it with [exports] povray = true)");
+  const FolderFiles files(dir);
+  if (request.engine == RenderEngine::povray && !fs::is_regular_file(files.povray_scene()))
+    throw Error("render: '" + dir.string() + "' has no " + files.povray_scene().filename().string() +
+                " (build it with [exports] povray = true)");
   if (request.engine == RenderEngine::blender && find_blender_manifest(dir).empty())
     throw Error("render: '" + dir.string() + "' has no blender/manifest.json (build it with [exports] blender = true)");
-  const SceneConfig config = load_scene_folder_config(dir);
-  const Scene scene = make_folder_scene(dir, config);
+  const SceneFolder scene_folder = SceneFolder::open(dir);
+  const Scene scene = scene_folder.make_scene();
   const std::vector<Camera> cameras = path_cameras(scene, path, request.fps, request.path);
-  const auto [width, height] = folder_image_size(dir, request.width, request.height);
+  const auto [width, height] = folder_image_size(scene_folder.config(), request.width, request.height);
   const long long all = static_cast<long long>(cameras.size());
   const long long first = request.first_frame, count = request.frame_count > 0 ? request.frame_count : all - first;
   if (first < 0 || first >= all || count < 1 || count > all - first)
@@ -223,7 +223,7 @@ PathRenderResult render_path(const fs::path& dir, const PathRenderRequest& reque
     options.width = width;
     options.height = height;
     options.samples_per_pixel = request.samples;
-    options.shading = ldi_options(config).shading;  // the light of the folder's LDI pack, as the view's
+    options.shading = scene_folder.light();  // the light of the folder's LDI pack, as the view's
     const ReferenceFrames traced(scene, cameras[std::size_t(todo.front())].position);  // built once
     for (const long long k : todo) {
       options.camera = cameras[std::size_t(k)];
@@ -232,7 +232,8 @@ PathRenderResult render_path(const fs::path& dir, const PathRenderRequest& reque
       frame_done(k, {});
     }
   } else if (!todo.empty() && request.engine == RenderEngine::povray) {
-    result.log = render_povray_frames(dir, folder.dir(), cameras, todo, request.fps, width, height, frame_done);
+    result.log = render_povray_frames(dir, files.povray_scene(), folder.dir(), cameras, todo, request.fps, width,
+                                      height, frame_done);
   } else if (!todo.empty() && request.engine == RenderEngine::blender) {
     // One Blender run: the camera keyframed at every frame of FRAMES/path.blend, the frames to
     // render rendered by Cycles.

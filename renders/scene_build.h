@@ -1,13 +1,12 @@
-// `wangscape build`: a scene file to a published scene folder. The one owner of a folder's
-// build: the scene is made once, the writers' files, what the readers need to open it fast
-// (exporters/folder_state.h) and, with [exports] ldi, the LDI pack (renders/ldi/ldi_scene.h) are
-// all staged together and published in one swap (exporters/scene_folder.h): a build that fails
-// or is killed at any stage leaves the previous folder as it was, or no folder.
+// `wangscape build`: a scene file to a published scene folder (folder/scene_folder.h), its stages
+// the folder's own (the writers, the state kept for the readers) and, with [exports] ldi, the LDI
+// stage renders/ldi contributes (the two packs and the sky shares): a build that fails or is
+// killed at any stage leaves the previous folder as it was, or no folder.
 #pragma once
 
 #include <filesystem>
 
-#include "exporters/scene_folder.h"
+#include "folder/scene_folder.h"
 #include "renders/ldi/ldi_scene.h"
 #include "scene/scene_file.h"
 

@@ -117,7 +117,7 @@ std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGro
                                             "export what the camera sees ([camera_aware] enabled = true, far) "
                                             "(at most 50 million)");
   // What the field holds a tile of its whole area: a byte in the scene folder's grid of placed
-  // tiles (exporters/folder_state.h), and 2 bytes more for a scanline or bottom-left tiling,
+  // tiles (folder/folder_state.h), and 2 bytes more for a scanline or bottom-left tiling,
   // computed for the whole area and held by the placement and the far field (a hashed tiling is
   // computed row by row).
   const bool held_tiling = config.tiles.algorithm != TilingAlgorithm::hash;

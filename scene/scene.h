@@ -131,7 +131,7 @@ Extent field_area(const SceneConfig& config, const SceneGround& ground);
 // Stage messages while a scene is assembled (a program shows them, e.g. on a terminal).
 using StageObserver = std::function<void(const std::string& message)>;
 
-// What a scene folder's build already made (exporters/scene_folder.h keeps it in the folder), so
+// What a scene folder's build already made (folder/scene_folder.h keeps it in the folder), so
 // that a reader of the folder need not make it again: the filled tile set (the Poisson fill and
 // its relaxation) and the baked ground (the look, and the far field painted into it).
 struct ScenePrebuilt {

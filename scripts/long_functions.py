@@ -11,7 +11,7 @@ import sys
 
 root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 limit = int(sys.argv[2]) if len(sys.argv) > 2 else 120
-folders = ["core", "generator", "terrain", "templates", "scene", "exporters", "renders", "cli"]
+folders = ["core", "generator", "terrain", "templates", "scene", "exporters", "folder", "renders", "cli"]
 long_functions, long_files = [], []
 for folder in folders:
     for directory, _, names in os.walk(os.path.join(root, folder)):

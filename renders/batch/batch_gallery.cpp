@@ -10,6 +10,7 @@
 #include "core/json_text.h"
 #include "core/number_text.h"
 #include "core/printable.h"
+#include "folder/folder_files.h"
 #include "renders/batch/batch_folder.h"
 #include "renders/batch/batch_run.h"
 #include "renders/external/movie.h"
@@ -54,9 +55,10 @@ TaskLinks task_links(const BatchTask& t) {
     return {scene, work + std::string(to_string(t.engine)) + ".log", "paths/" + t.frames->folder + "/"};
   }
   if (t.engine == RenderEngine::blender) return {work, work + "blender.log", work + "blender/manifest.json"};
+  const std::string scene = "scenes/" + t.scene_key + "/";
   if (t.engine == RenderEngine::embree)
-    return {"scenes/" + t.scene_key + "/", work + "embree.log", "scenes/" + t.scene_key + "/scene.toml"};
-  return {"scenes/" + t.scene_key + "/", work + "povray.log", work + "scene.pov"};
+    return {scene, work + "embree.log", FolderFiles(scene).scene_file().generic_string()};
+  return {scene, work + "povray.log", FolderFiles(work).povray_scene().generic_string()};
 }
 
 // The labels' font: Debian's DejaVu Sans (fonts-dejavu-core); without it the sheet has no labels

@@ -24,9 +24,8 @@
 #include "core/printable.h"
 #include "core/text_file.h"
 #include "core/vecmath.h"
-#include "exporters/folder_state.h"
 #include "exporters/povray_writer.h"
-#include "exporters/scene_folder.h"
+#include "folder/scene_folder.h"
 #include "renders/batch/batch_folder.h"
 #include "renders/external/blender_render.h"
 #include "renders/external/child_process.h"
@@ -64,16 +63,16 @@ class FileLock {
   int fd_;
 };
 
-// Builds the shared scene folder of `t` unless it is there (write_scene_folder publishes it
-// whole, so a folder with scene.toml is complete).
+// Builds the shared scene folder of `t` unless it is there (SceneFolder publishes it whole, so a
+// folder with its scene file is complete).
 fs::path shared_scene(const fs::path& dir, const Plan& plan, const BatchTask& t) {
   const fs::path folder = fs::absolute(dir / "scenes" / t.scene_key);
   FileLock lock(dir / "scenes" / (t.scene_key + ".lock"));
-  if (!fs::exists(folder / kFolderSceneFile)) {
+  if (!fs::exists(FolderFiles(folder).scene_file())) {
     SceneConfig scene = task_scene_config(plan.scene, scene_owner(plan, t));
     scene.exports = {};
     scene.exports.povray = true;
-    build_scene_folder(scene, folder);
+    SceneFolder::build(scene, folder);
   }
   return folder;
 }
@@ -96,8 +95,9 @@ fs::path render_povray_task(const fs::path& dir, const Plan& plan, const BatchTa
   sun.azimuth_degrees = t.sun.azimuth;
   sun.elevation_degrees = t.sun.elevation;
   sun.strength = plan.scene.sun.strength;
-  write_file_atomically(work / "scene.pov", povray_scene_with_camera_and_sun(read_text(scene / "scene.pov"), t.camera,
-                                                                             sun, scene / "scene.pov"));
+  const fs::path pov = FolderFiles(scene).povray_scene();
+  write_file_atomically(FolderFiles(work).povray_scene(),
+                        povray_scene_with_camera_and_sun(read_text(pov), t.camera, sun, pov));
   std::string ini;
   std::istringstream lines(read_text(scene / "scene.ini"));
   for (std::string line; std::getline(lines, line);)
@@ -116,7 +116,7 @@ fs::path render_blender_task(const fs::path& dir, const Plan& plan, const BatchT
   scene.exports = {};
   scene.exports.blender = true;
   const fs::path work = fs::absolute(dir / "work" / t.id);
-  build_scene_folder(scene, work);
+  SceneFolder::build(scene, work);
   BlenderRenderOptions options;
   options.width = t.width;
   options.height = t.height;
@@ -183,7 +183,7 @@ fs::path render_frames_task(const fs::path& dir, const Plan& plan, const BatchTa
       config.exports = {};
       config.exports.blender = true;
       scene = work / "scene";
-      if (!fs::exists(scene / kFolderSceneFile)) build_scene_folder(config, scene);
+      if (!fs::exists(FolderFiles(scene).scene_file())) SceneFolder::build(config, scene);
     } else {
       scene = shared_scene(dir, plan, t);
     }

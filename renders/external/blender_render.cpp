@@ -6,6 +6,7 @@
 
 #include "core/atomic_file.h"
 #include "exporters/zip_writer.h"
+#include "folder/folder_files.h"
 #include "renders/external/child_process.h"
 #include "templates/blender_addon.h"
 
@@ -101,7 +102,7 @@ std::string program_wanted(const std::string& executable) {
 std::filesystem::path find_blender(const std::string& executable) { return find_program(program_wanted(executable)); }
 
 std::filesystem::path find_blender_manifest(const std::filesystem::path& dir) {
-  for (const auto& candidate : {dir / "blender" / "manifest.json", dir / "manifest.json"}) {
+  for (const auto& candidate : {FolderFiles(dir).blender() / "manifest.json", dir / "manifest.json"}) {
     if (std::filesystem::is_regular_file(candidate)) return candidate;
   }
   return {};

@@ -115,7 +115,7 @@ PovrayRenderResult render_povray(const std::filesystem::path& dir_in, const Povr
   if (!exited_ok || !image_written) {
     const std::string how = exit.describe();
     const std::string tail = log_written ? last_log_lines(result.log, 8) : std::string();
-    const std::string input = options.input_file.empty() ? "scene.pov" : options.input_file;
+    const std::string input = options.input_file.empty() ? kPovraySceneFile : options.input_file;
     throw Error("render: POV-Ray " + how + " rendering '" + (dir / input).string() + "'" +
                 (exited_ok ? " without writing an image" : "") + "; log " + result.log.string() +
                 (tail.empty() ? std::string() : ", last lines:" + tail));

@@ -21,9 +21,9 @@
 #include <utility>
 #include <vector>
 
+#include "folder/ldi.h"
+#include "folder/ldi_pack.h"
 #include "generator/poisson_tiles.h"
-#include "renders/ldi/ldi.h"
-#include "renders/ldi/ldi_pack.h"
 #include "renders/trace/traced_shading.h"
 #include "templates/mesh.h"
 

@@ -3,6 +3,8 @@
 #include <span>
 #include <utility>
 
+#include "folder/pack_light.h"
+#include "renders/trace/field_sky.h"
 #include "scene/scene.h"
 
 namespace wangscape {
@@ -22,19 +24,25 @@ namespace {
 struct SceneLdiInputs {
   FilledTileSet filled;
   std::span<const Mesh> models;
+  LdiPackLight light;  // options' light before the scene's sun, and that sun
 };
 
 SceneLdiInputs scene_ldi_inputs(const Scene& scene, LdiBuildOptions& options) {
   if (!scene.field || scene.models.empty())
     throw Error("scene '" + scene.name + "': no field of flowers to sample into LDIs");
   const SceneField& field = *scene.field;
-  SceneLdiInputs inputs{field.filled, scene.models};
+  SceneLdiInputs inputs{field.filled, scene.models, pack_light_record(options.shading, scene.sun)};
   for (auto& points : inputs.filled.tiles)
     for (TilePoint& p : points) p.yaw = field.yaw_of(p.yaw);
   if (field.proxy_offset != 0) inputs.models = inputs.models.first(field.proxy_offset);
   options.tile_size = field.placement.tile_size;
   options.shading = with_sun(options.shading, scene.sun);
   return inputs;
+}
+
+// The levels of a scene's pack (as build_ldi_pack derives them).
+LdiLevels pack_levels(const SceneLdiInputs& inputs, const LdiBuildOptions& options) {
+  return ldi_levels(options.view, options.tile_size, ldi_prism_top(inputs.filled, inputs.models));
 }
 }  // namespace
 
@@ -46,7 +54,9 @@ LdiBuildReport build_scene_ldi_pack(const Scene& scene, const std::filesystem::p
     observer.stage("sampling " + std::to_string(inputs.filled.tiles.size()) + " tiles x " +
                    std::to_string(options.view.levels) + " levels x " + std::to_string(options.view.directions) +
                    " directions into " + out.string());
-  return build_ldi_pack(inputs.filled, inputs.models, options, out);
+  LdiPackInfo info = ldi_pack_info(inputs.filled, inputs.models, options);
+  info.light = inputs.light;
+  return build_ldi_pack(inputs.filled, inputs.models, options, pack_levels(inputs, options), info, out);
 }
 
 std::vector<LdiImage> build_scene_tile_ldis(const Scene& scene, LdiBuildOptions options, std::size_t tile,
@@ -98,12 +108,13 @@ std::vector<LdiImage> build_scene_steep_ldis(const Scene& scene, const LdiPackIn
   return build_scene_tile_ldis(scene, steep_options(steep, shading), tile, steep_levels(steep));
 }
 
-void build_scene_ldi_packs(const Scene& scene, const std::filesystem::path& folder, const LdiBuildOptions& options,
+void build_scene_ldi_packs(const Scene& scene, const FolderFiles& files, const LdiBuildOptions& options,
                            const LdiSceneObserver& observer) {
-  const std::filesystem::path pack_file = folder / kFolderPackFile, steep_file = folder / kFolderSteepPackFile;
+  const std::filesystem::path pack_file = files.pack(), steep_file = files.steep_pack();
   LdiBuildOptions tiles_options = options;
   const SceneLdiInputs inputs = scene_ldi_inputs(scene, tiles_options);
-  const LdiPackInfo pack = ldi_pack_info(inputs.filled, inputs.models, tiles_options);
+  LdiPackInfo pack = ldi_pack_info(inputs.filled, inputs.models, tiles_options);
+  pack.light = inputs.light;
   const LdiPackInfo steep = steep_pack_info(pack);
   // With fewer levels than kSteepLevels the steep sets take the finest level's resolution: six
   // sets of it (156 MB for a 16 x 24 m field of two levels) would outweigh the tiles' pack, and
@@ -130,7 +141,8 @@ void build_scene_ldi_packs(const Scene& scene, const std::filesystem::path& fold
         std::to_string(pack.directions) + " directions into " + pack_file.string() +
         (with_steep ? ", and " + std::to_string(steep.levels) + " steep sets into " + steep_file.string() : ""));
   tiles_options.progress = report(0, 0);
-  const LdiBuildReport tiles = build_ldi_pack(inputs.filled, inputs.models, tiles_options, pack_file);
+  const LdiBuildReport tiles =
+      build_ldi_pack(inputs.filled, inputs.models, tiles_options, pack_levels(inputs, tiles_options), pack, pack_file);
   if (!with_steep) return;
   LdiBuildOptions steep_build = steep_options(steep, tiles_options.shading);  // (the sun already applied)
   steep_build.tile_size = tiles_options.tile_size;
@@ -143,8 +155,17 @@ LdiBuildOptions ldi_options(const SceneConfig& config) {
   options.view.head_height = config.ldi.head_height;
   options.view.levels = config.ldi.levels;
   options.view.directions = config.ldi.directions;
-  options.shading.ao_rays = config.ldi.sky_rays;
+  options.shading = scene_file_light(config);
   return options;
+}
+
+FolderStage ldi_folder_stage(const LdiBuildOptions& options, const LdiSceneObserver& observer) {
+  return [options, observer](FolderBuild& build) {
+    build_scene_ldi_packs(build.scene, build.staging, options, observer);
+    if (observer.stage) observer.stage("estimating the flowers' share of the sky");
+    write_sky_shares(build.staging.sky_shares(),
+                     bake_field_sky(build.scene, with_sun(options.shading, build.scene.sun)));
+  };
 }
 
 }  // namespace wangscape

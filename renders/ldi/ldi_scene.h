@@ -10,8 +10,10 @@
 #include <functional>
 #include <string>
 
+#include "folder/folder_files.h"
+#include "folder/ldi_pack.h"
+#include "folder/scene_folder.h"
 #include "renders/ldi/ldi_build.h"
-#include "renders/ldi/ldi_pack.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
 
@@ -26,9 +28,9 @@ struct LdiSceneObserver {
 // The options the scene file's [ldi] section gives (head height, levels, directions, sky rays).
 LdiBuildOptions ldi_options(const SceneConfig& config);
 
-// Builds the pack of `config` to `out` (atomically). options.tile_size, the sun's direction and
-// its strength (a scale of shading.sun_color) are taken from the scene. Throws Error naming the
-// scene file when it has no field of flowers.
+// Builds the pack of `config` to `out` (atomically), recording the light it is shaded with.
+// options.tile_size, the sun's direction and its strength (a scale of shading.sun_color) are taken
+// from the scene. Throws Error naming the scene file when it has no field of flowers.
 LdiBuildReport build_scene_ldi_pack(const SceneConfig& config, const std::filesystem::path& out,
                                     LdiBuildOptions options, const LdiSceneObserver& observer = {});
 // The same from a scene already assembled (`wangscape build` makes it once for every export).
@@ -39,12 +41,6 @@ LdiBuildReport build_scene_ldi_pack(const Scene& scene, const std::filesystem::p
 // the same inputs as the scene's pack (its points' yaw, tile size, sun, full models).
 std::vector<LdiImage> build_scene_tile_ldis(const Scene& scene, LdiBuildOptions options, std::size_t tile,
                                             const LdiLevels& levels);
-
-// A scene folder's packs: the tiles at the view's levels, and the steep sets beside them.
-inline constexpr char kFolderPackFile[] = "tiles.ldi";
-inline constexpr char kFolderSteepPackFile[] = "steep.ldi";
-// And the flowers' share of the sky the view shades with (renders/trace/field_sky.h).
-inline constexpr char kFolderSkyFile[] = "sky.bin";
 
 // The steep sets. Seen from above, the pack's LDIs (sampled from head height, a few degrees below
 // the horizon) and the one-layer far steps made from them show their columns: a far step holds
@@ -69,10 +65,18 @@ constexpr std::uint32_t steep_pack_level(std::uint32_t set) { return std::uint32
 // scene's [ldi] sky rays, before the sun is applied) as the tiles' pack was.
 std::vector<LdiImage> build_scene_steep_ldis(const Scene& scene, const LdiPackInfo& pack,
                                              const ShadingSettings& shading, std::size_t tile);
-// A scene folder's two packs into `folder` (atomically each): the tiles' (kFolderPackFile, as
-// build_scene_ldi_pack) and the steep sets' (kFolderSteepPackFile) where they are at most twice
-// the tiles' in pixels (not with kSteepLevels levels or fewer), with one progress over both.
-void build_scene_ldi_packs(const Scene& scene, const std::filesystem::path& folder, const LdiBuildOptions& options,
+// A scene folder's two packs into the folder `files` (atomically each): the tiles' (files.pack(),
+// as build_scene_ldi_pack) and the steep sets' (files.steep_pack()) where they are at most twice
+// the tiles' in pixels (not with kSteepLevels levels or fewer), with one progress over both. Both
+// record the light they were shaded with.
+void build_scene_ldi_packs(const Scene& scene, const FolderFiles& files, const LdiBuildOptions& options,
                            const LdiSceneObserver& observer = {});
+
+// The LDI stage of a folder's build (folder/scene_folder.h): the two packs of `options`, and the
+// flowers' share of the sky the view shades them with (renders/trace/field_sky.h), estimated once
+// here instead of on the view's first frame. The LDIs are sampled from the tile set, not from the
+// placed field: a pass of their own, into the staging folder, so that they are published with the
+// scene they were made from.
+FolderStage ldi_folder_stage(const LdiBuildOptions& options, const LdiSceneObserver& observer = {});
 
 }  // namespace wangscape

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <filesystem>
 
+#include "folder/ldi_pack.h"
 #include "generator/image.h"
-#include "renders/ldi/ldi_pack.h"
 
 namespace wangscape {
 

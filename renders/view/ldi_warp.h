@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "renders/ldi/ldi.h"
+#include "folder/ldi.h"
 #include "renders/view/view_samples.h"
 
 namespace wangscape::view_detail {

@@ -8,7 +8,7 @@
 #include <cstdint>
 
 #include "core/color.h"
-#include "renders/ldi/ldi_pack.h"
+#include "folder/ldi_pack.h"
 #include "renders/trace/traced_shading.h"
 
 namespace wangscape::view_detail {

@@ -9,8 +9,7 @@
 
 #include "core/error.h"
 #include "core/hash.h"
-#include "exporters/folder_state.h"
-#include "exporters/scene_folder.h"
+#include "folder/scene_folder.h"
 #include "generator/placement.h"
 #include "renders/ldi/ldi_scene.h"
 #include "renders/trace/embree_device.h"
@@ -126,13 +125,6 @@ std::array<std::uint8_t, kPlantSpecies> plant_steps(const SpeciesRules& rules, d
   return steps;
 }
 
-bool files_resolve(const SceneConfig& c) {
-  std::error_code ec;
-  for (const fs::path& p : {c.terrain.dem, c.masks.mask})
-    if (!p.empty() && !fs::exists(p, ec)) return false;
-  return std::all_of(c.models.mesh.begin(), c.models.mesh.end(), [&](const fs::path& p) { return fs::exists(p, ec); });
-}
-
 // The terrain's shadows on itself, as the reference's shadow rays see them, per vertex: 1 where
 // the sun is seen past the terrain from just above the vertex, else 0 (interpolated over the
 // triangles, so a shadow's edge is as soft as the mesh is coarse).
@@ -172,35 +164,27 @@ std::vector<float> terrain_sun_visibility(const Mesh& mesh, const std::array<flo
 }  // namespace
 
 std::shared_ptr<const ViewWorld> ViewWorld::load(const fs::path& dir, const StageObserver& stage) {
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec)) throw Error(dir, "", "no such scene folder (make one with wangscape build)");
-  const fs::path scene_file = dir / kFolderSceneFile, pack_file = dir / kFolderPackFile;
-  if (!fs::is_regular_file(scene_file, ec))
-    throw Error(scene_file, "", "missing: the folder was not written by wangscape build");
-  if (!fs::is_regular_file(pack_file, ec))
-    throw Error(pack_file, "", "missing: build the folder from a scene with [exports] ldi = true");
-  { const LdiPack check(pack_file); }  // a corrupt pack is refused before the scene is assembled
-  SceneConfig config = load_scene_folder_config(dir);
-  // A folder from before scene_base.txt: its relative paths may name the data folder's files
-  // (the default scene's data/...).
-  if (!files_resolve(config)) {
-    SceneConfig from_data = parse_scene_config(config.text, scene_file, data_root());
-    if (files_resolve(from_data)) config = std::move(from_data);
-  }
-  PlacedTiles placed;
-  Scene scene = make_folder_scene(dir, config, stage, &placed);
-  // A folder built before the steep sets and the sky shares had their files makes them on first use.
-  const auto if_there = [&](const fs::path& file) { return fs::is_regular_file(file, ec) ? file : fs::path{}; };
-  return std::make_shared<const ViewWorld>(
-      std::move(scene), pack_file, ldi_options(config).shading, &placed,
-      Prepared{if_there(dir / kFolderSteepPackFile), if_there(dir / kFolderSkyFile)});
+  const SceneFolder folder = SceneFolder::open(dir, SceneFolder::Parts::pack);
+  return std::make_shared<const ViewWorld>(folder.make_scene(stage),
+                                           Packs{folder.pack(), folder.steep_pack(), folder.sky_shares()},
+                                           folder.light(), &folder.placed());
 }
 
-ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettings& shading_settings,
+namespace {
+std::shared_ptr<const LdiPack> opened(const fs::path& pack) {
+  return pack.empty() ? nullptr : std::make_shared<const LdiPack>(pack);
+}
+}  // namespace
+
+ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettings& shading,
                      const PlacedTiles* placed_tiles, const Prepared& prepared)
+    : ViewWorld(std::move(scene), Packs{opened(pack_path), opened(prepared.steep_pack), prepared.sky_shares}, shading,
+                placed_tiles) {}
+
+ViewWorld::ViewWorld(Scene scene, Packs packs, const ShadingSettings& shading_settings, const PlacedTiles* placed_tiles)
     : scene_(std::move(scene)),
-      pack_(std::make_unique<LdiPack>(pack_path)),
-      steep_pack_(prepared.steep_pack.empty() ? nullptr : std::make_unique<LdiPack>(prepared.steep_pack)),
+      pack_(std::move(packs.pack)),
+      steep_pack_(std::move(packs.steep_pack)),
       shading_(shading_settings),
       sun_shading_(with_sun(shading_settings, scene_.sun)),
       ground_colors_(scene_.ground_texture.get(), shading_.ground_color),
@@ -210,15 +194,15 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
   const LdiPackInfo& info = pack_->info();
   tile_size_ = field.placement.tile_size;
   if (info.tiles != field.filled.tiles.size() || std::abs(info.tile_size - tile_size_) > 1e-4)
-    throw Error(pack_path, "",
+    throw Error(pack_->path(), "",
                 "was built for another tile set (" + std::to_string(info.tiles) + " tiles of " +
                     std::to_string(info.tile_size) + " m; the scene has " + std::to_string(field.filled.tiles.size()) +
                     " of " + std::to_string(tile_size_) + " m)");
   if (steep_pack_ && !(steep_pack_->info() == steep_pack_info(info)))
-    throw Error(prepared.steep_pack, "",
-                "does not hold the steep sets of " + pack_path.string() + ": rebuild the folder");
-  if (!prepared.sky_shares.empty()) {
-    sky_ = read_sky_shares(prepared.sky_shares, scene_);
+    throw Error(steep_pack_->path(), "",
+                "does not hold the steep sets of " + pack_->path().string() + ": rebuild the folder");
+  if (!packs.sky_shares.empty()) {
+    sky_ = read_sky_shares(packs.sky_shares, scene_);
     std::call_once(sky_once_, [] {});
   }
 
@@ -228,7 +212,7 @@ ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettin
   const TileRange range = tile_range(*field.placement.area, tile_size_);
   if (placed.i0 != range.i0 || placed.j0 != range.j0 || placed.width != std::max(0, range.width()) ||
       placed.height != std::max(0, range.height()))
-    throw Error(pack_path.parent_path() / kFolderStateFile, "", "its tile grid is not the scene's field");
+    throw Error("scene '" + scene_.name + "': the placed tiles' grid is not the field's");
   grid_i0_ = range.i0;
   grid_j0_ = range.j0;
   grid_width_ = placed.width;

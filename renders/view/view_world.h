@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "exporters/folder_state.h"
+#include "folder/folder_state.h"
+#include "folder/ldi_pack.h"
 #include "generator/image.h"
-#include "renders/ldi/ldi_pack.h"
 #include "renders/ldi/ldi_scene.h"
 #include "renders/trace/ground_colors.h"
 #include "renders/trace/scene_tracer.h"
@@ -30,18 +30,27 @@ namespace wangscape {
 // terrain corners, the terrain mesh with its lighting and the far-field colors. Immutable.
 class ViewWorld {
  public:
-  // Reads DIR/scene.toml (load_scene_folder_config; where its files are not found, relative
-  // paths resolve against the data folder, data_root(), as for the default scene), DIR/tiles.ldi
-  // and, where the folder has it, DIR/steep.ldi. Throws Error naming the file
-  // at fault: a missing folder, scene or pack, a corrupt pack, a pack of another tile set.
+  // Opens the scene folder DIR with its pack (SceneFolder::open, Parts::pack): its Scene as the
+  // build made it, the pack and the light it was shaded with, and what the folder holds beside
+  // it. Throws Error naming the file at fault: each way a folder can be unusable
+  // (folder/scene_folder.h), a pack of another tile set, a steep pack of another pack.
   static std::shared_ptr<const ViewWorld> load(const std::filesystem::path& dir, const StageObserver& stage = {});
-  // What a folder holds beside the pack that the view would otherwise make on first use: the
-  // steep sets' pack (kFolderSteepPackFile) and the flowers' sky shares (kFolderSkyFile).
-  struct Prepared {
-    std::filesystem::path steep_pack, sky_shares;  // empty: made on first use
+  // The packs, mapped, and what a folder holds beside them that the view would otherwise make on
+  // first use: the steep sets' pack and the flowers' sky shares (null, empty: made on first use).
+  struct Packs {
+    std::shared_ptr<const LdiPack> pack, steep_pack;
+    std::filesystem::path sky_shares;
   };
-  // The same from a Scene already made and a pack file (tests), with the field's placed tiles
-  // as its folder keeps them (exporters/folder_state.h) or, without them, found by a placement pass.
+  // The same from a Scene already made and its packs shaded with the light `shading` (before
+  // the sun), with the field's placed tiles as its folder keeps them (folder/folder_state.h) or,
+  // without them, found by a placement pass.
+  ViewWorld(Scene scene, Packs packs, const ShadingSettings& shading, const PlacedTiles* placed = nullptr);
+  // What a test or a benchmark holds beside a pack file it built: a steep sets' pack file and the
+  // sky shares' file (empty: made on first use).
+  struct Prepared {
+    std::filesystem::path steep_pack, sky_shares;
+  };
+  // The same from a pack file.
   ViewWorld(Scene scene, const std::filesystem::path& pack_path, const ShadingSettings& shading = {},
             const PlacedTiles* placed = nullptr, const Prepared& prepared = {});
 
@@ -112,7 +121,7 @@ class ViewWorld {
 
  private:
   Scene scene_;
-  std::unique_ptr<LdiPack> pack_;
+  std::shared_ptr<const LdiPack> pack_;
   Tiles tiles_;
   Terrain terrain_;
   double tile_size_ = 4;
@@ -122,7 +131,7 @@ class ViewWorld {
   std::vector<std::array<float, 4>> far_;
   std::uint32_t far_steps_ = 0;
   std::vector<LdiImage> far_ldis_;  // (tile * directions + direction) * far_steps_ + step
-  std::unique_ptr<LdiPack> steep_pack_;
+  std::shared_ptr<const LdiPack> steep_pack_;
   mutable std::once_flag sky_once_;
   mutable SceneTracer::SkyShares sky_;
   mutable std::once_flag steep_once_;

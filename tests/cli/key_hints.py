@@ -25,7 +25,7 @@ for line in doc.splitlines():
         keys[section].update(re.findall(r"`([a-z_]+)`", first_cell))
 
 hint = re.compile(r"\[\[?([a-z_.]+)\]\]? ([a-z_]+) ?=")
-sources = [p for folder in ("cli", "core", "exporters", "generator", "renders", "scene", "terrain", "templates", "docs")
+sources = [p for folder in ("cli", "core", "exporters", "folder", "generator", "renders", "scene", "terrain", "templates", "docs")
            for p in (root / folder).rglob("*") if p.suffix in (".cpp", ".h", ".md", ".py", ".toml")]
 sources.append(root / "README.md")
 wrong, checked = [], 0

@@ -14,11 +14,12 @@
 #include <limits>
 #include <string>
 
+#include "folder/ldi_info.h"
+#include "folder/ldi_pack.h"
+#include "folder/pack_light.h"
 #include "generator/poisson_tiles.h"
 #include "generator/tileset.h"
 #include "renders/ldi/ldi_build.h"
-#include "renders/ldi/ldi_info.h"
-#include "renders/ldi/ldi_pack.h"
 #include "renders/ldi/ldi_sheet.h"
 
 namespace wangscape {
@@ -473,6 +474,43 @@ TEST_F(ldi_pack_damage, OutOfRangeOffsetsAndCountsAreRefused) {
   bytes = good;
   poke32(bytes, first + 8, 0xffffffu);  // span count
   expect_refused("spans.ldi", bytes, "LDI (tile 0, level 0, direction 0)");
+}
+
+// A scene's pack records the light it was shaded with (version 3), so that a folder's readers ask
+// the pack; a pack without it (version 2, a bare tile set's) is read as before; a damaged record
+// is refused.
+TEST_F(ldi_pack_damage, ThePackRecordsItsLightAndAnOlderPackStillOpens) {
+  const std::string old_bytes = read_bytes(*good_);
+  EXPECT_EQ(std::uint8_t(old_bytes[8]), kLdiPackOldestVersion);
+  const LdiPack old(*good_);
+  EXPECT_FALSE(old.info().light);
+  const SmallSet s = small_set();
+  LdiPackInfo info = ldi_pack_info(s.filled, s.models, s.options);
+  ShadingSettings light;
+  light.ao_rays = 3;
+  light.exposure = 1.25f;
+  Sun sun;
+  sun.strength = 0.7;
+  info.light = pack_light_record(light, sun);
+  const fs::path path = scratch("lit.ldi");
+  build_ldi_pack(s.filled, s.models, s.options, ldi_levels(s.options.view, s.options.tile_size, info.prism_top), info,
+                 path);
+  const std::string bytes = read_bytes(path);
+  EXPECT_EQ(std::uint8_t(bytes[8]), kLdiPackVersion);
+  const LdiPack pack(path);
+  EXPECT_EQ(pack.info(), info);
+  EXPECT_EQ(ldi_pack_stats(pack).depth_pixels, ldi_pack_stats(old).depth_pixels);
+  const ShadingSettings back = recorded_light(*pack.info().light);
+  EXPECT_EQ(back.ao_rays, 3);
+  EXPECT_EQ(back.exposure, 1.25f);
+  EXPECT_EQ(with_sun(back, sun).sun_color, with_sun(light, sun).sun_color);
+  EXPECT_EQ(with_sun(back, sun).sun_direction, with_sun(light, sun).sun_direction);
+  // The record follows the arrays (64 + 12 L + 4 D); its exposure is its 14th number.
+  const std::size_t exposure = 64 + 12 * info.levels + 4 * info.directions + 13 * 4;
+  std::string damaged = bytes;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(damaged.data() + exposure, &nan, 4);
+  expect_refused("light_nan.ldi", damaged, "light: sun strength 0.7, exposure nan");
 }
 
 // Every float of a pack is checked on open (issue 25): a NaN fails every comparison, so a NaN tile

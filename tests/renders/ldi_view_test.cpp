@@ -424,7 +424,7 @@ TEST(ldi_view_above, TheSteepPackDrawsTheBytesTheViewWouldSample) {
   const auto packed = world_of(scene, "above_packed", false, true);
   const auto sampled = std::make_shared<const ViewWorld>(
       make_scene(parse_scene_config(scene, "sampled.toml", fs::temp_directory_path())),
-      scratch("above_packed") / kFolderPackFile, packed->shading());
+      FolderFiles(scratch("above_packed")).pack(), packed->shading());
   EXPECT_FALSE(sampled->steep_from_pack());
   EXPECT_TRUE(packed->steep_from_pack());
   const Camera camera = looking(0, -10, 20, 0, 40, 1.0, 60);
@@ -447,10 +447,10 @@ TEST(ldi_view_above, TheSteepPackDrawsTheBytesTheViewWouldSample) {
     three.shading.ao_rays = 0;
     const fs::path folder = scratch("three_levels");
     fs::create_directories(folder);
-    build_scene_ldi_packs(make_scene(parse_scene_config(scene, "three.toml", fs::temp_directory_path())), folder,
-                          three);
-    EXPECT_TRUE(fs::exists(folder / kFolderPackFile));
-    EXPECT_FALSE(fs::exists(folder / kFolderSteepPackFile));
+    const FolderFiles files(folder);
+    build_scene_ldi_packs(make_scene(parse_scene_config(scene, "three.toml", fs::temp_directory_path())), files, three);
+    EXPECT_TRUE(fs::exists(files.pack()));
+    EXPECT_FALSE(fs::exists(files.steep_pack()));
   }
   // Another field's steep pack (5 m tiles) beside this pack: refused, naming the steep pack.
   std::string other_scene = tiny_scene("[-12.0, -12.0, 12.0, 12.0]");
@@ -458,8 +458,8 @@ TEST(ldi_view_above, TheSteepPackDrawsTheBytesTheViewWouldSample) {
   world_of(other_scene, "other_packed", false, true);
   Scene again = make_scene(parse_scene_config(scene, "again.toml", fs::temp_directory_path()));
   try {
-    ViewWorld world(std::move(again), scratch("above_packed") / kFolderPackFile, {}, nullptr,
-                    {scratch("other_packed") / kFolderSteepPackFile, {}});
+    ViewWorld world(std::move(again), FolderFiles(scratch("above_packed")).pack(), {}, nullptr,
+                    {FolderFiles(scratch("other_packed")).steep_pack(), {}});
     ADD_FAILURE() << "a steep pack of another field was accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("other_packed/steep.ldi"), std::string::npos) << e.what();

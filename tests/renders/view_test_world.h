@@ -47,9 +47,10 @@ inline std::shared_ptr<const ViewWorld> world_of(const std::string& text, const 
   }
   const fs::path folder = scratch(name);
   fs::create_directories(folder);
-  build_scene_ldi_packs(scene, folder, options);
-  return std::make_shared<const ViewWorld>(std::move(scene), folder / kFolderPackFile, options.shading, nullptr,
-                                           ViewWorld::Prepared{folder / kFolderSteepPackFile, {}});
+  const FolderFiles files(folder);
+  build_scene_ldi_packs(scene, files, options);
+  return std::make_shared<const ViewWorld>(std::move(scene), files.pack(), options.shading, nullptr,
+                                           ViewWorld::Prepared{files.steep_pack(), {}});
 }
 
 // The scene file of tiny_world.

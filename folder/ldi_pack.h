@@ -5,24 +5,40 @@
 // fault and what is wrong.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
-#include "renders/ldi/ldi.h"
+#include "folder/ldi.h"
 
 namespace wangscape {
 
 class AtomicFile;
 
 inline constexpr char kLdiPackMagic[8] = {'W', 'S', 'C', 'L', 'D', 'I', '\r', '\n'};
-inline constexpr std::uint32_t kLdiPackVersion = 2;  // 2: depth pixels carry the plant byte
+// 2: depth pixels carry the plant byte; 3: the light the pack was shaded with (LdiPackLight). A
+// pack is written as version 3 when it records its light, else as version 2; both are read.
+inline constexpr std::uint32_t kLdiPackVersion = 3, kLdiPackOldestVersion = 2;
+
+// The light the pack's samples were shaded with (scene/shading_light.h ShadingSettings, recorded
+// by folder/pack_light.h): the light before the sun (the sun's colour at strength 1), and the sun
+// that lit it, its direction and strength. So a reader shades what it draws beside the pack (the
+// terrain, the near field, the reference) as the pack was, without deriving it again.
+struct LdiPackLight {
+  std::array<float, 3> sun_direction{}, sun_color{}, sky_color{}, ground_color{};
+  float sun_strength = 1, exposure = 1;
+  std::uint32_t shadows = 1, sky_rays = 0;  // shadows: 1 with sun shadow rays, 0 without
+  float sky_reach = 0, ray_offset = 0;      // meters
+  bool operator==(const LdiPackLight&) const = default;
+};
 
 // What the pack says about its set (the header and the per-level / per-direction arrays).
 struct LdiPackInfo {
@@ -36,6 +52,7 @@ struct LdiPackInfo {
   std::vector<float> level_distances;      // per level: meters from the viewer to the tile's near edge
   std::vector<float> elevations;           // per level: degrees below the horizon the rays point
   std::vector<float> azimuths;             // per direction: compass degrees the rays travel towards
+  std::optional<LdiPackLight> light;       // version 3 on
   bool operator==(const LdiPackInfo&) const = default;
 };
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "renders/ldi/ldi_pack.h"
+#include "folder/ldi_pack.h"
 
 namespace wangscape {
 

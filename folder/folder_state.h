@@ -1,5 +1,6 @@
 // What a scene folder's readers need to open it without making the scene again, written by the
-// build into the folder it stages (exporters/scene_folder.h) and checked on open:
+// build into the folder it stages (folder/scene_folder.h, the kept state's stage) and checked on
+// open (SceneFolder::open):
 //  - DIR/tiles.json, the filled tile set (docs/filled-tileset-format.md): the Poisson fill and
 //    its relaxation, which can take a minute;
 //  - DIR/scene.cache (docs/scene-folder.md): a versioned binary file with the fingerprint of
@@ -13,17 +14,13 @@
 #include <string>
 #include <vector>
 
+#include "folder/folder_files.h"
 #include "generator/instances.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
 
 namespace wangscape {
 
-// A built scene folder's files (docs/scene-folder.md): its scene file, named once here.
-inline constexpr const char* kFolderSceneFile = "scene.toml";
-inline constexpr const char* kFolderStateFile = "scene.cache";
-inline constexpr const char* kFolderTilesFile = "tiles.json";
-inline constexpr std::uint32_t kFolderStateVersion = 1;
 // The most bytes read of each (docs/limits.md): a 16,384 x 16,384 ground bake and 50 million
 // placed tiles fit in the first; the largest fill (kMaxPointsPerTile) in the second.
 inline constexpr std::uintmax_t kMaxFolderStateBytes = std::uintmax_t(1) << 30;
@@ -59,21 +56,16 @@ struct FolderState {
   PlacedTiles placed;
 };
 
-// Writes DIR/tiles.json and DIR/scene.cache for `scene` (made from `scene_text`) into `dir` (the
-// staging folder), atomically each. A scene without a field writes neither.
-void write_folder_state(const std::filesystem::path& dir, const std::string& scene_text, const Scene& scene,
+// Writes the tile set and the cache (files.tiles(), files.state()) for `scene` (made from
+// `scene_text`) into the staging folder `files`, atomically each. A scene without a field writes
+// neither.
+void write_folder_state(const FolderFiles& files, const std::string& scene_text, const Scene& scene,
                         const PlacedTiles& placed);
 
 // Reads them back and checks them against the folder's scene file text. Throws Error naming the
 // file: missing or from another version (a folder of an older build: build it again), made for
-// another scene.toml (the file was edited after the build), truncated or corrupt.
+// another scene file (the file was edited after the build), truncated or corrupt.
 // make_scene(config, stage, &state.prebuilt) then gives the folder's Scene as the build made it.
-FolderState read_folder_state(const std::filesystem::path& dir, const std::string& scene_text);
-
-// The folder's Scene as its build made it: make_scene of `config` (the folder's scene file,
-// load_scene_folder_config) with the state its build kept; its placed tiles into `placed` when
-// given. Throws Error as read_folder_state and make_scene do.
-Scene make_folder_scene(const std::filesystem::path& dir, const SceneConfig& config, const StageObserver& stage = {},
-                        PlacedTiles* placed = nullptr);
+FolderState read_folder_state(const FolderFiles& files, const std::string& scene_text);
 
 }  // namespace wangscape

@@ -1,6 +1,6 @@
 // The scene folder: placement runs once for every export together, the folder holds only
 // final files, a rebuild replaces the folder whole, and a failure leaves the old one as it was.
-#include "exporters/scene_folder.h"
+#include "folder/scene_folder.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -47,7 +47,7 @@ TEST(SceneFolder, EveryExportFromOnePlacementPass) {
   int runs = 0;
   const Scene scene = counted_scene(5000, runs);
   const auto out = scratch("all");
-  const auto summary = write_scene_folder(scene, kAllExports, "name = \"t\"\n", out);
+  const auto summary = SceneFolder::write(scene, {kAllExports, "name = \"t\"\n", {}}, out);
   EXPECT_EQ(runs, 1);
   EXPECT_EQ(summary.instances, 5000u);
   std::uint64_t sum = 0;
@@ -69,7 +69,7 @@ TEST(SceneFolder, EveryExportFromOnePlacementPass) {
 TEST(SceneFolder, TotalsReachThePovrayHeader) {
   int runs = 0;
   const auto out = scratch("header");
-  write_scene_folder(counted_scene(1234, runs), {true, false, false}, "", out);
+  SceneFolder::write(counted_scene(1234, runs), {{true, false, false}, "", {}}, out);
   std::ifstream pov(out / "scene.pov");
   const std::string text((std::istreambuf_iterator<char>(pov)), {});
   EXPECT_NE(text.find("//   instances: 1234\n"), std::string::npos);
@@ -78,8 +78,8 @@ TEST(SceneFolder, TotalsReachThePovrayHeader) {
 TEST(SceneFolder, RebuildReplacesTheWholeFolder) {
   int runs = 0;
   const auto out = scratch("rebuild");
-  write_scene_folder(counted_scene(100, runs), kAllExports, "", out);
-  write_scene_folder(counted_scene(100, runs), {true, false, false}, "", out);  // no Blender, no glTF now
+  SceneFolder::write(counted_scene(100, runs), {kAllExports, "", {}}, out);
+  SceneFolder::write(counted_scene(100, runs), {{true, false, false}, "", {}}, out);  // no Blender, no glTF now
   EXPECT_FALSE(fs::exists(out / "scene.glb"));
   EXPECT_FALSE(fs::exists(out / "blender"));
   EXPECT_TRUE(fs::exists(out / "scene.pov"));
@@ -90,7 +90,7 @@ TEST(SceneFolder, RefusesAFolderThatIsNotASceneFolder) {
   const auto out = scratch("foreign");
   fs::create_directories(out);
   std::ofstream(out / "notes.txt") << "mine";
-  EXPECT_THROW(write_scene_folder(counted_scene(10, runs), kAllExports, "", out), Error);
+  EXPECT_THROW(SceneFolder::write(counted_scene(10, runs), {kAllExports, "", {}}, out), Error);
   EXPECT_EQ(names_in(out), std::vector<std::string>{"notes.txt"});
   EXPECT_EQ(runs, 0);
 }
@@ -98,11 +98,11 @@ TEST(SceneFolder, RefusesAFolderThatIsNotASceneFolder) {
 TEST(SceneFolder, FailureLeavesTheEarlierBuildAsItWas) {
   int runs = 0;
   const auto out = scratch("failure");
-  write_scene_folder(counted_scene(100, runs), kAllExports, "first", out);
+  SceneFolder::write(counted_scene(100, runs), {kAllExports, "first", {}}, out);
   const auto before = names_in(out);
   Scene failing = counted_scene(3000, runs);
   failing.instances = testing::failing_at_batch(failing.instances, 2);
-  EXPECT_THROW(write_scene_folder(failing, kAllExports, "second", out), Error);
+  EXPECT_THROW(SceneFolder::write(failing, {kAllExports, "second", {}}, out), Error);
   EXPECT_EQ(names_in(out), before);
   std::ifstream toml(out / "scene.toml");
   const std::string text((std::istreambuf_iterator<char>(toml)), {});
@@ -118,15 +118,40 @@ TEST(SceneFolder, LoadingTheFolderResolvesPathsAsTheSceneFileDid) {
   const auto out = scratch("reload");
   const fs::path base = out.parent_path() / "scene_source";
   const std::string text = "name = \"reload\"\n[masks]\nmask = \"masks/field.png\"\n";
-  write_scene_folder(counted_scene(10, runs), {false, false, false}, text, out, {}, base);
-  const SceneConfig again = load_scene_folder_config(out);
+  SceneFolder::write(counted_scene(10, runs), {{false, false, false}, text, base}, out);
+  const auto config_of = [](const fs::path& dir) {
+    return SceneFolder::open(dir, SceneFolder::Parts::scene_file).config();
+  };
+  const SceneConfig again = config_of(out);
   EXPECT_EQ(again.masks.mask, fs::absolute(base).lexically_normal() / "masks/field.png");
   EXPECT_EQ(again.name, "reload");
   EXPECT_EQ(again.source, out / "scene.toml");
   // Without the base file (a folder from elsewhere), paths resolve against the folder itself.
   fs::remove(out / "scene_base.txt");
-  EXPECT_EQ(load_scene_folder_config(out).masks.mask, out / "masks/field.png");
-  EXPECT_THROW(load_scene_folder_config(out / "missing"), Error);
+  EXPECT_EQ(config_of(out).masks.mask, out / "masks/field.png");
+  EXPECT_THROW(config_of(out / "missing"), Error);
+}
+
+// One message for each way a folder can be unusable, each naming the file at fault.
+TEST(SceneFolder, OpeningSaysWhyAFolderIsUnusable) {
+  const auto refusal = [](const fs::path& dir, SceneFolder::Parts parts) {
+    try {
+      SceneFolder::open(dir, parts);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("opened");
+  };
+  const auto out = scratch("unusable");
+  EXPECT_NE(refusal(out, SceneFolder::Parts::scene_file).find("no such scene folder"), std::string::npos);
+  fs::create_directories(out);
+  const std::string no_scene = refusal(out, SceneFolder::Parts::scene_file);
+  EXPECT_NE(no_scene.find(FolderFiles(out).scene_file().string() + ": missing"), std::string::npos) << no_scene;
+  int runs = 0;
+  SceneFolder::write(counted_scene(10, runs), {{false, false, false}, "name = \"t\"\n", {}}, out);
+  EXPECT_EQ(SceneFolder::open(out, SceneFolder::Parts::scene_file).config().name, "t");
+  const std::string no_pack = refusal(out, SceneFolder::Parts::pack);
+  EXPECT_NE(no_pack.find(FolderFiles(out).pack().string() + ": missing"), std::string::npos) << no_pack;
 }
 
 }  // namespace

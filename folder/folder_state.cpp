@@ -1,4 +1,4 @@
-#include "exporters/folder_state.h"
+#include "folder/folder_state.h"
 
 #include <algorithm>
 #include <cmath>
@@ -110,16 +110,16 @@ PlacedTiles place_tiles(const SceneField& field) {
   return collector.result();
 }
 
-void write_folder_state(const fs::path& dir, const std::string& scene_text, const Scene& scene,
+void write_folder_state(const FolderFiles& files, const std::string& scene_text, const Scene& scene,
                         const PlacedTiles& placed) {
   if (!scene.field) return;
   const Json tiles = filled_tileset_to_json(scene.field->filled);
   const std::string tiles_text = format_filled_tileset_json(tiles);
-  write_file_atomically(dir / kFolderTilesFile, tiles_text);
+  write_file_atomically(files.tiles(), tiles_text);
 
   Writer w;
   w.put_bytes(kMagic, sizeof kMagic);
-  w.put(kFolderStateVersion);
+  w.put(FolderFiles::kFormatVersion);
   w.put(fingerprint(scene_text));
   w.put(fingerprint(tiles_text));
   w.put(placed.i0);
@@ -136,21 +136,21 @@ void write_folder_state(const fs::path& dir, const std::string& scene_text, cons
     w.put(std::int32_t(bake->image.height));
     w.put_bytes(bake->image.pixels.data(), bake->image.pixels.size());
   }
-  write_file_atomically(dir / kFolderStateFile, w.text());
+  write_file_atomically(files.state(), w.text());
 }
 
-FolderState read_folder_state(const fs::path& dir, const std::string& scene_text) {
-  const fs::path file = dir / kFolderStateFile, tiles_file = dir / kFolderTilesFile;
+FolderState read_folder_state(const FolderFiles& files, const std::string& scene_text) {
+  const fs::path file = files.state(), tiles_file = files.tiles();
   const std::string missing = std::string("missing: the folder was written by an older wangscape; ") + kBuildAgain;
   Reader r(read_file(file, kMaxFolderStateBytes, "scene cache", missing), file);
   if (std::memcmp(r.take(sizeof kMagic, "the magic"), kMagic, sizeof kMagic) != 0)
     r.fail("bad magic: not a Wangscape scene cache");
   const auto version = r.get<std::uint32_t>("the version");
-  if (version != kFolderStateVersion)
+  if (version != FolderFiles::kFormatVersion)
     r.fail("version " + std::to_string(version) + ", this wangscape reads version " +
-           std::to_string(kFolderStateVersion) + "; " + kBuildAgain);
+           std::to_string(FolderFiles::kFormatVersion) + "; " + kBuildAgain);
   if (r.get<std::uint64_t>("the scene file's fingerprint") != fingerprint(scene_text))
-    throw Error(dir / kFolderSceneFile, "", std::string("was changed after the build; ") + kBuildAgain);
+    throw Error(files.scene_file(), "", std::string("was changed after the build; ") + kBuildAgain);
   const std::uint64_t tiles_fingerprint = r.get<std::uint64_t>("the tile set's fingerprint");
 
   FolderState state;
@@ -193,7 +193,7 @@ FolderState read_folder_state(const fs::path& dir, const std::string& scene_text
 
   const std::string tiles_text = read_file(tiles_file, kMaxFolderTilesBytes, "tile set", missing);
   if (fingerprint(tiles_text) != tiles_fingerprint)
-    throw Error(tiles_file, "", std::string("does not match the folder's scene.cache; ") + kBuildAgain);
+    throw Error(tiles_file, "", "does not match the folder's " + file.filename().string() + "; " + kBuildAgain);
   Json document;
   try {
     document = Json::parse(tiles_text);
@@ -202,14 +202,6 @@ FolderState read_folder_state(const fs::path& dir, const std::string& scene_text
   }
   state.prebuilt.filled = filled_tileset_from_json(document, tiles_file.string());
   return state;
-}
-
-Scene make_folder_scene(const fs::path& dir, const SceneConfig& config, const StageObserver& stage,
-                        PlacedTiles* placed) {
-  FolderState state = read_folder_state(dir, config.text);
-  Scene scene = make_scene(config, stage, &state.prebuilt);
-  if (placed) *placed = std::move(state.placed);
-  return scene;
 }
 
 }  // namespace wangscape

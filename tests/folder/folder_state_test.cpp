@@ -1,7 +1,7 @@
-// The state a scene folder's build keeps for its readers (exporters/folder_state.h): written and
+// The state a scene folder's build keeps for its readers (folder/folder_state.h): written and
 // read back, it gives the same tile set, the same ground bake and the same placed tiles as making
 // the scene again, over several seeds; it is refused when it does not belong to the scene file.
-#include "exporters/folder_state.h"
+#include "folder/folder_state.h"
 
 #include <gtest/gtest.h>
 
@@ -37,14 +37,15 @@ class FolderStateTest : public ::testing::Test {
 TEST_F(FolderStateTest, ReadBackItIsTheSceneMadeAgain) {
   for (int seed : {1, 2, 3, 4, 5}) {
     const std::string text = field_text(seed);
-    const SceneConfig config = parse_scene_config(text, dir / "scene.toml", dir);
+    const SceneConfig config = parse_scene_config(text, FolderFiles(dir).scene_file(), dir);
     const Scene made = make_scene(config);
     const PlacedTiles placed = place_tiles(*made.field);
     ASSERT_FALSE(placed.cells.empty());
-    write_folder_state(dir, text, made, placed);
+    write_folder_state(FolderFiles(dir), text, made, placed);
 
-    PlacedTiles read_placed;
-    const Scene opened = make_folder_scene(dir, config, {}, &read_placed);
+    FolderState state = read_folder_state(FolderFiles(dir), text);
+    const PlacedTiles& read_placed = state.placed;
+    const Scene opened = make_scene(config, {}, &state.prebuilt);
     EXPECT_EQ(read_placed.cells, placed.cells) << "seed " << seed;
     EXPECT_EQ(read_placed.i0, placed.i0);
     EXPECT_EQ(read_placed.j0, placed.j0);
@@ -62,11 +63,11 @@ TEST_F(FolderStateTest, ReadBackItIsTheSceneMadeAgain) {
 
 TEST_F(FolderStateTest, AnotherSceneFileIsRefused) {
   const std::string text = field_text(1);
-  const SceneConfig config = parse_scene_config(text, dir / "scene.toml", dir);
+  const SceneConfig config = parse_scene_config(text, FolderFiles(dir).scene_file(), dir);
   const Scene made = make_scene(config);
-  write_folder_state(dir, text, made, place_tiles(*made.field));
+  write_folder_state(FolderFiles(dir), text, made, place_tiles(*made.field));
   try {
-    read_folder_state(dir, field_text(2));
+    read_folder_state(FolderFiles(dir), field_text(2));
     FAIL() << "a state of another scene file was read";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("was changed after the build"), std::string::npos) << e.what();
@@ -75,15 +76,15 @@ TEST_F(FolderStateTest, AnotherSceneFileIsRefused) {
 
 TEST_F(FolderStateTest, EveryTruncationIsRefused) {
   const std::string text = field_text(3);
-  const SceneConfig config = parse_scene_config(text, dir / "scene.toml", dir);
+  const SceneConfig config = parse_scene_config(text, FolderFiles(dir).scene_file(), dir);
   const Scene made = make_scene(config);
-  write_folder_state(dir, text, made, place_tiles(*made.field));
-  std::ifstream in(dir / kFolderStateFile, std::ios::binary);
+  write_folder_state(FolderFiles(dir), text, made, place_tiles(*made.field));
+  std::ifstream in(FolderFiles(dir).state(), std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   in.close();
   for (std::size_t size = 0; size < bytes.size(); size += 1 + size / 3) {
-    std::ofstream(dir / kFolderStateFile, std::ios::binary | std::ios::trunc) << bytes.substr(0, size);
-    EXPECT_THROW(read_folder_state(dir, text), Error) << "cut to " << size << " bytes";
+    std::ofstream(FolderFiles(dir).state(), std::ios::binary | std::ios::trunc) << bytes.substr(0, size);
+    EXPECT_THROW(read_folder_state(FolderFiles(dir), text), Error) << "cut to " << size << " bytes";
   }
 }
 

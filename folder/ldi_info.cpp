@@ -1,4 +1,4 @@
-#include "renders/ldi/ldi_info.h"
+#include "folder/ldi_info.h"
 
 #include <fmt/format.h>
 

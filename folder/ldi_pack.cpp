@@ -1,4 +1,4 @@
-#include "renders/ldi/ldi_pack.h"
+#include "folder/ldi_pack.h"
 
 #include <fcntl.h>
 #include <sys/mman.h>
@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <numbers>
+#include <type_traits>
 #include <utility>
 
 #include "core/atomic_file.h"
@@ -71,6 +72,10 @@ constexpr std::uint64_t align8(std::uint64_t x) { return (x + 7) & ~std::uint64_
 std::uint64_t arrays_bytes(std::uint64_t levels, std::uint64_t directions) {
   return levels * 4 * 3 + directions * 4;  // resolutions, distances, elevations; azimuths
 }
+
+// Version 3: the light record right after the arrays, as it is in memory (4-byte fields, no padding).
+static_assert(sizeof(LdiPackLight) == 72 && std::is_trivially_copyable_v<LdiPackLight>);
+std::uint64_t light_bytes(const LdiPackInfo& info) { return info.light ? sizeof(LdiPackLight) : 0; }
 
 // Where the sections of an LDI block sit, from its frame.
 struct BlockLayout {
@@ -161,7 +166,7 @@ void pad_to(std::ostream& out, std::uint64_t& at, std::uint64_t target) {
 }
 
 std::uint64_t index_offset_of(const LdiPackInfo& info) {
-  return align8(sizeof(PackHeader) + arrays_bytes(info.levels, info.directions));
+  return align8(sizeof(PackHeader) + arrays_bytes(info.levels, info.directions) + light_bytes(info));
 }
 
 }  // namespace
@@ -227,7 +232,7 @@ void LdiPackWriter::commit() {
     if (s == 0) throw Error(path_, "", "not every (tile, level, direction) LDI was added");
   PackHeader h{};
   std::memcpy(h.magic, kLdiPackMagic, sizeof(h.magic));
-  h.version = kLdiPackVersion;
+  h.version = info_.light ? kLdiPackVersion : kLdiPackOldestVersion;  // (version 2 has no light)
   h.header_bytes = sizeof(PackHeader);
   for_each_info_field(h, info_, [](auto& in_header, const auto& in_info) { in_header = in_info; });
   h.file_bytes = end_;
@@ -236,7 +241,8 @@ void LdiPackWriter::commit() {
   out.seekp(0);
   put(out, h);
   for_each_info_array(info_, [&](const auto& values, std::uint32_t) { put_all(out, std::span(values)); });
-  std::uint64_t at = sizeof(PackHeader) + arrays_bytes(info_.levels, info_.directions);
+  if (info_.light) put(out, *info_.light);
+  std::uint64_t at = sizeof(PackHeader) + arrays_bytes(info_.levels, info_.directions) + light_bytes(info_);
   pad_to(out, at, h.index_offset);
   for (std::size_t e = 0; e < sizes_.size(); ++e) put(out, IndexEntry{offsets_[e], sizes_[e]});
   file_->commit();
@@ -377,6 +383,26 @@ LdiView validate_block(const std::uint8_t* block, std::uint64_t bytes, std::uint
   return v;
 }
 
+// The light record: finite colours, a unit sun direction, counts and distances a build writes.
+template <class Fail>
+void check_light_numbers(const LdiPackLight& light, Fail&& fail) {
+  const auto finite_at_least = [](float v, float lo) { return std::isfinite(v) && v >= lo; };
+  for (const auto* colour : {&light.sun_color, &light.sky_color, &light.ground_color})
+    for (const float c : *colour)
+      if (!finite_at_least(c, 0)) fail("light: a colour of " + number_text(c) + ": expected finite, at least 0");
+  const Vector3d sun = wide(light.sun_direction);
+  if (!(std::abs(length(sun) - 1) <= kFrameTolerance))
+    fail("light: the sun's direction " + vector_text(sun) + " is not a unit vector");
+  if (!finite_at_least(light.sun_strength, 0) || !finite_at_least(light.exposure, 0) ||
+      !finite_at_least(light.sky_reach, 0) || !finite_at_least(light.ray_offset, 0))
+    fail("light: sun strength " + number_text(light.sun_strength) + ", exposure " + number_text(light.exposure) +
+         ", sky reach " + number_text(light.sky_reach) + ", ray offset " + number_text(light.ray_offset) +
+         ": expected finite numbers, at least 0");
+  if (light.shadows > 1 || light.sky_rays > 65536)
+    fail("light: shadows " + std::to_string(light.shadows) + ", sky rays " + std::to_string(light.sky_rays) +
+         ": expected 0 or 1, and 0 .. 65536");
+}
+
 // Every number of the header and its arrays finite and in the range a build writes: a NaN fails
 // every comparison, so a reader checking `tile_size == expected` later would pass it.
 template <class Fail>
@@ -408,6 +434,7 @@ void check_header_numbers(const LdiPackInfo& info, Fail&& fail) {
         (d > 0 && !(info.azimuths[d] > info.azimuths[d - 1])))
       fail("direction " + std::to_string(d) + ": azimuth " + number_text(info.azimuths[d]) +
            ": expected degrees in [0, 360), each direction after the one before");
+  if (info.light) check_light_numbers(*info.light, fail);
 }
 
 }  // namespace
@@ -436,8 +463,9 @@ LdiPack::LdiPack(const std::filesystem::path& path) : path_(path) {
     PackHeader h;
     std::memcpy(&h, data_, sizeof(h));
     if (std::memcmp(h.magic, kLdiPackMagic, sizeof(h.magic)) != 0) fail("bad magic: not a Wangscape LDI pack");
-    if (h.version != kLdiPackVersion)
-      fail("version " + std::to_string(h.version) + "; this build reads version " + std::to_string(kLdiPackVersion));
+    if (h.version < kLdiPackOldestVersion || h.version > kLdiPackVersion)
+      fail("version " + std::to_string(h.version) + "; this build reads version " +
+           std::to_string(kLdiPackOldestVersion) + " or " + std::to_string(kLdiPackVersion));
     if (h.header_bytes != sizeof(PackHeader)) fail("header size " + std::to_string(h.header_bytes) + " is wrong");
     if (h.file_bytes != size_)
       fail((size_ < h.file_bytes ? "truncated: " : "trailing bytes: ") + std::string("the header says ") +
@@ -447,6 +475,7 @@ LdiPack::LdiPack(const std::filesystem::path& path) : path_(path) {
       fail(std::to_string(h.tiles) + " tiles x " + std::to_string(h.levels) + " levels x " +
            std::to_string(h.directions) + " directions is out of range");
     for_each_info_field(h, info_, [](const auto& in_header, auto& in_info) { in_info = in_header; });
+    if (h.version >= 3) info_.light.emplace();  // read below, once the index is known to fit
     const std::size_t n = std::size_t{h.tiles} * h.levels * h.directions;
     if (h.index_offset != index_offset_of(info_) || h.index_offset + n * sizeof(IndexEntry) > size_)
       fail("the index (at " + std::to_string(h.index_offset) + ", " + std::to_string(n) +
@@ -458,6 +487,7 @@ LdiPack::LdiPack(const std::filesystem::path& path) : path_(path) {
       std::memcpy(values.data(), arrays + at, std::size_t{count} * 4);
       at += std::size_t{count} * 4;
     });
+    if (info_.light) std::memcpy(&*info_.light, arrays + at, sizeof(LdiPackLight));
     check_header_numbers(info_, fail);
 
     const auto* index = reinterpret_cast<const IndexEntry*>(data_ + h.index_offset);
