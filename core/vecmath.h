@@ -4,6 +4,7 @@
 // Pure functions: thread safe.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <optional>
@@ -62,6 +63,13 @@ constexpr Vector3<T> operator*(T s, const Vector3<T>& a) {
 // The widest horizontal field of view any camera takes (the scene file, the reference renderer,
 // the view), degrees, itself allowed; the narrowest is above 0. A pinhole's image plane grows as
 // tan(fov / 2), unbounded at 180.
+// 0 below lo, 1 above hi, the smooth cubic 3t^2 - 2t^3 between (a step at lo when hi <= lo).
+inline float smoothstep(double lo, double hi, double v) {
+  if (hi <= lo) return v >= lo ? 1.f : 0.f;
+  const double t = std::clamp((v - lo) / (hi - lo), 0.0, 1.0);
+  return static_cast<float>(t * t * (3 - 2 * t));
+}
+
 inline constexpr double kMaxFieldOfViewDegrees = 179;
 
 // Whether `degrees` is a horizontal field of view a camera takes: in (0, kMaxFieldOfViewDegrees].

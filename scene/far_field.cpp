@@ -319,11 +319,6 @@ CanopyLook look_at_canopy(const std::vector<PlacedFlower>& flowers, double side,
   return look;
 }
 
-float smoothstep(double lo, double hi, double v) {
-  const double t = std::clamp((v - lo) / std::max(hi - lo, 1e-9), 0.0, 1.0);
-  return static_cast<float>(t * t * (3 - 2 * t));
-}
-
 }  // namespace
 
 FieldTexture::FieldTexture(const SceneField& field, const std::vector<Mesh>& models,

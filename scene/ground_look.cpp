@@ -1,4 +1,5 @@
 #include "scene/ground_look.h"
+#include "core/vecmath.h"
 
 #include <tbb/parallel_for.h>
 
@@ -35,12 +36,6 @@ GroundColor ramp(const Ramp& r, float t) {
 
 GroundColor mix(const GroundColor& a, const GroundColor& b, float w) {
   return {a.r + w * (b.r - a.r), a.g + w * (b.g - a.g), a.b + w * (b.b - a.b)};
-}
-
-float smoothstep(double lo, double hi, double v) {
-  if (hi <= lo) return v >= lo ? 1.f : 0.f;
-  const double t = std::clamp((v - lo) / (hi - lo), 0.0, 1.0);
-  return static_cast<float>(t * t * (3 - 2 * t));
 }
 
 float luminance(float r, float g, float b) { return 0.2126f * r + 0.7152f * g + 0.0722f * b; }

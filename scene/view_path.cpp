@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using Json = nlohmann::json;
+using PathJson = nlohmann::json;  // not tileset_file.h's ordered Json: a path file is only read
 
 // "LINE:COLUMN" of a byte offset (nlohmann counts from 1, past the byte at fault).
 std::string line_and_column(std::string_view text, std::size_t byte) {
@@ -27,18 +27,18 @@ std::string line_and_column(std::string_view text, std::size_t byte) {
   return std::to_string(line) + ":" + std::to_string(column);
 }
 
-Json parse_json(std::string_view text, const fs::path& file) {
+PathJson parse_json(std::string_view text, const fs::path& file) {
   check_nesting(text, file, kMaxNesting);
   try {
-    return Json::parse(text.begin(), text.end(), nullptr, true, false);
-  } catch (const Json::parse_error& e) {
+    return PathJson::parse(text.begin(), text.end(), nullptr, true, false);
+  } catch (const PathJson::parse_error& e) {
     throw Error(file, line_and_column(text, e.byte), "not valid JSON here (expected a path file, docs/viewer.md)");
-  } catch (const Json::exception&) {
+  } catch (const PathJson::exception&) {
     throw Error(file, "", "a number too large for a path file (expected meters and seconds)");
   }
 }
 
-double number_in(const Json& j, const fs::path& file, const std::string& where, double lo, double hi,
+double number_in(const PathJson& j, const fs::path& file, const std::string& where, double lo, double hi,
                  const char* unit) {
   if (!j.is_number()) throw Error(file, where, std::string("expected a number of ") + unit);
   const double v = j.get<double>();
@@ -50,11 +50,11 @@ double number_in(const Json& j, const fs::path& file, const std::string& where, 
 }
 
 // [E, N, H] (absolute height) or [E, N] with a height above the ground in `height_key`.
-std::array<double, 3> read_point(const Json& key, const char* point_key, const char* height_key, bool above_ground,
+std::array<double, 3> read_point(const PathJson& key, const char* point_key, const char* height_key, bool above_ground,
                                  const fs::path& file, const std::string& where) {
   const std::string at = where + "." + point_key;
   if (!key.contains(point_key)) throw Error(file, where, std::string("expected \"") + point_key + "\"");
-  const Json& j = key[point_key];
+  const PathJson& j = key[point_key];
   const std::size_t size = above_ground ? 2 : 3;
   if (!j.is_array() || j.size() != size)
     throw Error(file, at,
@@ -94,12 +94,12 @@ std::array<double, 3> spline(const std::vector<PathKeyframe>& keys, double time,
 long long ViewPath::frame_count(double fps) const { return (long long)(std::floor(duration() * fps)) + 1; }
 
 ViewPath parse_view_path(std::string_view text, const fs::path& file) {
-  const Json doc = parse_json(text, file);
+  const PathJson doc = parse_json(text, file);
   const char* shape =
       "expected {\"keyframes\": [{\"time\": s, \"position\": [E, N, H], \"look_at\": [E, N, H]}, ...]} "
       "with at least two keyframes";
   if (!doc.is_object() || !doc.contains("keyframes") || !doc["keyframes"].is_array()) throw Error(file, "", shape);
-  const Json& keys = doc["keyframes"];
+  const PathJson& keys = doc["keyframes"];
   if (keys.size() < 2) throw Error(file, "keyframes", shape);
   if (keys.size() > kMaxPathKeyframes)
     throw Error(file, "keyframes",
@@ -111,7 +111,7 @@ ViewPath parse_view_path(std::string_view text, const fs::path& file) {
   path.look_at_above_ground = keys[0].is_object() && keys[0].contains("look_at_height_above_ground");
   path.keys.reserve(keys.size());
   for (std::size_t k = 0; k < keys.size(); ++k) {
-    const Json& j = keys[k];
+    const PathJson& j = keys[k];
     const std::string where = "keyframes[" + std::to_string(k) + "]";
     if (!j.is_object() || !j.contains("time"))
       throw Error(file, where,

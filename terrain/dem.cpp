@@ -16,10 +16,7 @@ namespace wangscape {
 
 namespace {
 
-struct DatasetCloser {
-  void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
-};
-using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
+using gdal_support::DatasetPtr;
 
 std::string quoted(const std::filesystem::path& path) {
   std::string text = "'";  // built by appending: GCC 12 warns falsely on "'" + s + "'"

@@ -1,12 +1,26 @@
 // GDAL plumbing shared by terrain/ sources (not part of the terrain API): one-time driver
-// registration, and capture of GDAL's error messages so they become Error text
-// instead of chatter on stderr.
+// registration, capture of GDAL's error messages so they become Error text instead of chatter on
+// stderr, and owning pointers to GDAL's datasets and coordinate transformations.
 #pragma once
 
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
+
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace wangscape::gdal_support {
+
+struct DatasetCloser {
+  void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
+};
+using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
+
+struct TransformDeleter {
+  void operator()(OGRCoordinateTransformation* t) const { OGRCoordinateTransformation::DestroyCT(t); }
+};
+using TransformPtr = std::unique_ptr<OGRCoordinateTransformation, TransformDeleter>;
 
 // Registers GDAL's drivers once and silences GDAL's default stderr error printer.
 // Thread-safe.

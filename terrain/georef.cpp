@@ -19,10 +19,7 @@ namespace wangscape {
 
 namespace {
 
-struct TransformDeleter {
-  void operator()(OGRCoordinateTransformation* t) const { OGRCoordinateTransformation::DestroyCT(t); }
-};
-using TransformPtr = std::unique_ptr<OGRCoordinateTransformation, TransformDeleter>;
+using gdal_support::TransformPtr;
 
 OGRSpatialReference wgs84_geographic() {
   OGRSpatialReference wgs84;

@@ -24,6 +24,9 @@ namespace wangscape {
 
 namespace {
 
+using gdal_support::DatasetPtr;
+using gdal_support::TransformPtr;
+
 // A raster mask's grid is the DEM's, each cell cut into at most this many pixels a side.
 constexpr int kMaxRefine = 16;
 // GDAL's default for a buffer's round corners (segments per quarter circle).
@@ -32,11 +35,6 @@ constexpr int kBufferQuadrantSegments = 30;
 // parallel then strays from the straight pieces by well under a millimetre, far inside the one
 // pixel the boundary band is widened by.
 constexpr double kLatLonStepDeg = 1e-3;
-
-struct DatasetCloser {
-  void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
-};
-using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 
 void require_file(const std::filesystem::path& file, const std::string& expected) {
   std::error_code ec;
@@ -50,16 +48,11 @@ OGRSpatialReference dem_srs(const DemRaster& dem) {
   return srs;
 }
 
-struct TransformDeleter {
-  void operator()(OGRCoordinateTransformation* t) const { OGRCoordinateTransformation::DestroyCT(t); }
-};
-
 // Reprojects `g` in place from `from` to `to`. The geometry keeps no reference to either CRS (they
 // may live on the stack): it is plain coordinates afterwards.
 void reproject(OGRGeometry& g, const OGRSpatialReference& from, const OGRSpatialReference& to,
                const std::filesystem::path& file, const std::string& what, const gdal_support::ErrorCapture& capture) {
-  const std::unique_ptr<OGRCoordinateTransformation, TransformDeleter> transform(
-      OGRCreateCoordinateTransformation(&from, &to));
+  const TransformPtr transform(OGRCreateCoordinateTransformation(&from, &to));
   const bool done = transform && g.transform(transform.get()) == OGRERR_NONE;
   g.assignSpatialReference(nullptr);
   if (!done) throw Error(file, "", what + " cannot be reprojected into the DEM's CRS" + capture.suffix());

@@ -16,6 +16,8 @@ namespace wangscape {
 
 namespace {
 
+using gdal_support::DatasetPtr;
+
 // Reads band `index` (1-based) as floats scaled to 0..1 by the band type's range.
 std::vector<float> read_unit_band(GDALDataset& dataset, int index, const std::string& path) {
   GDALRasterBand* band = dataset.GetRasterBand(index);
@@ -28,11 +30,6 @@ std::vector<float> read_unit_band(GDALDataset& dataset, int index, const std::st
   for (float& v : values) v /= full;
   return values;
 }
-
-struct DatasetCloser {
-  void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
-};
-using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 
 // Opens an image file through GDAL; `what` names it in errors ("mask image").
 DatasetPtr open_image(const std::filesystem::path& image, const std::string& what) {

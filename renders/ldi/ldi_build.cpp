@@ -34,7 +34,6 @@ constexpr double kPi = std::numbers::pi;
 // ---- Embree: the device, one prototype scene per model, one context scene per tile ----------
 
 using Device = EmbreeDevice;
-using Scene = EmbreeScene;
 
 // One recorded hit along a ray.
 struct Hit {
@@ -516,17 +515,17 @@ LdiImage sample_ldi(const TileContext& c, int level, int direction, tbb::enumera
 }
 
 // The models as Embree prototype scenes (built once, instanced by every context).
-std::vector<Scene> prototype_scenes(Device& device, std::span<const Mesh> models) {
+std::vector<EmbreeScene> prototype_scenes(Device& device, std::span<const Mesh> models) {
   return model_scenes(device, models, &collect_hits);
 }
 
 // The 3 x 3 context of `tile` as one Embree scene: per point an instance of its model's scene, or
 // (flattened) its own copy of the model's triangles; the ground quad last.
-Scene context_scene(Device& device, const FilledTileSet& filled, std::span<const Mesh> models,
-                    std::span<const Scene> prototypes, const std::array<std::uint16_t, 9>& context,
-                    const LdiBuildOptions& options, Instances& out) {
+EmbreeScene context_scene(Device& device, const FilledTileSet& filled, std::span<const Mesh> models,
+                          std::span<const EmbreeScene> prototypes, const std::array<std::uint16_t, 9>& context,
+                          const LdiBuildOptions& options, Instances& out) {
   const double tile_size = options.tile_size;
-  Scene scene(device.get());
+  EmbreeScene scene(device.get());
   std::vector<std::array<float, 3>> moved;
   out = Instances{};
   unsigned id = 0;
@@ -582,7 +581,7 @@ Scene context_scene(Device& device, const FilledTileSet& filled, std::span<const
 }
 
 // Builds every LDI of `tile` into `out` (levels x directions, level-major).
-void build_tile(Device& device, std::span<const Scene> prototypes, const FilledTileSet& filled,
+void build_tile(Device& device, std::span<const EmbreeScene> prototypes, const FilledTileSet& filled,
                 std::span<const Mesh> models, const LdiBuildOptions& options, const LdiLevels& levels, std::size_t tile,
                 std::vector<LdiImage>& out, Counters& counters, std::mutex& counters_mutex,
                 const std::function<void()>& ldi_done) {
@@ -592,7 +591,7 @@ void build_tile(Device& device, std::span<const Scene> prototypes, const FilledT
                 " has no 3 x 3 neighbourhood whose edges all match");
   const auto& context = contexts[std::size_t(std::max(0, options.context_choice)) % contexts.size()];
   Instances instances;
-  const Scene scene = context_scene(device, filled, models, prototypes, context, options, instances);
+  const EmbreeScene scene = context_scene(device, filled, models, prototypes, context, options, instances);
   const TileContext c{filled, models, options, levels, tile, scene.get(), instances};
   tbb::enumerable_thread_specific<Scratch> scratch([&] { return Scratch(options.max_hits); });
   const int L = options.view.levels, D = options.view.directions;
@@ -739,7 +738,7 @@ std::vector<LdiImage> build_one_tile(const FilledTileSet& filled, std::span<cons
   const LdiLevels own =
       levels ? LdiLevels{} : ldi_levels(options.view, options.tile_size, ldi_prism_top(filled, models));
   Device device;
-  const std::vector<Scene> prototypes = prototype_scenes(device, models);
+  const std::vector<EmbreeScene> prototypes = prototype_scenes(device, models);
   std::vector<LdiImage> out;
   Counters counters;
   std::mutex mutex;
@@ -779,7 +778,7 @@ LdiBuildReport build_ldi_pack(const FilledTileSet& filled, std::span<const Mesh>
   options.view.levels = int(levels.resolutions.size());
   check_inputs(filled, models, options);
   Device device;
-  const std::vector<Scene> prototypes = prototype_scenes(device, models);
+  const std::vector<EmbreeScene> prototypes = prototype_scenes(device, models);
   LdiPackWriter writer(path, info);
   Counters counters;
   std::mutex mutex;
