@@ -7,7 +7,7 @@ target_compile_options(wangscape_warnings INTERFACE -Wall -Wextra -Wshadow)
 # includes "generator/tileset.h".
 # Each library is compiled as unity files (its sources joined, 8 to a file): the heavy headers
 # (nlohmann-json, TBB, OIIO, GDAL) are then parsed once per 8 sources. A fresh build of the
-# program went from 416 s to about half of it in CPU (docs/limits.md, "Building"). A source's
+# program went from 416 s of CPU to 211 s (README, "Quick start"). A source's
 # anonymous namespace is then shared with its batch: two sources may not both define one name.
 function(wangscape_add_library name)
   add_library(wangscape_${name} STATIC ${ARGN})

@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "core/error.h"
@@ -30,10 +31,10 @@ struct SceneTracer::Impl {
   std::vector<std::uint16_t> variant;
   std::vector<float> cos_yaw, sin_yaw, scale;
   std::vector<std::array<float, 3>> position;  // shifted frame
-  // With the scene's wind: each flower's lean at wind_seconds (scene/wind.h), row-major 3 x 3,
-  // applied after its yaw and scale, about its base. Empty when calm.
+  // With the scene's wind and a time: each flower's lean at wind_seconds (scene/wind.h),
+  // row-major 3 x 3, applied after its yaw and scale, about its base. Empty when standing still.
   std::vector<std::array<float, 9>> lean;
-  double wind_seconds = 0;
+  std::optional<double> wind_seconds;
   // bake_sky: per model, per vertex, the sky share of the front (the triangles' winding) and the
   // back, interpolated across a triangle (per triangle, a leaf showed its facets).
   std::vector<std::vector<std::array<float, 2>>> model_sky;
@@ -59,7 +60,7 @@ struct SceneTracer::Impl {
   // on whether the flowers were added at its time or turned to it later).
   std::array<float, 9> lean_at(const WindField& wind, std::size_t f) const {
     const auto r =
-        lean_rotation(wind.lean(double(position[f][0]) + origin[0], double(position[f][1]) + origin[1], wind_seconds));
+        lean_rotation(wind.lean(double(position[f][0]) + origin[0], double(position[f][1]) + origin[1], *wind_seconds));
     std::array<float, 9> out;
     for (std::size_t c = 0; c < 9; ++c) out[c] = float(r[c]);
     return out;
@@ -94,7 +95,7 @@ struct SceneTracer::Impl {
       sin_yaw.push_back(std::sin(batch.yaw[i]));
       scale.push_back(batch.scale[i]);
       position.push_back({float(batch.x[i] - origin[0]), float(batch.y[i] - origin[1]), float(batch.z[i] - origin[2])});
-      if (scene.wind) lean.push_back(lean_at(*scene.wind, f));
+      if (scene.wind && wind_seconds) lean.push_back(lean_at(*scene.wind, f));
       const auto xfm = transform(f);
       RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
       rtcSetGeometryInstancedScene(g, models[v].get());
@@ -106,7 +107,8 @@ struct SceneTracer::Impl {
   }
 };
 
-SceneTracer::SceneTracer(const Scene& scene, const std::array<double, 3>& origin, Layout layout, double wind_seconds)
+SceneTracer::SceneTracer(const Scene& scene, const std::array<double, 3>& origin, Layout layout,
+                         std::optional<double> wind_seconds)
     : scene_(scene), impl_(std::make_unique<Impl>()) {
   Impl& t = *impl_;
   t.wind_seconds = wind_seconds;
@@ -166,6 +168,7 @@ void SceneTracer::set_wind_time(double seconds) {
   Impl& t = *impl_;
   if (!scene_.wind || seconds == t.wind_seconds) return;
   t.wind_seconds = seconds;
+  t.lean.resize(t.variant.size());  // standing still until now: every flower leans from here on
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, t.lean.size()), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t f = r.begin(); f != r.end(); ++f) t.lean[f] = t.lean_at(*scene_.wind, f);
   });
@@ -178,8 +181,6 @@ void SceneTracer::set_wind_time(double seconds) {
   rtcCommitScene(t.top->get());
   t.device.check("building the scene");
 }
-
-double SceneTracer::wind_seconds() const { return impl_->wind_seconds; }
 
 void SceneTracer::bake_sky(const ShadingSettings& shading, int rays, int instances) {
   Impl& t = *impl_;

@@ -28,14 +28,14 @@ class SceneTracer {
   };
   // Throws Error for an instance of a model the scene does not have, and for Embree's own
   // errors. The scene must outlive the tracer.
-  // With the scene's wind, every flower leans as it does at `wind_seconds` (scene/wind.h).
+  // With the scene's wind and a `wind_seconds`, every flower leans as it does then (scene/wind.h);
+  // without a time the flowers stand still (the view's near field, the sky shares' estimate).
   SceneTracer(const Scene& scene, const std::array<double, 3>& origin, Layout layout = Layout::whole,
-              double wind_seconds = 0);
+              std::optional<double> wind_seconds = std::nullopt);
   // The flowers leaned as the scene's wind has them at `seconds`: every flower's transform set
   // anew and the top level rebuilt (nothing without wind, or at the time they have). Not
   // thread-safe with tracing.
   void set_wind_time(double seconds);
-  double wind_seconds() const;
   // Layout::part: the flowers traced from now on (the previous ones dropped); a rebuild of the top
   // level only (the models and the terrain stay built). Not thread-safe with tracing.
   void set_flowers(const InstanceStream& flowers);

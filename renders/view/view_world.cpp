@@ -189,6 +189,9 @@ ViewWorld::ViewWorld(Scene scene, Packs packs, const ShadingSettings& shading_se
       sun_shading_(with_sun(shading_settings, scene_.sun)),
       ground_colors_(scene_.ground_texture.get(), shading_.ground_color),
       stems_(scene_.models) {
+  // The view leaves the wind out: an LDI is a tile's, shared by every place the tile lies, so it
+  // cannot lean per plant; the near field and the truth it is compared with stand still with it.
+  scene_.wind.reset();
   if (!scene_.field) throw Error("scene '" + scene_.name + "': no field of flowers to view");
   const SceneField& field = *scene_.field;
   const LdiPackInfo& info = pack_->info();

@@ -43,7 +43,7 @@ class ViewWorld {
   };
   // The same from a Scene already made and its packs shaded with the light `shading` (before
   // the sun), with the field's placed tiles as its folder keeps them (folder/folder_state.h) or,
-  // without them, found by a placement pass.
+  // without them, found by a placement pass. The scene's wind is left out (the view stands still).
   ViewWorld(Scene scene, Packs packs, const ShadingSettings& shading, const PlacedTiles* placed = nullptr);
   // What a test or a benchmark holds beside a pack file it built: a steep sets' pack file and the
   // sky shares' file (empty: made on first use).
