@@ -20,6 +20,7 @@
 
 #include "core/error.h"
 #include "core/vecmath.h"
+#include "renders/ldi/tile_context.h"
 #include "renders/trace/embree_device.h"
 
 namespace wangscape {
@@ -580,18 +581,24 @@ EmbreeScene context_scene(Device& device, const FilledTileSet& filled, std::span
   return scene;
 }
 
+// The 3 x 3 context tile `tile` is sampled in (options.context_choice).
+std::array<std::uint16_t, 9> chosen_context(const FilledTileSet& filled, const LdiBuildOptions& options,
+                                            std::size_t tile) {
+  const auto contexts = consistent_contexts(filled.set, tile, std::size_t(std::max(0, options.context_choice)) + 1);
+  if (contexts.empty())
+    throw Error("LDI build: tile " + std::to_string(tile) + " of " + filled.set.describe() +
+                " has no 3 x 3 neighbourhood whose edges all match");
+  return contexts[std::size_t(std::max(0, options.context_choice)) % contexts.size()];
+}
+
 // Builds every LDI of `tile` into `out` (levels x directions, level-major).
 void build_tile(Device& device, std::span<const EmbreeScene> prototypes, const FilledTileSet& filled,
                 std::span<const Mesh> models, const LdiBuildOptions& options, const LdiLevels& levels, std::size_t tile,
                 std::vector<LdiImage>& out, Counters& counters, std::mutex& counters_mutex,
                 const std::function<void()>& ldi_done) {
-  const auto contexts = consistent_contexts(filled.set, tile, std::size_t(std::max(0, options.context_choice)) + 1);
-  if (contexts.empty())
-    throw Error("LDI build: tile " + std::to_string(tile) + " of " + filled.set.describe() +
-                " has no 3 x 3 neighbourhood whose edges all match");
-  const auto& context = contexts[std::size_t(std::max(0, options.context_choice)) % contexts.size()];
   Instances instances;
-  const EmbreeScene scene = context_scene(device, filled, models, prototypes, context, options, instances);
+  const EmbreeScene scene =
+      context_scene(device, filled, models, prototypes, chosen_context(filled, options, tile), options, instances);
   const TileContext c{filled, models, options, levels, tile, scene.get(), instances};
   tbb::enumerable_thread_specific<Scratch> scratch([&] { return Scratch(options.max_hits); });
   const int L = options.view.levels, D = options.view.directions;
@@ -747,6 +754,19 @@ std::vector<LdiImage> build_one_tile(const FilledTileSet& filled, std::span<cons
   return out;
 }
 }  // namespace
+
+EmbreeScene tile_context_scene(EmbreeDevice& device, std::span<const EmbreeScene> occluders,
+                               const FilledTileSet& filled, std::span<const Mesh> models,
+                               const LdiBuildOptions& options, std::size_t tile) {
+  check_inputs(filled, models, options);
+  if (tile >= filled.tiles.size())
+    throw Error("LDI build: no tile " + std::to_string(tile) + " in " + filled.set.describe());
+  if (occluders.size() != models.size()) throw Error("LDI build: one occluder scene per model expected");
+  LdiBuildOptions instanced = options;
+  instanced.instancing = true;
+  Instances instances;
+  return context_scene(device, filled, models, occluders, chosen_context(filled, options, tile), instanced, instances);
+}
 
 std::vector<LdiImage> build_tile_ldis(const FilledTileSet& filled, std::span<const Mesh> models,
                                       const LdiBuildOptions& options, std::size_t tile, LdiBuildReport* report) {

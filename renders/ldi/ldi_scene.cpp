@@ -65,6 +65,13 @@ std::vector<LdiImage> build_scene_tile_ldis(const Scene& scene, LdiBuildOptions 
   return build_tile_ldis(inputs.filled, inputs.models, options, tile, levels);
 }
 
+TileGroundLight bake_scene_ground_light(const Scene& scene, const ShadingSettings& shading, std::uint32_t resolution) {
+  LdiBuildOptions options;
+  options.shading = shading;
+  const SceneLdiInputs inputs = scene_ldi_inputs(scene, options);
+  return bake_tile_ground_light(inputs.filled, inputs.models, options, resolution);
+}
+
 std::uint32_t steep_resolution(const LdiPackInfo& pack) {
   return pack.resolutions[pack.levels - std::min(pack.levels, kSteepLevels)];
 }

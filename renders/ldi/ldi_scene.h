@@ -13,6 +13,7 @@
 #include "folder/folder_files.h"
 #include "folder/ldi_pack.h"
 #include "folder/scene_folder.h"
+#include "renders/ldi/ground_light.h"
 #include "renders/ldi/ldi_build.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
@@ -41,6 +42,10 @@ LdiBuildReport build_scene_ldi_pack(const Scene& scene, const std::filesystem::p
 // the same inputs as the scene's pack (its points' yaw, tile size, sun, full models).
 std::vector<LdiImage> build_scene_tile_ldis(const Scene& scene, LdiBuildOptions options, std::size_t tile,
                                             const LdiLevels& levels);
+
+// The ground light under each tile's plants (renders/ldi/ground_light.h), with the same inputs as
+// the scene's pack and the light `shading` (before the sun is applied), as the pack was shaded.
+TileGroundLight bake_scene_ground_light(const Scene& scene, const ShadingSettings& shading, std::uint32_t resolution);
 
 // The steep sets. Seen from above, the pack's LDIs (sampled from head height, a few degrees below
 // the horizon) and the one-layer far steps made from them show their columns: a far step holds

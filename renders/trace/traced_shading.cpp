@@ -168,22 +168,24 @@ int shade_in_the_open16(RTCSceneTy* scene, const ShadingSettings& s, const Surfa
   return rays;
 }
 
-Vec3f shade(RTCSceneTy* scene, const ShadingSettings& s, const SurfaceSample& sample, std::uint64_t random,
-            int* rays_cast) {
-  int rays = 0;
+float shadowed_sun_share(RTCSceneTy* scene, const ShadingSettings& s, const SurfaceSample& sample, int* rays_cast) {
+  // The front is lit by cos; a translucent part passes that share of the light on its back.
   const Vec3f& n = sample.normal;
-  const Vec3f& p = sample.position;
-
-  // Sun: the front is lit by cos; a translucent part passes that share of the light on its back.
   const float cos_sun = dot(n, s.sun_direction);
   float sun = sun_share(cos_sun, sample.translucency);
   if (sun > 0 && s.shadows) {
-    const Vec3f from = offset_along(p, n, cos_sun > 0 ? s.ray_offset : -s.ray_offset);
-    ++rays;
+    const Vec3f from = offset_along(sample.position, n, cos_sun > 0 ? s.ray_offset : -s.ray_offset);
+    ++*rays_cast;
     if (occluded(scene, from, s.sun_direction, std::numeric_limits<float>::infinity())) sun = 0;
   }
+  return sun;
+}
 
-  const float sky = s.ao_rays > 0 ? open_sky_share(scene, s, p, n, random) : sample.sky;
+Vec3f shade(RTCSceneTy* scene, const ShadingSettings& s, const SurfaceSample& sample, std::uint64_t random,
+            int* rays_cast) {
+  int rays = 0;
+  const float sun = shadowed_sun_share(scene, s, sample, &rays);
+  const float sky = s.ao_rays > 0 ? open_sky_share(scene, s, sample.position, sample.normal, random) : sample.sky;
   rays += std::max(s.ao_rays, 0);
 
   if (rays_cast) *rays_cast = rays;

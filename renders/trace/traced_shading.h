@@ -51,6 +51,12 @@ void model_surface(const Mesh& mesh, unsigned prim, float u, float v, float cos_
 Vec3f shade(RTCSceneTy* scene, const ShadingSettings& settings, const SurfaceSample& sample, std::uint64_t random,
             int* rays_cast = nullptr);
 
+// The sun's share of light at `sample` (cos, or through a translucent part's back) where its
+// shadow ray toward the sun meets nothing (with settings.shadows): what shade() lights it by.
+// Adds the rays it cast to *rays_cast.
+float shadowed_sun_share(RTCSceneTy* scene, const ShadingSettings& settings, const SurfaceSample& sample,
+                         int* rays_cast);
+
 // The share of the sky a point at `position` facing unit `normal` sees: settings.ao_rays
 // cosine-weighted rays over the hemisphere of `normal`, each open unless something lies within
 // settings.ao_distance (1 when ao_rays is 0); `random` seeds the directions.

@@ -52,21 +52,30 @@ void LdiRenderer::draw_terrain() {
   const Luts& lut = luts();
   const float ex = float(m.view.eye[0]), ey = float(m.view.eye[1]);
   const float inv_s = float(1 / s);
+  const TileGroundLight& ground_light = world.ground_light();
+  // The open sky's part of the terrain's light (its vertices': the sun's where it reaches them,
+  // and the open sky), and level-0 ground-light texels per meter of a pixel's footprint.
+  const Vec3f open_sky = lit(world.sun_shading(), {1, 1, 1}, 0, 1);
+  const float texels_per_meter = float(ground_light.resolution()) * inv_s / float(m.view.focal);
   auto shade_pixel = [&](int px, int py, float depth, float wx, float wy, float lr, float lg, float lb) {
     const double gx = double(wx) + m.view.eye[0], gy = double(wy) + m.view.eye[1];
     const auto base = world.ground_color(gx, gy);
+    float u = 0, v = 0;
+    const std::int32_t t = world.placed_tile_at(gx, gy, u, v);
+    if (t >= 0 && !ground_light.empty()) {
+      // Under a placed tile: its plants' shade on the ground, the sun's part and the sky's.
+      const auto [sun, sky] = ground_light.shares(world.tiles().tile[std::size_t(t)], u, v, depth * texels_per_meter);
+      lr = (lr - open_sky[0]) * sun + open_sky[0] * sky;
+      lg = (lg - open_sky[1]) * sun + open_sky[1] * sky;
+      lb = (lb - open_sky[2]) * sun + open_sky[2] * sky;
+    }
     float r = base[0] * lr, g = base[1] * lg, b = base[2] * lb;
     // Beyond the LDIs: the tile's directional average color over the ground, by its cover.
-    const std::int64_t ci = std::int64_t(std::floor(gx * inv_s)) - world.grid_i0();
-    const std::int64_t cj = std::int64_t(std::floor(gy * inv_s)) - world.grid_j0();
-    if (ci >= 0 && cj >= 0 && ci < world.grid_width() && cj < world.grid_height()) {
-      const std::int32_t t = world.grid()[std::size_t(cj * world.grid_width() + ci)];
-      if (t >= 0 && threshold(px, py) >= m.plan.far_from[std::size_t(t)]) {
-        const float k = m.plan.far_cover[std::size_t(t)];
-        r += (m.plan.far_r[std::size_t(t)] - r) * k;
-        g += (m.plan.far_g[std::size_t(t)] - g) * k;
-        b += (m.plan.far_b[std::size_t(t)] - b) * k;
-      }
+    if (t >= 0 && threshold(px, py) >= m.plan.far_from[std::size_t(t)]) {
+      const float k = m.plan.far_cover[std::size_t(t)];
+      r += (m.plan.far_r[std::size_t(t)] - r) * k;
+      g += (m.plan.far_g[std::size_t(t)] - g) * k;
+      b += (m.plan.far_b[std::size_t(t)] - b) * k;
     }
     depth_write(m.zbuffer[std::size_t(py) * std::size_t(m.width) + std::size_t(px)],
                 pack_entry(depth, lut.encode(r), lut.encode(g), lut.encode(b)));

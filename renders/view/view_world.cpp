@@ -163,6 +163,22 @@ std::vector<float> terrain_sun_visibility(const Mesh& mesh, const std::array<flo
 
 }  // namespace
 
+std::int32_t ViewWorld::placed_tile_at(double x, double y, float& u, float& v) const {
+  const double fx = x / tile_size_, fy = y / tile_size_;
+  const double cell_x = std::floor(fx), cell_y = std::floor(fy);
+  const std::int64_t ci = std::int64_t(cell_x) - grid_i0_, cj = std::int64_t(cell_y) - grid_j0_;
+  if (ci < 0 || cj < 0 || ci >= grid_width_ || cj >= grid_height_) return -1;
+  u = float(fx - cell_x);
+  v = float(fy - cell_y);
+  return grid_[std::size_t(cj * grid_width_ + ci)];
+}
+
+float ViewWorld::ground_sky_share(double x, double y) const {
+  float u = 0, v = 0;
+  const std::int32_t t = placed_tile_at(x, y, u, v);
+  return t < 0 || ground_light_.empty() ? 1.0f : ground_light_.shares(tiles_.tile[std::size_t(t)], u, v, 0)[1];
+}
+
 std::shared_ptr<const ViewWorld> ViewWorld::load(const fs::path& dir, const StageObserver& stage) {
   const SceneFolder folder = SceneFolder::open(dir, SceneFolder::Parts::pack);
   return std::make_shared<const ViewWorld>(folder.make_scene(stage),
@@ -275,6 +291,7 @@ ViewWorld::ViewWorld(Scene scene, Packs packs, const ShadingSettings& shading_se
     light[v] = lit(sun_shading_, {1, 1, 1}, cos_sun, 1);  // the irradiance: a white ground's color
   }
   terrain_ = make_terrain_chunks(mesh, light);
+  ground_light_ = bake_scene_ground_light(scene_, shading_, kGroundLightResolution);
 
   // The far field: per tile and direction, the coarsest LDI's front flower samples averaged —
   // those in the canopy's upper part: seen from afar at a grazing angle, the tiles in front hide

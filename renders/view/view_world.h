@@ -16,6 +16,7 @@
 #include "folder/folder_state.h"
 #include "folder/ldi_pack.h"
 #include "generator/image.h"
+#include "renders/ldi/ground_light.h"
 #include "renders/ldi/ldi_scene.h"
 #include "renders/trace/ground_colors.h"
 #include "renders/trace/scene_tracer.h"
@@ -118,6 +119,16 @@ class ViewWorld {
   const ShadingSettings& sun_shading() const { return sun_shading_; }
   // The ground's base colors (the bake, or the plain ground color), as the reference sees them.
   const GroundColors& ground_colors() const { return ground_colors_; }
+  // The light each tile's plants leave on the ground under them (renders/ldi/ground_light.h):
+  // the terrain's shade where a tile is placed. Texels of kGroundLightResolution across a tile.
+  static constexpr std::uint32_t kGroundLightResolution = 64;
+  const TileGroundLight& ground_light() const { return ground_light_; }
+  // The placed tile (an index of tiles()) whose square holds (x, y), and where in it (u, v: 0 .. 1
+  // east and north); -1 where none is placed.
+  std::int32_t placed_tile_at(double x, double y, float& u, float& v) const;
+  // The open sky's share the ground light gives the ground at (x, y) (1 where no tile is placed):
+  // the view's rays shade the terrain with it, as the rasterized terrain is.
+  float ground_sky_share(double x, double y) const;
 
  private:
   Scene scene_;
@@ -142,7 +153,8 @@ class ViewWorld {
   ShadingSettings shading_;
   ShadingSettings sun_shading_;
   GroundColors ground_colors_;  // of scene_'s bake, shading_'s plain ground
-  StemClearance stems_;         // of scene_'s models
+  TileGroundLight ground_light_;
+  StemClearance stems_;  // of scene_'s models
 };
 
 }  // namespace wangscape
