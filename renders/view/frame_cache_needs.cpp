@@ -258,11 +258,7 @@ void FrameCache::Impl::trace(LdiRenderer& renderer, std::size_t n, bool still) {
       tracer.intersect16(from, d.data(), tfar.data(), valid, hit);
       for (int l = 0; l < 16; ++l) {
         hit_valid[l] = valid[l] && hit[l].has_value();
-        if (!hit_valid[l]) continue;
-        surfaces[l] = tracer.surface(*hit[l], from, d[l], world.ground_colors());
-        if (SceneTracer::on_terrain(*hit[l]))  // the plants' shade of the sky, as the rasterized terrain's
-          surfaces[l].sky = world.ground_sky_share(double(surfaces[l].position[0]) + tracer.origin()[0],
-                                                   double(surfaces[l].position[1]) + tracer.origin()[1]);
+        if (hit_valid[l]) surfaces[l] = tracer.surface(*hit[l], from, d[l], world.ground_colors());
       }
       if (still) {
         for (int l = 0; l < 16; ++l)

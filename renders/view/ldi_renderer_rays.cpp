@@ -156,11 +156,7 @@ std::uint64_t LdiRenderer::cast_rays(const SceneTracer& tracer, double reach) {
         rays += std::uint64_t(lanes);
         for (int l = 0; l < 16; ++l) {
           hit_valid[l] = valid[l] && hit[l].has_value();
-          if (!hit_valid[l]) continue;
-          surfaces[l] = tracer.surface(*hit[l], from, d[l], world.ground_colors());
-          if (SceneTracer::on_terrain(*hit[l]))  // the plants' shade of the sky, as the rasterized terrain's
-            surfaces[l].sky = world.ground_sky_share(double(surfaces[l].position[0]) + tracer.origin()[0],
-                                                     double(surfaces[l].position[1]) + tracer.origin()[1]);
+          if (hit_valid[l]) surfaces[l] = tracer.surface(*hit[l], from, d[l], world.ground_colors());
         }
         rays += std::uint64_t(shade_in_the_open16(tracer.scene(), shading, surfaces, hit_valid, colors));
         for (int l = 0; l < 16; ++l) {

@@ -39,6 +39,32 @@ void LdiRenderer::choose_chunks() {
   });
 }
 
+namespace {
+// How much of the ground light's shade a terrain pixel shows, by how steeply its ray meets the
+// ground: none below kLow (the sine of the ray's angle below the horizon), all above kHigh.
+struct GroundShadeFade {
+  static constexpr float kLow = 0.26f, kHigh = 0.64f;  // 15 and 40 degrees
+  // (The ray through a pixel is ViewProjection::ray_through's, in the terms below.)
+  explicit GroundShadeFade(const ViewProjection& view) {
+    for (std::size_t a = 0; a < 3; ++a) {
+      right[a] = float(view.right[a] / view.focal);
+      up[a] = float(-view.up[a] / view.focal);
+      base[a] = float(view.forward[a] - view.right[a] * view.cx / view.focal + view.up[a] * view.cy / view.focal);
+    }
+  }
+  float weight(float px, float py) const {
+    float d[3], length2 = 0;
+    for (std::size_t a = 0; a < 3; ++a) {
+      d[a] = base[a] + right[a] * (px + 0.5f) + up[a] * (py + 0.5f);
+      length2 += d[a] * d[a];
+    }
+    const float sine = -d[2] / std::sqrt(length2);
+    return std::clamp((sine - kLow) / (kHigh - kLow), 0.0f, 1.0f);
+  }
+  float right[3], up[3], base[3];
+};
+}  // namespace
+
 // Step 7: the terrain's chunks in the frustum rasterized (renders/view/terrain_raster.h), nearest
 // first, each pixel shaded with the ground's colour and light and, beyond the LDIs, the tile's
 // far-field colour.
@@ -57,14 +83,20 @@ void LdiRenderer::draw_terrain() {
   // and the open sky), and level-0 ground-light texels per meter of a pixel's footprint.
   const Vec3f open_sky = lit(world.sun_shading(), {1, 1, 1}, 0, 1);
   const float texels_per_meter = float(ground_light.resolution()) * inv_s / float(m.view.focal);
+  const GroundShadeFade fade(m.view);
   auto shade_pixel = [&](int px, int py, float depth, float wx, float wy, float lr, float lg, float lb) {
     const double gx = double(wx) + m.view.eye[0], gy = double(wy) + m.view.eye[1];
     const auto base = world.ground_color(gx, gy);
     float u = 0, v = 0;
     const std::int32_t t = world.placed_tile_at(gx, gy, u, v);
     if (t >= 0 && !ground_light.empty()) {
-      // Under a placed tile: its plants' shade on the ground, the sun's part and the sky's.
-      const auto [sun, sky] = ground_light.shares(world.tiles().tile[std::size_t(t)], u, v, depth * texels_per_meter);
+      // Under a placed tile: its plants' shade on the ground, the sun's part and the sky's. Seen
+      // low, ground between the plants is where the LDIs left a gap the truth fills with leaves:
+      // the shade fades out there (GroundShadeFade).
+      auto [sun, sky] = ground_light.shares(world.tiles().tile[std::size_t(t)], u, v, depth * texels_per_meter);
+      const float seen = fade.weight(float(px), float(py));
+      sun = 1 + (sun - 1) * seen;
+      sky = 1 + (sky - 1) * seen;
       lr = (lr - open_sky[0]) * sun + open_sky[0] * sky;
       lg = (lg - open_sky[1]) * sun + open_sky[1] * sky;
       lb = (lb - open_sky[2]) * sun + open_sky[2] * sky;

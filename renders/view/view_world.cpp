@@ -173,12 +173,6 @@ std::int32_t ViewWorld::placed_tile_at(double x, double y, float& u, float& v) c
   return grid_[std::size_t(cj * grid_width_ + ci)];
 }
 
-float ViewWorld::ground_sky_share(double x, double y) const {
-  float u = 0, v = 0;
-  const std::int32_t t = placed_tile_at(x, y, u, v);
-  return t < 0 || ground_light_.empty() ? 1.0f : ground_light_.shares(tiles_.tile[std::size_t(t)], u, v, 0)[1];
-}
-
 std::shared_ptr<const ViewWorld> ViewWorld::load(const fs::path& dir, const StageObserver& stage) {
   const SceneFolder folder = SceneFolder::open(dir, SceneFolder::Parts::pack);
   return std::make_shared<const ViewWorld>(folder.make_scene(stage),

@@ -126,9 +126,6 @@ class ViewWorld {
   // The placed tile (an index of tiles()) whose square holds (x, y), and where in it (u, v: 0 .. 1
   // east and north); -1 where none is placed.
   std::int32_t placed_tile_at(double x, double y, float& u, float& v) const;
-  // The open sky's share the ground light gives the ground at (x, y) (1 where no tile is placed):
-  // the view's rays shade the terrain with it, as the rasterized terrain is.
-  float ground_sky_share(double x, double y) const;
 
  private:
   Scene scene_;
