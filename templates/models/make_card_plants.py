@@ -76,9 +76,11 @@ def cards(height, seed):
     return positions, normals, uvs, indices
 
 
-def glb(name, height, seed):
-    positions, normals, uvs, indices = cards(height, seed)
-    image = png_rgba(128, 256, frond(seed))
+def glb_bytes(name, positions, normals, uvs, indices, image, generator, alpha_cutoff=0.5, roughness=0.9,
+              material="frond", sampler=None):
+    """A self-contained GLB of one mesh node `name` (y up): one primitive with its RGBA PNG `image`
+    held in the binary chunk, alphaMode MASK at `alpha_cutoff`, double-sided (the test models'
+    script, tests/data/models/make_own_models.py, writes its GLB with it too)."""
     parts = [b"".join(struct.pack("<3f", *p) for p in positions), b"".join(struct.pack("<3f", *n) for n in normals),
              b"".join(struct.pack("<2f", *t) for t in uvs), b"".join(struct.pack("<H", i) for i in indices), image]
     views, blob = [], b""
@@ -87,14 +89,15 @@ def glb(name, height, seed):
         blob += part + b"\0" * (-len(part) % 4)
     xs, ys, zs = zip(*positions)
     gltf = {
-        "asset": {"version": "2.0", "generator": "Wangscape templates/models/make_card_plants.py"},
+        "asset": {"version": "2.0", "generator": generator},
         "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0, "name": name}],
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3,
                                     "material": 0}]}],
-        "materials": [{"name": "frond", "doubleSided": True, "alphaMode": "MASK", "alphaCutoff": 0.5,
+        "materials": [{"name": material, "doubleSided": True, "alphaMode": "MASK", "alphaCutoff": alpha_cutoff,
                        "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0,
-                                                "roughnessFactor": 0.9}}],
-        "textures": [{"source": 0, "sampler": 0}], "samplers": [{"magFilter": 9729, "minFilter": 9987}],
+                                                "roughnessFactor": roughness}}],
+        "textures": [{"source": 0, "sampler": 0}],
+        "samplers": [sampler or {"magFilter": 9729, "minFilter": 9987}],
         "images": [{"bufferView": 4, "mimeType": "image/png"}],
         "buffers": [{"byteLength": len(blob)}],
         "bufferViews": views,
@@ -108,7 +111,13 @@ def glb(name, height, seed):
     text = json.dumps(gltf, separators=(",", ":")).encode()
     text += b" " * (-len(text) % 4)
     body = struct.pack("<II", len(text), 0x4E4F534A) + text + struct.pack("<II", len(blob), 0x004E4942) + blob
-    data = struct.pack("<III", 0x46546C67, 2, 12 + len(body)) + body
+    return struct.pack("<III", 0x46546C67, 2, 12 + len(body)) + body
+
+
+def glb(name, height, seed):
+    positions, normals, uvs, indices = cards(height, seed)
+    data = glb_bytes(name, positions, normals, uvs, indices, png_rgba(128, 256, frond(seed)),
+                     "Wangscape templates/models/make_card_plants.py")
     os.makedirs(HERE, exist_ok=True)
     with open(os.path.join(HERE, name + ".glb"), "wb") as f:
         f.write(data)

@@ -2,11 +2,14 @@
 the leaf card's red and orange halves and its transparent blue, which must never show) and checks
 them against limits. Prints the counts and the mean colour of the plant pixels (red and orange).
 Usage: model_colors.py IMAGE [NAME:min:N | NAME:max:N | agrees:OTHER_IMAGE:MAX_DE]...  (NAME: red,
-orange, blue; agrees: the plant pixels' mean colours of both images within CIEDE2000 MAX_DE)"""
+orange, blue; agrees: the plant pixels' mean colours of both images within CIEDE2000 MAX_DE, and
+each image holds at least 100 plant pixels, so that two pictures without plants never agree)"""
 import sys
 
 from colour_difference import ciede2000, srgb8_to_lab
 from render_image import read_rgb
+
+MIN_PLANT_PIXELS = 100  # below this, a mean colour says little (and none at all is black)
 
 
 def plant_mean(image):
@@ -33,11 +36,16 @@ ok = True
 for limit in sys.argv[2:]:
     if limit.startswith("agrees:"):
         _, other, most = limit.split(":")
-        other_mean = plant_mean(other)[1]
+        other_counts, other_mean = plant_mean(other)
         difference = ciede2000(srgb8_to_lab(mean), srgb8_to_lab(other_mean))
         print("  plant mean of %s: sRGB %.1f %.1f %.1f, CIEDE2000 %.2f (at most %s)" %
               (other, other_mean[0], other_mean[1], other_mean[2], difference, most))
         ok = ok and difference <= float(most)
+        for image, c in ((sys.argv[1], counts), (other, other_counts)):
+            if c["red"] + c["orange"] < MIN_PLANT_PIXELS:
+                print("  %s holds %d plant pixels: too few to compare (at least %d)" %
+                      (image, c["red"] + c["orange"], MIN_PLANT_PIXELS))
+                ok = False
         continue
     name, bound, value = limit.split(":")
     held = counts[name] >= int(value) if bound == "min" else counts[name] <= int(value)

@@ -214,6 +214,8 @@ TEST(ModelImport, EachFormatOfTheSubsetImportsWithItsColours) {
       {"BoxTextured.gltf", 12, "Texture", {1, 1, 1}},  // glTF 2.0, its image beside it
       {"BoxTexturedBinary.glb", 12, "Texture", {1, 1, 1}},
       {"leaf_card.gltf", 2, "leaf", {1, 1, 1}},
+      {"tulip_textured.obj", 576, "head", {1, 1, 1}},   // OBJ whose MTL maps an image (map_Kd)
+      {"leaf_cross.glb", 6, "leaf", {1, 1, 1}},         // GLB, its image held inside, alpha MASK
       {"cube.ply", 12, "default", {0.5f, 0.5f, 0.5f}},  // PLY ascii: no materials in the file
       {"cube_binary.ply", 12, "default", {0.5f, 0.5f, 0.5f}},
       {"cube_triangulate.dae", 12, "Blue", {0.137255f, 0.403922f, 0.870588f}},  // Collada
@@ -277,6 +279,47 @@ TEST(ModelImport, LeafCardTexelsAlphaAndUvsArrive) {
       EXPECT_EQ(mesh.uvs[v], (std::array<float, 2>{0.0f, 1.0f}));
     }
   EXPECT_TRUE(found);
+}
+
+// The textured OBJ's image (map_Kd beside its MTL) and the alpha GLB's (held inside) arrive with
+// their texels, v = 0 at the image's bottom: the tulip's head red above and orange below, the
+// crossed cards' columns alternately opaque and cut out.
+TEST(ModelImport, TexturedObjAndAlphaGlbTexelsArrive) {
+  const Mesh tulip = load_mesh(kModels / "tulip_textured.obj");
+  ASSERT_EQ(tulip.materials.size(), 2u);
+  ASSERT_EQ(tulip.uvs.size(), tulip.positions.size());
+  for (const Material& m : tulip.materials) {
+    SCOPED_TRACE(m.name);
+    if (m.name == "stem") {
+      expect_color(m.base_color, 0.1f, 0.6f, 0.1f);
+      EXPECT_EQ(m.base_color_map, nullptr);
+      continue;
+    }
+    ASSERT_EQ(m.name, "head");
+    ASSERT_NE(m.base_color_map, nullptr);
+    EXPECT_EQ(m.alpha_cutoff, 0.0f);  // an OBJ's image is opaque: no cutout
+    const TextureImage& image = *m.base_color_map;
+    EXPECT_EQ(image.width, 8);
+    EXPECT_EQ(image.height, 16);
+    const auto top = image.at(0.5f, 0.9f), low = image.at(0.5f, 0.1f);
+    EXPECT_NEAR(top[0], srgb8_to_linear(200), 1e-6);
+    EXPECT_NEAR(top[1], srgb8_to_linear(30), 1e-6);
+    EXPECT_NEAR(low[0], srgb8_to_linear(230), 1e-6);
+    EXPECT_NEAR(low[1], srgb8_to_linear(120), 1e-6);
+  }
+  const Mesh cross = load_mesh(kModels / "leaf_cross.glb");
+  ASSERT_EQ(cross.materials.size(), 1u);
+  const Material& leaf = cross.materials[0];
+  EXPECT_EQ(leaf.alpha_cutoff, 0.5f);
+  ASSERT_NE(leaf.base_color_map, nullptr);
+  const TextureImage& image = *leaf.base_color_map;
+  EXPECT_EQ(image.width, 32);
+  EXPECT_EQ(image.height, 32);
+  const auto top = image.at(0.05f, 0.95f), low = image.at(0.05f, 0.3f), hole = image.at(0.19f, 0.3f);
+  EXPECT_NEAR(top[1], srgb8_to_linear(30), 1e-6);
+  EXPECT_NEAR(low[1], srgb8_to_linear(120), 1e-6);
+  EXPECT_EQ(top[3], 1.0f);
+  EXPECT_EQ(hole[3], 0.0f);
 }
 
 // The same image beside a glTF and held inside a GLB: the same texels; the GLB read from memory too.

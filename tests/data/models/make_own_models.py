@@ -2,7 +2,13 @@
 tulip.obj + tulip.mtl: a green stem and a red head, colours by MTL Kd only (issue 38's tulip);
 leaf_card.gltf + leaf_card.bin + leaf_card.png: a vertical 1 m card, y up (glTF), whose image
 holds an opaque left half (red top quarter, orange below) and a transparent blue right half,
-with alphaMode MASK: the blue must never show, the red must be at the top."""
+with alphaMode MASK: the blue must never show, the red must be at the top;
+tulip_textured.obj + .mtl + tulip_head.png: a round tulip whose head's colour comes from an image
+(map_Kd, Kd white: red above, orange below), its stem green by Kd;
+leaf_cross.glb: three cards crossed at 60 degrees in one self-contained GLB (y up, its image held
+inside), alphaMode MASK: red tops, orange below, every other column of the image transparent blue,
+so that a ray through the field passes many holes;
+tulips/ and tulip_bunch.obj: four round tulips, as a folder of variants and as four objects."""
 import json
 import os
 import struct
@@ -10,7 +16,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "templates", "models"))
-from make_card_plants import png_rgba  # noqa: E402  (one PNG writer for the example and test models)
+from make_card_plants import glb_bytes, png_rgba  # noqa: E402  (one PNG and GLB writer for the example and test models)
 
 
 def write(name, data):
@@ -140,3 +146,39 @@ for number, (height, radius) in enumerate(TULIP_SHAPES, start=1):
     bunch += ["o tulip_%d" % number] + body
     first += count
 write("tulip_bunch.obj", "\n".join(bunch) + "\n")
+
+# A textured OBJ + MTL (issue 38's textured model): the round tulip, 0.5 m, its head 0.12 m in
+# radius, whose colour is the image's (map_Kd over Kd 1 1 1): its uvs run v 1 at the top of the
+# head to 0 at its bottom (OBJ's v up), so the image's upper half (red) colours the upper half.
+write("tulip_head.png", png_rgba(8, 16, lambda x, y: RED if y < 8 else ORANGE))
+write("tulip_textured.mtl", "# Wangscape test model: the stem green by Kd, the head by its image\n"
+      "newmtl stem\nKd 0.10 0.60 0.10\n\nnewmtl head\nKd 1.00 1.00 1.00\nmap_Kd tulip_head.png\n")
+body, _ = round_tulip(1, 0.5, 0.12)
+write("tulip_textured.obj", "\n".join(
+    ["# Wangscape test model: a round tulip whose head is coloured by an image (make_own_models.py)",
+     "mtllib tulip_textured.mtl", "o tulip_textured"] + body) + "\n")
+
+
+# A GLB with alpha leaves: three 1 m cards crossed at 60 degrees about the y axis (glTF: y up),
+# each 0.8 m wide, normals along their faces; one 32 x 32 image held in the file: columns of 4
+# pixels alternately opaque (red in the top quarter, orange below) and transparent blue.
+def crossed_cards(width=0.8, height=1.0):
+    import math
+    positions, normals, uvs, indices = [], [], [], []
+    for yaw_degrees in (0, 60, 120):
+        yaw = math.radians(yaw_degrees)
+        ax, az = math.cos(yaw), -math.sin(yaw)  # across the card
+        nx, nz = math.sin(yaw), math.cos(yaw)   # its normal
+        base = len(positions)
+        for s, t in ((-0.5, 0.0), (0.5, 0.0), (0.5, 1.0), (-0.5, 1.0)):
+            positions.append((s * width * ax, t * height, s * width * az))
+            normals.append((nx, 0.0, nz))
+            uvs.append((s + 0.5, 1.0 - t))  # glTF's v runs down the image
+        indices += [base, base + 1, base + 2, base, base + 2, base + 3]
+    return positions, normals, uvs, indices
+
+
+cross_image = png_rgba(32, 32, lambda x, y: CLEAR_BLUE if (x // 4) % 2 else (RED if y < 8 else ORANGE))
+write("leaf_cross.glb", glb_bytes("leaf_cross", *crossed_cards(), cross_image,
+                                  "Wangscape tests/data/models/make_own_models.py", roughness=0.8, material="leaf",
+                                  sampler={"magFilter": 9728, "minFilter": 9728}))
