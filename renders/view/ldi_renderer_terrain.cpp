@@ -89,12 +89,12 @@ void LdiRenderer::draw_terrain() {
     const auto base = world.ground_color(gx, gy);
     float u = 0, v = 0;
     const std::int32_t t = world.placed_tile_at(gx, gy, u, v);
-    if (t >= 0 && !ground_light.empty()) {
-      // Under a placed tile: its plants' shade on the ground, the sun's part and the sky's. Seen
-      // low, ground between the plants is where the LDIs left a gap the truth fills with leaves:
-      // the shade fades out there (GroundShadeFade).
+    // Under a placed tile: its plants' shade on the ground, the sun's part and the sky's. Seen
+    // low, ground between the plants is where the LDIs left a gap the truth fills with leaves:
+    // the shade fades out there (GroundShadeFade).
+    const float seen = t >= 0 && !ground_light.empty() ? fade.weight(float(px), float(py)) : 0.0f;
+    if (seen > 0) {
       auto [sun, sky] = ground_light.shares(world.tiles().tile[std::size_t(t)], u, v, depth * texels_per_meter);
-      const float seen = fade.weight(float(px), float(py));
       sun = 1 + (sun - 1) * seen;
       sky = 1 + (sky - 1) * seen;
       lr = (lr - open_sky[0]) * sun + open_sky[0] * sky;
