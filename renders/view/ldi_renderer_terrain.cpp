@@ -63,6 +63,34 @@ struct GroundShadeFade {
   }
   float right[3], up[3], base[3];
 };
+
+// The shade a placed tile's plants cast on the terrain (renders/ldi/ground_light.h), faded where
+// the ground is seen low (GroundShadeFade).
+struct PlantShade {
+  PlantShade(const ViewWorld& world, const ViewProjection& view)
+      : light(world.ground_light()),
+        tiles(world.tiles().tile),
+        fade(view),
+        // The open sky's part of the terrain's light (its vertices': the sun's where it reaches
+        // them, and the open sky), and level-0 texels per meter of a pixel's footprint.
+        open_sky(lit(world.sun_shading(), {1, 1, 1}, 0, 1)),
+        texels_per_meter(float(light.resolution() / world.tile_size() / view.focal)) {}
+  // The terrain's light `l` at pixel (px, py), `depth` away, at (u, v) in placed tile t (or none,
+  // -1), shaded by the plants.
+  void apply(std::int32_t t, float u, float v, int px, int py, float depth, float (&l)[3]) const {
+    const float seen = t >= 0 && !light.empty() ? fade.weight(float(px), float(py)) : 0.0f;
+    if (!(seen > 0)) return;
+    auto [sun, sky] = light.shares(tiles[std::size_t(t)], u, v, depth * texels_per_meter);
+    sun = 1 + (sun - 1) * seen;
+    sky = 1 + (sky - 1) * seen;
+    for (std::size_t c = 0; c < 3; ++c) l[c] = (l[c] - open_sky[c]) * sun + open_sky[c] * sky;
+  }
+  const TileGroundLight& light;
+  const std::vector<std::uint32_t>& tiles;
+  GroundShadeFade fade;
+  Vec3f open_sky;
+  float texels_per_meter;
+};
 }  // namespace
 
 // Step 7: the terrain's chunks in the frustum rasterized (renders/view/terrain_raster.h), nearest
@@ -71,37 +99,20 @@ struct GroundShadeFade {
 void LdiRenderer::draw_terrain() {
   Impl& m = *impl_;
   const ViewWorld& world = *world_;
-  const double s = world.tile_size();
   // ---- the terrain: chunks in the frustum, their vertices to camera space, their triangles
   // rasterized, in parallel ----
   const ViewWorld::Terrain& terrain = world.terrain();
   const Luts& lut = luts();
   const float ex = float(m.view.eye[0]), ey = float(m.view.eye[1]);
-  const float inv_s = float(1 / s);
-  const TileGroundLight& ground_light = world.ground_light();
-  // The open sky's part of the terrain's light (its vertices': the sun's where it reaches them,
-  // and the open sky), and level-0 ground-light texels per meter of a pixel's footprint.
-  const Vec3f open_sky = lit(world.sun_shading(), {1, 1, 1}, 0, 1);
-  const float texels_per_meter = float(ground_light.resolution()) * inv_s / float(m.view.focal);
-  const GroundShadeFade fade(m.view);
+  const PlantShade plant_shade(world, m.view);
   auto shade_pixel = [&](int px, int py, float depth, float wx, float wy, float lr, float lg, float lb) {
     const double gx = double(wx) + m.view.eye[0], gy = double(wy) + m.view.eye[1];
     const auto base = world.ground_color(gx, gy);
     float u = 0, v = 0;
     const std::int32_t t = world.placed_tile_at(gx, gy, u, v);
-    // Under a placed tile: its plants' shade on the ground, the sun's part and the sky's. Seen
-    // low, ground between the plants is where the LDIs left a gap the truth fills with leaves:
-    // the shade fades out there (GroundShadeFade).
-    const float seen = t >= 0 && !ground_light.empty() ? fade.weight(float(px), float(py)) : 0.0f;
-    if (seen > 0) {
-      auto [sun, sky] = ground_light.shares(world.tiles().tile[std::size_t(t)], u, v, depth * texels_per_meter);
-      sun = 1 + (sun - 1) * seen;
-      sky = 1 + (sky - 1) * seen;
-      lr = (lr - open_sky[0]) * sun + open_sky[0] * sky;
-      lg = (lg - open_sky[1]) * sun + open_sky[1] * sky;
-      lb = (lb - open_sky[2]) * sun + open_sky[2] * sky;
-    }
-    float r = base[0] * lr, g = base[1] * lg, b = base[2] * lb;
+    float light[3] = {lr, lg, lb};
+    plant_shade.apply(t, u, v, px, py, depth, light);
+    float r = base[0] * light[0], g = base[1] * light[1], b = base[2] * light[2];
     // Beyond the LDIs: the tile's directional average color over the ground, by its cover.
     if (t >= 0 && threshold(px, py) >= m.plan.far_from[std::size_t(t)]) {
       const float k = m.plan.far_cover[std::size_t(t)];
