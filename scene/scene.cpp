@@ -68,9 +68,15 @@ bool camera_aware(const SceneConfig& config) {
   return config.camera_aware.enabled.value_or(!config.tiles.area && !config.tiles.area_latlon);
 }
 
-// The Poisson fill of the field's tile set (its cost told first: it can take a minute).
-void fill_field_tiles(SceneField& field, const SceneConfig& config, const TileSet& set, const PoissonFillOptions& fill,
+// The Poisson fill of the field's tile set, [tiles] set (its cost told first: it can take a minute).
+void fill_field_tiles(SceneField& field, const SceneConfig& config, const PoissonFillOptions& fill,
                       const StageObserver& stage) {
+  TileSet set;
+  try {
+    set = load_tileset(config.tiles.set);  // a built-in name, or a tile-set JSON file
+  } catch (const Error& e) {
+    throw config.error_at("tiles.set", e.what());
+  }
   const auto fill_cost = estimate_poisson_fill(set, fill);
   say(stage, "filling tile set " + config.tiles.set + " with " + std::to_string(config.tiles.points_per_tile) +
                  " points per tile (" + std::to_string(std::llround(fill_cost.points)) + " points, about " +
@@ -150,16 +156,10 @@ std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGro
     fill.classes = species_classes(config, species_models, fill);
     field->species = std::make_shared<const SpeciesRules>(config, ground);
   }
-  TileSet set;
-  try {
-    set = load_tileset(config.tiles.set);  // a built-in name, or a tile-set JSON file
-  } catch (const Error& e) {
-    throw config.error_at("tiles.set", e.what());
-  }
   if (prefilled) {
-    field->filled = *prefilled;
+    field->filled = *prefilled;  // with its tile set: tiles.set is not read again
   } else {
-    fill_field_tiles(*field, config, set, fill, stage);
+    fill_field_tiles(*field, config, fill, stage);
   }
   if (config.tiles.interior_variation)
     field->placement.world_attributes =

@@ -141,8 +141,9 @@ struct ScenePrebuilt {
 
 // Assembles the Scene a scene file describes: ground and masks, terrain mesh, models, the
 // filled tile set, camera above the ground, sun. Places nothing: the stream does that when run.
-// With `prebuilt` (of this same config), the tile set and the ground bake are taken from it and
-// Scene::ground_look stays empty. Throws Error naming the file and the line of the key at fault.
+// With `prebuilt` (of this same config), the filled tile set (tiles.set is not read) and the
+// ground bake are taken from it and Scene::ground_look stays empty. Throws Error naming the file
+// and the line of the key at fault.
 Scene make_scene(const SceneConfig& config, const StageObserver& stage = {}, const ScenePrebuilt* prebuilt = nullptr);
 
 }  // namespace wangscape

@@ -24,14 +24,13 @@ namespace {
 struct SceneLdiInputs {
   FilledTileSet filled;
   std::span<const Mesh> models;
-  LdiPackLight light;  // options' light before the scene's sun, and that sun
 };
 
 SceneLdiInputs scene_ldi_inputs(const Scene& scene, LdiBuildOptions& options) {
   if (!scene.field || scene.models.empty())
     throw Error("scene '" + scene.name + "': no field of flowers to sample into LDIs");
   const SceneField& field = *scene.field;
-  SceneLdiInputs inputs{field.filled, scene.models, pack_light_record(options.shading, scene.sun)};
+  SceneLdiInputs inputs{field.filled, scene.models};
   for (auto& points : inputs.filled.tiles)
     for (TilePoint& p : points) p.yaw = field.yaw_of(p.yaw);
   if (field.proxy_offset != 0) inputs.models = inputs.models.first(field.proxy_offset);
@@ -48,6 +47,7 @@ LdiLevels pack_levels(const SceneLdiInputs& inputs, const LdiBuildOptions& optio
 
 LdiBuildReport build_scene_ldi_pack(const Scene& scene, const std::filesystem::path& out, LdiBuildOptions options,
                                     const LdiSceneObserver& observer) {
+  const LdiPackLight light = pack_light_record(options.shading, scene.sun);  // before the sun is applied
   const SceneLdiInputs inputs = scene_ldi_inputs(scene, options);
   if (observer.progress) options.progress = observer.progress;
   if (observer.stage)
@@ -55,7 +55,7 @@ LdiBuildReport build_scene_ldi_pack(const Scene& scene, const std::filesystem::p
                    std::to_string(options.view.levels) + " levels x " + std::to_string(options.view.directions) +
                    " directions into " + out.string());
   LdiPackInfo info = ldi_pack_info(inputs.filled, inputs.models, options);
-  info.light = inputs.light;
+  info.light = light;
   return build_ldi_pack(inputs.filled, inputs.models, options, pack_levels(inputs, options), info, out);
 }
 
@@ -121,7 +121,7 @@ void build_scene_ldi_packs(const Scene& scene, const FolderFiles& files, const L
   LdiBuildOptions tiles_options = options;
   const SceneLdiInputs inputs = scene_ldi_inputs(scene, tiles_options);
   LdiPackInfo pack = ldi_pack_info(inputs.filled, inputs.models, tiles_options);
-  pack.light = inputs.light;
+  pack.light = pack_light_record(options.shading, scene.sun);
   const LdiPackInfo steep = steep_pack_info(pack);
   // With fewer levels than kSteepLevels the steep sets take the finest level's resolution: six
   // sets of it (156 MB for a 16 x 24 m field of two levels) would outweigh the tiles' pack, and
