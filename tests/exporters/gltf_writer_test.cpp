@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "scene/wind.h"
 #include "tests/blender/test_scene.h"
 
 namespace wangscape {
@@ -182,6 +183,39 @@ TEST(GltfWriter, NodePerInstanceIsValid) {
   for (const auto& node : glb.json["nodes"]) flowers += node.contains("mesh") && node.contains("scale");
   EXPECT_EQ(flowers, 400u);
   expect_validator_accepts(path);
+}
+
+// With wind, each flower leans as at time 0 (scene/wind.h), the rotation composed as quaternions:
+// a second spelling of lean_rotation's axes and their order, so the two must turn a flower's top
+// (glTF +y) to the same place. In glTF's frame x is east, y up and z south.
+TEST(GltfWriter, WindyFlowersLeanAsTheWindFieldSays) {
+  Scene scene = testing::make_test_scene(300, 8, 20.0f);
+  WindConfig config;
+  config.direction = 60;
+  config.strength = 30;  // strong, so that the two axes' order shows (it moves the top by ~0.03)
+  config.gust_scale = 6;
+  scene.wind = wind_field(config);
+  const auto path = scratch("windy.glb");
+  GltfOptions options;
+  options.instancing = GltfInstancing::node_per_instance;
+  write_gltf(scene, path, options);
+  const Glb glb = read_glb(path);
+  std::size_t flowers = 0;
+  double largest_lean = 0;
+  for (const auto& node : glb.json["nodes"]) {
+    if (!node.contains("mesh") || !node.contains("scale") || !node.contains("rotation")) continue;
+    ++flowers;
+    const double east = node["translation"][0], north = -node["translation"][2].get<double>();
+    const double x = node["rotation"][0], y = node["rotation"][1], z = node["rotation"][2], w = node["rotation"][3];
+    // The quaternion's image of +y: the second column of its matrix.
+    const double top[3] = {2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)};
+    const auto r = lean_rotation(scene.wind->lean(east, north, 0));
+    const double expected[3] = {r[2], r[8], -r[5]};  // R * (0, 0, 1) over ENU, into glTF's frame
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(top[c], expected[c], 2e-6) << "flower at " << east << ", " << north;
+    largest_lean = std::max(largest_lean, std::acos(std::clamp(expected[1], -1.0, 1.0)));
+  }
+  EXPECT_EQ(flowers, 300u);
+  EXPECT_GT(largest_lean, 0.2);  // radians: the wind really leans them
 }
 
 TEST(GltfWriter, SceneWithoutTerrainOrInstancesIsValid) {
