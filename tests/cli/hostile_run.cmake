@@ -50,7 +50,8 @@ hostile_test(png_disk_full 1 "cannot write '.*/m.png': write failed"
              "${WANGSCAPE_BIN}" "${run_dir}")
 
 # POV-Ray renders from a folder with a space and a ';' (made by printf '\073'); a newline
-# in the folder is refused, and no staging folder stays.
+# in the folder is refused, and no staging folder of its own stays (other tests stage theirs in
+# the same folder meanwhile).
 hostile_test(povray_folder_with_space 0 "rendered"
              sh -c "d=\"$1$(printf '\\073')x\" && rm -rf \"$d\" && \"$0\" --quiet build \"$2\" --out \"$d\" && \"$0\" --quiet render \"$d\" --width 32 --height 24 && test -s \"$d/render.png\" && echo rendered"
              "${WANGSCAPE_BIN}" "${run_dir}/a folder" "${run_dir}/pov.toml")
@@ -58,7 +59,7 @@ hostile_test(povray_folder_with_newline 1 "POV-Ray cannot use this path: it hold
              sh -c "\"$0\" --quiet build \"$2\" --out \"$1/o
 x\"
                     code=$?
-                    if ls -a \"$1\" | grep 'partial'
+                    if test -n \"$(find \"$1\" -maxdepth 1 -name '.o?x.partial-*')\"
                     then exit 9
                     fi
                     exit $code"
