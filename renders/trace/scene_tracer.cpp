@@ -319,17 +319,16 @@ void SceneTracer::intersect16(const V3& from, const V3* d, const float* tfar, co
   }
 }
 
-bool SceneTracer::on_terrain(const Hit& hit) { return hit.inst == RTC_INVALID_GEOMETRY_ID || hit.inst == kTerrainId; }
-
 SurfaceSample SceneTracer::surface(const Hit& h, const V3& from, const V3& d, const GroundColors& ground) const {
   const Impl& t = *impl_;
   SurfaceSample s;
   for (std::size_t c = 0; c < 3; ++c) s.position[c] = float(from[c] + h.t * d[c]);
-  if (!on_terrain(h)) {  // a flower (the terrain: an instance of its own in Layout::part)
+  if (h.inst != RTC_INVALID_GEOMETRY_ID && h.inst != kTerrainId) {  // a flower (the terrain: an instance of its own)
     const unsigned f = h.inst - 1;
     const Mesh& mesh = scene_.models[t.variant[f]];
-    model_surface(mesh, h.prim, h.u, h.v, t.cos_yaw[f], t.sin_yaw[f], s);
-    if (!t.lean.empty()) s.normal = unit_or_up(t.turn(f, model_normal(mesh, h.prim, h.u, h.v)));
+    // The normal turned as the flower stands (its yaw, and its lean in the wind), made unit.
+    s.normal = unit_or_up(t.turn(f, model_normal(mesh, h.prim, h.u, h.v)));
+    model_material(mesh, h.prim, h.u, h.v, s);
     if (!t.model_sky.empty()) {
       // The side the ray sees: the back where the triangle's winding faces away from the ray.
       const auto& tri = mesh.triangles[h.prim];

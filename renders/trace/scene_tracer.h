@@ -67,8 +67,6 @@ class SceneTracer {
     float t, u, v;
     unsigned geom, inst, prim;  // inst: RTC_INVALID_GEOMETRY_ID (~0u) for the terrain
   };
-  // Whether `hit` is on the terrain (not a flower), in either layout.
-  static bool on_terrain(const Hit& hit);
   // The nearest hit of the ray from `from` (shifted frame) along the unit direction `d` with
   // t in [0, tfar].
   std::optional<Hit> intersect(const std::array<double, 3>& from, const std::array<double, 3>& d,

@@ -63,10 +63,14 @@ Vec3f unit_or_up(const Vec3f& r) {
 
 void model_surface(const Mesh& mesh, unsigned prim, float u, float v, float cos_yaw, float sin_yaw,
                    SurfaceSample& out) {
-  const auto& tri = mesh.triangles[prim];
   const Vec3f n = model_normal(mesh, prim, u, v);
   const Vec3f r{cos_yaw * n[0] - sin_yaw * n[1], sin_yaw * n[0] + cos_yaw * n[1], n[2]};
   out.normal = unit_or_up(r);
+  model_material(mesh, prim, u, v, out);
+}
+
+void model_material(const Mesh& mesh, unsigned prim, float u, float v, SurfaceSample& out) {
+  const auto& tri = mesh.triangles[prim];
   if (prim < mesh.triangle_material.size()) {
     const std::uint16_t slot = mesh.triangle_material[prim];
     if (slot < mesh.materials.size()) {

@@ -43,6 +43,9 @@ Vec3f unit_or_up(const Vec3f& r);
 // interpolated uv, translucency; left as they are when the triangle has none). A uniform scale does not change normals.
 // Not yet turned towards the viewer.
 void model_surface(const Mesh& mesh, unsigned prim, float u, float v, float cos_yaw, float sin_yaw, SurfaceSample& out);
+// The material part of model_surface alone: base color (times its image's texel) and
+// translucency, left as they are when the triangle has none.
+void model_material(const Mesh& mesh, unsigned prim, float u, float v, SurfaceSample& out);
 
 // Outgoing linear RGB at `sample`. Shadow and sky rays are rtcOccluded1 queries of `scene`
 // (which must hold every occluder: in the LDI build, the 3 x 3 context); `random` seeds the sky

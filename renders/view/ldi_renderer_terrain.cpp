@@ -40,45 +40,26 @@ void LdiRenderer::choose_chunks() {
 }
 
 namespace {
-// How much of the ground light's shade a terrain pixel shows, by how steeply its ray meets the
-// ground: none below kLow (the sine of the ray's angle below the horizon), all above kHigh.
-struct GroundShadeFade {
-  static constexpr float kLow = 0.26f, kHigh = 0.64f;  // 15 and 40 degrees
-  // (The ray through a pixel is ViewProjection::ray_through's, in the terms below.)
-  explicit GroundShadeFade(const ViewProjection& view) {
-    for (std::size_t a = 0; a < 3; ++a) {
-      right[a] = float(view.right[a] / view.focal);
-      up[a] = float(-view.up[a] / view.focal);
-      base[a] = float(view.forward[a] - view.right[a] * view.cx / view.focal + view.up[a] * view.cy / view.focal);
-    }
-  }
-  float weight(float px, float py) const {
-    float d[3], length2 = 0;
-    for (std::size_t a = 0; a < 3; ++a) {
-      d[a] = base[a] + right[a] * (px + 0.5f) + up[a] * (py + 0.5f);
-      length2 += d[a] * d[a];
-    }
-    const float sine = -d[2] / std::sqrt(length2);
-    return std::clamp((sine - kLow) / (kHigh - kLow), 0.0f, 1.0f);
-  }
-  float right[3], up[3], base[3];
-};
-
-// The shade a placed tile's plants cast on the terrain (renders/ldi/ground_light.h), faded where
-// the ground is seen low (GroundShadeFade).
+// The shade a placed tile's plants cast on the terrain (renders/ldi/ground_light.h). It fades out
+// where the ground is seen low, by the sine of the pixel's ray below the horizon: none below kLow,
+// all above kHigh (seen low, ground between the plants is where the LDIs left a gap the truth
+// fills with leaves).
 struct PlantShade {
-  PlantShade(const ViewWorld& world, const ViewProjection& view)
+  static constexpr double kLow = 0.26, kHigh = 0.64;  // 15 and 40 degrees
+  PlantShade(const ViewWorld& world, const ViewProjection& camera)
       : light(world.ground_light()),
         tiles(world.tiles().tile),
-        fade(view),
+        view(camera),
         // The open sky's part of the terrain's light (its vertices': the sun's where it reaches
         // them, and the open sky), and level-0 texels per meter of a pixel's footprint.
         open_sky(lit(world.sun_shading(), {1, 1, 1}, 0, 1)),
-        texels_per_meter(float(light.resolution() / world.tile_size() / view.focal)) {}
+        texels_per_meter(float(light.resolution() / world.tile_size() / camera.focal)) {}
   // The terrain's light `l` at pixel (px, py), `depth` away, at (u, v) in placed tile t (or none,
   // -1), shaded by the plants.
   void apply(std::int32_t t, float u, float v, int px, int py, float depth, float (&l)[3]) const {
-    const float seen = t >= 0 && !light.empty() ? fade.weight(float(px), float(py)) : 0.0f;
+    if (t < 0 || light.empty()) return;
+    const double sine = -view.ray_through(double(px) + 0.5, double(py) + 0.5)[2];
+    const float seen = float(std::clamp((sine - kLow) / (kHigh - kLow), 0.0, 1.0));
     if (!(seen > 0)) return;
     auto [sun, sky] = light.shares(tiles[std::size_t(t)], u, v, depth * texels_per_meter);
     sun = 1 + (sun - 1) * seen;
@@ -87,7 +68,7 @@ struct PlantShade {
   }
   const TileGroundLight& light;
   const std::vector<std::uint32_t>& tiles;
-  GroundShadeFade fade;
+  const ViewProjection& view;
   Vec3f open_sky;
   float texels_per_meter;
 };
