@@ -25,9 +25,7 @@ LdiRenderer::LdiRenderer(std::shared_ptr<const ViewWorld> world, int width, int 
     v->assign(n, 0);
   order_.reserve(n);
   const std::size_t vertices = world_->terrain().x.size();
-  m.vx.assign(vertices, 0);
-  m.vy.assign(vertices, 0);
-  m.vz.assign(vertices, 0);
+  m.raster_vertices.assign(vertices, RasterVertex{});
   m.chunk_order.reserve(world_->terrain().chunks.size());
   m.chunk_distance.assign(world_->terrain().chunks.size(), 0);
   m.chunk_level.assign(world_->terrain().chunks.size(), 0);

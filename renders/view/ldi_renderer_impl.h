@@ -19,6 +19,7 @@
 
 #include "renders/trace/scene_tracer.h"
 #include "renders/view/ldi_warp.h"
+#include "renders/view/terrain_raster.h"
 #include "renders/view/tile_plan.h"
 #include "renders/view/view_projection.h"
 #include "renders/view/view_samples.h"
@@ -74,9 +75,9 @@ struct LdiRenderer::Impl {
   // The frame's camera: eye, axes (ENU), pixels per unit of tan, screen centre.
   ViewProjection view;
   TilePlan plan;  // which LDIs draw each placed tile this frame (choose_tiles)
-  // Terrain vertices in camera space; the chunks drawn, nearest first, their distances, their
+  // Terrain vertices in camera space and on screen; the chunks drawn, nearest first, their distances, their
   // levels of detail (0 for those not drawn) and those levels' vertical errors (meters).
-  std::vector<float> vx, vy, vz;
+  std::vector<RasterVertex> raster_vertices;
   std::vector<std::uint32_t> chunk_order;
   std::vector<std::array<std::uint32_t, 2>> terrain_pieces;  // (chunk, its level's first triangle)
   std::vector<float> chunk_distance;

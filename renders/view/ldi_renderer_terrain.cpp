@@ -109,18 +109,7 @@ void LdiRenderer::draw_terrain() {
     return m.screen_box_hidden(x0, y0, x1, y1, nearest);
   };
   auto draw_mesh_triangle = [&](const std::array<std::uint32_t, 3>& ids, bool one_sided, std::uint64_t& tests) {
-    RasterVertex v[3];
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t i = ids[std::size_t(k)];
-      v[k] = {m.vx[i],
-              m.vy[i],
-              m.vz[i],
-              terrain.x[i] - ex,
-              terrain.y[i] - ey,
-              terrain.light_r[i],
-              terrain.light_g[i],
-              terrain.light_b[i]};
-    }
+    const RasterVertex v[3] = {m.raster_vertices[ids[0]], m.raster_vertices[ids[1]], m.raster_vertices[ids[2]]};
     draw_triangle(target, v, one_sided, shade_pixel, hidden, tests);
   };
   choose_chunks();
@@ -147,9 +136,16 @@ void LdiRenderer::draw_terrain() {
       const std::uint32_t skirts = level.first_vertex + level.vertex_count - level.skirt_vertices;
       for (std::uint32_t v = level.first_vertex; v < level.first_vertex + level.vertex_count; ++v) {
         const auto c = m.to_camera(terrain.x[v], terrain.y[v], v < skirts ? terrain.z[v] : terrain.z[v] - drop);
-        m.vx[v] = c[0];
-        m.vy[v] = c[1];
-        m.vz[v] = c[2];
+        RasterVertex& q = m.raster_vertices[v];
+        q = {c[0],
+             c[1],
+             c[2],
+             terrain.x[v] - ex,
+             terrain.y[v] - ey,
+             terrain.light_r[v],
+             terrain.light_g[v],
+             terrain.light_b[v]};
+        if (q.z >= view_detail::kNear) place_on_screen(m.view, q);
       }
     }
   });

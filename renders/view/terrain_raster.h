@@ -16,10 +16,20 @@
 namespace wangscape {
 
 // A vertex: camera space (right, up, forward; meters), then what is interpolated across the
-// triangle: its ground position relative to the eye and its light.
+// triangle: its ground position relative to the eye and its light; then, set by place_on_screen
+// (once per vertex, not per triangle: a mesh's vertex is shared by about six), its screen
+// position and inverse depth.
 struct RasterVertex {
   float x, y, z, wx, wy, lr, lg, lb;
+  float sx = 0, sy = 0, iz = 0;
 };
+
+// Sets v's screen position and inverse depth (v in front of the near plane).
+inline void place_on_screen(const ViewProjection& view, RasterVertex& v) {
+  v.sx = view.cx + view.focal * v.x / v.z;
+  v.sy = view.cy - view.focal * v.y / v.z;
+  v.iz = 1 / v.z;
+}
 
 // Where the rasterizer draws: the frame's projection and z-buffer (width x height packed entries).
 struct RasterTarget {
@@ -35,18 +45,28 @@ struct RasterTarget {
 // an underside it has met the upper side first: only skirts are seen from either side).
 inline constexpr float kUpperSide = -1;
 
-// Rasterizes abc, all in front of the near plane: each pixel whose centre it covers, nearer than
-// what the z-buffer holds there, goes to shade(px, py, depth, wx, wy, lr, lg, lb) (depth with the
-// bias; the attributes perspective-correct), which writes it. With `one_sided`, a triangle seen
+// True when the screen point (fx, fy) lies in triangle abc (placed on screen, 1 / its signed
+// area given), with the weights of a and b. Either winding. A point exactly on an edge two
+// triangles share is in both (the z-buffer keeps one of their equal depths).
+inline bool covers(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c, float inv_area, float fx,
+                   float fy, float& wa, float& wb) {
+  wa = ((b.sx - fx) * (c.sy - fy) - (b.sy - fy) * (c.sx - fx)) * inv_area;
+  wb = ((c.sx - fx) * (a.sy - fy) - (c.sy - fy) * (a.sx - fx)) * inv_area;
+  // The third edge by its own function too (not 1 - wa - wb), so that two triangles meeting on an
+  // edge agree exactly on which side of it a point lies: a silhouette's pixels then belong to its
+  // upper side whenever to its underside, which may be skipped.
+  return !(wa < 0 || wb < 0 || ((a.sx - fx) * (b.sy - fy) - (a.sy - fy) * (b.sx - fx)) * inv_area < 0);
+}
+
+// Rasterizes abc, all in front of the near plane and placed on screen: each pixel whose centre it
+// covers, nearer than what the z-buffer holds there, goes to shade(px, py, depth, wx, wy, lr, lg,
+// lb) (depth with the bias; the attributes perspective-correct), which writes it. With `one_sided`, a triangle seen
 // from below is skipped. hidden(x0, y0, x1, y1, nearest) says a screen box holds only nearer
 // depths (always false: no occlusion test). Counts the pixels it tests into `tests`.
 template <class Shade, class Hidden>
 void raster_triangle(const RasterTarget& target, const RasterVertex& a, const RasterVertex& b, const RasterVertex& c,
                      bool one_sided, const Shade& shade, const Hidden& hidden, std::uint64_t& tests) {
-  const ViewProjection& view = *target.view;
-  const float ax = view.cx + view.focal * a.x / a.z, ay = view.cy - view.focal * a.y / a.z;
-  const float bx = view.cx + view.focal * b.x / b.z, by = view.cy - view.focal * b.y / b.z;
-  const float cx = view.cx + view.focal * c.x / c.z, cy = view.cy - view.focal * c.y / c.z;
+  const float ax = a.sx, ay = a.sy, bx = b.sx, by = b.sy, cx = c.sx, cy = c.sy;
   const float area = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
   if (!(std::abs(area) > 1e-12f) || (one_sided && area * kUpperSide < 0)) return;
   const int x0 = std::max(0, int(std::floor(std::min({ax, bx, cx})))),
@@ -58,14 +78,19 @@ void raster_triangle(const RasterTarget& target, const RasterVertex& a, const Ra
   const float nearest = std::min({a.z, b.z, c.z}) * (1 + target.depth_bias);
   if (hidden(x0, y0, x1, y1, nearest)) return;
   const float inv_area = 1.0f / area;
-  const float iza = 1 / a.z, izb = 1 / b.z, izc = 1 / c.z;
+  const float iza = a.iz, izb = b.iz, izc = c.iz;
   // Per row, the span where the three weights are >= 0 (each is linear in x), widened by a
-  // pixel: the exact test below decides, the span only skips what surely fails (thin far
-  // triangles have bounding boxes many times their area).
+  // margin: the exact test, covers(), decides; the span only skips what surely fails (thin far
+  // triangles have bounding boxes many times their area, and most of the ground's far triangles
+  // are a pixel or less). The span's and the test's rounding differ by far less than a
+  // sixteenth of a pixel on screen, up to 1e5 pixels out (test
+  // TerrainRaster.TheRowSpansHoldEveryPixelTheTestCovers); beyond, a whole pixel.
   const float slope_a = (by - cy) * inv_area, slope_b = (cy - ay) * inv_area, slope_c = -slope_a - slope_b;
   // Their inverses (0 for 0, the sign kept), divided once here, not per row: the span is widened
-  // by a pixel anyway.
+  // anyway.
   const auto inverse = [](float slope) { return slope != 0 ? 1 / slope : 0.0f; };
+  const float reach = std::max({std::abs(ax), std::abs(ay), std::abs(bx), std::abs(by), std::abs(cx), std::abs(cy)});
+  const float span_margin = reach < 1e5f ? 1.0f / 16 : 1.0f;
   const float inverse_a = inverse(slope_a), inverse_b = inverse(slope_b), inverse_c = inverse(slope_c);
   for (int py = y0; py <= y1; ++py) {
     // A large triangle: its rows a block row at a time, skipped where that row is hidden.
@@ -88,19 +113,12 @@ void raster_triangle(const RasterTarget& target, const RasterVertex& a, const Ra
         empty |= w0 < 0;
     }
     if (empty || !(lo <= hi + 2)) continue;
-    const int span_x0 = std::max(x0, int(std::ceil(lo - 0.5f)) - 1),
-              span_x1 = std::min(x1, int(std::floor(hi - 0.5f)) + 1);
+    const int span_x0 = std::max(x0, int(std::ceil(lo - 0.5f - span_margin))),
+              span_x1 = std::min(x1, int(std::floor(hi - 0.5f + span_margin)));
     tests += std::uint64_t(std::max(0, span_x1 - span_x0 + 1));
     for (int px = span_x0; px <= span_x1; ++px) {
-      const float fx = float(px) + 0.5f;
-      // Barycentric weights (either winding). A pixel whose centre lies exactly on an edge two
-      // triangles share is drawn by both, at the same depth (the z-buffer keeps one).
-      float wa = ((bx - fx) * (cy - fy) - (by - fy) * (cx - fx)) * inv_area;
-      float wb = ((cx - fx) * (ay - fy) - (cy - fy) * (ax - fx)) * inv_area;
-      // The third edge by its own function too (not 1 - wa - wb), so that two triangles meeting
-      // on an edge agree exactly on which side of it a pixel lies: a silhouette's pixels then
-      // belong to its upper side whenever to its underside, which may be skipped.
-      if (wa < 0 || wb < 0 || ((ax - fx) * (by - fy) - (ay - fy) * (bx - fx)) * inv_area < 0) continue;
+      float wa, wb;
+      if (!covers(a, b, c, inv_area, float(px) + 0.5f, fy, wa, wb)) continue;
       float wc = 1 - wa - wb;
       const float iz = wa * iza + wb * izb + wc * izc;
       const float z = 1 / iz;
@@ -119,8 +137,8 @@ void raster_triangle(const RasterTarget& target, const RasterVertex& a, const Ra
   }
 }
 
-// Draws triangle v (camera space): culled when wholly behind the near plane (view_detail::kNear)
-// or beyond one side of the frustum, clipped at the near plane, then rasterized.
+// Draws triangle v (camera space; the vertices in front of the near plane placed on screen): culled when wholly behind
+// the near plane (view_detail::kNear) or beyond one side of the frustum, clipped at the near plane, then rasterized.
 template <class Shade, class Hidden>
 void draw_triangle(const RasterTarget& target, const RasterVertex (&v)[3], bool one_sided, const Shade& shade,
                    const Hidden& hidden, std::uint64_t& tests) {
@@ -150,8 +168,9 @@ void draw_triangle(const RasterTarget& target, const RasterVertex (&v)[3], bool 
     if (pin != qin) {
       const float f = (kNear - p.z) / (q.z - p.z);
       auto lerp = [f](float a, float b) { return a + (b - a) * f; };
-      poly[n++] = {lerp(p.x, q.x),   lerp(p.y, q.y),   kNear,           lerp(p.wx, q.wx), lerp(p.wy, q.wy),
-                   lerp(p.lr, q.lr), lerp(p.lg, q.lg), lerp(p.lb, q.lb)};
+      poly[n] = {lerp(p.x, q.x),   lerp(p.y, q.y),   kNear,           lerp(p.wx, q.wx), lerp(p.wy, q.wy),
+                 lerp(p.lr, q.lr), lerp(p.lg, q.lg), lerp(p.lb, q.lb)};
+      place_on_screen(*target.view, poly[n++]);
     }
   }
   for (int k = 1; k + 1 < n; ++k)

@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
+#include <random>
 #include <vector>
 
 namespace wangscape {
@@ -31,7 +33,9 @@ struct Frame {
   }
   void draw(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c, bool one_sided = false) {
     std::uint64_t tests = 0;
-    const RasterVertex v[3] = {a, b, c};
+    RasterVertex v[3] = {a, b, c};
+    for (RasterVertex& q : v)
+      if (q.z >= view_detail::kNear) place_on_screen(view, q);
     draw_triangle(
         target, v, one_sided,
         [&](int px, int py, float depth, float x, float, float, float, float) {
@@ -118,6 +122,45 @@ TEST(TerrainRaster, DepthTestUndersideAndNearPlane) {
         ++shaded;
       }
   EXPECT_GT(shaded, 50);
+}
+
+// The rows' spans only skip pixels: over thousands of random triangles (a pixel or less, slivers,
+// and ones reaching far off the frame), the pixels drawn are exactly those whose centres covers()
+// holds, found by testing every pixel of the frame.
+TEST(TerrainRaster, TheRowSpansHoldEveryPixelTheTestCovers) {
+  std::mt19937 random(17);
+  std::uniform_real_distribution<float> unit(0, 1);
+  int covered = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    // On screen: a centre in or near the frame, vertices a pixel, a frame or ~1e4 frames away.
+    const float scale = std::array{1.5f, 40.0f, 6e5f}[std::size_t(trial % 3)];
+    const float mx = unit(random) * kSize, my = unit(random) * kSize, z = 1 + 9 * unit(random);
+    Frame f;
+    RasterVertex v[3];
+    for (RasterVertex& q : v) {
+      const float sx = mx + (unit(random) - 0.5f) * scale, sy = my + (unit(random) - 0.5f) * (trial % 7 ? scale : 1);
+      q = at((sx - f.view.cx) / f.view.focal * z, (f.view.cy - sy) / f.view.focal * z, z);
+      place_on_screen(f.view, q);
+    }
+    std::uint64_t tests = 0;
+    raster_triangle(
+        f.target, v[0], v[1], v[2], false,
+        [&](int px, int py, float, float, float, float, float, float) {
+          ++f.shaded[std::size_t(py) * kSize + std::size_t(px)];
+        },
+        [](int, int, int, int, float) { return false; }, tests);
+    const float area = (v[1].sx - v[0].sx) * (v[2].sy - v[0].sy) - (v[1].sy - v[0].sy) * (v[2].sx - v[0].sx);
+    if (!(std::abs(area) > 1e-12f)) continue;
+    for (int py = 0; py < kSize; ++py)
+      for (int px = 0; px < kSize; ++px) {
+        float wa, wb;
+        const bool inside = covers(v[0], v[1], v[2], 1.0f / area, float(px) + 0.5f, float(py) + 0.5f, wa, wb);
+        covered += inside;
+        ASSERT_EQ(f.shaded[std::size_t(py) * kSize + std::size_t(px)], inside ? 1 : 0)
+            << "trial " << trial << " pixel " << px << "," << py;
+      }
+  }
+  EXPECT_GT(covered, 100000);  // the triangles did cover pixels
 }
 
 }  // namespace
