@@ -142,6 +142,43 @@ BENCHMARK(BM_WarmStep)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+// A camera holding still (the walk's camera at frame 120): 120 still frames after a cold and a
+// warm one, the phases' medians and the fresh samples a frame traces (the convergence's pace).
+void BM_StillFrames(benchmark::State& state) {
+  const auto world = default_world();
+  const std::filesystem::path file = std::filesystem::path(WANGSCAPE_SOURCE_DIR) / "bench/paths" / kPaths[0];
+  const ViewPath path = read_view_path(file);
+  const GroundHeightAt ground = [&](double e, double n) { return world->scene().field->ground.height(e, n); };
+  const double fov = world->scene().camera.fov_degrees, start = path.keys.front().time;
+  const Camera camera = camera_along(path, start + 120.0 / kDefaultViewFps, fov, ground, file);
+  LdiRenderer renderer(world, int(state.range(0)), int(state.range(1)));
+  renderer.apply(ViewSettings{});
+  for (auto _ : state) {
+    FrameCache cache(renderer);
+    cache.render(camera);  // cold
+    std::vector<double> frame_ms;
+    std::array<std::vector<double>, 4> phases;
+    double fresh = 0;
+    for (int f = 0; f < 120; ++f) {
+      const CachedFrameStats& stats = cache.render(camera);
+      fresh += double(stats.fresh);
+      frame_ms.push_back(stats.frame_ms);
+      for (std::size_t p = 0; p < phases.size(); ++p) phases[p].push_back(stats.phase_ms[p]);
+    }
+    state.counters["fresh_per_frame"] = fresh / 120;
+    state.counters["median_ms"] = at(frame_ms, 0.5);
+    state.counters["max_ms"] = at(frame_ms, 1.0);
+    const char* names[4] = {"reproject", "choose", "trace", "resolve"};
+    for (std::size_t p = 0; p < phases.size(); ++p) state.counters[std::string(names[p]) + "_ms"] = at(phases[p], 0.5);
+  }
+}
+BENCHMARK(BM_StillFrames)
+    ->Args({640, 360})
+    ->Args({1280, 720})
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 }  // namespace
 
 BENCHMARK_MAIN();

@@ -159,6 +159,7 @@ struct FrameCache::Impl {
   std::vector<std::array<std::uint32_t, frame_cache_detail::kNeeds>> row_needs;
   std::vector<std::uint32_t> row_fresh;
   std::vector<std::uint8_t> row_has_holes;  // resolve(): a row fill_holes() must visit
+  std::vector<std::uint8_t> block_due;      // select_still(): per kBlock x kBlock block, its turn this frame
   ViewProjection projection;                // the last frame's
   std::uint32_t still_slot = 0;
   // FrameBudget::adaptive: the last moving frames' costs per fresh sample and per pixel (their
@@ -178,11 +179,14 @@ struct FrameCache::Impl {
     row_needs.assign(std::size_t(h), {});
     row_fresh.assign(std::size_t(h) + 1, 0);
     row_has_holes.assign(std::size_t(h), 0);
+    block_due.assign(
+        std::size_t(blocks_wide()) * std::size_t((h + frame_cache_detail::kBlock - 1) / frame_cache_detail::kBlock), 0);
   }
+  int blocks_wide() const { return (width + frame_cache_detail::kBlock - 1) / frame_cache_detail::kBlock; }
   std::size_t bytes() const {
     return (kept[0].size() + kept[1].size()) * sizeof(frame_cache_detail::Sample) + keys.size() * 8 + need.size() +
            fresh.size() * 4 + lattice.size() * 2 + row_needs.size() * sizeof(row_needs[0]) + row_fresh.size() * 4 +
-           row_has_holes.size();
+           row_has_holes.size() + block_due.size();
   }
 
   void reproject(const ViewProjection& to);
