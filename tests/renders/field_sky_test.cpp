@@ -93,6 +93,9 @@ TEST(FieldSky, ADamagedFileIsRefusedNamingIt) {
   refused(bytes.substr(0, bytes.size() - 3), "truncated");
   refused(bytes + "x", "longer than");
   refused("WSCSKZ\r\n" + bytes.substr(8), "not a sky shares file");
+  std::string other_version = bytes;
+  other_version[8] = 2;
+  refused(other_version, "version 2: expected 1");
   std::string other_models = bytes;
   other_models[12] = char(other_models[12] + 1);
   refused(other_models, "models: expected the scene's");
