@@ -18,7 +18,7 @@ namespace wangscape {
 namespace {
 constexpr char kMagic[8] = {'W', 'S', 'C', 'G', 'L', 'T', '\r', '\n'};
 constexpr std::uint32_t kVersion = 1;
-constexpr std::uint64_t kHeaderBytes = sizeof kMagic + 3 * 4;  // the version, the resolution, the tiles
+constexpr std::uint64_t kHeaderBytes = sizeof kMagic + 3 * 4;  // the magic; the version, resolution and tiles
 static_assert(sizeof(TileGroundLight::Texel) == 2, "a texel is its two bytes in the file");
 }  // namespace
 

@@ -123,7 +123,7 @@ class ViewWorld {
   const GroundColors& ground_colors() const { return ground_colors_; }
   // The light each tile's plants leave on the ground under them (renders/ldi/ground_light.h):
   // the terrain's shade where a tile is placed. Texels of kGroundLightResolution across a tile:
-  // the folder's, else baked on opening (0.2 s for the default scene).
+  // the folder's, else baked on opening (0.17 s for the default scene).
   const TileGroundLight& ground_light() const { return ground_light_; }
   // The placed tile (an index of tiles()) whose square holds (x, y), and where in it (u, v: 0 .. 1
   // east and north); -1 where none is placed.
