@@ -90,7 +90,7 @@ void register_build_command(CLI::App& app, const GlobalOptions& global) {
   set_help_footer(sub,
                   "the folder --out, replaced whole: scene.pov, scene.ini and their includes for POV-Ray, scene.toml, "
                   "tiles.json, scene.cache (what render and view read back); blender/, scene.glb, tiles.ldi with "
-                  "steep.ldi and sky.bin, and "
+                  "steep.ldi, sky.bin and ground_light.bin, and "
                   "plants.gpkg with cover.tif (for a GIS) when the scene's [exports] ask for them. One line on stderr "
                   "says what was written",
                   {"wangscape build templates/scenes/small.toml --out small",

@@ -14,6 +14,7 @@ fs::path FolderFiles::state() const { return root_ / "scene.cache"; }
 fs::path FolderFiles::pack() const { return root_ / "tiles.ldi"; }
 fs::path FolderFiles::steep_pack() const { return root_ / "steep.ldi"; }
 fs::path FolderFiles::sky_shares() const { return root_ / "sky.bin"; }
+fs::path FolderFiles::ground_light() const { return root_ / "ground_light.bin"; }
 fs::path FolderFiles::povray_scene() const { return root_ / kPovraySceneFile; }
 fs::path FolderFiles::blender() const { return root_ / "blender"; }
 fs::path FolderFiles::gltf() const { return root_ / "scene.glb"; }

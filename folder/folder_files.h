@@ -26,10 +26,12 @@ class FolderFiles {
   // and the versioned cache (the scene file's fingerprint, the placed tiles, the baked ground).
   std::filesystem::path tiles() const;
   std::filesystem::path state() const;
-  // [exports] ldi: the tiles' LDI pack, the steep sets' pack and the flowers' sky shares.
+  // [exports] ldi: the tiles' LDI pack, the steep sets' pack, the flowers' sky shares and the
+  // light the plants leave on the ground under them.
   std::filesystem::path pack() const;
   std::filesystem::path steep_pack() const;
   std::filesystem::path sky_shares() const;
+  std::filesystem::path ground_light() const;
   // The writers' outputs: the POV-Ray scene (its entry file), the Blender folder, the glTF file,
   // the GIS plant layer and its cover.
   std::filesystem::path povray_scene() const;

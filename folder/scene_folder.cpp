@@ -196,6 +196,7 @@ SceneFolder SceneFolder::open(const fs::path& dir, Parts parts) {
   if (fs::is_regular_file(files.steep_pack(), ec))
     folder.steep_pack_ = std::make_shared<const LdiPack>(files.steep_pack());
   if (fs::is_regular_file(files.sky_shares(), ec)) folder.sky_shares_ = files.sky_shares();
+  if (fs::is_regular_file(files.ground_light(), ec)) folder.ground_light_ = files.ground_light();
   return folder;
 }
 

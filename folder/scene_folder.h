@@ -87,7 +87,8 @@ class SceneFolder {
 
   // What open() reads, each with the ones before: the scene file; the state the build kept and
   // the light its pack was shaded with (the pack opened where the folder has one); the pack,
-  // which must be there, with the steep sets' pack and the sky shares where the folder has them.
+  // which must be there, with the steep sets' pack, the sky shares and the ground light where the
+  // folder has them.
   enum class Parts { scene_file, state, pack };
   // Opens the scene folder DIR. The scene file's relative paths resolve by one rule: against the
   // folder the build kept (the scene file's own at build time), else against DIR; where its files
@@ -109,11 +110,12 @@ class SceneFolder {
   // sun gives the pack's): the pack's record (folder/pack_light.h), or for a folder whose pack
   // records none (an older pack, or no pack) the light its scene file's [ldi] section gives.
   const ShadingSettings& light() const { return light_; }
-  // Parts::pack: the pack, mapped once; the steep sets' pack and the sky shares' file, null and
-  // empty where the folder has none (built before them: the view makes them on first use).
+  // Parts::pack: the pack, mapped once; the steep sets' pack, the sky shares' file and the ground
+  // light's, null and empty where the folder has none (built before them: the view makes them).
   const std::shared_ptr<const LdiPack>& pack() const { return pack_; }
   const std::shared_ptr<const LdiPack>& steep_pack() const { return steep_pack_; }
   const std::filesystem::path& sky_shares() const { return sky_shares_; }
+  const std::filesystem::path& ground_light() const { return ground_light_; }
 
  private:
   explicit SceneFolder(FolderFiles files) : files_(std::move(files)) {}
@@ -122,7 +124,7 @@ class SceneFolder {
   FolderState state_;
   ShadingSettings light_;
   std::shared_ptr<const LdiPack> pack_, steep_pack_;
-  std::filesystem::path sky_shares_;
+  std::filesystem::path sky_shares_, ground_light_;
 };
 
 }  // namespace wangscape

@@ -1,7 +1,7 @@
 // `wangscape build`: a scene file to a published scene folder (folder/scene_folder.h), its stages
 // the folder's own (the writers, the state kept for the readers) and, with [exports] ldi, the LDI
-// stage renders/ldi contributes (the two packs and the sky shares): a build that fails or is
-// killed at any stage leaves the previous folder as it was, or no folder.
+// stage renders/ldi contributes (the two packs, the sky shares and the ground light): a build
+// that fails or is killed at any stage leaves the previous folder as it was, or no folder.
 #pragma once
 
 #include <filesystem>

@@ -51,7 +51,7 @@ for file in folder/ldi.h folder/ldi_pack.h folder/ldi_pack.cpp folder/ldi_info.h
 done
 # A scene folder's files are named in folder/ only (folder/folder_files.h); readers ask it. The
 # POV-Ray export's entry is its writer's (exporters/povray_writer.h), which the folder refers to.
-names='"(scene\.toml|scene_base\.txt|scene\.cache|tiles\.json|tiles\.ldi|steep\.ldi|sky\.bin|scene\.glb|plants\.gpkg|cover\.tif|scene\.pov)"'
+names='"(scene\.toml|scene_base\.txt|scene\.cache|tiles\.json|tiles\.ldi|steep\.ldi|sky\.bin|ground_light\.bin|scene\.glb|plants\.gpkg|cover\.tif|scene\.pov)"'
 for file in $(find core generator terrain templates scene exporters renders cli -name '*.h' -o -name '*.cpp'); do
   case "$file" in exporters/povray_writer.h) continue ;; esac
   for line in $(sed 's|//.*||' "$file" | grep -nE "$names" | cut -d: -f1); do

@@ -7,11 +7,20 @@
 #include <cmath>
 #include <string>
 
+#include "core/atomic_file.h"
+#include "core/binary_file.h"
 #include "core/error.h"
 #include "core/hash.h"
 #include "renders/ldi/tile_context.h"
 
 namespace wangscape {
+
+namespace {
+constexpr char kMagic[8] = {'W', 'S', 'C', 'G', 'L', 'T', '\r', '\n'};
+constexpr std::uint32_t kVersion = 1;
+constexpr std::uint64_t kHeaderBytes = sizeof kMagic + 3 * 4;  // the magic; the version, resolution and tiles
+static_assert(sizeof(TileGroundLight::Texel) == 2, "a texel is its two bytes in the file");
+}  // namespace
 
 TileGroundLight::TileGroundLight(std::size_t tiles, std::uint32_t resolution) : tiles_(tiles), resolution_(resolution) {
   if (resolution < 1 || resolution > 1024 || (resolution & (resolution - 1)) != 0)
@@ -76,6 +85,41 @@ TileGroundLight bake_tile_ground_light(const FilledTileSet& filled, std::span<co
   }
   out.make_levels();
   return out;
+}
+
+void write_ground_light(const std::filesystem::path& path, const TileGroundLight& light) {
+  AtomicFile file(path);
+  std::ostream& out = file.stream();
+  put_binary_header(out, kMagic, kVersion);
+  put_u32(out, light.resolution());
+  put_u32(out, std::uint32_t(light.tiles()));
+  for (std::size_t t = 0; t < light.tiles(); ++t) {
+    const std::span<const TileGroundLight::Texel> texels = light.texels(t, 0);
+    out.write(reinterpret_cast<const char*>(texels.data()), std::streamsize(texels.size_bytes()));
+  }
+  file.commit();
+}
+
+TileGroundLight read_ground_light(const std::filesystem::path& path, std::size_t tiles, std::uint32_t resolution) {
+  BinaryReader in(path, kMagic, kVersion, "ground light");
+  if (const std::uint32_t found = in.u32("the ground light header"); found != resolution)
+    in.fail("a resolution of " + std::to_string(found) + " texels across a tile: expected " +
+            std::to_string(resolution) + " (rebuild the folder)");
+  if (const std::uint32_t found = in.u32("the ground light header"); found != tiles)
+    in.fail(std::to_string(found) + " tiles: expected the tile set's " + std::to_string(tiles) +
+            " (rebuild the folder)");
+  const std::uint64_t bytes = kHeaderBytes + std::uint64_t(tiles) * resolution * resolution * 2;
+  if (in.size() != bytes)
+    in.fail((in.size() < bytes ? "truncated: " : "longer than its texels: ") + std::to_string(in.size()) +
+            " bytes, expected " + std::to_string(bytes) + " (" + std::to_string(tiles) + " tiles of " +
+            std::to_string(resolution) + " x " + std::to_string(resolution) + " texels)");
+  TileGroundLight light(tiles, resolution);
+  for (std::size_t t = 0; t < tiles; ++t) {
+    const std::span<TileGroundLight::Texel> texels = light.texels(t, 0);
+    in.read(texels.data(), texels.size_bytes(), "tile " + std::to_string(t) + "'s texels");
+  }
+  light.make_levels();  // (every byte a share of 255: no value to check)
+  return light;
 }
 
 }  // namespace wangscape

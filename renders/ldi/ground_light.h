@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <span>
 #include <vector>
 
@@ -24,6 +25,7 @@ class TileGroundLight {
   // Shares of the open ground's light, of 255.
   struct Texel {
     std::uint8_t sun = 255, sky = 255;
+    friend bool operator==(const Texel&, const Texel&) = default;
   };
   TileGroundLight() = default;
   // All texels open. `resolution`: a power of two, 1 .. 1024.
@@ -38,6 +40,13 @@ class TileGroundLight {
     return texels_[index(tile, level, i, j)];
   }
   Texel& at(std::size_t tile, int level, std::uint32_t i, std::uint32_t j) { return texels_[index(tile, level, i, j)]; }
+  // A tile's texels of `level`, rows from the south, texels from the west.
+  std::span<const Texel> texels(std::size_t tile, int level) const {
+    return {&texels_[index(tile, level, 0, 0)], level_texels(level)};
+  }
+  std::span<Texel> texels(std::size_t tile, int level) {
+    return {&texels_[index(tile, level, 0, 0)], level_texels(level)};
+  }
   // The sun's and the sky's shares (0 .. 1) at (u, v) in the tile (0 .. 1 east and north),
   // bilinear in the level whose texels are as large as `footprint` (level-0 texels a screen pixel
   // covers), clamped at the tile's sides.
@@ -60,8 +69,10 @@ class TileGroundLight {
   }
   // Levels 1 .. levels() - 1 of every tile, each texel the mean of the four below it.
   void make_levels();
+  bool operator==(const TileGroundLight&) const = default;
 
  private:
+  std::size_t level_texels(int level) const { return std::size_t(resolution_ >> level) * (resolution_ >> level); }
   std::size_t index(std::size_t tile, int level, std::uint32_t i, std::uint32_t j) const {
     return tile * tile_texels_ + level_offsets_[std::size_t(level)] + std::size_t(j) * (resolution_ >> level) + i;
   }
@@ -78,5 +89,18 @@ class TileGroundLight {
 // inputs (as build_tile_ldis) or an Embree error.
 TileGroundLight bake_tile_ground_light(const FilledTileSet& filled, std::span<const Mesh> models,
                                        const LdiBuildOptions& options, std::uint32_t resolution);
+
+// The texels across a tile of the ground light the view shades its terrain with, and that
+// `wangscape build` bakes into a scene folder for it.
+inline constexpr std::uint32_t kGroundLightResolution = 64;
+
+// The light in a file of its own (a scene folder's ground light, docs/scene-folder.md):
+// "WSCGLT\r\n", u32 version 1, u32 resolution, u32 tiles, then per tile its level 0 (rows from the
+// south, texels from the west), two bytes a texel (sun, sky: shares of 255), little endian. The
+// coarser levels are not kept: make_levels() makes them again, the same bytes as the bake's.
+// Written atomically; read back only as `tiles` tiles of `resolution` texels (the view's set and
+// resolution), a file of exactly their size: else an Error naming the file and what was expected.
+void write_ground_light(const std::filesystem::path& path, const TileGroundLight& light);
+TileGroundLight read_ground_light(const std::filesystem::path& path, std::size_t tiles, std::uint32_t resolution);
 
 }  // namespace wangscape

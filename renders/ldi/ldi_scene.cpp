@@ -172,6 +172,10 @@ FolderStage ldi_folder_stage(const LdiBuildOptions& options, const LdiSceneObser
     if (observer.stage) observer.stage("estimating the flowers' share of the sky");
     write_sky_shares(build.staging.sky_shares(),
                      bake_field_sky(build.scene, with_sun(options.shading, build.scene.sun)));
+    // The view's bake, with its inputs (the light before the sun, as the pack records it).
+    if (observer.stage) observer.stage("baking the light the plants leave on the ground");
+    write_ground_light(build.staging.ground_light(),
+                       bake_scene_ground_light(build.scene, options.shading, kGroundLightResolution));
   };
 }
 

@@ -77,11 +77,12 @@ std::vector<LdiImage> build_scene_steep_ldis(const Scene& scene, const LdiPackIn
 void build_scene_ldi_packs(const Scene& scene, const FolderFiles& files, const LdiBuildOptions& options,
                            const LdiSceneObserver& observer = {});
 
-// The LDI stage of a folder's build (folder/scene_folder.h): the two packs of `options`, and the
+// The LDI stage of a folder's build (folder/scene_folder.h): the two packs of `options`, the
 // flowers' share of the sky the view shades them with (renders/trace/field_sky.h), estimated once
-// here instead of on the view's first frame. The LDIs are sampled from the tile set, not from the
-// placed field: a pass of their own, into the staging folder, so that they are published with the
-// scene they were made from.
+// here instead of on the view's first frame, and the ground light under the plants
+// (bake_scene_ground_light at kGroundLightResolution), baked here instead of at every opening. The
+// LDIs are sampled from the tile set, not from the placed field: a pass of their own, into the
+// staging folder, so that they are published with the scene they were made from.
 FolderStage ldi_folder_stage(const LdiBuildOptions& options, const LdiSceneObserver& observer = {});
 
 }  // namespace wangscape

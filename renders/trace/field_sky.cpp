@@ -3,12 +3,11 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
-#include <fstream>
 #include <limits>
 #include <optional>
 
 #include "core/atomic_file.h"
+#include "core/binary_file.h"
 #include "core/error.h"
 
 namespace wangscape {
@@ -36,11 +35,6 @@ std::optional<std::array<double, 3>> nearest_flower(const SceneField& field, con
   }
 }
 
-void put_u32(std::ostream& out, std::uint32_t v) {
-  const unsigned char b[4] = {std::uint8_t(v), std::uint8_t(v >> 8), std::uint8_t(v >> 16), std::uint8_t(v >> 24)};
-  out.write(reinterpret_cast<const char*>(b), 4);
-}
-
 }  // namespace
 
 SceneTracer::SkyShares bake_field_sky(const Scene& scene, const ShadingSettings& shading) {
@@ -64,8 +58,7 @@ void write_sky_shares(const std::filesystem::path& path, const SceneTracer::SkyS
   static_assert(std::endian::native == std::endian::little, "the file's floats are written as the machine holds them");
   AtomicFile file(path);
   std::ostream& out = file.stream();
-  out.write(kMagic, sizeof kMagic);
-  put_u32(out, kVersion);
+  put_binary_header(out, kMagic, kVersion);
   put_u32(out, std::uint32_t(shares.size()));
   for (const auto& model : shares) put_u32(out, std::uint32_t(model.size()));
   for (const auto& model : shares)
@@ -74,42 +67,29 @@ void write_sky_shares(const std::filesystem::path& path, const SceneTracer::SkyS
 }
 
 SceneTracer::SkyShares read_sky_shares(const std::filesystem::path& path, const Scene& scene) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path, "", "cannot be read");
-  const auto fail = [&](const std::string& what) -> SceneTracer::SkyShares { throw Error(path, "", what); };
-  char magic[sizeof kMagic];
-  const auto u32 = [&]() -> std::uint32_t {
-    unsigned char b[4];
-    if (!in.read(reinterpret_cast<char*>(b), 4)) fail("truncated: expected the sky shares' header");
-    return std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24;
-  };
-  if (!in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
-    return fail("not a sky shares file (expected it to start with WSCSKY)");
-  if (const std::uint32_t version = u32(); version != kVersion)
-    return fail("version " + std::to_string(version) + ": expected " + std::to_string(kVersion));
-  const std::uint32_t models = u32();
+  BinaryReader in(path, kMagic, kVersion, "sky shares");
+  const std::uint32_t models = in.u32("the sky shares' header");
   if (models != 0 && models != scene.models.size())  // 0: none estimated (no sky rays, no flowers)
-    return fail(std::to_string(models) + " models: expected the scene's " + std::to_string(scene.models.size()) +
-                " (rebuild the folder)");
+    in.fail(std::to_string(models) + " models: expected the scene's " + std::to_string(scene.models.size()) +
+            " (rebuild the folder)");
   SceneTracer::SkyShares shares(models);
   for (std::uint32_t v = 0; v < models; ++v) {
-    const std::uint32_t vertices = u32();
+    const std::uint32_t vertices = in.u32("the sky shares' header");
     if (vertices != scene.models[v].positions.size())
-      return fail("model " + std::to_string(v) + ": " + std::to_string(vertices) + " vertices, expected " +
-                  std::to_string(scene.models[v].positions.size()) + " (rebuild the folder)");
+      in.fail("model " + std::to_string(v) + ": " + std::to_string(vertices) + " vertices, expected " +
+              std::to_string(scene.models[v].positions.size()) + " (rebuild the folder)");
     shares[v].resize(vertices);
   }
   for (std::uint32_t v = 0; v < models; ++v) {
     auto& model = shares[v];
-    if (!in.read(reinterpret_cast<char*>(model.data()), std::streamsize(model.size() * sizeof(model[0]))))
-      return fail("truncated in model " + std::to_string(v) + "'s shares");
+    in.read(model.data(), model.size() * sizeof(model[0]), "model " + std::to_string(v) + "'s shares");
     for (std::size_t i = 0; i < model.size(); ++i)
       for (const float share : model[i])
         if (!(share >= 0.0f && share <= 1.0f))
-          return fail("model " + std::to_string(v) + ", vertex " + std::to_string(i) +
-                      ": a share outside [0, 1] or not a number");
+          in.fail("model " + std::to_string(v) + ", vertex " + std::to_string(i) +
+                  ": a share outside [0, 1] or not a number");
   }
-  if (in.peek() != std::ifstream::traits_type::eof()) return fail("longer than its models' shares");
+  in.expect_end("its models' shares");
   return shares;
 }
 

@@ -135,9 +135,9 @@ std::int32_t ViewWorld::placed_tile_at(double x, double y, float& u, float& v) c
 
 std::shared_ptr<const ViewWorld> ViewWorld::load(const fs::path& dir, const StageObserver& stage) {
   const SceneFolder folder = SceneFolder::open(dir, SceneFolder::Parts::pack);
-  return std::make_shared<const ViewWorld>(folder.make_scene(stage),
-                                           Packs{folder.pack(), folder.steep_pack(), folder.sky_shares()},
-                                           folder.light(), &folder.placed());
+  return std::make_shared<const ViewWorld>(
+      folder.make_scene(stage), Packs{folder.pack(), folder.steep_pack(), folder.sky_shares(), folder.ground_light()},
+      folder.light(), &folder.placed());
 }
 
 namespace {
@@ -148,8 +148,9 @@ std::shared_ptr<const LdiPack> opened(const fs::path& pack) {
 
 ViewWorld::ViewWorld(Scene scene, const fs::path& pack_path, const ShadingSettings& shading,
                      const PlacedTiles* placed_tiles, const Prepared& prepared)
-    : ViewWorld(std::move(scene), Packs{opened(pack_path), opened(prepared.steep_pack), prepared.sky_shares}, shading,
-                placed_tiles) {}
+    : ViewWorld(std::move(scene),
+                Packs{opened(pack_path), opened(prepared.steep_pack), prepared.sky_shares, prepared.ground_light},
+                shading, placed_tiles) {}
 
 ViewWorld::ViewWorld(Scene scene, Packs packs, const ShadingSettings& shading_settings, const PlacedTiles* placed_tiles)
     : scene_(std::move(scene)),
@@ -178,6 +179,9 @@ ViewWorld::ViewWorld(Scene scene, Packs packs, const ShadingSettings& shading_se
     sky_ = read_sky_shares(packs.sky_shares, scene_);
     std::call_once(sky_once_, [] {});
   }
+  // Read before the work below, so that a damaged file is refused at once.
+  if (!packs.ground_light.empty())
+    ground_light_ = read_ground_light(packs.ground_light, field.filled.tiles.size(), kGroundLightResolution);
 
   // The tiles placement keeps: the tiling's cells over the area that received a flower, as the
   // build found them (or by a placement pass of our own).
@@ -245,7 +249,8 @@ ViewWorld::ViewWorld(Scene scene, Packs packs, const ShadingSettings& shading_se
     light[v] = lit(sun_shading_, {1, 1, 1}, cos_sun, 1);  // the irradiance: a white ground's color
   }
   terrain_ = make_terrain_chunks(mesh, light);
-  ground_light_ = bake_scene_ground_light(scene_, shading_, kGroundLightResolution);
+  // A folder built before the ground light was kept: baked as the build bakes it (the same bytes).
+  if (packs.ground_light.empty()) ground_light_ = bake_scene_ground_light(scene_, shading_, kGroundLightResolution);
 
   // The far field: per tile and direction, the coarsest LDI's front flower samples averaged —
   // those in the canopy's upper part: seen from afar at a grazing angle, the tiles in front hide

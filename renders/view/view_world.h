@@ -34,22 +34,24 @@ class ViewWorld {
   // Opens the scene folder DIR with its pack (SceneFolder::open, Parts::pack): its Scene as the
   // build made it, the pack and the light it was shaded with, and what the folder holds beside
   // it. Throws Error naming the file at fault: each way a folder can be unusable
-  // (folder/scene_folder.h), a pack of another tile set, a steep pack of another pack.
+  // (folder/scene_folder.h), a pack of another tile set, a steep pack of another pack, damaged
+  // sky shares or ground light, or one of another tile set.
   static std::shared_ptr<const ViewWorld> load(const std::filesystem::path& dir, const StageObserver& stage = {});
-  // The packs, mapped, and what a folder holds beside them that the view would otherwise make on
-  // first use: the steep sets' pack and the flowers' sky shares (null, empty: made on first use).
+  // The packs, mapped, and what a folder holds beside them that the view would otherwise make:
+  // the steep sets' pack and the flowers' sky shares (null, empty: made on first use), and the
+  // ground light (empty: baked on opening).
   struct Packs {
     std::shared_ptr<const LdiPack> pack, steep_pack;
-    std::filesystem::path sky_shares;
+    std::filesystem::path sky_shares, ground_light;
   };
   // The same from a Scene already made and its packs shaded with the light `shading` (before
   // the sun), with the field's placed tiles as its folder keeps them (folder/folder_state.h) or,
   // without them, found by a placement pass. The scene's wind is left out (the view stands still).
   ViewWorld(Scene scene, Packs packs, const ShadingSettings& shading, const PlacedTiles* placed = nullptr);
-  // What a test or a benchmark holds beside a pack file it built: a steep sets' pack file and the
-  // sky shares' file (empty: made on first use).
+  // What a test or a benchmark holds beside a pack file it built: a steep sets' pack file, the
+  // sky shares' file and the ground light's (empty: made by the view).
   struct Prepared {
-    std::filesystem::path steep_pack, sky_shares;
+    std::filesystem::path steep_pack, sky_shares, ground_light;
   };
   // The same from a pack file.
   ViewWorld(Scene scene, const std::filesystem::path& pack_path, const ShadingSettings& shading = {},
@@ -120,8 +122,8 @@ class ViewWorld {
   // The ground's base colors (the bake, or the plain ground color), as the reference sees them.
   const GroundColors& ground_colors() const { return ground_colors_; }
   // The light each tile's plants leave on the ground under them (renders/ldi/ground_light.h):
-  // the terrain's shade where a tile is placed. Texels of kGroundLightResolution across a tile.
-  static constexpr std::uint32_t kGroundLightResolution = 64;
+  // the terrain's shade where a tile is placed. Texels of kGroundLightResolution across a tile:
+  // the folder's, else baked on opening (0.17 s for the default scene).
   const TileGroundLight& ground_light() const { return ground_light_; }
   // The placed tile (an index of tiles()) whose square holds (x, y), and where in it (u, v: 0 .. 1
   // east and north); -1 where none is placed.

@@ -21,7 +21,7 @@ endfunction()
 set(ground_variance "${CMAKE_CURRENT_LIST_DIR}/ground_variance.py")
 
 add_test(NAME cli_view_build
-  COMMAND ${cli_expect} 0 "" sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$1.toml\" --out \"$1\" && test -s \"$1/tiles.ldi\""
+  COMMAND ${cli_expect} 0 "" sh -c "rm -rf \"$1\" && \"$0\" --quiet build \"$1.toml\" --out \"$1\" && test -s \"$1/tiles.ldi\" && test -s \"$1/ground_light.bin\""
           "${WANGSCAPE_BIN}" "${view_folder}")
 set_tests_properties(cli_view_build PROPERTIES LABELS "cli;view" TIMEOUT 300 FIXTURES_SETUP view_folder)
 
@@ -140,6 +140,17 @@ view_damaged(edited "edited/scene\\.toml: was changed after the build. build the
   "cp -r \"$2\"/. \"$1\" && echo '# edited' >> \"$1/scene.toml\"")
 view_damaged(cut "cut/scene\\.cache:byte [0-9]+: truncated"
   "cp -r \"$2\"/. \"$1\" && head -c 60 \"$2/scene.cache\" > \"$1/scene.cache\"")
+# The ground light the build baked: cut, or of another version, refused naming it.
+view_damaged(ground_light_cut "ground_light_cut/ground_light\\.bin: truncated: 100 bytes, expected [0-9]+"
+  "cp -r \"$2\"/. \"$1\" && head -c 100 \"$2/ground_light.bin\" > \"$1/ground_light.bin\"")
+view_damaged(ground_light_version "ground_light_version/ground_light\\.bin: version 2: expected 1"
+  "cp -r \"$2\"/. \"$1\" && printf '\\002' | dd of=\"$1/ground_light.bin\" bs=1 seek=8 conv=notrunc 2>/dev/null")
+# A folder built before the ground light was kept (the file removed) draws the same frame from
+# above, the view baking the light itself (20 m up: the LDIs and the terrain they shade, not the
+# ray-traced near field).
+view_sh_test(ground_light_baked "^same$"
+  "rm -rf \"$3\" && cp -r \"$1\" \"$3\" && rm \"$3/ground_light.bin\" && \"$0\" --quiet view \"$1\" --camera 0.3,-1,20 --look-at 0.3,-0.5,0 --size 160x90 --out \"$3.kept.png\" && \"$0\" --quiet view \"$3\" --camera 0.3,-1,20 --look-at 0.3,-0.5,0 --size 160x90 --out \"$3.baked.png\" && cmp \"$3.kept.png\" \"$3.baked.png\" && echo same"
+  "${view_dir}/no_ground_light")
 
 # --compare against the Embree reference of the same camera: PSNR above a floor measured on this
 # field (19.30 dB and SSIM 0.659 at 320 x 240, 4 samples per pixel: 2 levels, so the far field's

@@ -54,7 +54,7 @@ TEST(FieldSky, TheFolderFileDrawsTheFramesOfTheViewsOwnEstimate) {
   build_scene_ldi_pack(scene, pack, options);
   const auto own = std::make_shared<const ViewWorld>(tiny_field(), pack, options.shading);
   const auto kept = std::make_shared<const ViewWorld>(std::move(scene), pack, options.shading, nullptr,
-                                                      ViewWorld::Prepared{{}, file});
+                                                      ViewWorld::Prepared{{}, file, {}});
   EXPECT_EQ(own->sky_shares(), kept->sky_shares());
   const Camera in_field = looking(0.3, -6, 1.7, 0.3, 10, 1.0);
   std::vector<std::uint8_t> frames[2];
@@ -93,6 +93,9 @@ TEST(FieldSky, ADamagedFileIsRefusedNamingIt) {
   refused(bytes.substr(0, bytes.size() - 3), "truncated");
   refused(bytes + "x", "longer than");
   refused("WSCSKZ\r\n" + bytes.substr(8), "not a sky shares file");
+  std::string other_version = bytes;
+  other_version[8] = 2;
+  refused(other_version, "version 2: expected 1");
   std::string other_models = bytes;
   other_models[12] = char(other_models[12] + 1);
   refused(other_models, "models: expected the scene's");

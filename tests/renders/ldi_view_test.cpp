@@ -461,7 +461,7 @@ TEST(ldi_view_above, TheSteepPackDrawsTheBytesTheViewWouldSample) {
   Scene again = make_scene(parse_scene_config(scene, "again.toml", fs::temp_directory_path()));
   try {
     ViewWorld world(std::move(again), FolderFiles(scratch("above_packed")).pack(), {}, nullptr,
-                    {FolderFiles(scratch("other_packed")).steep_pack(), {}});
+                    {FolderFiles(scratch("other_packed")).steep_pack(), {}, {}});
     ADD_FAILURE() << "a steep pack of another field was accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("other_packed/steep.ldi"), std::string::npos) << e.what();

@@ -50,7 +50,7 @@ inline std::shared_ptr<const ViewWorld> world_of(const std::string& text, const 
   const FolderFiles files(folder);
   build_scene_ldi_packs(scene, files, options);
   return std::make_shared<const ViewWorld>(std::move(scene), files.pack(), options.shading, nullptr,
-                                           ViewWorld::Prepared{files.steep_pack(), {}});
+                                           ViewWorld::Prepared{files.steep_pack(), {}, {}});
 }
 
 // The scene file of tiny_world.
