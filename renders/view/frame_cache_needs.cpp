@@ -58,33 +58,77 @@ void FrameCache::Impl::classify(std::uint64_t frame, bool still, const EnteringB
   tbb::parallel_for(tbb::blocked_range<int>(0, h, 4), [&](const tbb::blocked_range<int>& r) {
     const EnteringBand edges = band;
     const bool moving = !still;
-    for (int y = r.begin(); y != r.end(); ++y)
-      for (int x = 0; x < w; ++x) {
-        const std::size_t p = std::size_t(y) * std::size_t(w) + std::size_t(x);
-        const float d = k[p].depth;
-        if (!moving && !is_none(d)) {  // the same view: nothing new shows through a gap, nothing is stale
-          needs[p] = needs[p] == kStretched ? kStretched : kKeep;
-          continue;
+    // Pixel p's need, from its sample's depth d and its neighbours': how many show the sky, how
+    // many lie nearer by a gap.
+    const auto judge = [&](std::size_t p, int x, int y, float d, int sky, int nearer) {
+      std::uint8_t judged;
+      if (is_none(d))
+        judged = sky == 8 ? kSkyFill : kHole;  // a hole among sky is sky: nothing stands in it
+      else if (nearer >= kGapNeighbours)
+        judged = kHole;
+      else if (needs[p] == kStretched)
+        judged = kStretched;
+      else if (k[p].source == SampleSource::frame || k[p].source == SampleSource::lent)
+        judged = kStale;
+      else if (k[p].age >= kMaxAge || (pixel_hash(p, 1) + frame) % kRefreshPeriod == 0)
+        judged = kRefresh;
+      else
+        judged = kKeep;
+      if (judged != kHole && moving && x % kProbeSpacing == kProbeSpacing / 2 &&
+          y % kProbeSpacing == kProbeSpacing / 2 && edges.holds(x, y, w, h))
+        judged = kProbe;
+      needs[p] = judged;
+    };
+    const auto at_edge = [&](int x, int y) {
+      const std::size_t p = std::size_t(y) * std::size_t(w) + std::size_t(x);
+      const float d = k[p].depth;
+      const auto [sky, nearer] = neighbour_counts(k, w, h, x, y, d);
+      judge(p, x, y, d, sky, nearer);
+    };
+    for (int y = r.begin(); y != r.end(); ++y) {
+      if (!moving) {  // the same view: nothing new shows through a gap, nothing is stale
+        for (int x = 0; x < w; ++x) {
+          const std::size_t p = std::size_t(y) * std::size_t(w) + std::size_t(x);
+          if (is_none(k[p].depth))
+            at_edge(x, y);  // (a hole: sky, or still a hole)
+          else
+            needs[p] = needs[p] == kStretched ? kStretched : kKeep;
         }
-        const auto [sky, nearer] = neighbour_counts(k, w, h, x, y, d);
-        std::uint8_t judged;
-        if (is_none(d))
-          judged = sky == 8 ? kSkyFill : kHole;  // a hole among sky is sky: nothing stands in it
-        else if (nearer >= kGapNeighbours)
-          judged = kHole;
-        else if (needs[p] == kStretched)
-          judged = kStretched;
-        else if (k[p].source == SampleSource::frame || k[p].source == SampleSource::lent)
-          judged = kStale;
-        else if (k[p].age >= kMaxAge || (pixel_hash(p, 1) + frame) % kRefreshPeriod == 0)
-          judged = kRefresh;
-        else
-          judged = kKeep;
-        if (judged != kHole && moving && x % kProbeSpacing == kProbeSpacing / 2 &&
-            y % kProbeSpacing == kProbeSpacing / 2 && edges.holds(x, y, w, h))
-          judged = kProbe;
-        needs[p] = judged;
+        continue;
       }
+      if (y == 0 || y + 1 == h || w < 3) {
+        for (int x = 0; x < w; ++x) at_edge(x, y);
+        continue;
+      }
+      // Inside the frame, the 3 x 3 depths slide along the row: three loads a pixel, not nine.
+      const Sample* above = k + std::size_t(y - 1) * std::size_t(w);
+      const Sample* row = above + w;
+      const Sample* below = row + w;
+      at_edge(0, y);
+      float a0 = above[0].depth, a1 = above[1].depth, r0 = row[0].depth, r1 = row[1].depth, b0 = below[0].depth,
+            b1 = below[1].depth;
+      for (int x = 1; x + 1 < w; ++x) {
+        const float a2 = above[x + 1].depth, r2 = row[x + 1].depth, b2 = below[x + 1].depth;
+        const float d = r1;
+        int sky = 0, nearer = 0;
+        if (is_none(d)) {
+          sky = (a0 == kInf) + (a1 == kInf) + (a2 == kInf) + (r0 == kInf) + (r2 == kInf) + (b0 == kInf) + (b1 == kInf) +
+                (b2 == kInf);
+        } else {
+          const float gap = d * (1 - kGapDepth);
+          nearer =
+              (a0 < gap) + (a1 < gap) + (a2 < gap) + (r0 < gap) + (r2 < gap) + (b0 < gap) + (b1 < gap) + (b2 < gap);
+        }
+        judge(std::size_t(y) * std::size_t(w) + std::size_t(x), x, y, d, sky, nearer);
+        a0 = a1;
+        a1 = a2;
+        r0 = r1;
+        r1 = r2;
+        b0 = b1;
+        b1 = b2;
+      }
+      at_edge(w - 1, y);
+    }
   });
   // Applied after every pixel was judged, so a judgement never sees another's outcome.
   tbb::parallel_for(tbb::blocked_range<int>(0, h, 4), [&](const tbb::blocked_range<int>& r) {
