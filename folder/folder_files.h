@@ -11,9 +11,11 @@ namespace wangscape {
 
 class FolderFiles {
  public:
-  // The format of what the build keeps for its readers (scene.cache): a folder of another
-  // version is refused, with what to do.
-  static constexpr std::uint32_t kFormatVersion = 1;
+  // The format of what the build keeps for its readers (scene.cache): version 2 adds the set's
+  // tile at each placed cell; a version 1 folder still opens (its readers run the tiling again),
+  // a folder of another version is refused, with what to do.
+  static constexpr std::uint32_t kFormatVersion = 2;
+  static constexpr std::uint32_t kOldestFormatVersion = 1;
 
   explicit FolderFiles(std::filesystem::path root) : root_(std::move(root)) {}
   const std::filesystem::path& root() const { return root_; }

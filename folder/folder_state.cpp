@@ -110,6 +110,20 @@ PlacedTiles place_tiles(const SceneField& field) {
   return collector.result();
 }
 
+std::vector<std::uint16_t> placed_set_tiles(const SceneField& field, const PlacedTiles& placed) {
+  const RowTiles rows(field.filled.set, tile_range(*field.placement.area, field.placement.tile_size), field.placement);
+  std::vector<std::uint16_t> row(std::size_t(placed.width)), tiles;
+  tiles.reserve(placed.cells.size());
+  std::int64_t row_at = -1;  // the row in `row`
+  for (const std::uint32_t cell : placed.cells) {
+    const std::int64_t r = cell / std::uint32_t(placed.width);
+    if (r != row_at) rows.row(int(r), row);
+    row_at = r;
+    tiles.push_back(row[cell % std::uint32_t(placed.width)]);
+  }
+  return tiles;
+}
+
 void write_folder_state(const FolderFiles& files, const std::string& scene_text, const Scene& scene,
                         const PlacedTiles& placed) {
   if (!scene.field) return;
@@ -128,6 +142,11 @@ void write_folder_state(const FolderFiles& files, const std::string& scene_text,
   w.put(placed.height);
   w.put(std::uint64_t(placed.cells.size()));
   w.put_bytes(placed.cells.data(), placed.cells.size() * sizeof(std::uint32_t));
+  const std::vector<std::uint16_t> set_tiles =
+      placed.set_tiles.empty() ? placed_set_tiles(*scene.field, placed) : placed.set_tiles;
+  if (set_tiles.size() != placed.cells.size())
+    throw Error(files.state(), "", "the set's tiles are not one per placed tile (a bug: please report it)");
+  w.put_bytes(set_tiles.data(), set_tiles.size() * sizeof(std::uint16_t));
   const GroundBake* bake = scene.ground_texture.get();
   w.put(std::uint8_t(bake ? 1 : 0));
   if (bake) {
@@ -146,9 +165,10 @@ FolderState read_folder_state(const FolderFiles& files, const std::string& scene
   if (std::memcmp(r.take(sizeof kMagic, "the magic"), kMagic, sizeof kMagic) != 0)
     r.fail("bad magic: not a Wangscape scene cache");
   const auto version = r.get<std::uint32_t>("the version");
-  if (version != FolderFiles::kFormatVersion)
-    r.fail("version " + std::to_string(version) + ", this wangscape reads version " +
-           std::to_string(FolderFiles::kFormatVersion) + "; " + kBuildAgain);
+  if (version < FolderFiles::kOldestFormatVersion || version > FolderFiles::kFormatVersion)
+    r.fail("version " + std::to_string(version) + ", this wangscape reads versions " +
+           std::to_string(FolderFiles::kOldestFormatVersion) + " to " + std::to_string(FolderFiles::kFormatVersion) +
+           "; " + kBuildAgain);
   if (r.get<std::uint64_t>("the scene file's fingerprint") != fingerprint(scene_text))
     throw Error(files.scene_file(), "", std::string("was changed after the build; ") + kBuildAgain);
   const std::uint64_t tiles_fingerprint = r.get<std::uint64_t>("the tile set's fingerprint");
@@ -170,6 +190,11 @@ FolderState read_folder_state(const FolderFiles& files, const std::string& scene
   for (std::size_t k = 0; k < placed.cells.size(); ++k)
     if (placed.cells[k] >= cells || (k > 0 && placed.cells[k] <= placed.cells[k - 1]))
       r.fail("placed tile " + std::to_string(k) + " is out of the grid or out of order");
+  if (version >= 2) {  // version 1 kept no set's tiles: the view runs the tiling again
+    placed.set_tiles.resize(count);
+    std::memcpy(placed.set_tiles.data(), r.take(count * sizeof(std::uint16_t), "the set's tile of each placed tile"),
+                count * sizeof(std::uint16_t));
+  }
 
   if (r.get<std::uint8_t>("the ground flag") != 0) {
     auto bake = std::make_shared<GroundBake>();
@@ -201,6 +226,13 @@ FolderState read_folder_state(const FolderFiles& files, const std::string& scene
     throw Error(tiles_file, "", "not JSON: " + json_error_text(e));
   }
   state.prebuilt.filled = filled_tileset_from_json(document, tiles_file.string());
+  const std::size_t set_size = state.prebuilt.filled.tiles.size();
+  for (std::size_t k = 0; k < placed.set_tiles.size(); ++k)
+    if (placed.set_tiles[k] >= set_size)
+      throw Error(file, "",
+                  "placed tile " + std::to_string(k) + " is the set's tile " + std::to_string(placed.set_tiles[k]) +
+                      ": expected one of the " + std::to_string(set_size) + " tiles of " +
+                      tiles_file.filename().string() + "; " + kBuildAgain);
   return state;
 }
 

@@ -4,9 +4,10 @@
 //  - DIR/tiles.json, the filled tile set (docs/filled-tileset-format.md): the Poisson fill and
 //    its relaxation, which can take a minute;
 //  - DIR/scene.cache (docs/scene-folder.md): a versioned binary file with the fingerprint of
-//    DIR/scene.toml, the tiles of the field that received a flower, and the baked ground.
-// With them, `view`, `render --engine embree` and the LDI tools skip the fill, the ground's bake
-// and a placement pass: only the DEM and the models are loaded again.
+//    DIR/scene.toml, the tiles of the field that received a flower with the set's tile laid at
+//    each, and the baked ground.
+// With them, `view`, `render --engine embree` and the LDI tools skip the fill, the ground's bake,
+// a placement pass and the tiling: only the DEM and the models are loaded again.
 #pragma once
 
 #include <cstdint>
@@ -32,6 +33,9 @@ struct PlacedTiles {
   std::int64_t i0 = 0, j0 = 0;
   std::int32_t width = 0, height = 0;
   std::vector<std::uint32_t> cells;  // ascending
+  // The set's tile laid at each of `cells` (placed_set_tiles), kept so that the view need not run
+  // the tiling again; empty where not known (a version 1 folder, a placement pass's result).
+  std::vector<std::uint16_t> set_tiles;
 };
 
 // Marks the cells of a field's grid its instances stand in, batch by batch (one stream run).
@@ -50,6 +54,10 @@ class PlacedTileCollector {
 // The placed tiles of `field`, by running its placement once.
 PlacedTiles place_tiles(const SceneField& field);
 
+// The set's tile laid at each of placed.cells, in their order, by running the field's tiling over
+// its grid (generator/placement.h RowTiles, as placement lays it).
+std::vector<std::uint16_t> placed_set_tiles(const SceneField& field, const PlacedTiles& placed);
+
 // What the build left for its readers.
 struct FolderState {
   ScenePrebuilt prebuilt;
@@ -57,14 +65,16 @@ struct FolderState {
 };
 
 // Writes the tile set and the cache (files.tiles(), files.state()) for `scene` (made from
-// `scene_text`) into the staging folder `files`, atomically each. A scene without a field writes
+// `scene_text`) into the staging folder `files`, atomically each, with the set's tile at each
+// placed cell (placed.set_tiles, or placed_set_tiles when empty). A scene without a field writes
 // neither.
 void write_folder_state(const FolderFiles& files, const std::string& scene_text, const Scene& scene,
                         const PlacedTiles& placed);
 
 // Reads them back and checks them against the folder's scene file text. Throws Error naming the
 // file: missing or from another version (a folder of an older build: build it again), made for
-// another scene file (the file was edited after the build), truncated or corrupt.
+// another scene file (the file was edited after the build), truncated or corrupt (a set's tile
+// the tile set does not hold among them). A version 1 cache gives no placed.set_tiles.
 // make_scene(config, stage, &state.prebuilt) then gives the folder's Scene as the build made it.
 FolderState read_folder_state(const FolderFiles& files, const std::string& scene_text);
 

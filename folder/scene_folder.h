@@ -101,7 +101,8 @@ class SceneFolder {
 
   const FolderFiles& files() const { return files_; }
   const SceneConfig& config() const { return config_; }
-  // Parts::state on: the field's tiles that received a flower, and the folder's Scene as its build
+  // Parts::state on: the field's tiles that received a flower (with the set's tile at each, but
+  // from a version 1 scene.cache: placed_set_tiles gives them), and the folder's Scene as its build
   // made it (make_scene of config() with the kept tile set and ground bake). Throws Error as
   // make_scene does.
   const PlacedTiles& placed() const { return state_.placed; }

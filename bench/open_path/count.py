@@ -67,8 +67,24 @@ def resolve(binary, base, source, offsets):
         where = os.path.normpath(symbol["FileName"])
         if where.startswith(source + "/"):
             where = where[len(source) + 1:]
+        else:  # an object ccache compiled in another worktree (base_dir, hash_dir off) names its file there
+            where = in_tree(source, where)
         table[o] = (symbol["FunctionName"], where, symbol["Line"])
     return table
+
+
+TOP = ("core", "generator", "terrain", "templates", "scene", "exporters", "folder", "renders", "cli", "bench")
+
+
+def in_tree(source, path):
+    """The project's part of a path from another checkout: from the first top folder on that names
+    a file of this one."""
+    parts = path.split("/")
+    for k, part in enumerate(parts[:-1]):
+        rest = "/".join(parts[k:])
+        if part in TOP and os.path.isfile(os.path.join(source, rest)):
+            return rest
+    return path
 
 
 SPECIAL = re.compile(r"(?:^|::)(~?)(\w+)::(?:~?\2|operator=)\(")

@@ -184,55 +184,52 @@ ViewWorld::ViewWorld(Scene scene, Packs packs, const ShadingSettings& shading_se
     ground_light_ = read_ground_light(packs.ground_light, field.filled.tiles.size(), kGroundLightResolution);
 
   // The tiles placement keeps: the tiling's cells over the area that received a flower, as the
-  // build found them (or by a placement pass of our own).
-  const PlacedTiles placed = placed_tiles ? *placed_tiles : place_tiles(field);
+  // build found them (or by a placement pass of our own), with the set's tile at each as the build
+  // kept it (or, from a version 1 folder or a placement pass, by running the tiling again).
+  const PlacedTiles found = placed_tiles ? PlacedTiles{} : place_tiles(field);
+  const PlacedTiles& placed = placed_tiles ? *placed_tiles : found;
+  const std::vector<std::uint16_t> tiled =
+      placed.set_tiles.empty() ? placed_set_tiles(field, placed) : placed.set_tiles;
   const TileRange range = tile_range(*field.placement.area, tile_size_);
   if (placed.i0 != range.i0 || placed.j0 != range.j0 || placed.width != std::max(0, range.width()) ||
-      placed.height != std::max(0, range.height()))
+      placed.height != std::max(0, range.height()) || tiled.size() != placed.cells.size())
     throw Error("scene '" + scene_.name + "': the placed tiles' grid is not the field's");
   grid_i0_ = range.i0;
   grid_j0_ = range.j0;
   grid_width_ = placed.width;
   grid_height_ = placed.height;
   grid_.assign(std::size_t(grid_width_) * std::size_t(grid_height_), -1);
-  std::vector<std::uint8_t> kept(grid_.size(), 0);
-  for (const std::uint32_t cell : placed.cells) kept[cell] = 1;
-  const RowTiles rows(field.filled.set, range, field.placement);
-  std::vector<std::uint16_t> row(static_cast<std::size_t>(grid_width_));
-  for (int r = 0; r < grid_height_; ++r) {
-    rows.row(r, row);
-    for (int c = 0; c < grid_width_; ++c) {
-      const std::size_t cell = std::size_t(r) * std::size_t(grid_width_) + std::size_t(c);
-      if (!kept[cell]) continue;
-      const double x0 = double(grid_i0_ + c) * tile_size_, y0 = double(grid_j0_ + r) * tile_size_;
-      grid_[cell] = std::int32_t(tiles_.size());
-      tiles_.x0.push_back(x0);
-      tiles_.y0.push_back(y0);
-      tiles_.tile.push_back(row[std::size_t(c)]);
-      tiles_.cell.push_back(std::int32_t(cell));
-      const double corners[4][2] = {
-          {x0, y0}, {x0 + tile_size_, y0}, {x0, y0 + tile_size_}, {x0 + tile_size_, y0 + tile_size_}};
-      const double centre = field.ground.height(x0 + tile_size_ / 2, y0 + tile_size_ / 2).value_or(0.0);
-      float lo = 1e30f, hi = -1e30f;
-      for (int k = 0; k < 4; ++k) {
-        const float h = float(field.ground.height(corners[k][0], corners[k][1]).value_or(centre));
-        tiles_.h[std::size_t(k)].push_back(h);
-        lo = std::min(lo, h);
-        hi = std::max(hi, h);
-      }
-      tiles_.z_min.push_back(lo);
-      tiles_.z_max.push_back(hi);
-      if (field.species) {
-        constexpr int n = Tiles::kPlantCells;
-        auto& steps = tiles_.plant_steps.emplace_back();
-        std::vector<double> densities(field.species->size());
-        for (int j = 0; j < n; ++j)
-          for (int i = 0; i < n; ++i) {
-            const double x = x0 + (i + 0.5) * tile_size_ / n, y = y0 + (j + 0.5) * tile_size_ / n;
-            const auto cell_steps = plant_steps(*field.species, x, y, ground_height(x, y, centre), densities);
-            std::copy(cell_steps.begin(), cell_steps.end(), steps.begin() + (j * n + i) * kPlantSpecies);
-          }
-      }
+  for (std::size_t p = 0; p < placed.cells.size(); ++p) {  // ascending: rows south to north
+    const std::uint32_t cell = placed.cells[p];
+    const std::int64_t r = cell / std::uint32_t(grid_width_), c = cell % std::uint32_t(grid_width_);
+    const double x0 = double(grid_i0_ + c) * tile_size_, y0 = double(grid_j0_ + r) * tile_size_;
+    grid_[cell] = std::int32_t(tiles_.size());
+    tiles_.x0.push_back(x0);
+    tiles_.y0.push_back(y0);
+    tiles_.tile.push_back(tiled[p]);
+    tiles_.cell.push_back(std::int32_t(cell));
+    const double corners[4][2] = {
+        {x0, y0}, {x0 + tile_size_, y0}, {x0, y0 + tile_size_}, {x0 + tile_size_, y0 + tile_size_}};
+    const double centre = field.ground.height(x0 + tile_size_ / 2, y0 + tile_size_ / 2).value_or(0.0);
+    float lo = 1e30f, hi = -1e30f;
+    for (int k = 0; k < 4; ++k) {
+      const float h = float(field.ground.height(corners[k][0], corners[k][1]).value_or(centre));
+      tiles_.h[std::size_t(k)].push_back(h);
+      lo = std::min(lo, h);
+      hi = std::max(hi, h);
+    }
+    tiles_.z_min.push_back(lo);
+    tiles_.z_max.push_back(hi);
+    if (field.species) {
+      constexpr int n = Tiles::kPlantCells;
+      auto& steps = tiles_.plant_steps.emplace_back();
+      std::vector<double> densities(field.species->size());
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const double x = x0 + (i + 0.5) * tile_size_ / n, y = y0 + (j + 0.5) * tile_size_ / n;
+          const auto cell_steps = plant_steps(*field.species, x, y, ground_height(x, y, centre), densities);
+          std::copy(cell_steps.begin(), cell_steps.end(), steps.begin() + (j * n + i) * kPlantSpecies);
+        }
     }
   }
 

@@ -1,6 +1,7 @@
 // The state a scene folder's build keeps for its readers (folder/folder_state.h): written and
-// read back, it gives the same tile set, the same ground bake and the same placed tiles as making
-// the scene again, over several seeds; it is refused when it does not belong to the scene file.
+// read back, it gives the same tile set, the same ground bake and the same placed tiles (with the
+// set's tile at each) as making the scene again, over several seeds; it is refused when it does not belong to the scene
+// file.
 #include "folder/folder_state.h"
 
 #include <gtest/gtest.h>
@@ -51,6 +52,9 @@ TEST_F(FolderStateTest, ReadBackItIsTheSceneMadeAgain) {
     EXPECT_EQ(read_placed.j0, placed.j0);
     EXPECT_EQ(read_placed.width, placed.width);
     EXPECT_EQ(read_placed.height, placed.height);
+    // The set's tile at each placed cell, as running the tiling gives it (what the view did).
+    EXPECT_EQ(read_placed.set_tiles, placed_set_tiles(*made.field, placed)) << "seed " << seed;
+    EXPECT_EQ(read_placed.set_tiles.size(), placed.cells.size());
     EXPECT_EQ(opened.field->filled.tiles, made.field->filled.tiles) << "seed " << seed;
     EXPECT_EQ(opened.field->filled.radius_packing, made.field->filled.radius_packing);
     ASSERT_TRUE(opened.ground_texture && made.ground_texture);
