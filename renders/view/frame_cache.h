@@ -47,9 +47,9 @@ enum class SampleSource : std::uint8_t {
 struct FrameBudget {
   double fps = kDefaultViewFps;
   double pixel_ns = 55;           // per pixel and frame: reprojection, tests, resolve (both threads)
-  double still_pixel_ns = 20;     // the same while still (nothing to reproject)
+  double still_pixel_ns = 8;      // the same while still (nothing to reproject; 6.3-7.9 measured)
   double sample_ns = 550;         // per fresh sample in motion (a primary and a shadow ray, shading)
-  double still_sample_ns = 1600;  // per fresh sample while still (with the reference's sky rays)
+  double still_sample_ns = 1400;  // per fresh sample while still (the reference's sky rays; 1,360-1,410)
   bool adaptive = false;
   // Throws Error for fps outside kMinViewFps .. kMaxViewFps.
   void check() const;
