@@ -17,20 +17,15 @@ namespace wangscape {
 namespace {
 
 namespace fs = std::filesystem;
+using view_test::bytes_of;
 using view_test::looking;
 using view_test::scratch;
-using view_test::tiny_scene;
 
 // A tiny field built by build_scene with the LDI export: sky rays on (the sky's share varies), four
 // levels (the steep sets' pack is written: the view does not sample them on a frame from above).
 const fs::path& built_folder() {
-  static const fs::path dir = [] {
-    const fs::path out = scratch("ground_light_field");
-    const std::string text = tiny_scene("[-12.0, -12.0, 12.0, 12.0]") +
-                             "[exports]\npovray = false\nldi = true\n[ldi]\nlevels = 4\ndirections = 2\nsky_rays = 4\n";
-    build_scene(parse_scene_config(text, "ground_light.toml", fs::temp_directory_path()), out);
-    return out;
-  }();
+  static const fs::path dir = view_test::built_ldi_folder("ground_light_field", "[-12.0, -12.0, 12.0, 12.0]",
+                                                          "levels = 4\ndirections = 2\nsky_rays = 4\n");
   return dir;
 }
 
@@ -41,11 +36,6 @@ fs::path copy_without_ground_light(const std::string& name) {
   fs::copy(built_folder(), copy, fs::copy_options::recursive);
   fs::remove(FolderFiles(copy).ground_light());
   return copy;
-}
-
-std::string bytes_of(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
 }
 
 std::vector<std::uint8_t> frame_from_above(const std::shared_ptr<const ViewWorld>& world) {

@@ -19,25 +19,15 @@ namespace wangscape {
 namespace {
 
 namespace fs = std::filesystem;
+using view_test::bytes_of;
 using view_test::looking;
 using view_test::scratch;
-using view_test::tiny_scene;
 
 // A tiny field built by build_scene with the LDI export (a grid of 7 x 6 tiles).
 const fs::path& built_folder() {
-  static const fs::path dir = [] {
-    const fs::path out = scratch("set_tiles_field");
-    const std::string text = tiny_scene("[-12.0, -12.0, 12.0, 8.0]") +
-                             "[exports]\npovray = false\nldi = true\n[ldi]\nlevels = 3\ndirections = 2\n";
-    build_scene(parse_scene_config(text, "set_tiles.toml", fs::temp_directory_path()), out);
-    return out;
-  }();
+  static const fs::path dir =
+      view_test::built_ldi_folder("set_tiles_field", "[-12.0, -12.0, 12.0, 8.0]", "levels = 3\ndirections = 2\n");
   return dir;
-}
-
-std::string bytes_of(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
 }
 
 void write_bytes(const fs::path& file, const std::string& bytes) {

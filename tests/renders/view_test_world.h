@@ -5,10 +5,13 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <string>
 
 #include "renders/ldi/ldi_scene.h"
+#include "renders/scene_build.h"
 #include "renders/view/view_world.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
@@ -72,6 +75,21 @@ inline std::shared_ptr<const ViewWorld> tiny_world(const std::string& area, cons
 inline const std::shared_ptr<const ViewWorld>& field() {
   static const auto world = tiny_world("[-12.0, -12.0, 12.0, 12.0]", "field");
   return world;
+}
+
+// A tiny field over `area` with the LDI export and the [ldi] table `ldi` (its lines), built by
+// build_scene into scratch(name) as `wangscape build` builds a folder.
+inline fs::path built_ldi_folder(const std::string& name, const std::string& area, const std::string& ldi) {
+  const fs::path out = scratch(name);
+  const std::string text = tiny_scene(area) + "[exports]\npovray = false\nldi = true\n[ldi]\n" + ldi;
+  build_scene(parse_scene_config(text, name + ".toml", fs::temp_directory_path()), out);
+  return out;
+}
+
+// A file's bytes.
+inline std::string bytes_of(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
 }
 
 inline Camera looking(double x, double y, double z, double tx, double ty, double tz, double fov = 60) {
