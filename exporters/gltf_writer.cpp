@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/binary_file.h"
 #include "core/json_text.h"
 #include "core/vecmath.h"
 #include "exporters/export_support.h"
@@ -221,8 +222,6 @@ void copy_file_into(std::ostream& out, const std::filesystem::path& path, const 
   }
   if (!in.eof()) throw Error("cannot write '" + output.string() + "': cannot read back a temporary file");
 }
-
-void put_u32(std::ostream& out, std::uint32_t value) { out.write(reinterpret_cast<const char*>(&value), 4); }
 
 // Camera node: glTF cameras look down -z with +y up; yfov is vertical.
 Json camera_node(const Camera& camera, const RenderSettings& render, Json& cameras) {

@@ -60,9 +60,10 @@ inline bool covers(const RasterVertex& a, const RasterVertex& b, const RasterVer
 
 // Rasterizes abc, all in front of the near plane and placed on screen: each pixel whose centre it
 // covers, nearer than what the z-buffer holds there, goes to shade(px, py, depth, wx, wy, lr, lg,
-// lb) (depth with the bias; the attributes perspective-correct), which writes it. With `one_sided`, a triangle seen
-// from below is skipped. hidden(x0, y0, x1, y1, nearest) says a screen box holds only nearer
-// depths (always false: no occlusion test). Counts the pixels it tests into `tests`.
+// lb) (depth with the bias; the attributes perspective-correct), which writes it. With
+// `one_sided`, a triangle seen from below is skipped. hidden(x0, y0, x1, y1, nearest) says a
+// screen box holds only nearer depths (always false: no occlusion test). Counts the pixels it
+// tests into `tests`.
 template <class Shade, class Hidden>
 void raster_triangle(const RasterTarget& target, const RasterVertex& a, const RasterVertex& b, const RasterVertex& c,
                      bool one_sided, const Shade& shade, const Hidden& hidden, std::uint64_t& tests) {
