@@ -48,6 +48,46 @@ void FrameBudget::check() const {
 
 // ---- the picture ----------------------------------------------------------------------------
 
+// kReconstructionRadius: the tent-weighted mean of the samples around pixel (x, y); `sky` gives the
+// sky along its ray, the colour of a sky sample among them.
+template <class Sky>
+Vec3f FrameCache::Impl::reconstruct(const Sample* k, int x, int y, const Sky& sky) const {
+  constexpr float inverse_radius = 1.0f / kReconstructionRadius, inverse_sub = 1.0f / kSubScale;
+  float sum[3] = {0, 0, 0}, weights = 0;
+  bool have_sky = false;
+  Vec3f sky_color{0, 0, 0};
+  for (int dy = -1; dy <= 1; ++dy) {
+    const int ny = y + dy;
+    if (ny < 0 || ny >= height) continue;
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int nx = x + dx;
+      if (nx < 0 || nx >= width) continue;
+      const Sample& q = k[std::size_t(ny) * std::size_t(width) + std::size_t(nx)];
+      if (is_none(q.depth)) continue;
+      const bool mean = q.count >= 2;  // a still mean stands for its whole pixel: at its centre
+      const float ox = float(dx) + (mean ? 0.0f : float(q.sub_x) * inverse_sub);
+      const float oy = float(dy) + (mean ? 0.0f : float(q.sub_y) * inverse_sub);
+      const float wx = 1.0f - std::abs(ox) * inverse_radius, wy = 1.0f - std::abs(oy) * inverse_radius;
+      if (wx <= 0 || wy <= 0) continue;
+      const float weight = wx * wy;
+      if (q.source == SampleSource::sky && !have_sky) {
+        sky_color = sky();
+        have_sky = true;
+      }
+      const float* color = q.source == SampleSource::sky ? sky_color.data() : q.color.data();
+      for (int a = 0; a < 3; ++a) sum[a] += weight * color[a];
+      weights += weight;
+    }
+  }
+  // (The pixel's own sample lies within 2.2 pixels of its centre; the weights are 0 only when every
+  // sample around lies beyond the tent: the own sample's colour then.)
+  if (weights <= 0) {
+    const Sample& s = k[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+    return s.source == SampleSource::sky ? sky() : Vec3f{s.color[0], s.color[1], s.color[2]};
+  }
+  return {sum[0] / weights, sum[1] / weights, sum[2] / weights};
+}
+
 void FrameCache::Impl::resolve(const ViewWorld& world, ImageRgb8& image) {
   const Sample* const k = kept[current].data();
   const Luts& lut = luts();
@@ -73,13 +113,14 @@ void FrameCache::Impl::resolve(const ViewWorld& world, ImageRgb8& image) {
           holes = true;
           continue;
         }
-        Vec3f c{s.color[0], s.color[1], s.color[2]};
-        if (s.source == SampleSource::sky) {  // the sky along the pixel's own ray, as LdiRenderer draws it
+        // The sky along the pixel's own ray, as LdiRenderer draws it (for a sky sample around it too).
+        const auto sky = [&] {
           const float ray_right = (float(x) + 0.5f - cx) / focal;
           Vec3f d;
           for (std::size_t a = 0; a < 3; ++a) d[a] = forward[a] + ray_right * right[a] + ray_up * up[a];
-          c = sky_radiance(world.shading(), d);
-        }
+          return sky_radiance(world.shading(), d);
+        };
+        const Vec3f c = s.count >= 2 ? Vec3f{s.color[0], s.color[1], s.color[2]} : reconstruct(k, x, y, sky);
         out[0] = lut.encode(c[0]);
         out[1] = lut.encode(c[1]);
         out[2] = lut.encode(c[2]);
