@@ -12,9 +12,10 @@ namespace wangscape {
 class FolderFiles {
  public:
   // The format of what the build keeps for its readers (scene.cache): version 2 adds the set's
-  // tile at each placed cell; a version 1 folder still opens (its readers run the tiling again),
-  // a folder of another version is refused, with what to do.
-  static constexpr std::uint32_t kFormatVersion = 2;
+  // tile at each placed cell, version 3 the scene's models; a version 1 or 2 folder still opens
+  // (its readers run the tiling again, make the models again), a folder of another version is
+  // refused, with what to do.
+  static constexpr std::uint32_t kFormatVersion = 3;
   static constexpr std::uint32_t kOldestFormatVersion = 1;
 
   explicit FolderFiles(std::filesystem::path root) : root_(std::move(root)) {}
@@ -25,7 +26,8 @@ class FolderFiles {
   std::filesystem::path scene_file() const;
   std::filesystem::path scene_base() const;
   // What the readers need to open the folder fast (folder/folder_state.h): the filled tile set
-  // and the versioned cache (the scene file's fingerprint, the placed tiles, the baked ground).
+  // and the versioned cache (the scene file's fingerprint, the placed tiles, the baked ground, the
+  // models).
   std::filesystem::path tiles() const;
   std::filesystem::path state() const;
   // [exports] ldi: the tiles' LDI pack, the steep sets' pack, the flowers' sky shares and the

@@ -3,11 +3,11 @@
 // open (SceneFolder::open):
 //  - DIR/tiles.json, the filled tile set (docs/filled-tileset-format.md): the Poisson fill and
 //    its relaxation, which can take a minute;
-//  - DIR/scene.cache (docs/scene-folder.md): a versioned binary file with the fingerprint of
-//    DIR/scene.toml, the tiles of the field that received a flower with the set's tile laid at
-//    each, and the baked ground.
+//  - DIR/scene.cache (docs/scene-folder.md): a versioned binary file (core/binary_file.h) with
+//    the fingerprint of DIR/scene.toml, the tiles of the field that received a flower with the
+//    set's tile laid at each, the baked ground and the scene's models (their proxies too).
 // With them, `view`, `render --engine embree` and the LDI tools skip the fill, the ground's bake,
-// a placement pass and the tiling: only the DEM and the models are loaded again.
+// a placement pass, the tiling and the models' making: only the DEM is loaded again.
 #pragma once
 
 #include <cstdint>
@@ -22,9 +22,8 @@
 
 namespace wangscape {
 
-// The most bytes read of each (docs/limits.md): a 16,384 x 16,384 ground bake and 50 million
-// placed tiles fit in the first; the largest fill (kMaxPointsPerTile) in the second.
-inline constexpr std::uintmax_t kMaxFolderStateBytes = std::uintmax_t(1) << 30;
+// The most bytes of the tile set read (the largest fill, kMaxPointsPerTile, fits). scene.cache is
+// read field by field, each count checked against the bytes left before anything is allocated.
 inline constexpr std::uintmax_t kMaxFolderTilesBytes = std::uintmax_t(1) << 28;
 
 // The field's tile grid over its area (generator/placement.h tile_range) and the cells of it that
@@ -66,15 +65,16 @@ struct FolderState {
 
 // Writes the tile set and the cache (files.tiles(), files.state()) for `scene` (made from
 // `scene_text`) into the staging folder `files`, atomically each, with the set's tile at each
-// placed cell (placed.set_tiles, or placed_set_tiles when empty). A scene without a field writes
-// neither.
+// placed cell (placed.set_tiles, or placed_set_tiles when empty) and the scene's models, every
+// field of every mesh bit for bit. A scene without a field writes neither.
 void write_folder_state(const FolderFiles& files, const std::string& scene_text, const Scene& scene,
                         const PlacedTiles& placed);
 
 // Reads them back and checks them against the folder's scene file text. Throws Error naming the
 // file: missing or from another version (a folder of an older build: build it again), made for
 // another scene file (the file was edited after the build), truncated or corrupt (a set's tile
-// the tile set does not hold among them). A version 1 cache gives no placed.set_tiles.
+// the tile set does not hold among them, a model's vertex, material or image that is not there).
+// A version 1 cache gives no placed.set_tiles; one of version 1 or 2 no prebuilt.models.
 // make_scene(config, stage, &state.prebuilt) then gives the folder's Scene as the build made it.
 FolderState read_folder_state(const FolderFiles& files, const std::string& scene_text);
 

@@ -103,8 +103,8 @@ class SceneFolder {
   const SceneConfig& config() const { return config_; }
   // Parts::state on: the field's tiles that received a flower (with the set's tile at each, but
   // from a version 1 scene.cache: placed_set_tiles gives them), and the folder's Scene as its build
-  // made it (make_scene of config() with the kept tile set and ground bake). Throws Error as
-  // make_scene does.
+  // made it (make_scene of config() with the kept tile set, ground bake and models; the models
+  // made again from a scene.cache older than version 3). Throws Error as make_scene does.
   const PlacedTiles& placed() const { return state_.placed; }
   Scene make_scene(const StageObserver& stage = {}) const;
   // Parts::state on: the light the pack was shaded with, before the sun (with_sun of the scene's

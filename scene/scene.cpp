@@ -153,7 +153,8 @@ std::shared_ptr<SceneField> make_field(const SceneConfig& config, const SceneGro
   fill.min_scale = 1.0 - config.models.scale_jitter;
   fill.max_scale = 1.0 + config.models.scale_jitter;
   if (!config.species.empty()) {
-    fill.classes = species_classes(config, species_models, fill);
+    // (A filled set kept by the build has its classes; their models may not have been made.)
+    if (!prefilled) fill.classes = species_classes(config, species_models, fill);
     field->species = std::make_shared<const SpeciesRules>(config, ground);
   }
   if (prefilled) {
@@ -340,6 +341,11 @@ std::vector<Mesh> make_proxies(const SceneConfig& config, const SpeciesModels& s
 
 }  // namespace
 
+std::size_t full_model_count(const Scene& scene) {
+  const std::size_t proxy_offset = scene.field ? scene.field->proxy_offset : 0;
+  return proxy_offset ? proxy_offset : scene.models.size();
+}
+
 std::optional<std::size_t> SceneField::species_of_model(std::size_t model) const {
   if (!species) return std::nullopt;
   if (proxy_offset && model >= proxy_offset) model -= proxy_offset;
@@ -452,7 +458,11 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage, const Sc
   scene.georeference = ground.georeference();
 
   SpeciesModels species_models;  // with [[species]]: their models, variants and radii
-  if (config.species.empty()) {
+  const SceneModels* kept = prebuilt && prebuilt->models ? &*prebuilt->models : nullptr;
+  if (kept) {
+    const auto full = kept->models.begin() + std::ptrdiff_t(kept->full_models);
+    scene.models.assign(kept->models.begin(), full);
+  } else if (config.species.empty()) {
     say(stage, config.models.mesh.empty()
                    ? "building " + std::to_string(config.models.variants) + " sunflower variants (" +
                          std::to_string(config.models.triangle_budget) + " triangles each)"
@@ -482,8 +492,13 @@ Scene make_scene(const SceneConfig& config, const StageObserver& stage, const Sc
     field->view = make_view(config, *field, scene);
     check_visible_flowers(config, *field);
     field->proxy_offset = scene.models.size();
-    for (Mesh& proxy : make_proxies(config, species_models, scene, stage)) scene.models.push_back(std::move(proxy));
+    if (kept)
+      scene.models.insert(scene.models.end(), kept->models.begin() + std::ptrdiff_t(kept->full_models),
+                          kept->models.end());
+    else
+      for (Mesh& proxy : make_proxies(config, species_models, scene, stage)) scene.models.push_back(std::move(proxy));
   }
+  if (kept) scene.stand_ins = kept->stand_ins;
   auto report = std::make_shared<FieldReport>();
   scene.last_placement = report;
   scene.instances = [field, report](const InstanceSink& sink) { *report = field->place(sink); };

@@ -131,19 +131,31 @@ Extent field_area(const SceneConfig& config, const SceneGround& ground);
 // Stage messages while a scene is assembled (a program shows them, e.g. on a terminal).
 using StageObserver = std::function<void(const std::string& message)>;
 
+// The models a scene's build made: Scene::models and what else make_scene derives from them.
+struct SceneModels {
+  std::vector<Mesh> models;               // Scene::models: the full models, then (camera-aware) their proxies
+  std::size_t full_models = 0;            // the models before the proxies (all of them without proxies)
+  std::vector<StandInFigures> stand_ins;  // Scene::stand_ins
+};
+
+// How many of scene.models are full models: its field's proxy_offset where it has proxies, else all.
+std::size_t full_model_count(const Scene& scene);
+
 // What a scene folder's build already made (folder/scene_folder.h keeps it in the folder), so
 // that a reader of the folder need not make it again: the filled tile set (the Poisson fill and
-// its relaxation) and the baked ground (the look, and the far field painted into it).
+// its relaxation), the baked ground (the look, and the far field painted into it) and the models
+// (the sunflowers' tessellation, a user's models read and turned, their stand-ins).
 struct ScenePrebuilt {
   FilledTileSet filled;
   std::shared_ptr<const GroundBake> ground_texture;  // null: the build baked no ground
+  std::optional<SceneModels> models;                 // empty: made again (a folder kept without them)
 };
 
 // Assembles the Scene a scene file describes: ground and masks, terrain mesh, models, the
 // filled tile set, camera above the ground, sun. Places nothing: the stream does that when run.
-// With `prebuilt` (of this same config), the filled tile set (tiles.set is not read) and the
-// ground bake are taken from it and Scene::ground_look stays empty. Throws Error naming the file
-// and the line of the key at fault.
+// With `prebuilt` (of this same config), the filled tile set (tiles.set is not read), the ground
+// bake and the models where it has them (no model file is read) are taken from it, and
+// Scene::ground_look stays empty. Throws Error naming the file and the line of the key at fault.
 Scene make_scene(const SceneConfig& config, const StageObserver& stage = {}, const ScenePrebuilt* prebuilt = nullptr);
 
 }  // namespace wangscape

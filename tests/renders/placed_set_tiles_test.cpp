@@ -1,4 +1,4 @@
-// The set's tile at each placed cell, kept in a scene folder's scene.cache (version 2,
+// The set's tile at each placed cell, kept in a scene folder's scene.cache (since version 2,
 // folder/folder_state.h): a folder built as `wangscape build` builds it holds the tiles placement
 // lays and the view would find by running the tiling, the view reads them (other tiles kept, other
 // frames), a version 1 folder without them opens with the same tiles and frames, and a damaged
@@ -35,7 +35,8 @@ void write_bytes(const fs::path& file, const std::string& bytes) {
 }
 
 // scene.cache's layout (docs/scene-folder.md): the version at byte 8, the placed count at 52, the
-// placed cells from 60, then (version 2) the set's tile of each.
+// placed cells from 60, then (version 2) the set's tile of each, the ground and (version 3) the
+// models.
 constexpr std::size_t kVersionAt = 8, kCountAt = 52, kCellsAt = 60;
 std::size_t placed_count(const std::string& cache) {
   std::uint64_t count = 0;
@@ -58,10 +59,23 @@ fs::path copy_folder(const std::string& name, const std::string& cache = {}) {
   return copy;
 }
 
-// The built folder's scene.cache as a version 1 build wrote it: without the set's tiles.
+// Where the models section starts: after the ground flag and the ground.
+std::size_t models_at(const std::string& cache) {
+  std::size_t at = set_tiles_at(cache) + 2 * placed_count(cache);
+  if (cache[at++] == 0) return at;
+  std::int32_t width = 0, height = 0;
+  std::memcpy(&width, cache.data() + at + 32, 4);
+  std::memcpy(&height, cache.data() + at + 36, 4);
+  return at + 40 + std::size_t(width) * std::size_t(height) * 3;
+}
+
+// The built folder's scene.cache as a version 1 build wrote it: without the set's tiles and the
+// models.
 std::string as_version_1(const std::string& cache) {
   const std::size_t at = set_tiles_at(cache);
-  return with_version(cache.substr(0, at) + cache.substr(at + 2 * placed_count(cache)), 1);
+  return with_version(
+      cache.substr(0, at) + cache.substr(at + 2 * placed_count(cache), models_at(cache) - at - 2 * placed_count(cache)),
+      1);
 }
 
 std::vector<std::vector<std::uint8_t>> frames(const std::shared_ptr<const ViewWorld>& world) {
@@ -147,8 +161,8 @@ TEST(PlacedSetTiles, ADamagedRecordIsRefusedNamingIt) {
   outside[last] = char(8);
   refused(outside, "placed tile " + std::to_string(placed_count(cache) - 1) +
                        " is the set's tile 8: expected one of the 8 tiles of tiles.json");
-  refused(cache.substr(0, last), "truncated: the set's tile of each placed tile goes past the end");
-  refused(with_version(cache, 3), "version 3, this wangscape reads versions 1 to 2");
+  refused(cache.substr(0, last), "truncated: expected the set's tile of each placed tile");
+  refused(with_version(cache, 4), "version 4, this wangscape reads versions 1 to 3");
   refused(with_version(cache, 1), "");  // a version 2 record said to be 1: read as one, it does not end
 }
 
