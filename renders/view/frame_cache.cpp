@@ -48,51 +48,64 @@ void FrameBudget::check() const {
 
 // ---- the picture ----------------------------------------------------------------------------
 
-// kReconstructionRadius: the tent-weighted mean of the samples around pixel (x, y); `sky` gives the
-// sky along its ray, the colour of a sky sample among them.
-template <class Sky>
-Vec3f FrameCache::Impl::reconstruct(const Sample* k, int x, int y, const Sky& sky) const {
-  constexpr float inverse_radius = 1.0f / kReconstructionRadius, inverse_sub = 1.0f / kSubScale;
-  float sum[3] = {0, 0, 0}, weights = 0;
-  bool have_sky = false;
-  Vec3f sky_color{0, 0, 0};
-  for (int dy = -1; dy <= 1; ++dy) {
-    const int ny = y + dy;
-    if (ny < 0 || ny >= height) continue;
-    for (int dx = -1; dx <= 1; ++dx) {
-      const int nx = x + dx;
-      if (nx < 0 || nx >= width) continue;
-      const Sample& q = k[std::size_t(ny) * std::size_t(width) + std::size_t(nx)];
-      if (is_none(q.depth)) continue;
-      const bool mean = q.count >= 2;  // a still mean stands for its whole pixel: at its centre
-      const float ox = float(dx) + (mean ? 0.0f : float(q.sub_x) * inverse_sub);
-      const float oy = float(dy) + (mean ? 0.0f : float(q.sub_y) * inverse_sub);
-      const float wx = 1.0f - std::abs(ox) * inverse_radius, wy = 1.0f - std::abs(oy) * inverse_radius;
-      if (wx <= 0 || wy <= 0) continue;
-      const float weight = wx * wy;
-      if (q.source == SampleSource::sky && !have_sky) {
-        sky_color = sky();
-        have_sky = true;
+namespace {
+
+// A run of one row's pixels reconstructed at once (kReconstructionRadius): the samples of the three
+// rows around it laid out once per run, a value to a lane, so that each of the nine neighbours'
+// weights is a few vector instructions over the run's pixels (with a Sample read and its weight
+// worked out nine times a pixel, the walk's resolve took 8.7-9.6 ms a frame at 640 x 360 instead
+// of 2.5).
+constexpr int kRun = 128;
+struct ReconstructionRun {
+  // Per row of the three and column of the run's kRun + 2: the sample's place in pixels from the
+  // run pixel's centre below it (its offset; 0 for a still mean, which stands for its whole
+  // pixel), whether it is there, whether it is the sky, its colour (the sky's own along its ray).
+  alignas(64) float ox[3][kRun + 2], oy[3][kRun + 2], there[3][kRun + 2], sky[3][kRun + 2];
+  alignas(64) float color[3][3][kRun + 2];
+
+  void lay(const Sample* k, int width, int height, int y, int x0, int n) {
+    constexpr float inverse_sub = 1.0f / kSubScale;
+    for (int r = 0; r < 3; ++r) {
+      const int ny = y + r - 1;
+      for (int c = 0; c < n + 2; ++c) {
+        const int nx = x0 + c - 1;
+        const bool inside = ny >= 0 && ny < height && nx >= 0 && nx < width;
+        const Sample& q = inside ? k[std::size_t(ny) * std::size_t(width) + std::size_t(nx)] : Sample{};
+        const float centre = q.count >= 2 ? 0.0f : inverse_sub;
+        ox[r][c] = float(q.sub_x) * centre;
+        oy[r][c] = float(r - 1) + float(q.sub_y) * centre;
+        there[r][c] = inside && !is_none(q.depth) ? 1.0f : 0.0f;
+        sky[r][c] = q.source == SampleSource::sky ? 1.0f : 0.0f;
+        for (int a = 0; a < 3; ++a) color[a][r][c] = q.color[std::size_t(a)];
       }
-      const float* color = q.source == SampleSource::sky ? sky_color.data() : q.color.data();
-      for (int a = 0; a < 3; ++a) sum[a] += weight * color[a];
-      weights += weight;
     }
   }
-  // (The pixel's own sample lies within 2.2 pixels of its centre; the weights are 0 only when every
-  // sample around lies beyond the tent: the own sample's colour then.)
-  if (weights <= 0) {
-    const Sample& s = k[std::size_t(y) * std::size_t(width) + std::size_t(x)];
-    return s.source == SampleSource::sky ? sky() : Vec3f{s.color[0], s.color[1], s.color[2]};
+
+  // The run's pixel i: its tent-weighted mean, and the weight of the samples that are not sky.
+  void weigh(int n, float (*sum)[kRun], float* weights, float* ground) const {
+    constexpr float inverse_radius = 1.0f / kReconstructionRadius;
+    for (int i = 0; i < n; ++i) sum[0][i] = sum[1][i] = sum[2][i] = weights[i] = ground[i] = 0;
+    for (int r = 0; r < 3; ++r)
+      for (int d = 0; d < 3; ++d)
+        for (int i = 0; i < n; ++i) {
+          const int c = i + d;
+          const float wx = std::max(1.0f - std::abs(float(d - 1) + ox[r][c]) * inverse_radius, 0.0f);
+          const float wy = std::max(1.0f - std::abs(oy[r][c]) * inverse_radius, 0.0f);
+          const float weight = wx * wy * there[r][c];
+          for (int a = 0; a < 3; ++a) sum[a][i] += weight * color[a][r][c];
+          weights[i] += weight;
+          ground[i] += weight * (1.0f - sky[r][c]);
+        }
   }
-  return {sum[0] / weights, sum[1] / weights, sum[2] / weights};
-}
+};
+
+}  // namespace
 
 void FrameCache::Impl::resolve(const ViewWorld& world, ImageRgb8& image) {
   const Sample* const k = kept[current].data();
   const Luts& lut = luts();
   const ViewProjection& view = projection;
-  const int w = width;
+  const int w = width, h = height;
   tbb::parallel_for(tbb::blocked_range<int>(0, height, 8), [&](const tbb::blocked_range<int>& r) {
     // Locals: the image's byte stores would otherwise reload them through memory at every pixel.
     const float cx = view.cx, cy = view.cy, focal = view.focal;
@@ -102,28 +115,37 @@ void FrameCache::Impl::resolve(const ViewWorld& world, ImageRgb8& image) {
       right[a] = float(view.right[a]);
       up[a] = float(view.up[a]);
     }
+    ReconstructionRun run;
+    alignas(64) float sum[3][kRun], weights[kRun], ground[kRun];
     for (int y = r.begin(); y != r.end(); ++y) {
       const float ray_up = -(float(y) + 0.5f - cy) / focal;
-      std::uint8_t* out = image.pixels.data() + image.offset(0, y);
       const Sample* row = k + std::size_t(y) * std::size_t(w);
       bool holes = false;
-      for (int x = 0; x < w; ++x, out += 3) {
-        const Sample& s = row[x];
-        if (is_none(s.depth)) {  // a hole: fill_holes
-          holes = true;
-          continue;
+      for (int x0 = 0; x0 < w; x0 += kRun) {
+        const int n = std::min(kRun, w - x0);
+        run.lay(k, w, h, y, x0, n);
+        run.weigh(n, sum, weights, ground);
+        std::uint8_t* out = image.pixels.data() + image.offset(x0, y);
+        for (int i = 0; i < n; ++i, out += 3) {
+          const Sample& s = row[x0 + i];
+          if (is_none(s.depth)) {  // a hole: fill_holes
+            holes = true;
+            continue;
+          }
+          Vec3f c{s.color[0], s.color[1], s.color[2]};
+          if (s.count < 2 && ground[i] > 0) {  // in motion, among samples of surfaces: reconstructed
+            const float inverse = 1.0f / weights[i];
+            c = {sum[0][i] * inverse, sum[1][i] * inverse, sum[2][i] * inverse};
+          } else if (s.source == SampleSource::sky) {  // the sky along the pixel's own ray, as LdiRenderer draws it
+            const float ray_right = (float(x0 + i) + 0.5f - cx) / focal;
+            Vec3f d;
+            for (std::size_t a = 0; a < 3; ++a) d[a] = forward[a] + ray_right * right[a] + ray_up * up[a];
+            c = sky_radiance(world.shading(), d);
+          }
+          out[0] = lut.encode(c[0]);
+          out[1] = lut.encode(c[1]);
+          out[2] = lut.encode(c[2]);
         }
-        // The sky along the pixel's own ray, as LdiRenderer draws it (for a sky sample around it too).
-        const auto sky = [&] {
-          const float ray_right = (float(x) + 0.5f - cx) / focal;
-          Vec3f d;
-          for (std::size_t a = 0; a < 3; ++a) d[a] = forward[a] + ray_right * right[a] + ray_up * up[a];
-          return sky_radiance(world.shading(), d);
-        };
-        const Vec3f c = s.count >= 2 ? Vec3f{s.color[0], s.color[1], s.color[2]} : reconstruct(k, x, y, sky);
-        out[0] = lut.encode(c[0]);
-        out[1] = lut.encode(c[1]);
-        out[2] = lut.encode(c[2]);
       }
       row_has_holes[std::size_t(y)] = holes;
     }

@@ -213,8 +213,6 @@ struct FrameCache::Impl {
   void trace(LdiRenderer& renderer, std::size_t n, bool still);
   std::uint64_t fill_holes(ImageRgb8& image) const;
   void resolve(const ViewWorld& world, ImageRgb8& image);
-  template <class Sky>
-  Vec3f reconstruct(const frame_cache_detail::Sample* k, int x, int y, const Sky& sky) const;
 };
 
 }  // namespace wangscape
