@@ -50,52 +50,54 @@ void FrameBudget::check() const {
 
 namespace {
 
-// A run of one row's pixels reconstructed at once (kReconstructionRadius): the samples of the three
-// rows around it laid out once per run, a value to a lane, so that each of the nine neighbours'
-// weights is a few vector instructions over the run's pixels (with a Sample read and its weight
-// worked out nine times a pixel, the walk's resolve took 8.7-9.6 ms a frame at 640 x 360 instead
-// of 2.5).
+// A run of one row's pixels reconstructed at once (kReconstructionRadius): the samples of the
+// three rows around it laid out a value to a lane, each row once for the three runs below, on and
+// above it, so that each of the nine neighbours' weights is a few vector instructions over the
+// run's pixels (with a Sample read and its weight worked out nine times a pixel, the walk's resolve
+// took 8.7-9.6 ms a frame at 640 x 360 instead of 2.5).
 constexpr int kRun = 128;
-struct ReconstructionRun {
-  // Per row of the three and column of the run's kRun + 2: the sample's place in pixels from the
-  // run pixel's centre below it (its offset; 0 for a still mean, which stands for its whole
-  // pixel), whether it is there, whether it is the sky, its colour (the sky's own along its ray).
+struct ReconstructionRows {
+  // Per row slot and column of the run's kRun + 2: the sample's place in pixels from its pixel's
+  // centre (0 for a still mean, which stands for its whole pixel), whether it is there, whether it
+  // is the sky, its colour (the sky's own along its ray).
   alignas(64) float ox[3][kRun + 2], oy[3][kRun + 2], there[3][kRun + 2], sky[3][kRun + 2];
   alignas(64) float color[3][3][kRun + 2];
 
-  void lay(const Sample* k, int width, int height, int y, int x0, int n) {
+  // Row ny's samples of the run's columns into the slot ny falls in.
+  void lay(const Sample* k, int width, int height, int ny, int x0, int n) {
     constexpr float inverse_sub = 1.0f / kSubScale;
-    for (int r = 0; r < 3; ++r) {
-      const int ny = y + r - 1;
-      for (int c = 0; c < n + 2; ++c) {
-        const int nx = x0 + c - 1;
-        const bool inside = ny >= 0 && ny < height && nx >= 0 && nx < width;
-        const Sample& q = inside ? k[std::size_t(ny) * std::size_t(width) + std::size_t(nx)] : Sample{};
-        const float centre = q.count >= 2 ? 0.0f : inverse_sub;
-        ox[r][c] = float(q.sub_x) * centre;
-        oy[r][c] = float(r - 1) + float(q.sub_y) * centre;
-        there[r][c] = inside && !is_none(q.depth) ? 1.0f : 0.0f;
-        sky[r][c] = q.source == SampleSource::sky ? 1.0f : 0.0f;
-        for (int a = 0; a < 3; ++a) color[a][r][c] = q.color[std::size_t(a)];
-      }
+    const int r = slot(ny);
+    for (int c = 0; c < n + 2; ++c) {
+      const int nx = x0 + c - 1;
+      const bool inside = ny >= 0 && ny < height && nx >= 0 && nx < width;
+      const Sample q = inside ? k[std::size_t(ny) * std::size_t(width) + std::size_t(nx)] : Sample{};
+      const float centre = q.count >= 2 ? 0.0f : inverse_sub;
+      ox[r][c] = float(q.sub_x) * centre;
+      oy[r][c] = float(q.sub_y) * centre;
+      there[r][c] = inside && !is_none(q.depth) ? 1.0f : 0.0f;
+      sky[r][c] = q.source == SampleSource::sky ? 1.0f : 0.0f;
+      for (int a = 0; a < 3; ++a) color[a][r][c] = q.color[std::size_t(a)];
     }
   }
+  static int slot(int row) { return (row + 3) % 3; }  // rows from -1
 
-  // The run's pixel i: its tent-weighted mean, and the weight of the samples that are not sky.
-  void weigh(int n, float (*sum)[kRun], float* weights, float* ground) const {
+  // The run's pixel i of row y: its tent-weighted sums, and the weight of the samples not sky.
+  void weigh(int y, int n, float (*sum)[kRun], float* weights, float* ground) const {
     constexpr float inverse_radius = 1.0f / kReconstructionRadius;
     for (int i = 0; i < n; ++i) sum[0][i] = sum[1][i] = sum[2][i] = weights[i] = ground[i] = 0;
-    for (int r = 0; r < 3; ++r)
+    for (int dy = -1; dy <= 1; ++dy) {
+      const int r = slot(y + dy);
       for (int d = 0; d < 3; ++d)
         for (int i = 0; i < n; ++i) {
           const int c = i + d;
           const float wx = std::max(1.0f - std::abs(float(d - 1) + ox[r][c]) * inverse_radius, 0.0f);
-          const float wy = std::max(1.0f - std::abs(oy[r][c]) * inverse_radius, 0.0f);
+          const float wy = std::max(1.0f - std::abs(float(dy) + oy[r][c]) * inverse_radius, 0.0f);
           const float weight = wx * wy * there[r][c];
           for (int a = 0; a < 3; ++a) sum[a][i] += weight * color[a][r][c];
           weights[i] += weight;
           ground[i] += weight * (1.0f - sky[r][c]);
         }
+    }
   }
 };
 
@@ -115,21 +117,23 @@ void FrameCache::Impl::resolve(const ViewWorld& world, ImageRgb8& image) {
       right[a] = float(view.right[a]);
       up[a] = float(view.up[a]);
     }
-    ReconstructionRun run;
+    ReconstructionRows rows;
     alignas(64) float sum[3][kRun], weights[kRun], ground[kRun];
-    for (int y = r.begin(); y != r.end(); ++y) {
-      const float ray_up = -(float(y) + 0.5f - cy) / focal;
-      const Sample* row = k + std::size_t(y) * std::size_t(w);
-      bool holes = false;
-      for (int x0 = 0; x0 < w; x0 += kRun) {
-        const int n = std::min(kRun, w - x0);
-        run.lay(k, w, h, y, x0, n);
-        run.weigh(n, sum, weights, ground);
+    for (int y = r.begin(); y != r.end(); ++y) row_has_holes[std::size_t(y)] = false;
+    for (int x0 = 0; x0 < w; x0 += kRun) {
+      const int n = std::min(kRun, w - x0);
+      rows.lay(k, w, h, r.begin() - 1, x0, n);
+      rows.lay(k, w, h, r.begin(), x0, n);
+      for (int y = r.begin(); y != r.end(); ++y) {
+        rows.lay(k, w, h, y + 1, x0, n);
+        rows.weigh(y, n, sum, weights, ground);
+        const float ray_up = -(float(y) + 0.5f - cy) / focal;
+        const Sample* row = k + std::size_t(y) * std::size_t(w);
         std::uint8_t* out = image.pixels.data() + image.offset(x0, y);
         for (int i = 0; i < n; ++i, out += 3) {
           const Sample& s = row[x0 + i];
           if (is_none(s.depth)) {  // a hole: fill_holes
-            holes = true;
+            row_has_holes[std::size_t(y)] = true;
             continue;
           }
           Vec3f c{s.color[0], s.color[1], s.color[2]};
@@ -147,7 +151,6 @@ void FrameCache::Impl::resolve(const ViewWorld& world, ImageRgb8& image) {
           out[2] = lut.encode(c[2]);
         }
       }
-      row_has_holes[std::size_t(y)] = holes;
     }
   });
 }
