@@ -83,16 +83,13 @@ struct ReconstructionRows {
 
   // The run's pixel i of row y: its tent-weighted sums, and the weight of the samples not sky.
   void weigh(int y, int n, float (*sum)[kRun], float* weights, float* ground) const {
-    constexpr float inverse_radius = 1.0f / kReconstructionRadius;
     for (int i = 0; i < n; ++i) sum[0][i] = sum[1][i] = sum[2][i] = weights[i] = ground[i] = 0;
     for (int dy = -1; dy <= 1; ++dy) {
       const int r = slot(y + dy);
       for (int d = 0; d < 3; ++d)
         for (int i = 0; i < n; ++i) {
           const int c = i + d;
-          const float wx = std::max(1.0f - std::abs(float(d - 1) + ox[r][c]) * inverse_radius, 0.0f);
-          const float wy = std::max(1.0f - std::abs(float(dy) + oy[r][c]) * inverse_radius, 0.0f);
-          const float weight = wx * wy * there[r][c];
+          const float weight = tent_weight(float(d - 1) + ox[r][c]) * tent_weight(float(dy) + oy[r][c]) * there[r][c];
           for (int a = 0; a < 3; ++a) sum[a][i] += weight * color[a][r][c];
           weights[i] += weight;
           ground[i] += weight * (1.0f - sky[r][c]);

@@ -56,6 +56,10 @@ constexpr double kMaxHoleShare = 0.2;
 // 1.5: 20.98 / 0.730, 24.65 / 0.784, 22.72 / 0.778, 23.95 / 0.797; 2 (cut to 3 x 3): within 0.2 dB
 // of 1.5. A still mean (two samples or more) is shown as it is.
 constexpr float kReconstructionRadius = 1.5f;
+// The reconstruction's weight along one axis of a sample `offset` pixels from the pixel's centre.
+inline float tent_weight(float offset) {
+  return std::max(1.0f - std::abs(offset) * (1.0f / kReconstructionRadius), 0.0f);
+}
 // Positions within the pixel are kept in 1/kSubScale of a pixel.
 constexpr float kSubScale = 60;  // (a copy's lies up to kMaxStretch / 2 + 0.5 pixels out: within 127 / 60)
 

@@ -47,7 +47,6 @@ ImageRgb8 exact_frame(const Camera& camera) {
 // are compared with the exact image seen so, not with its bare samples.
 ImageRgb8 reconstructed(const ImageRgb8& image) {
   const view_detail::Luts& lut = view_detail::luts();
-  const float side = 1 - 1 / frame_cache_detail::kReconstructionRadius;  // a neighbour's centre's weight
   ImageRgb8 out = image;
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x) {
@@ -56,7 +55,7 @@ ImageRgb8 reconstructed(const ImageRgb8& image) {
         for (int dx = -1; dx <= 1; ++dx) {
           const int nx = x + dx, ny = y + dy;
           if (nx < 0 || ny < 0 || nx >= image.width || ny >= image.height) continue;
-          const float weight = (dx ? side : 1) * (dy ? side : 1);
+          const float weight = frame_cache_detail::tent_weight(float(dx)) * frame_cache_detail::tent_weight(float(dy));
           const std::uint8_t* in = image.pixels.data() + image.offset(nx, ny);
           for (int c = 0; c < 3; ++c) sum[c] += weight * lut.to_linear[in[c]];
           weights += weight;
